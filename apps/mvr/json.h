@@ -1,0 +1,21 @@
+/* A minimal streaming JSON writer for the CLI's machine-readable output. */
+#ifndef MVR_APP_JSON_H
+#define MVR_APP_JSON_H
+
+#include <stdbool.h>
+#include <stdio.h>
+
+typedef struct json_writer {
+    FILE *out;
+    int depth;
+    bool need_comma[32];
+} json_writer;
+
+void json_begin_object(json_writer *w, const char *key);
+void json_end_object(json_writer *w);
+void json_string(json_writer *w, const char *key, const char *value);
+void json_int(json_writer *w, const char *key, long long value);
+void json_double(json_writer *w, const char *key, double value);
+void json_bool(json_writer *w, const char *key, bool value);
+
+#endif

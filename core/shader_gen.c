@@ -1,0 +1,302 @@
+#include <string.h>
+
+#include "shader_files.h"
+#include "shader_gen.h"
+
+/* Views per uniform block; a larger view set binds the block per chunk. */
+#define MVR_SHADER_MAX_VIEWS 64
+/* Materials per table block (16 KiB is the GLES 3.0 minimum block size and a
+ * material with texture transforms is 240 bytes). */
+#define MVR_SHADER_MAX_MATERIALS 64
+
+typedef struct feature_define {
+    uint32_t bit;
+    const char *name;
+} feature_define;
+
+static const feature_define mesh_defines[] = {
+    {MVR_FEATURE_NORMALS, "MVR_NORMALS"},
+    {MVR_FEATURE_TANGENTS, "MVR_TANGENTS"},
+    {MVR_FEATURE_UV0, "MVR_UV0"},
+    {MVR_FEATURE_UV1, "MVR_UV1"},
+    {MVR_FEATURE_COLOR0, "MVR_COLOR0"},
+    {MVR_FEATURE_BASE_COLOR_TEX, "MVR_BASE_COLOR_TEX"},
+    {MVR_FEATURE_METAL_ROUGH_TEX, "MVR_METAL_ROUGH_TEX"},
+    {MVR_FEATURE_NORMAL_TEX, "MVR_NORMAL_TEX"},
+    {MVR_FEATURE_OCCLUSION_TEX, "MVR_OCCLUSION_TEX"},
+    {MVR_FEATURE_EMISSIVE_TEX, "MVR_EMISSIVE_TEX"},
+    {MVR_FEATURE_TEXTURE_TRANSFORM, "MVR_TEXTURE_TRANSFORM"},
+    {MVR_FEATURE_ALPHA_MASK, "MVR_ALPHA_MASK"},
+    {MVR_FEATURE_ALPHA_BLEND, "MVR_ALPHA_BLEND"},
+    {MVR_FEATURE_DOUBLE_SIDED, "MVR_DOUBLE_SIDED"},
+    {MVR_FEATURE_UNLIT, "MVR_UNLIT"},
+    {MVR_FEATURE_MATERIAL_ARRAYS, "MVR_MATERIAL_ARRAYS"},
+};
+
+static const feature_define composite_defines[] = {
+    {MVR_FEATURE_SRGB_ENCODE, "MVR_SRGB_ENCODE"},
+};
+
+typedef struct program_files {
+    const char *shared[2];   /* prepended to both stages, in order (NULL = none) */
+    const char *vertex_shared; /* prepended to the vertex stage only */
+    const char *stage[MVR_SHADER_STAGE_COUNT];
+} program_files;
+
+static const feature_define *program_defines(mvr_program_kind program, size_t *count)
+{
+    switch (program) {
+    case MVR_PROGRAM_MESH:
+        *count = MVR_ARRAY_COUNT(mesh_defines);
+        return mesh_defines;
+    case MVR_PROGRAM_COMPOSITE:
+        *count = MVR_ARRAY_COUNT(composite_defines);
+        return composite_defines;
+    case MVR_PROGRAM_KIND_COUNT:
+        break;
+    }
+    *count = 0;
+    return NULL;
+}
+
+static bool program_files_of(mvr_program_kind program, program_files *out)
+{
+    memset(out, 0, sizeof *out);
+    out->shared[0] = "common.glsl";
+    switch (program) {
+    case MVR_PROGRAM_MESH:
+        out->vertex_shared = "views.glsl";
+        out->stage[MVR_SHADER_STAGE_VERTEX] = "mesh.vert.glsl";
+        out->stage[MVR_SHADER_STAGE_FRAGMENT] = "mesh.frag.glsl";
+        return true;
+    case MVR_PROGRAM_COMPOSITE:
+        out->stage[MVR_SHADER_STAGE_VERTEX] = "composite.vert.glsl";
+        out->stage[MVR_SHADER_STAGE_FRAGMENT] = "composite.frag.glsl";
+        return true;
+    case MVR_PROGRAM_KIND_COUNT:
+        break;
+    }
+    return false;
+}
+
+const mvr_shader_file *mvr_shader_file_find(const char *name)
+{
+    for (unsigned i = 0; i < mvr_shader_file_count; ++i)
+        if (strcmp(mvr_shader_files[i].name, name) == 0)
+            return &mvr_shader_files[i];
+    return NULL;
+}
+
+const char *mvr_program_kind_name(mvr_program_kind kind)
+{
+    switch (kind) {
+    case MVR_PROGRAM_MESH: return "mesh";
+    case MVR_PROGRAM_COMPOSITE: return "composite";
+    case MVR_PROGRAM_KIND_COUNT: break;
+    }
+    return NULL;
+}
+
+const char *mvr_shader_stage_name(mvr_shader_stage stage)
+{
+    switch (stage) {
+    case MVR_SHADER_STAGE_VERTEX: return "vert";
+    case MVR_SHADER_STAGE_FRAGMENT: return "frag";
+    case MVR_SHADER_STAGE_COUNT: break;
+    }
+    return NULL;
+}
+
+const char *mvr_shader_feature_define(mvr_program_kind program, uint32_t bit)
+{
+    size_t count;
+    const feature_define *defs = program_defines(program, &count);
+    for (size_t i = 0; i < count; ++i)
+        if (defs[i].bit == bit)
+            return defs[i].name;
+    return NULL;
+}
+
+uint32_t mvr_shader_feature_mask(mvr_program_kind program)
+{
+    size_t count;
+    const feature_define *defs = program_defines(program, &count);
+    uint32_t mask = 0;
+    for (size_t i = 0; i < count; ++i)
+        mask |= defs[i].bit;
+    return mask;
+}
+
+bool mvr_shader_variant_valid(const mvr_shader_variant *v, char *why, size_t why_size)
+{
+    if (!v) {
+        mvr_str_copy(why, why_size, "variant is NULL");
+        return false;
+    }
+    if (!mvr_program_kind_name(v->program)) {
+        mvr_str_format(why, why_size, "unknown program kind %d", (int)v->program);
+        return false;
+    }
+    uint32_t unknown = v->features & ~mvr_shader_feature_mask(v->program);
+    if (unknown) {
+        mvr_str_format(why, why_size, "feature bits 0x%x are not features of the %s program",
+                       (unsigned)unknown, mvr_program_kind_name(v->program));
+        return false;
+    }
+    if (v->num_views > MVR_SHADER_MAX_VIEWS) {
+        mvr_str_format(why, why_size, "num_views %u exceeds the view block size %d",
+                       (unsigned)v->num_views, MVR_SHADER_MAX_VIEWS);
+        return false;
+    }
+    if (v->directional_lights > MVR_SHADER_MAX_LIGHTS_PER_TYPE ||
+        v->point_lights > MVR_SHADER_MAX_LIGHTS_PER_TYPE ||
+        v->spot_lights > MVR_SHADER_MAX_LIGHTS_PER_TYPE) {
+        mvr_str_format(why, why_size, "more than %d lights of one type",
+                       MVR_SHADER_MAX_LIGHTS_PER_TYPE);
+        return false;
+    }
+    if (v->program != MVR_PROGRAM_MESH &&
+        (v->directional_lights || v->point_lights || v->spot_lights)) {
+        mvr_str_format(why, why_size, "the %s program takes no lights",
+                       mvr_program_kind_name(v->program));
+        return false;
+    }
+    if ((v->features & MVR_FEATURE_ALPHA_MASK) && (v->features & MVR_FEATURE_ALPHA_BLEND) &&
+        v->program == MVR_PROGRAM_MESH) {
+        mvr_str_copy(why, why_size, "alpha mask and alpha blend exclude each other");
+        return false;
+    }
+    return true;
+}
+
+static bool append_file(mvr_str_builder *out, const char *name, char *why, size_t why_size)
+{
+    const mvr_shader_file *f = mvr_shader_file_find(name);
+    if (!f) {
+        mvr_str_format(why, why_size, "shader file %s was not embedded", name);
+        return false;
+    }
+    mvr_sb_appendf(out, "#line 1 // %s\n", name);
+    mvr_sb_append(out, f->text);
+    if (f->length == 0 || f->text[f->length - 1] != '\n')
+        mvr_sb_append(out, "\n");
+    return true;
+}
+
+bool mvr_shader_source(const mvr_shader_variant *v, mvr_shader_stage stage, mvr_str_builder *out,
+                       char *why, size_t why_size)
+{
+    program_files files;
+    if (!mvr_shader_variant_valid(v, why, why_size))
+        return false;
+    if (!mvr_shader_stage_name(stage) || !program_files_of(v->program, &files)) {
+        mvr_str_format(why, why_size, "unknown shader stage %d", (int)stage);
+        return false;
+    }
+
+    mvr_sb_append(out, "#version 300 es\n");
+    if (v->num_views > 0) {
+        /* OVR_multiview2 lets gl_ViewID_OVR reach more than gl_Position. */
+        mvr_sb_append(out, "#extension GL_OVR_multiview2 : require\n");
+        if (stage == MVR_SHADER_STAGE_VERTEX)
+            mvr_sb_appendf(out, "layout(num_views = %u) in;\n", (unsigned)v->num_views);
+        mvr_sb_appendf(out, "#define MVR_MULTIVIEW 1\n#define MVR_NUM_VIEWS %u\n",
+                       (unsigned)v->num_views);
+    } else {
+        mvr_sb_append(out, "#define MVR_NUM_VIEWS 1\n");
+    }
+    mvr_sb_appendf(out, "#define MVR_MAX_VIEWS %d\n", MVR_SHADER_MAX_VIEWS);
+    if (v->program == MVR_PROGRAM_MESH) {
+        mvr_sb_appendf(out, "#define MVR_MAX_MATERIALS %d\n", MVR_SHADER_MAX_MATERIALS);
+        mvr_sb_appendf(out,
+                       "#define MVR_DIRECTIONAL_LIGHTS %u\n#define MVR_POINT_LIGHTS %u\n"
+                       "#define MVR_SPOT_LIGHTS %u\n",
+                       v->directional_lights, v->point_lights, v->spot_lights);
+    }
+    size_t count;
+    const feature_define *defs = program_defines(v->program, &count);
+    for (size_t i = 0; i < count; ++i)
+        if (v->features & defs[i].bit)
+            mvr_sb_appendf(out, "#define %s 1\n", defs[i].name);
+
+    for (size_t i = 0; i < MVR_ARRAY_COUNT(files.shared); ++i)
+        if (files.shared[i] && !append_file(out, files.shared[i], why, why_size))
+            return false;
+    if (stage == MVR_SHADER_STAGE_VERTEX && files.vertex_shared &&
+        !append_file(out, files.vertex_shared, why, why_size))
+        return false;
+    if (!append_file(out, files.stage[stage], why, why_size))
+        return false;
+    if (out->failed) {
+        mvr_str_copy(why, why_size, "out of memory while generating shader source");
+        return false;
+    }
+    return true;
+}
+
+void mvr_shader_variant_name(const mvr_shader_variant *v, char *out, size_t size)
+{
+    const char *program = mvr_program_kind_name(v->program);
+    if (v->num_views > 0)
+        mvr_str_format(out, size, "%s-mv%u-f%05x-l%u.%u.%u", program ? program : "invalid",
+                       (unsigned)v->num_views, (unsigned)v->features, v->directional_lights,
+                       v->point_lights, v->spot_lights);
+    else
+        mvr_str_format(out, size, "%s-loop-f%05x-l%u.%u.%u", program ? program : "invalid",
+                       (unsigned)v->features, v->directional_lights, v->point_lights,
+                       v->spot_lights);
+}
+
+/* All bits of a program except those that exclude each other. */
+static uint32_t all_compatible_features(mvr_program_kind program)
+{
+    uint32_t mask = mvr_shader_feature_mask(program);
+    if (program == MVR_PROGRAM_MESH)
+        mask &= ~(uint32_t)MVR_FEATURE_ALPHA_BLEND;
+    return mask;
+}
+
+bool mvr_shader_variant_enumerate(unsigned index, uint32_t max_views, mvr_shader_variant *out)
+{
+    /* view counts: loop, multiview 1, 2 and max_views (deduplicated) */
+    uint32_t views[4] = {0, 1, 2, max_views};
+    unsigned view_count = (max_views > 2) ? 4u : 3u;
+    for (int p = 0; p < MVR_PROGRAM_KIND_COUNT; ++p) {
+        mvr_program_kind program = (mvr_program_kind)p;
+        size_t define_count;
+        const feature_define *defs = program_defines(program, &define_count);
+        /* feature sets: none, each alone, and (where a program has more than
+         * one feature) all compatible ones together, plus (mesh) all with blend
+         * instead of mask */
+        unsigned feature_sets = 1u + (unsigned)define_count + (define_count > 1 ? 1u : 0u) +
+                                (program == MVR_PROGRAM_MESH ? 1u : 0u);
+        unsigned light_sets = program == MVR_PROGRAM_MESH ? 2u : 1u;
+        unsigned per_program = feature_sets * view_count * light_sets;
+        if (index >= per_program) {
+            index -= per_program;
+            continue;
+        }
+        memset(out, 0, sizeof *out);
+        out->program = program;
+        unsigned fs = index % feature_sets;
+        unsigned rest = index / feature_sets;
+        out->num_views = views[rest % view_count];
+        unsigned ls = rest / view_count;
+        if (fs == 0)
+            out->features = 0;
+        else if (fs <= define_count)
+            out->features = defs[fs - 1].bit;
+        else if (fs == define_count + 1)
+            out->features = all_compatible_features(program);
+        else
+            out->features = (all_compatible_features(program) & ~(uint32_t)MVR_FEATURE_ALPHA_MASK) |
+                            MVR_FEATURE_ALPHA_BLEND;
+        if (ls == 1) {
+            out->directional_lights = 1;
+            out->point_lights = 2;
+            out->spot_lights = 1;
+        }
+        return true;
+    }
+    return false;
+}

@@ -1,0 +1,89 @@
+/*
+ * Shader permutations: a variant (program, feature bits, view count, light
+ * counts) becomes GLSL ES 3.00 source by prepending #version, the multiview
+ * extension and #defines to the embedded files. Backend-free: the GL backend
+ * compiles what this produces, and tests/shaders validates every variant the
+ * library can generate with glslangValidator.
+ */
+#ifndef MVR_SHADER_GEN_H
+#define MVR_SHADER_GEN_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "core_util.h"
+
+typedef enum mvr_shader_stage {
+    MVR_SHADER_STAGE_VERTEX = 0,
+    MVR_SHADER_STAGE_FRAGMENT,
+    MVR_SHADER_STAGE_COUNT
+} mvr_shader_stage;
+
+typedef enum mvr_program_kind {
+    MVR_PROGRAM_MESH = 0,   /* scene geometry, metallic-roughness PBR */
+    MVR_PROGRAM_COMPOSITE,  /* full-screen copy of one array layer per view */
+    MVR_PROGRAM_KIND_COUNT
+} mvr_program_kind;
+
+/* Feature bits of the mesh program; each compiles code in with a #define. */
+typedef enum mvr_mesh_feature {
+    MVR_FEATURE_NORMALS = 1u << 0,          /* vertex normals (else face normals) */
+    MVR_FEATURE_TANGENTS = 1u << 1,         /* vertex tangents (else derived) */
+    MVR_FEATURE_UV0 = 1u << 2,
+    MVR_FEATURE_UV1 = 1u << 3,
+    MVR_FEATURE_COLOR0 = 1u << 4,           /* vertex colors */
+    MVR_FEATURE_BASE_COLOR_TEX = 1u << 5,
+    MVR_FEATURE_METAL_ROUGH_TEX = 1u << 6,
+    MVR_FEATURE_NORMAL_TEX = 1u << 7,
+    MVR_FEATURE_OCCLUSION_TEX = 1u << 8,
+    MVR_FEATURE_EMISSIVE_TEX = 1u << 9,
+    MVR_FEATURE_TEXTURE_TRANSFORM = 1u << 10,
+    MVR_FEATURE_ALPHA_MASK = 1u << 11,
+    MVR_FEATURE_ALPHA_BLEND = 1u << 12,
+    MVR_FEATURE_DOUBLE_SIDED = 1u << 13,
+    MVR_FEATURE_UNLIT = 1u << 14,
+    MVR_FEATURE_MATERIAL_ARRAYS = 1u << 15, /* texture arrays + layer index (batcher path) */
+    MVR_MESH_FEATURE_ALL_ = (1u << 16) - 1u
+} mvr_mesh_feature;
+
+/* Feature bits of the composite program. */
+typedef enum mvr_composite_feature {
+    MVR_FEATURE_SRGB_ENCODE = 1u << 0,      /* exact piecewise sRGB encode on output */
+    MVR_COMPOSITE_FEATURE_ALL_ = (1u << 1) - 1u
+} mvr_composite_feature;
+
+#define MVR_SHADER_MAX_LIGHTS_PER_TYPE 8
+
+typedef struct mvr_shader_variant {
+    mvr_program_kind program;
+    uint32_t features;      /* mvr_mesh_feature or mvr_composite_feature bits */
+    uint32_t num_views;     /* 0: loop path (view index uniform); n >= 1: multiview, num_views = n */
+    uint8_t directional_lights, point_lights, spot_lights;  /* mesh only */
+} mvr_shader_variant;
+
+const char *mvr_program_kind_name(mvr_program_kind kind);
+const char *mvr_shader_stage_name(mvr_shader_stage stage);
+/* The #define name of one feature bit of a program; NULL when the bit is not one. */
+const char *mvr_shader_feature_define(mvr_program_kind program, uint32_t bit);
+uint32_t mvr_shader_feature_mask(mvr_program_kind program);
+
+/* Checks a variant against the generator's limits; writes why not into why[why_size]. */
+bool mvr_shader_variant_valid(const mvr_shader_variant *variant, char *why, size_t why_size);
+
+/* Appends the full source of one stage of a variant. Returns false (and writes
+ * why) for an invalid variant or a missing embedded file. */
+bool mvr_shader_source(const mvr_shader_variant *variant, mvr_shader_stage stage,
+                       mvr_str_builder *out, char *why, size_t why_size);
+
+/* A short stable name of a variant, e.g. "mesh-mv6-f00a3-l1.0.0". */
+void mvr_shader_variant_name(const mvr_shader_variant *variant, char *out, size_t size);
+
+/*
+ * The validation set: every program with no feature, each feature alone, and
+ * all features together (the combination of all bits the program allows), on
+ * the loop path and with multiview at 1, 2 and max_views views, with and
+ * without lights. Call with index 0, 1, ... until it returns false.
+ */
+bool mvr_shader_variant_enumerate(unsigned index, uint32_t max_views, mvr_shader_variant *out);
+
+#endif

@@ -1,0 +1,36 @@
+/* Programs: compile and link one shader variant from core/shader_gen. */
+#ifndef MVR_PROGRAM_H
+#define MVR_PROGRAM_H
+
+#include "context_internal.h"
+#include "shader_gen.h"
+
+/* Uniform block binding points, fixed for every program. */
+enum {
+    MVR_BLOCK_VIEWS = 0,
+    MVR_BLOCK_DRAW = 1,
+    MVR_BLOCK_MATERIALS = 2,
+    MVR_BLOCK_LIGHTS = 3
+};
+
+/* Texture units of the material roles and of the composite source. */
+enum {
+    MVR_UNIT_BASE_COLOR = 0,
+    MVR_UNIT_METAL_ROUGH = 1,
+    MVR_UNIT_NORMAL = 2,
+    MVR_UNIT_OCCLUSION = 3,
+    MVR_UNIT_EMISSIVE = 4,
+    MVR_UNIT_COMPOSITE_SOURCE = 0
+};
+
+/* Builds the variant into a linked program with its blocks and samplers bound.
+ * On failure ctx's last error holds the compile / link log. The current
+ * program binding is restored. */
+mvr_result mvr_gl_program_build(mvr_context *ctx, const mvr_shader_variant *variant,
+                                GLuint *out_program);
+
+/* Builds a variant on ctx and deletes it again: a check that the driver
+ * accepts it (tests). */
+mvr_result mvr_context_check_shader_variant(mvr_context *ctx, const mvr_shader_variant *variant);
+
+#endif

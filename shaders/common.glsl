@@ -1,0 +1,31 @@
+// common.glsl: shared by every stage of every program. The generator
+// (core/shader_gen.c) puts #version, the multiview extension and the feature
+// #defines in front of this file.
+//
+// highp everywhere: llvmpipe really computes medium precision in fp16, and world
+// positions relative to the view origin need the full float mantissa.
+precision highp float;
+precision highp int;
+precision highp sampler2D;
+precision highp sampler2DArray;
+
+const float MVR_PI = 3.14159265358979323846;
+
+// Normalizes v, or returns fallback when v is zero, denormal or NaN, so no NaN
+// reaches a pixel from degenerate input. (!(x > eps) is true for NaN too.)
+vec3 mvr_safe_normalize(vec3 v, vec3 fallback)
+{
+    float len2 = dot(v, v);
+    if (!(len2 > 1e-24) || isinf(len2))
+        return fallback;
+    return v * inversesqrt(len2);
+}
+
+// Exact piecewise sRGB encode (IEC 61966-2-1), not a gamma approximation.
+vec3 mvr_linear_to_srgb(vec3 c)
+{
+    c = clamp(c, 0.0, 1.0);
+    vec3 lo = c * 12.92;
+    vec3 hi = 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055;
+    return mix(hi, lo, vec3(lessThanEqual(c, vec3(0.0031308))));
+}

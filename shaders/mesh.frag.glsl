@@ -1,0 +1,247 @@
+// mesh.frag.glsl: glTF 2.0 metallic-roughness (Appendix B of the glTF 2.0
+// specification: Lambertian diffuse, GGX / Trowbridge-Reitz distribution,
+// height-correlated Smith visibility, Schlick Fresnel) with KHR_lights_punctual
+// lights. Everything this stage reads is constant across a pass: the material
+// table and the lights are whole uniform blocks, the draw picks its material
+// through a flat varying.
+
+struct mvr_material {
+    vec4 base_color_factor;
+    vec4 emissive;           // rgb: emissive factor * strength, a: alpha cutoff
+    vec4 params;             // x: metallic, y: roughness, z: normal scale, w: occlusion strength
+    ivec4 layers;            // array layers: base color, metal-rough, normal, occlusion
+    ivec4 extra;             // x: emissive layer, y: bit i set = role i reads TEXCOORD_1
+#ifdef MVR_TEXTURE_TRANSFORM
+    vec4 uv_transform[10];   // per role: two rows of a 2x3 affine (KHR_texture_transform)
+#endif
+};
+
+layout(std140) uniform mvr_materials {
+    mvr_material mvr_material_table[MVR_MAX_MATERIALS];
+};
+
+struct mvr_light {
+    vec4 position_range;     // xyz relative to the view origin; w: range (0 = infinite)
+    vec4 direction;          // xyz: direction the light points to (unit)
+    vec4 color;              // rgb: color * intensity
+    vec4 spot;               // x: angle scale, y: angle offset (KHR_lights_punctual)
+};
+
+#define MVR_LIGHT_COUNT (MVR_DIRECTIONAL_LIGHTS + MVR_POINT_LIGHTS + MVR_SPOT_LIGHTS)
+#if MVR_LIGHT_COUNT > 0
+layout(std140) uniform mvr_lights {
+    mvr_light mvr_light_list[MVR_LIGHT_COUNT]; // directional, then point, then spot
+};
+#endif
+uniform vec3 mvr_ambient;    // rgb radiance of a uniform environment
+
+#ifdef MVR_MATERIAL_ARRAYS
+#define MVR_SAMPLER sampler2DArray
+#define MVR_SAMPLE(s, uv, layer) texture(s, vec3(uv, float(layer)))
+#else
+#define MVR_SAMPLER sampler2D
+#define MVR_SAMPLE(s, uv, layer) texture(s, uv)
+#endif
+
+#ifdef MVR_BASE_COLOR_TEX
+uniform MVR_SAMPLER mvr_base_color_tex;
+#endif
+#ifdef MVR_METAL_ROUGH_TEX
+uniform MVR_SAMPLER mvr_metal_rough_tex;
+#endif
+#ifdef MVR_NORMAL_TEX
+uniform MVR_SAMPLER mvr_normal_tex;
+#endif
+#ifdef MVR_OCCLUSION_TEX
+uniform MVR_SAMPLER mvr_occlusion_tex;
+#endif
+#ifdef MVR_EMISSIVE_TEX
+uniform MVR_SAMPLER mvr_emissive_tex;
+#endif
+
+in vec3 v_position;
+in vec3 v_to_eye;
+flat in int v_material;
+#ifdef MVR_NORMALS
+in vec3 v_normal;
+#endif
+#ifdef MVR_TANGENTS
+in vec4 v_tangent;
+#endif
+#ifdef MVR_UV0
+in vec2 v_uv0;
+#endif
+#ifdef MVR_UV1
+in vec2 v_uv1;
+#endif
+#ifdef MVR_COLOR0
+in vec4 v_color0;
+#endif
+
+layout(location = 0) out vec4 o_color;
+
+// Texture coordinates of texture role `role` (0 base color .. 4 emissive).
+vec2 mvr_uv(int role, mvr_material m)
+{
+    vec2 uv = vec2(0.0);
+#ifdef MVR_UV0
+    uv = v_uv0;
+#endif
+#ifdef MVR_UV1
+    if (((m.extra.y >> role) & 1) != 0)
+        uv = v_uv1;
+#endif
+#ifdef MVR_TEXTURE_TRANSFORM
+    vec3 h = vec3(uv, 1.0);
+    uv = vec2(dot(m.uv_transform[2 * role].xyz, h), dot(m.uv_transform[2 * role + 1].xyz, h));
+#endif
+    return uv;
+}
+
+float mvr_d_ggx(float n_dot_h, float alpha)
+{
+    float a2 = alpha * alpha;
+    float f = n_dot_h * n_dot_h * (a2 - 1.0) + 1.0;
+    return a2 / max(MVR_PI * f * f, 1e-12);
+}
+
+float mvr_v_smith_ggx_correlated(float n_dot_l, float n_dot_v, float alpha)
+{
+    float a2 = alpha * alpha;
+    float gv = n_dot_l * sqrt(n_dot_v * n_dot_v * (1.0 - a2) + a2);
+    float gl = n_dot_v * sqrt(n_dot_l * n_dot_l * (1.0 - a2) + a2);
+    float s = gv + gl;
+    return s > 0.0 ? 0.5 / s : 0.0;
+}
+
+vec3 mvr_brdf(vec3 n, vec3 v, vec3 l, vec3 base, float metallic, float alpha)
+{
+    float n_dot_l = clamp(dot(n, l), 0.0, 1.0);
+    if (n_dot_l <= 0.0)
+        return vec3(0.0);
+    vec3 h = mvr_safe_normalize(l + v, n);
+    float n_dot_v = clamp(abs(dot(n, v)), 1e-4, 1.0);
+    float n_dot_h = clamp(dot(n, h), 0.0, 1.0);
+    float v_dot_h = clamp(dot(v, h), 0.0, 1.0);
+    vec3 f0 = mix(vec3(0.04), base, metallic);
+    vec3 f = f0 + (1.0 - f0) * pow(1.0 - v_dot_h, 5.0);
+    vec3 diffuse = (1.0 - f) * (1.0 - metallic) * base / MVR_PI;
+    vec3 specular = f * mvr_d_ggx(n_dot_h, alpha) * mvr_v_smith_ggx_correlated(n_dot_l, n_dot_v, alpha);
+    return (diffuse + specular) * n_dot_l;
+}
+
+// KHR_lights_punctual range attenuation: smooth window to zero at range,
+// inverse square inside; distance clamped so a light at the surface is finite.
+float mvr_range_attenuation(float range, float dist)
+{
+    float d2 = max(dist * dist, 1e-8);
+    if (range <= 0.0)
+        return 1.0 / d2;
+    float r = clamp(1.0 - pow(dist / range, 4.0), 0.0, 1.0);
+    return r * r / d2;
+}
+
+void main()
+{
+    mvr_material m = mvr_material_table[v_material];
+    vec4 base = m.base_color_factor;
+#ifdef MVR_COLOR0
+    base *= v_color0;
+#endif
+#ifdef MVR_BASE_COLOR_TEX
+    base *= MVR_SAMPLE(mvr_base_color_tex, mvr_uv(0, m), m.layers.x);
+#endif
+
+#ifdef MVR_ALPHA_MASK
+    if (base.a < m.emissive.a)
+        discard;
+    base.a = 1.0;
+#elif !defined(MVR_ALPHA_BLEND)
+    base.a = 1.0;
+#endif
+
+#ifdef MVR_UNLIT
+    // KHR_materials_unlit: the base color is the result; emissive is ignored.
+    o_color = base;
+#else
+    float metallic = m.params.x;
+    float roughness = m.params.y;
+#ifdef MVR_METAL_ROUGH_TEX
+    vec4 mr = MVR_SAMPLE(mvr_metal_rough_tex, mvr_uv(1, m), m.layers.y);
+    roughness *= mr.g;
+    metallic *= mr.b;
+#endif
+    metallic = clamp(metallic, 0.0, 1.0);
+    roughness = clamp(roughness, 0.0, 1.0);
+    float alpha = max(roughness * roughness, 1e-3);
+
+    // Geometric normal from screen-space derivatives: always defined for a
+    // rasterized triangle, used where the interpolated normal is degenerate.
+    vec3 face_n = mvr_safe_normalize(cross(dFdx(v_position), dFdy(v_position)), vec3(0.0, 0.0, 1.0));
+#ifdef MVR_NORMALS
+    vec3 n = mvr_safe_normalize(v_normal, face_n);
+#else
+    vec3 n = face_n;
+#endif
+#ifdef MVR_DOUBLE_SIDED
+    if (!gl_FrontFacing)
+        n = -n;
+#endif
+
+#ifdef MVR_NORMAL_TEX
+    vec2 nuv = mvr_uv(2, m);
+#ifdef MVR_TANGENTS
+    vec3 t = mvr_safe_normalize(v_tangent.xyz - n * dot(n, v_tangent.xyz), vec3(0.0));
+    vec3 b = cross(n, t) * (v_tangent.w < 0.0 ? -1.0 : 1.0);
+#else
+    // No tangents: derive the frame from position and UV derivatives,
+    // guarded against degenerate UVs (zero determinant leaves n unperturbed).
+    vec3 dp1 = dFdx(v_position), dp2 = dFdy(v_position);
+    vec2 duv1 = dFdx(nuv), duv2 = dFdy(nuv);
+    float det = duv1.x * duv2.y - duv1.y * duv2.x;
+    vec3 t = vec3(0.0), b = vec3(0.0);
+    if (abs(det) > 1e-20) {
+        t = mvr_safe_normalize((dp1 * duv2.y - dp2 * duv1.y) / det, vec3(0.0));
+        b = mvr_safe_normalize((dp2 * duv1.x - dp1 * duv2.x) / det, vec3(0.0));
+    }
+#endif
+    vec3 tn = MVR_SAMPLE(mvr_normal_tex, nuv, m.layers.z).xyz * 2.0 - 1.0;
+    tn.xy *= m.params.z;
+    n = mvr_safe_normalize(t * tn.x + b * tn.y + n * tn.z, n);
+#endif
+
+    vec3 v = mvr_safe_normalize(v_to_eye, n);
+    vec3 color = vec3(0.0);
+#if MVR_LIGHT_COUNT > 0
+    for (int i = 0; i < MVR_LIGHT_COUNT; ++i) {
+        mvr_light light = mvr_light_list[i];
+        vec3 l;
+        float attenuation = 1.0;
+        if (i < MVR_DIRECTIONAL_LIGHTS) {
+            l = -light.direction.xyz;
+        } else {
+            vec3 to_light = light.position_range.xyz - v_position;
+            float dist = length(to_light);
+            l = mvr_safe_normalize(to_light, n);
+            attenuation = mvr_range_attenuation(light.position_range.w, dist);
+            if (i >= MVR_DIRECTIONAL_LIGHTS + MVR_POINT_LIGHTS) {
+                float cd = dot(light.direction.xyz, -l);
+                float s = clamp(cd * light.spot.x + light.spot.y, 0.0, 1.0);
+                attenuation *= s * s;
+            }
+        }
+        color += light.color.rgb * attenuation * mvr_brdf(n, v, l, base.rgb, metallic, alpha);
+    }
+#endif
+    float ao = 1.0;
+#ifdef MVR_OCCLUSION_TEX
+    ao = 1.0 + m.params.w * (MVR_SAMPLE(mvr_occlusion_tex, mvr_uv(3, m), m.layers.w).r - 1.0);
+#endif
+    color += mvr_ambient * base.rgb * ao;
+    vec3 emissive = m.emissive.rgb;
+#ifdef MVR_EMISSIVE_TEX
+    emissive *= MVR_SAMPLE(mvr_emissive_tex, mvr_uv(4, m), m.extra.x).rgb;
+#endif
+    o_color = vec4(color + emissive, base.a);
+#endif
+}

@@ -1,0 +1,70 @@
+// mesh.vert.glsl: scene geometry. Per-draw data is read only here and passed
+// on as flat varyings: on llvmpipe a change to anything the fragment stage
+// reads costs a full state snapshot, vertex-only data is much cheaper.
+
+layout(std140) uniform mvr_draw {
+    mat4 mvr_model;          // relative to the view origin
+    mat4 mvr_normal_matrix;  // inverse-transpose of the model's upper 3x3
+    ivec4 mvr_draw_info;     // x: material index
+};
+
+layout(location = 0) in vec3 a_position;
+#ifdef MVR_NORMALS
+layout(location = 1) in vec3 a_normal;
+#endif
+#ifdef MVR_TANGENTS
+layout(location = 2) in vec4 a_tangent;
+#endif
+#ifdef MVR_UV0
+layout(location = 3) in vec2 a_uv0;
+#endif
+#ifdef MVR_UV1
+layout(location = 4) in vec2 a_uv1;
+#endif
+#ifdef MVR_COLOR0
+layout(location = 5) in vec4 a_color0;
+#endif
+
+out vec3 v_position;         // world, relative to the view origin
+out vec3 v_to_eye;           // eye - position: linear, so interpolation is exact
+flat out int v_material;
+#ifdef MVR_NORMALS
+out vec3 v_normal;
+#endif
+#ifdef MVR_TANGENTS
+out vec4 v_tangent;
+#endif
+#ifdef MVR_UV0
+out vec2 v_uv0;
+#endif
+#ifdef MVR_UV1
+out vec2 v_uv1;
+#endif
+#ifdef MVR_COLOR0
+out vec4 v_color0;
+#endif
+
+void main()
+{
+    int view = mvr_view_index();
+    vec4 world = mvr_model * vec4(a_position, 1.0);
+    v_position = world.xyz;
+    v_to_eye = mvr_eye_position[view].xyz - world.xyz;
+    v_material = mvr_draw_info.x;
+#ifdef MVR_NORMALS
+    v_normal = mat3(mvr_normal_matrix) * a_normal;
+#endif
+#ifdef MVR_TANGENTS
+    v_tangent = vec4(mat3(mvr_model) * a_tangent.xyz, a_tangent.w);
+#endif
+#ifdef MVR_UV0
+    v_uv0 = a_uv0;
+#endif
+#ifdef MVR_UV1
+    v_uv1 = a_uv1;
+#endif
+#ifdef MVR_COLOR0
+    v_color0 = a_color0;
+#endif
+    gl_Position = mvr_view_proj[view] * world;
+}
