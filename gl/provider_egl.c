@@ -274,13 +274,27 @@ static mvr_result egl_create_one(mvr_context_provider kind, const mvr_context_de
     return MVR_OK;
 }
 
-static int device_count(void)
+/* Device indices (1-based) in the order the automatic choice tries them:
+ * hardware devices first, Mesa's software device (EGL_MESA_device_software,
+ * enumerated beside NVIDIA's under glvnd) last. Returns the count. */
+static int device_try_order(int *order, int capacity)
 {
     EGL_LOAD(PFNEGLQUERYDEVICESEXTPROC, query_devices, "eglQueryDevicesEXT");
+    EGL_LOAD(PFNEGLQUERYDEVICESTRINGEXTPROC, query_device_string, "eglQueryDeviceStringEXT");
+    EGLDeviceEXT devices[32];
     EGLint count = 0;
-    if (!query_devices || !query_devices(0, NULL, &count))
+    if (!query_devices || !query_devices((EGLint)MVR_ARRAY_COUNT(devices), devices, &count))
         return 0;
-    return (int)count;
+    int n = 0;
+    for (int pass = 0; pass < 2; ++pass) {
+        for (EGLint i = 0; i < count && n < capacity; ++i) {
+            const char *exts = query_device_string ? query_device_string(devices[i], EGL_EXTENSIONS) : NULL;
+            bool software = has_extension(exts, "EGL_MESA_device_software");
+            if (software == (pass == 1))
+                order[n++] = (int)i + 1;
+        }
+    }
+    return n;
 }
 
 static mvr_result egl_create(mvr_context_provider kind, const mvr_context_desc *desc,
@@ -291,18 +305,20 @@ static mvr_result egl_create(mvr_context_provider kind, const mvr_context_desc *
         return egl_create_one(kind, desc, api, desc->device_index, out, why, why_size);
 
     /* DEVICE, automatic: the first device that gives a context. */
-    int count = device_count();
+    int order[32];
+    int count = device_try_order(order, (int)MVR_ARRAY_COUNT(order));
     if (count <= 0)
         return egl_create_one(kind, desc, api, 1, out, why, why_size);
     mvr_result r = MVR_ERROR_NO_DISPLAY;
     char all[MVR_ERROR_MESSAGE_SIZE] = "";
-    for (int i = 1; i <= count; ++i) {
+    for (int i = 0; i < count; ++i) {
         char one[MVR_ERROR_MESSAGE_SIZE] = "";
-        r = egl_create_one(kind, desc, api, i, out, one, sizeof one);
+        r = egl_create_one(kind, desc, api, order[i], out, one, sizeof one);
         if (r == MVR_OK)
             return MVR_OK;
         size_t used = strlen(all);
-        mvr_str_format(all + used, sizeof all - used, "%sdevice %d: %s", used ? "; " : "", i, one);
+        mvr_str_format(all + used, sizeof all - used, "%sdevice %d: %s", used ? "; " : "",
+                       order[i], one);
     }
     mvr_str_copy(why, why_size, all);
     return r;
