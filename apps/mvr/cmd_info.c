@@ -1,4 +1,5 @@
 /* mvr info: what GL mvr gets from a context provider, and what it can use. */
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -105,6 +106,93 @@ static int parse(int argc, char **argv, info_options *o)
     return MVR_EXIT_OK;
 }
 
+/* One table per caps section drives both the JSON and the text output, so
+ * the two never list different fields. */
+typedef struct bool_field {
+    const char *key;    /* JSON key (the extension name where there is one) */
+    const char *label;  /* text label */
+    size_t offset;      /* of a bool in mvr_caps */
+} bool_field;
+
+typedef struct int_field {
+    const char *key;
+    const char *label;
+    size_t offset;      /* of an int in mvr_caps */
+} int_field;
+
+#define EXT(member, key, label) {key, label, offsetof(mvr_caps, ext.member)}
+static const bool_field extension_fields[] = {
+    EXT(ovr_multiview, "GL_OVR_multiview", "GL_OVR_multiview"),
+    EXT(ovr_multiview2, "GL_OVR_multiview2", "GL_OVR_multiview2"),
+    EXT(ovr_multiview_multisampled_render_to_texture,
+        "GL_OVR_multiview_multisampled_render_to_texture",
+        "GL_OVR_multiview_multisampled_render_to_texture"),
+    EXT(multiview_msaa_array, "multiview_msaa_array", "multisampled 2D array under multiview"),
+    EXT(ext_clip_control, "GL_EXT_clip_control", "GL_EXT_clip_control"),
+    EXT(ext_disjoint_timer_query, "GL_EXT_disjoint_timer_query", "GL_EXT_disjoint_timer_query"),
+    EXT(khr_debug, "GL_KHR_debug", "GL_KHR_debug"),
+    EXT(ext_texture_filter_anisotropic, "GL_EXT_texture_filter_anisotropic",
+        "GL_EXT_texture_filter_anisotropic"),
+    EXT(ext_color_buffer_float, "GL_EXT_color_buffer_float", "GL_EXT_color_buffer_float"),
+    EXT(ext_color_buffer_half_float, "GL_EXT_color_buffer_half_float",
+        "GL_EXT_color_buffer_half_float"),
+    EXT(program_binary, "program_binary", "program binaries"),
+};
+static const bool_field compressed_fields[] = {
+    EXT(etc2, "etc2", "ETC2 / EAC"),
+    EXT(astc_ldr, "astc_ldr", "ASTC LDR"),
+    EXT(s3tc, "s3tc", "S3TC (BC1-3)"),
+    EXT(rgtc, "rgtc", "RGTC (BC4-5)"),
+    EXT(bptc, "bptc", "BPTC (BC6H-7)"),
+};
+#undef EXT
+
+#define LIMIT(member, label) {#member, label, offsetof(mvr_caps, limits.member)}
+static const int_field limit_fields[] = {
+    LIMIT(max_views_ovr, "GL_MAX_VIEWS_OVR"),
+    LIMIT(max_array_texture_layers, "GL_MAX_ARRAY_TEXTURE_LAYERS"),
+    LIMIT(max_texture_size, "GL_MAX_TEXTURE_SIZE"),
+    LIMIT(uniform_buffer_offset_alignment, "GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT"),
+    LIMIT(max_uniform_block_size, "GL_MAX_UNIFORM_BLOCK_SIZE"),
+    LIMIT(max_uniform_buffer_bindings, "GL_MAX_UNIFORM_BUFFER_BINDINGS"),
+    LIMIT(max_samples, "GL_MAX_SAMPLES"),
+    LIMIT(max_combined_texture_image_units, "GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS"),
+    LIMIT(max_draw_buffers, "GL_MAX_DRAW_BUFFERS"),
+    LIMIT(program_binary_formats, "GL_NUM_PROGRAM_BINARY_FORMATS"),
+};
+#undef LIMIT
+
+#define BUG(member, label) {#member, label, offsetof(mvr_caps, bugs.member)}
+static const bool_field bug_fields[] = {
+    BUG(timer_query_in_multiview_undefined, "timer queries undefined under multiview"),
+    BUG(mediump_is_fp16, "mediump computed in fp16"),
+    BUG(multiview_pass_defers_raster, "multiview pass defers rasterization"),
+};
+#undef BUG
+
+static bool bool_at(const mvr_caps *c, size_t offset)
+{
+    bool v;
+    memcpy(&v, (const char *)c + offset, sizeof v);
+    return v;
+}
+
+static int int_at(const mvr_caps *c, size_t offset)
+{
+    int v;
+    memcpy(&v, (const char *)c + offset, sizeof v);
+    return v;
+}
+
+static void json_bools(json_writer *w, const char *section, const bool_field *f, size_t n,
+                       const mvr_caps *c)
+{
+    json_begin_object(w, section);
+    for (size_t i = 0; i < n; ++i)
+        json_bool(w, f[i].key, bool_at(c, f[i].offset));
+    json_end_object(w);
+}
+
 static void print_json(const mvr_context *ctx, const mvr_caps *c)
 {
     json_writer w = {stdout, 0, {false}};
@@ -121,51 +209,23 @@ static void print_json(const mvr_context *ctx, const mvr_caps *c)
     json_string(&w, "egl_version", c->egl_version);
     json_string(&w, "egl_device", c->egl_device);
     json_bool(&w, "is_software", c->is_software);
-    json_begin_object(&w, "extensions");
-    json_bool(&w, "GL_OVR_multiview", c->ext.ovr_multiview);
-    json_bool(&w, "GL_OVR_multiview2", c->ext.ovr_multiview2);
-    json_bool(&w, "GL_OVR_multiview_multisampled_render_to_texture",
-              c->ext.ovr_multiview_multisampled_render_to_texture);
-    json_bool(&w, "GL_EXT_clip_control", c->ext.ext_clip_control);
-    json_bool(&w, "GL_EXT_disjoint_timer_query", c->ext.ext_disjoint_timer_query);
-    json_bool(&w, "GL_KHR_debug", c->ext.khr_debug);
-    json_bool(&w, "GL_EXT_texture_filter_anisotropic", c->ext.ext_texture_filter_anisotropic);
-    json_bool(&w, "GL_EXT_color_buffer_float", c->ext.ext_color_buffer_float);
-    json_bool(&w, "GL_EXT_color_buffer_half_float", c->ext.ext_color_buffer_half_float);
-    json_bool(&w, "program_binary", c->ext.program_binary);
-    json_bool(&w, "multiview_msaa_array", c->ext.multiview_msaa_array);
-    json_end_object(&w);
-    json_begin_object(&w, "compressed_formats");
-    json_bool(&w, "etc2", c->ext.etc2);
-    json_bool(&w, "astc_ldr", c->ext.astc_ldr);
-    json_bool(&w, "s3tc", c->ext.s3tc);
-    json_bool(&w, "rgtc", c->ext.rgtc);
-    json_bool(&w, "bptc", c->ext.bptc);
-    json_end_object(&w);
+    json_bools(&w, "extensions", extension_fields, sizeof extension_fields / sizeof *extension_fields, c);
+    json_bools(&w, "compressed_formats", compressed_fields,
+               sizeof compressed_fields / sizeof *compressed_fields, c);
     json_begin_object(&w, "limits");
-    json_int(&w, "max_views_ovr", c->limits.max_views_ovr);
-    json_int(&w, "max_array_texture_layers", c->limits.max_array_texture_layers);
-    json_int(&w, "max_texture_size", c->limits.max_texture_size);
-    json_int(&w, "uniform_buffer_offset_alignment", c->limits.uniform_buffer_offset_alignment);
-    json_int(&w, "max_uniform_block_size", c->limits.max_uniform_block_size);
-    json_int(&w, "max_uniform_buffer_bindings", c->limits.max_uniform_buffer_bindings);
-    json_int(&w, "max_samples", c->limits.max_samples);
-    json_int(&w, "max_combined_texture_image_units", c->limits.max_combined_texture_image_units);
-    json_int(&w, "max_draw_buffers", c->limits.max_draw_buffers);
-    json_int(&w, "program_binary_formats", c->limits.program_binary_formats);
+    for (size_t i = 0; i < sizeof limit_fields / sizeof *limit_fields; ++i)
+        json_int(&w, limit_fields[i].key, int_at(c, limit_fields[i].offset));
     json_double(&w, "max_anisotropy", (double)c->limits.max_anisotropy);
     json_end_object(&w);
-    json_begin_object(&w, "bugs");
-    json_bool(&w, "timer_query_in_multiview_undefined", c->bugs.timer_query_in_multiview_undefined);
-    json_bool(&w, "mediump_is_fp16", c->bugs.mediump_is_fp16);
-    json_bool(&w, "multiview_pass_defers_raster", c->bugs.multiview_pass_defers_raster);
-    json_end_object(&w);
+    json_bools(&w, "bugs", bug_fields, sizeof bug_fields / sizeof *bug_fields, c);
     json_end_object(&w);
 }
 
-static const char *yes(bool b)
+static void text_bools(const char *section, const bool_field *f, size_t n, const mvr_caps *c)
 {
-    return b ? "yes" : "no";
+    printf("\n%s\n", section);
+    for (size_t i = 0; i < n; ++i)
+        printf("  %-48s %s\n", f[i].label, bool_at(c, f[i].offset) ? "yes" : "no");
 }
 
 static void print_text(const mvr_context *ctx, const mvr_caps *c)
@@ -179,44 +239,14 @@ static void print_text(const mvr_context *ctx, const mvr_caps *c)
         printf("EGL           %s (%s)\n", c->egl_version, c->egl_vendor);
     if (c->egl_device[0])
         printf("EGL device    %s\n", c->egl_device);
-    printf("\nextensions\n");
-    printf("  GL_OVR_multiview                                %s\n", yes(c->ext.ovr_multiview));
-    printf("  GL_OVR_multiview2                               %s\n", yes(c->ext.ovr_multiview2));
-    printf("  GL_OVR_multiview_multisampled_render_to_texture %s\n",
-           yes(c->ext.ovr_multiview_multisampled_render_to_texture));
-    printf("  multisampled 2D array under multiview           %s\n",
-           yes(c->ext.multiview_msaa_array));
-    printf("  GL_EXT_clip_control                             %s\n", yes(c->ext.ext_clip_control));
-    printf("  GL_EXT_disjoint_timer_query                     %s\n",
-           yes(c->ext.ext_disjoint_timer_query));
-    printf("  GL_KHR_debug                                    %s\n", yes(c->ext.khr_debug));
-    printf("  GL_EXT_texture_filter_anisotropic               %s\n",
-           yes(c->ext.ext_texture_filter_anisotropic));
-    printf("  GL_EXT_color_buffer_float                       %s\n",
-           yes(c->ext.ext_color_buffer_float));
-    printf("  GL_EXT_color_buffer_half_float                  %s\n",
-           yes(c->ext.ext_color_buffer_half_float));
-    printf("  program binaries                                %s (%d formats)\n",
-           yes(c->ext.program_binary), c->limits.program_binary_formats);
-    printf("  compressed: etc2 %s, astc %s, s3tc %s, rgtc %s, bptc %s\n", yes(c->ext.etc2),
-           yes(c->ext.astc_ldr), yes(c->ext.s3tc), yes(c->ext.rgtc), yes(c->ext.bptc));
+    text_bools("extensions", extension_fields, sizeof extension_fields / sizeof *extension_fields, c);
+    text_bools("compressed formats", compressed_fields,
+               sizeof compressed_fields / sizeof *compressed_fields, c);
     printf("\nlimits\n");
-    printf("  GL_MAX_VIEWS_OVR                    %d\n", c->limits.max_views_ovr);
-    printf("  GL_MAX_ARRAY_TEXTURE_LAYERS         %d\n", c->limits.max_array_texture_layers);
-    printf("  GL_MAX_TEXTURE_SIZE                 %d\n", c->limits.max_texture_size);
-    printf("  GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT  %d\n", c->limits.uniform_buffer_offset_alignment);
-    printf("  GL_MAX_UNIFORM_BLOCK_SIZE           %d\n", c->limits.max_uniform_block_size);
-    printf("  GL_MAX_UNIFORM_BUFFER_BINDINGS      %d\n", c->limits.max_uniform_buffer_bindings);
-    printf("  GL_MAX_SAMPLES                      %d\n", c->limits.max_samples);
-    printf("  GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS %d\n", c->limits.max_combined_texture_image_units);
-    printf("  GL_MAX_DRAW_BUFFERS                 %d\n", c->limits.max_draw_buffers);
-    printf("  max anisotropy                      %g\n", (double)c->limits.max_anisotropy);
-    printf("\nknown driver bugs\n");
-    printf("  timer queries undefined under multiview  %s\n",
-           yes(c->bugs.timer_query_in_multiview_undefined));
-    printf("  mediump computed in fp16                 %s\n", yes(c->bugs.mediump_is_fp16));
-    printf("  multiview pass defers rasterization      %s\n",
-           yes(c->bugs.multiview_pass_defers_raster));
+    for (size_t i = 0; i < sizeof limit_fields / sizeof *limit_fields; ++i)
+        printf("  %-48s %d\n", limit_fields[i].label, int_at(c, limit_fields[i].offset));
+    printf("  %-48s %g\n", "max anisotropy", (double)c->limits.max_anisotropy);
+    text_bools("known driver bugs", bug_fields, sizeof bug_fields / sizeof *bug_fields, c);
 }
 
 int mvr_cmd_info(int argc, char **argv)
