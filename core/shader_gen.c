@@ -5,9 +5,6 @@
 
 /* Views per uniform block; a larger view set binds the block per chunk. */
 #define MVR_SHADER_MAX_VIEWS 64
-/* Materials per table block (16 KiB is the GLES 3.0 minimum block size and a
- * material with texture transforms is 240 bytes). */
-#define MVR_SHADER_MAX_MATERIALS 64
 
 typedef struct feature_define {
     uint32_t bit;
@@ -31,6 +28,9 @@ static const feature_define mesh_defines[] = {
     {MVR_FEATURE_DOUBLE_SIDED, "MVR_DOUBLE_SIDED"},
     {MVR_FEATURE_UNLIT, "MVR_UNLIT"},
     {MVR_FEATURE_MATERIAL_ARRAYS, "MVR_MATERIAL_ARRAYS"},
+    {MVR_FEATURE_SRGB_OUTPUT, "MVR_SRGB_OUTPUT"},
+    {MVR_FEATURE_TONEMAP_ACES, "MVR_TONEMAP_ACES"},
+    {MVR_FEATURE_TONEMAP_PBR_NEUTRAL, "MVR_TONEMAP_PBR_NEUTRAL"},
 };
 
 static const feature_define composite_defines[] = {
@@ -166,6 +166,17 @@ bool mvr_shader_variant_valid(const mvr_shader_variant *v, char *why, size_t why
         mvr_str_copy(why, why_size, "alpha mask and alpha blend exclude each other");
         return false;
     }
+    if ((v->features & MVR_FEATURE_TONEMAP_ACES) && (v->features & MVR_FEATURE_TONEMAP_PBR_NEUTRAL) &&
+        v->program == MVR_PROGRAM_MESH) {
+        mvr_str_copy(why, why_size, "two tone mapping operators exclude each other");
+        return false;
+    }
+    if (v->material_capacity > MVR_SHADER_MAX_MATERIAL_CAPACITY ||
+        (v->material_capacity && v->program != MVR_PROGRAM_MESH)) {
+        mvr_str_format(why, why_size, "material capacity %u invalid (mesh only, at most %d)",
+                       (unsigned)v->material_capacity, MVR_SHADER_MAX_MATERIAL_CAPACITY);
+        return false;
+    }
     return true;
 }
 
@@ -207,7 +218,9 @@ bool mvr_shader_source(const mvr_shader_variant *v, mvr_shader_stage stage, mvr_
     }
     mvr_sb_appendf(out, "#define MVR_MAX_VIEWS %d\n", MVR_SHADER_MAX_VIEWS);
     if (v->program == MVR_PROGRAM_MESH) {
-        mvr_sb_appendf(out, "#define MVR_MAX_MATERIALS %d\n", MVR_SHADER_MAX_MATERIALS);
+        mvr_sb_appendf(out, "#define MVR_MAX_MATERIALS %u\n",
+                       v->material_capacity ? (unsigned)v->material_capacity
+                                            : (unsigned)MVR_SHADER_DEFAULT_MATERIAL_CAPACITY);
         mvr_sb_appendf(out,
                        "#define MVR_DIRECTIONAL_LIGHTS %u\n#define MVR_POINT_LIGHTS %u\n"
                        "#define MVR_SPOT_LIGHTS %u\n",
@@ -237,14 +250,16 @@ bool mvr_shader_source(const mvr_shader_variant *v, mvr_shader_stage stage, mvr_
 void mvr_shader_variant_name(const mvr_shader_variant *v, char *out, size_t size)
 {
     const char *program = mvr_program_kind_name(v->program);
+    char views[16], materials[16] = "";
     if (v->num_views > 0)
-        mvr_str_format(out, size, "%s-mv%u-f%05x-l%u.%u.%u", program ? program : "invalid",
-                       (unsigned)v->num_views, (unsigned)v->features, v->directional_lights,
-                       v->point_lights, v->spot_lights);
+        mvr_str_format(views, sizeof views, "mv%u", (unsigned)v->num_views);
     else
-        mvr_str_format(out, size, "%s-loop-f%05x-l%u.%u.%u", program ? program : "invalid",
-                       (unsigned)v->features, v->directional_lights, v->point_lights,
-                       v->spot_lights);
+        mvr_str_copy(views, sizeof views, "loop");
+    if (v->material_capacity)
+        mvr_str_format(materials, sizeof materials, "-m%u", (unsigned)v->material_capacity);
+    mvr_str_format(out, size, "%s-%s-f%05x-l%u.%u.%u%s", program ? program : "invalid", views,
+                   (unsigned)v->features, v->directional_lights, v->point_lights, v->spot_lights,
+                   materials);
 }
 
 /* All bits of a program except those that exclude each other. */
@@ -252,7 +267,7 @@ static uint32_t all_compatible_features(mvr_program_kind program)
 {
     uint32_t mask = mvr_shader_feature_mask(program);
     if (program == MVR_PROGRAM_MESH)
-        mask &= ~(uint32_t)MVR_FEATURE_ALPHA_BLEND;
+        mask &= ~(uint32_t)(MVR_FEATURE_ALPHA_BLEND | MVR_FEATURE_TONEMAP_PBR_NEUTRAL);
     return mask;
 }
 
@@ -289,8 +304,10 @@ bool mvr_shader_variant_enumerate(unsigned index, uint32_t max_views, mvr_shader
         else if (fs == define_count + 1)
             out->features = all_compatible_features(program);
         else
-            out->features = (all_compatible_features(program) & ~(uint32_t)MVR_FEATURE_ALPHA_MASK) |
-                            MVR_FEATURE_ALPHA_BLEND;
+            /* the exclusive alternatives: blend instead of mask, neutral instead of ACES */
+            out->features = (all_compatible_features(program) &
+                             ~(uint32_t)(MVR_FEATURE_ALPHA_MASK | MVR_FEATURE_TONEMAP_ACES)) |
+                            MVR_FEATURE_ALPHA_BLEND | MVR_FEATURE_TONEMAP_PBR_NEUTRAL;
         if (ls == 1) {
             out->directional_lights = 1;
             out->point_lights = 2;

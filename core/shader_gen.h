@@ -43,7 +43,10 @@ typedef enum mvr_mesh_feature {
     MVR_FEATURE_DOUBLE_SIDED = 1u << 13,
     MVR_FEATURE_UNLIT = 1u << 14,
     MVR_FEATURE_MATERIAL_ARRAYS = 1u << 15, /* texture arrays + layer index (batcher path) */
-    MVR_MESH_FEATURE_ALL_ = (1u << 16) - 1u
+    MVR_FEATURE_SRGB_OUTPUT = 1u << 16,     /* shader encodes sRGB (UNORM targets) */
+    MVR_FEATURE_TONEMAP_ACES = 1u << 17,
+    MVR_FEATURE_TONEMAP_PBR_NEUTRAL = 1u << 18,
+    MVR_MESH_FEATURE_ALL_ = (1u << 19) - 1u
 } mvr_mesh_feature;
 
 /* Feature bits of the composite program. */
@@ -59,7 +62,11 @@ typedef struct mvr_shader_variant {
     uint32_t features;      /* mvr_mesh_feature or mvr_composite_feature bits */
     uint32_t num_views;     /* 0: loop path (view index uniform); n >= 1: multiview, num_views = n */
     uint8_t directional_lights, point_lights, spot_lights;  /* mesh only */
+    uint16_t material_capacity; /* materials per table block (mesh); 0 = 64 */
 } mvr_shader_variant;
+
+#define MVR_SHADER_DEFAULT_MATERIAL_CAPACITY 64
+#define MVR_SHADER_MAX_MATERIAL_CAPACITY 1024
 
 const char *mvr_program_kind_name(mvr_program_kind kind);
 const char *mvr_shader_stage_name(mvr_shader_stage stage);

@@ -11,10 +11,8 @@ struct mvr_material {
     vec4 params;             // x: metallic, y: roughness, z: normal scale, w: occlusion strength
     ivec4 layers;            // array layers: base color, metal-rough, normal, occlusion
     ivec4 extra;             // x: emissive layer, y: bit i set = role i reads TEXCOORD_1
-#ifdef MVR_TEXTURE_TRANSFORM
     vec4 uv_transform[10];   // per role: two rows of a 2x3 affine (KHR_texture_transform)
-#endif
-};
+};                           // 240 bytes in std140, whatever the features
 
 layout(std140) uniform mvr_materials {
     mvr_material mvr_material_table[MVR_MAX_MATERIALS];
@@ -34,6 +32,60 @@ layout(std140) uniform mvr_lights {
 };
 #endif
 uniform vec3 mvr_ambient;    // rgb radiance of a uniform environment
+uniform float mvr_exposure;  // multiplies the lit color before tone mapping
+
+#ifdef MVR_TONEMAP_ACES
+// The fitted ACES curve (Stephen Hill's fit of the RRT + ODT) that the Khronos
+// glTF Sample Renderer uses: sRGB -> AP1 with RRT saturation, the rational
+// fit, and back to sRGB.
+const mat3 MVR_ACES_INPUT = mat3(0.59719, 0.07600, 0.02840,
+                                 0.35458, 0.90834, 0.13383,
+                                 0.04823, 0.01566, 0.83777);
+const mat3 MVR_ACES_OUTPUT = mat3(1.60475, -0.10208, -0.00327,
+                                  -0.53108, 1.10813, -0.07276,
+                                  -0.07367, -0.00605, 1.07602);
+vec3 mvr_tone_map(vec3 c)
+{
+    c = MVR_ACES_INPUT * c;
+    vec3 a = c * (c + 0.0245786) - 0.000090537;
+    vec3 b = c * (0.983729 * c + 0.4329510) + 0.238081;
+    return clamp(MVR_ACES_OUTPUT * (a / b), 0.0, 1.0);
+}
+#elif defined(MVR_TONEMAP_PBR_NEUTRAL)
+// Khronos PBR Neutral (KhronosGroup/ToneMapping, PBR_Neutral).
+vec3 mvr_tone_map(vec3 c)
+{
+    const float start_compression = 0.8 - 0.04;
+    const float desaturation = 0.15;
+    float x = min(c.r, min(c.g, c.b));
+    float offset = x < 0.08 ? x - 6.25 * x * x : 0.04;
+    c -= offset;
+    float peak = max(c.r, max(c.g, c.b));
+    if (peak < start_compression)
+        return c;
+    const float d = 1.0 - start_compression;
+    float new_peak = 1.0 - d * d / (peak + d - start_compression);
+    c *= new_peak / peak;
+    float g = 1.0 - 1.0 / (desaturation * (peak - new_peak) + 1.0);
+    return mix(c, vec3(new_peak), g);
+}
+#else
+vec3 mvr_tone_map(vec3 c)
+{
+    return c;
+}
+#endif
+
+// Exposure, tone map, and (for UNORM targets) the exact sRGB encode; sRGB
+// targets encode in hardware with the same piecewise function.
+vec4 mvr_output(vec4 c)
+{
+    vec3 rgb = mvr_tone_map(max(c.rgb, vec3(0.0)) * mvr_exposure);
+#ifdef MVR_SRGB_OUTPUT
+    rgb = mvr_linear_to_srgb(rgb);
+#endif
+    return vec4(rgb, clamp(c.a, 0.0, 1.0));
+}
 
 #ifdef MVR_MATERIAL_ARRAYS
 #define MVR_SAMPLER sampler2DArray
@@ -162,7 +214,7 @@ void main()
 
 #ifdef MVR_UNLIT
     // KHR_materials_unlit: the base color is the result; emissive is ignored.
-    o_color = base;
+    o_color = mvr_output(base);
 #else
     float metallic = m.params.x;
     float roughness = m.params.y;
@@ -242,6 +294,6 @@ void main()
 #ifdef MVR_EMISSIVE_TEX
     emissive *= MVR_SAMPLE(mvr_emissive_tex, mvr_uv(4, m), m.extra.x).rgb;
 #endif
-    o_color = vec4(color + emissive, base.a);
+    o_color = mvr_output(vec4(color + emissive, base.a));
 #endif
 }

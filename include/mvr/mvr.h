@@ -218,6 +218,337 @@ typedef struct mvr_caps {
 
 const mvr_caps *mvr_context_caps(const mvr_context *context);
 
+
+/* ------------------------------------------------------------------ scene
+ *
+ * A scene is built in code (or by the glTF loader) and owns copies of
+ * everything given to it. Ids are small structs (0 = none / invalid), valid
+ * for the scene that returned them. Nothing here touches GL: a renderer
+ * uploads what it needs when it first draws a scene, and again only what
+ * changed (geometry and materials on edits, transforms every frame).
+ */
+
+typedef struct mvr_scene mvr_scene;
+typedef struct mvr_image_id { uint32_t id; } mvr_image_id;
+typedef struct mvr_mesh_id { uint32_t id; } mvr_mesh_id;
+typedef struct mvr_material_id { uint32_t id; } mvr_material_id;
+typedef struct mvr_node_id { uint32_t id; } mvr_node_id;
+typedef struct mvr_light_id { uint32_t id; } mvr_light_id;
+typedef struct mvr_camera_id { uint32_t id; } mvr_camera_id;
+
+typedef struct mvr_scene_desc {
+    mvr_logger logger;
+} mvr_scene_desc;
+
+mvr_result mvr_scene_create(const mvr_scene_desc *desc, mvr_scene **out_scene, mvr_error *out_error);
+void mvr_scene_destroy(mvr_scene *scene);
+const char *mvr_scene_last_error(const mvr_scene *scene);
+
+/* Images: 8-bit RGBA pixels, rows top to bottom (as image files store them). */
+typedef struct mvr_image_desc {
+    uint32_t width, height;
+    const uint8_t *rgba8;        /* width * height * 4 bytes, copied */
+    const char *name;            /* optional, for messages */
+} mvr_image_desc;
+mvr_result mvr_scene_add_image(mvr_scene *scene, const mvr_image_desc *desc, mvr_image_id *out);
+
+typedef enum mvr_filter {
+    MVR_FILTER_DEFAULT = 0,      /* mag: linear; min: linear-mipmap-linear */
+    MVR_FILTER_NEAREST,
+    MVR_FILTER_LINEAR,
+    MVR_FILTER_NEAREST_MIPMAP_NEAREST,
+    MVR_FILTER_LINEAR_MIPMAP_NEAREST,
+    MVR_FILTER_NEAREST_MIPMAP_LINEAR,
+    MVR_FILTER_LINEAR_MIPMAP_LINEAR
+} mvr_filter;
+
+typedef enum mvr_wrap {
+    MVR_WRAP_DEFAULT = 0,        /* repeat, as glTF */
+    MVR_WRAP_REPEAT,
+    MVR_WRAP_CLAMP_TO_EDGE,
+    MVR_WRAP_MIRRORED_REPEAT
+} mvr_wrap;
+
+typedef struct mvr_sampler_desc {
+    mvr_filter mag_filter, min_filter;
+    mvr_wrap wrap_s, wrap_t;
+} mvr_sampler_desc;
+
+/* KHR_texture_transform: uv' = T(offset) * R(rotation) * S(scale) * uv. */
+typedef struct mvr_texture_transform {
+    bool enabled;
+    float offset[2];
+    float rotation;              /* radians, counter-clockwise */
+    float scale[2];              /* 0 = 1 */
+} mvr_texture_transform;
+
+typedef struct mvr_texture_ref {
+    mvr_image_id image;          /* 0 = no texture in this role */
+    mvr_sampler_desc sampler;
+    uint32_t texcoord;           /* 0 or 1 */
+    mvr_texture_transform transform;
+} mvr_texture_ref;
+
+typedef enum mvr_alpha_mode {
+    MVR_ALPHA_OPAQUE = 0,
+    MVR_ALPHA_MASK,
+    MVR_ALPHA_BLEND
+} mvr_alpha_mode;
+
+/* glTF 2.0 metallic-roughness material. Factors left at zero take glTF's
+ * defaults only where the desc says so (use mvr_material_defaults). */
+typedef struct mvr_material_desc {
+    float base_color_factor[4];
+    float metallic_factor;
+    float roughness_factor;
+    float emissive_factor[3];
+    float emissive_strength;     /* KHR_materials_emissive_strength; 0 = 1 */
+    float normal_scale;          /* 0 = 1 */
+    float occlusion_strength;    /* 0 = 1 */
+    float alpha_cutoff;          /* 0 = 0.5 */
+    mvr_alpha_mode alpha_mode;
+    bool double_sided;
+    bool unlit;                  /* KHR_materials_unlit */
+    mvr_texture_ref base_color, metallic_roughness, normal, occlusion, emissive;
+    const char *name;
+} mvr_material_desc;
+
+/* glTF's defaults: base color (1,1,1,1), metallic 1, roughness 1, opaque. */
+mvr_material_desc mvr_material_defaults(void);
+mvr_result mvr_scene_add_material(mvr_scene *scene, const mvr_material_desc *desc,
+                                  mvr_material_id *out);
+
+typedef enum mvr_primitive_mode {
+    MVR_PRIMITIVE_TRIANGLES = 0,
+    MVR_PRIMITIVE_LINES,
+    MVR_PRIMITIVE_POINTS
+} mvr_primitive_mode;
+
+/* One draw's worth of geometry; arrays are copied. Optional arrays are NULL. */
+typedef struct mvr_primitive_desc {
+    uint32_t vertex_count;
+    const float *positions;      /* 3 per vertex, required */
+    const float *normals;        /* 3 per vertex */
+    const float *tangents;       /* 4 per vertex (w = bitangent sign) */
+    const float *texcoords0;     /* 2 per vertex */
+    const float *texcoords1;     /* 2 per vertex */
+    const float *colors;         /* 4 per vertex (linear RGBA) */
+    uint32_t index_count;        /* 0 = non-indexed */
+    const uint16_t *indices16;   /* one of these two when indexed */
+    const uint32_t *indices32;
+    mvr_primitive_mode mode;
+    mvr_material_id material;    /* 0 = the default material */
+} mvr_primitive_desc;
+
+typedef struct mvr_mesh_desc {
+    const mvr_primitive_desc *primitives;
+    uint32_t primitive_count;
+    const char *name;
+} mvr_mesh_desc;
+mvr_result mvr_scene_add_mesh(mvr_scene *scene, const mvr_mesh_desc *desc, mvr_mesh_id *out);
+
+typedef enum mvr_light_type {
+    MVR_LIGHT_DIRECTIONAL = 0,
+    MVR_LIGHT_POINT,
+    MVR_LIGHT_SPOT
+} mvr_light_type;
+
+/* KHR_lights_punctual: the light shines along its node's -Z; intensity in lux
+ * (directional) or candela (point, spot). */
+typedef struct mvr_light_desc {
+    mvr_light_type type;
+    float color[3];              /* all zero = white */
+    float intensity;
+    float range;                 /* 0 = infinite */
+    float inner_cone_angle;      /* spot, radians */
+    float outer_cone_angle;      /* spot, radians; 0 = pi/4 */
+} mvr_light_desc;
+mvr_result mvr_scene_add_light(mvr_scene *scene, const mvr_light_desc *desc, mvr_light_id *out);
+
+typedef enum mvr_projection_type {
+    MVR_PROJECTION_PERSPECTIVE = 0, /* symmetric: yfov + aspect */
+    MVR_PROJECTION_FRUSTUM,         /* asymmetric: four angles, as OpenXR's XrFovf */
+    MVR_PROJECTION_ORTHOGRAPHIC,
+    MVR_PROJECTION_MATRIX           /* explicit, GL conventions (clip z in [-w, w]) */
+} mvr_projection_type;
+
+typedef struct mvr_projection {
+    mvr_projection_type type;
+    double yfov;                 /* perspective, radians; 0 = 60 degrees */
+    double aspect;               /* perspective; 0 = the viewport's */
+    double angle_left, angle_right, angle_down, angle_up; /* frustum, radians (left/down < 0) */
+    double xmag, ymag;           /* orthographic half extents */
+    double znear;                /* 0 = 0.05 */
+    double zfar;                 /* 0 = infinite (perspective, frustum); orthographic: 0 = 1000 */
+    double matrix[16];           /* explicit, column-major */
+} mvr_projection;
+
+mvr_result mvr_scene_add_camera(mvr_scene *scene, const mvr_projection *projection,
+                                mvr_camera_id *out);
+
+typedef struct mvr_node_desc {
+    mvr_node_id parent;          /* 0 = a root */
+    double translation[3];
+    double rotation[4];          /* quaternion x, y, z, w; all zero = identity */
+    double scale[3];             /* all zero = (1, 1, 1) */
+    bool use_matrix;             /* take matrix instead of TRS */
+    double matrix[16];           /* column-major */
+    mvr_mesh_id mesh;
+    mvr_light_id light;
+    mvr_camera_id camera;
+    const char *name;
+} mvr_node_desc;
+mvr_result mvr_scene_add_node(mvr_scene *scene, const mvr_node_desc *desc, mvr_node_id *out);
+/* Moves a node (only transforms are re-sent to the GPU). */
+mvr_result mvr_scene_set_node_transform(mvr_scene *scene, mvr_node_id node,
+                                        const double translation[3], const double rotation[4],
+                                        const double scale[3]);
+
+/* Ambient light: uniform radiance from every direction (linear RGB). */
+void mvr_scene_set_ambient(mvr_scene *scene, const float rgb[3]);
+
+typedef struct mvr_scene_info {
+    uint32_t images, materials, meshes, primitives, nodes, lights, cameras;
+    double bounds_min[3], bounds_max[3]; /* world space, of every drawn primitive */
+} mvr_scene_info;
+void mvr_scene_get_info(const mvr_scene *scene, mvr_scene_info *out);
+
+/* The world pose of a camera node, with its camera's projection, as a view. */
+struct mvr_view_desc;
+mvr_result mvr_scene_camera_view(const mvr_scene *scene, mvr_node_id camera_node,
+                                 struct mvr_view_desc *out_view);
+
+/* ------------------------------------------------------------------ view sets */
+
+typedef struct mvr_viewport {
+    int32_t x, y;                /* from the bottom-left, in layer pixels */
+    uint32_t width, height;      /* 0 = the whole layer */
+} mvr_viewport;
+
+typedef struct mvr_view_desc {
+    double position[3];          /* world */
+    double orientation[4];       /* quaternion x, y, z, w, camera looks along -Z; all zero = identity */
+    mvr_projection projection;
+    mvr_viewport viewport;
+    bool disabled;               /* not rendered (its layer is left as it was) */
+} mvr_view_desc;
+
+/* Pose helper: a view at eye looking at target with up. */
+void mvr_view_look_at(mvr_view_desc *view, const double eye[3], const double target[3],
+                      const double up[3]);
+
+typedef struct mvr_view_set mvr_view_set;
+
+typedef struct mvr_view_set_desc {
+    uint32_t view_count;
+    const mvr_view_desc *views;
+    /* The origin the GPU sees as 0: model and view matrices are made relative
+     * to it in double precision. false = the centroid of the view positions. */
+    bool origin_set;
+    double origin[3];
+} mvr_view_set_desc;
+
+mvr_result mvr_view_set_create(const mvr_view_set_desc *desc, mvr_view_set **out, mvr_error *out_error);
+void mvr_view_set_destroy(mvr_view_set *set);
+mvr_result mvr_view_set_update(mvr_view_set *set, uint32_t index, const mvr_view_desc *view);
+uint32_t mvr_view_set_count(const mvr_view_set *set);
+const char *mvr_view_set_last_error(const mvr_view_set *set);
+
+/* ------------------------------------------------------------------ renderer */
+
+typedef struct mvr_renderer mvr_renderer;
+typedef struct mvr_target mvr_target;
+
+typedef enum mvr_view_path {
+    MVR_VIEW_PATH_AUTO = 0,      /* multiview where the GL has it, else loop (env MVR_VIEW_PATH overrides) */
+    MVR_VIEW_PATH_MULTIVIEW,     /* one pass per chunk of <= GL_MAX_VIEWS_OVR views */
+    MVR_VIEW_PATH_LOOP           /* one pass per view */
+} mvr_view_path;
+const char *mvr_view_path_name(mvr_view_path path);
+
+typedef enum mvr_tone_map {
+    MVR_TONE_MAP_NONE = 0,       /* clamp */
+    MVR_TONE_MAP_ACES,           /* the fitted ACES curve of the Khronos glTF Sample Renderer */
+    MVR_TONE_MAP_KHR_PBR_NEUTRAL /* Khronos PBR Neutral */
+} mvr_tone_map;
+
+typedef struct mvr_renderer_desc {
+    mvr_context *context;        /* required; the renderer draws with it */
+    mvr_view_path view_path;
+    mvr_logger logger;           /* 0 = the context's */
+} mvr_renderer_desc;
+
+mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out, mvr_error *out_error);
+void mvr_renderer_destroy(mvr_renderer *renderer);
+const char *mvr_renderer_last_error(const mvr_renderer *renderer);
+
+typedef enum mvr_color_format {
+    MVR_COLOR_FORMAT_DEFAULT = 0, /* SRGB8_ALPHA8: linear lighting, sRGB-encoded storage */
+    MVR_COLOR_FORMAT_RGBA8,       /* UNORM; the shader writes the exact sRGB encoding */
+    MVR_COLOR_FORMAT_RGBA16F,     /* linear */
+    MVR_COLOR_FORMAT_RGBA32F      /* linear */
+} mvr_color_format;
+const char *mvr_color_format_name(mvr_color_format format);
+
+typedef struct mvr_target_desc {
+    uint32_t width, height;
+    uint32_t layers;             /* one per view; 0 = 1 */
+    mvr_color_format color_format;
+    /* An application-owned GL_TEXTURE_2D_ARRAY to render into (e.g. an XR
+     * swapchain image): mvr attaches it, never deletes it. color_format must
+     * name its format. Views go to layers base_layer .. base_layer+layers-1 of
+     * mip level `level`. 0 = mvr makes its own. */
+    uint32_t external_color_texture;
+    uint32_t external_level;
+    uint32_t external_base_layer;
+} mvr_target_desc;
+
+mvr_result mvr_target_create(mvr_renderer *renderer, const mvr_target_desc *desc, mvr_target **out);
+void mvr_target_destroy(mvr_target *target);
+/* The GL name of the color array (the application's, or mvr's). */
+uint32_t mvr_target_color_texture(const mvr_target *target);
+
+typedef struct mvr_render_desc {
+    float clear_color[4];        /* linear RGBA */
+    float exposure;              /* multiplies the lit color; 0 = 1 */
+    mvr_tone_map tone_map;
+} mvr_render_desc;
+
+/* Renders every enabled view of the set into its layer of the target
+ * (view i -> layer i). Uploads what changed in the scene first. */
+mvr_result mvr_renderer_render(mvr_renderer *renderer, mvr_scene *scene, const mvr_view_set *views,
+                               mvr_target *target, const mvr_render_desc *desc);
+
+typedef enum mvr_readback_format {
+    MVR_READBACK_RGBA8 = 0,      /* the stored bytes (sRGB-encoded for sRGB targets) */
+    MVR_READBACK_RGBA32F         /* floats as stored (normalized for 8-bit targets) */
+} mvr_readback_format;
+
+/* Reads one layer into memory, rows bottom to top (GL order). size must be at
+ * least width * height * 4 * (1 or 4 bytes). Never reads from a multiview
+ * framebuffer: the layer is attached alone to a read framebuffer. */
+mvr_result mvr_renderer_read_layer(mvr_renderer *renderer, mvr_target *target, uint32_t layer,
+                                   mvr_readback_format format, void *dst, size_t size);
+
+typedef struct mvr_frame_stats {
+    mvr_view_path view_path;     /* the path that ran */
+    uint32_t views;              /* enabled views rendered */
+    uint32_t passes;             /* framebuffer passes (multiview chunks or loop views) */
+    uint32_t draws;
+    uint32_t program_binds;
+    uint32_t texture_binds;
+    uint32_t ubo_range_binds;
+    uint64_t upload_bytes;       /* view-independent: geometry, textures, materials, per-draw data */
+    uint64_t view_upload_bytes;  /* per-view matrices */
+    uint32_t programs_compiled;
+    bool reversed_z;             /* depth mode: reversed-Z (clip control) or standard */
+    double cpu_ms;               /* submitting thread, render call */
+    double gpu_ms;               /* timer queries; < 0 when not available */
+} mvr_frame_stats;
+
+/* Stats of the last render (waits for its GPU timer result where there is one). */
+void mvr_renderer_get_stats(mvr_renderer *renderer, mvr_frame_stats *out);
+
 #ifdef __cplusplus
 }
 #endif

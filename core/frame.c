@@ -1,0 +1,290 @@
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "frame.h"
+
+uint32_t mvr_draw_features(const scene_primitive *p, const mvr_material_desc *m)
+{
+    uint32_t f = 0;
+    if (p->normals)
+        f |= MVR_FEATURE_NORMALS;
+    if (p->colors)
+        f |= MVR_FEATURE_COLOR0;
+    const struct { const mvr_texture_ref *t; uint32_t bit; } roles[] = {
+        {&m->base_color, MVR_FEATURE_BASE_COLOR_TEX},
+        {&m->metallic_roughness, MVR_FEATURE_METAL_ROUGH_TEX},
+        {&m->normal, MVR_FEATURE_NORMAL_TEX},
+        {&m->occlusion, MVR_FEATURE_OCCLUSION_TEX},
+        {&m->emissive, MVR_FEATURE_EMISSIVE_TEX}};
+    for (size_t i = 0; i < MVR_ARRAY_COUNT(roles); ++i) {
+        const mvr_texture_ref *t = roles[i].t;
+        if (!t->image.id)
+            continue;
+        /* A texture whose coordinate set the primitive lacks cannot be sampled. */
+        const float *uv = t->texcoord == 1 ? p->uv1 : p->uv0;
+        if (!uv)
+            continue;
+        f |= roles[i].bit | (t->texcoord == 1 ? MVR_FEATURE_UV1 : MVR_FEATURE_UV0);
+        if (t->transform.enabled)
+            f |= MVR_FEATURE_TEXTURE_TRANSFORM;
+    }
+    if ((f & MVR_FEATURE_NORMAL_TEX) && p->tangents && p->normals)
+        f |= MVR_FEATURE_TANGENTS;
+    if (m->alpha_mode == MVR_ALPHA_MASK)
+        f |= MVR_FEATURE_ALPHA_MASK;
+    else if (m->alpha_mode == MVR_ALPHA_BLEND)
+        f |= MVR_FEATURE_ALPHA_BLEND;
+    if (m->double_sided)
+        f |= MVR_FEATURE_DOUBLE_SIDED;
+    if (m->unlit)
+        f |= MVR_FEATURE_UNLIT;
+    if (m->unlit)
+        /* unlit reads no normal, tangent or lighting texture */
+        f &= ~(uint32_t)(MVR_FEATURE_NORMALS | MVR_FEATURE_TANGENTS | MVR_FEATURE_NORMAL_TEX |
+                         MVR_FEATURE_METAL_ROUGH_TEX | MVR_FEATURE_OCCLUSION_TEX | MVR_FEATURE_EMISSIVE_TEX);
+    return f;
+}
+
+static void put_f(uint8_t *dst, const float *v, size_t n)
+{
+    memcpy(dst, v, n * sizeof(float));
+}
+
+static void put_i(uint8_t *dst, const int32_t *v, size_t n)
+{
+    memcpy(dst, v, n * sizeof(int32_t));
+}
+
+/* Two rows of the 2x3 affine of KHR_texture_transform: uv' = T * R * S * uv
+ * with R = mat3(cos, sin, 0, -sin, cos, 0, 0, 0, 1) in column-major GLSL, as
+ * the ratified extension text writes it. */
+static void uv_rows(const mvr_texture_transform *t, float out[8])
+{
+    float sx = t->scale[0] != 0.0f ? t->scale[0] : 1.0f;
+    float sy = t->scale[1] != 0.0f ? t->scale[1] : 1.0f;
+    float c = 1.0f, s = 0.0f, ox = 0.0f, oy = 0.0f;
+    if (t->enabled) {
+        c = cosf(t->rotation);
+        s = sinf(t->rotation);
+        ox = t->offset[0];
+        oy = t->offset[1];
+    } else {
+        sx = sy = 1.0f;
+    }
+    float rows[8] = {c * sx, -s * sy, ox, 0.0f, s * sx, c * sy, oy, 0.0f};
+    memcpy(out, rows, sizeof rows);
+}
+
+void mvr_material_pack(const mvr_material_desc *m, uint8_t out[MVR_MATERIAL_BLOCK_SIZE])
+{
+    memset(out, 0, MVR_MATERIAL_BLOCK_SIZE);
+    put_f(out + 0, m->base_color_factor, 4);
+    float emissive[4] = {m->emissive_factor[0] * m->emissive_strength,
+                         m->emissive_factor[1] * m->emissive_strength,
+                         m->emissive_factor[2] * m->emissive_strength, m->alpha_cutoff};
+    put_f(out + 16, emissive, 4);
+    float params[4] = {m->metallic_factor, m->roughness_factor, m->normal_scale, m->occlusion_strength};
+    put_f(out + 32, params, 4);
+    /* layers: 0 on the per-material path (one 2D texture per role) */
+    int32_t layers[4] = {0, 0, 0, 0};
+    put_i(out + 48, layers, 4);
+    const mvr_texture_ref *roles[5] = {&m->base_color, &m->metallic_roughness, &m->normal,
+                                       &m->occlusion, &m->emissive};
+    int32_t uv1_bits = 0;
+    for (int i = 0; i < 5; ++i)
+        if (roles[i]->texcoord == 1)
+            uv1_bits |= 1 << i;
+    int32_t extra[4] = {0, uv1_bits, 0, 0};
+    put_i(out + 64, extra, 4);
+    for (int i = 0; i < 5; ++i) {
+        float rows[8];
+        uv_rows(&roles[i]->transform, rows);
+        put_f(out + 80 + (size_t)i * 32, rows, 8);
+    }
+}
+
+static bool reserve_draws(mvr_frame *f, uint32_t count)
+{
+    if (count <= f->draw_cap)
+        return true;
+    size_t bytes;
+    if (!mvr_size_mul(count, sizeof *f->draws, &bytes))
+        return false;
+    mvr_draw *d = realloc(f->draws, bytes);
+    if (!d)
+        return false;
+    f->draws = d;
+    f->draw_cap = count;
+    return true;
+}
+
+static int compare_draws(const void *pa, const void *pb)
+{
+    const mvr_draw *a = pa, *b = pb;
+    if (a->pass != b->pass)
+        return a->pass < b->pass ? -1 : 1;
+    if (a->pass == MVR_PASS_BLEND) {
+        /* back to front */
+        if (a->depth != b->depth)
+            return a->depth > b->depth ? -1 : 1;
+        return a->block < b->block ? -1 : (a->block > b->block);
+    }
+    /* fewest state changes: program (features), then material (textures),
+     * then front to back inside a material */
+    if (a->features != b->features)
+        return a->features < b->features ? -1 : 1;
+    if (a->material_page != b->material_page)
+        return a->material_page < b->material_page ? -1 : 1;
+    if (a->material != b->material)
+        return a->material < b->material ? -1 : 1;
+    if (a->depth != b->depth)
+        return a->depth < b->depth ? -1 : 1;
+    return a->block < b->block ? -1 : (a->block > b->block);
+}
+
+static void pack_draw_block(uint8_t *dst, const mvr_dmat4 *world, mvr_dvec3 origin, uint32_t material)
+{
+    mvr_mat4f model = mvr_dmat4_relative_to(world, origin);
+    mvr_dmat4 nm = mvr_dmat4_normal_matrix(world);
+    mvr_mat4f normal = mvr_dmat4_to_float(&nm);
+    put_f(dst, model.m, 16);
+    put_f(dst + 64, normal.m, 16);
+    int32_t info[4] = {(int32_t)material, 0, 0, 0};
+    put_i(dst + 128, info, 4);
+}
+
+static void pack_lights(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin)
+{
+    memset(f->light_counts, 0, sizeof f->light_counts);
+    f->lights_dropped = 0;
+    float blocks[3][MVR_SHADER_MAX_LIGHTS_PER_TYPE][16];
+    for (uint32_t i = 0; i < s->node_count; ++i) {
+        const scene_node *n = &s->nodes[i];
+        if (n->light == MVR_NO_INDEX)
+            continue;
+        const mvr_light_desc *l = &s->lights[n->light];
+        uint32_t type = (uint32_t)l->type;
+        if (f->light_counts[type] >= MVR_SHADER_MAX_LIGHTS_PER_TYPE) {
+            f->lights_dropped++;
+            continue;
+        }
+        float *b = blocks[type][f->light_counts[type]++];
+        memset(b, 0, 16 * sizeof *b);
+        mvr_dvec3 p = mvr_dvec3_sub(mvr_dmat4_transform_point(&f->world[i], mvr_dvec3_make(0, 0, 0)), origin);
+        mvr_dvec3 d = mvr_dvec3_normalize(mvr_dmat4_transform_dir(&f->world[i], mvr_dvec3_make(0, 0, -1)),
+                                          mvr_dvec3_make(0, 0, -1));
+        b[0] = (float)p.x;
+        b[1] = (float)p.y;
+        b[2] = (float)p.z;
+        b[3] = l->range;
+        b[4] = (float)d.x;
+        b[5] = (float)d.y;
+        b[6] = (float)d.z;
+        for (int c = 0; c < 3; ++c)
+            b[8 + c] = l->color[c] * l->intensity;
+        if (l->type == MVR_LIGHT_SPOT) {
+            /* KHR_lights_punctual: scale = 1 / max(0.001, cos(inner) - cos(outer)),
+             * offset = -cos(outer) * scale; attenuation = clamp(cd * scale + offset)^2 */
+            float co = cosf(l->outer_cone_angle), ci = cosf(l->inner_cone_angle);
+            float scale = 1.0f / fmaxf(0.001f, ci - co);
+            b[12] = scale;
+            b[13] = -co * scale;
+        }
+    }
+    uint8_t *dst = f->light_blocks;
+    for (int t = 0; t < 3; ++t)
+        for (uint32_t k = 0; k < f->light_counts[t]; ++k, dst += MVR_LIGHT_BLOCK_SIZE)
+            memcpy(dst, blocks[t][k], MVR_LIGHT_BLOCK_SIZE);
+}
+
+mvr_result mvr_frame_build(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin, uint32_t stride,
+                           uint32_t material_capacity, char *why, size_t why_size)
+{
+    if (material_capacity == 0) {
+        mvr_str_copy(why, why_size, "material capacity 0");
+        return MVR_ERROR_INTERNAL;
+    }
+    if (stride < MVR_DRAW_BLOCK_SIZE) {
+        mvr_str_format(why, why_size, "draw block stride %u < %u", stride, MVR_DRAW_BLOCK_SIZE);
+        return MVR_ERROR_INTERNAL;
+    }
+    if (s->node_count > f->world_cap) {
+        mvr_dmat4 *w = realloc(f->world, (size_t)s->node_count * sizeof *w);
+        if (!w) {
+            mvr_str_copy(why, why_size, "out of memory (world matrices)");
+            return MVR_ERROR_OUT_OF_MEMORY;
+        }
+        f->world = w;
+        f->world_cap = s->node_count;
+    }
+    mvr_scene_world_matrices(s, f->world);
+
+    uint32_t count = 0;
+    for (uint32_t i = 0; i < s->node_count; ++i)
+        if (s->nodes[i].mesh != MVR_NO_INDEX)
+            count += s->meshes[s->nodes[i].mesh].primitive_count;
+    size_t block_bytes;
+    if (!reserve_draws(f, count) || !mvr_size_mul(count ? count : 1, stride, &block_bytes)) {
+        mvr_str_copy(why, why_size, "out of memory (draw list)");
+        return MVR_ERROR_OUT_OF_MEMORY;
+    }
+    if (block_bytes > f->draw_blocks_cap) {
+        uint8_t *b = realloc(f->draw_blocks, block_bytes);
+        if (!b) {
+            mvr_str_copy(why, why_size, "out of memory (draw blocks)");
+            return MVR_ERROR_OUT_OF_MEMORY;
+        }
+        f->draw_blocks = b;
+        f->draw_blocks_cap = block_bytes;
+    }
+    f->block_stride = stride;
+    f->draw_count = 0;
+    for (uint32_t i = 0; i < s->node_count; ++i) {
+        const scene_node *n = &s->nodes[i];
+        if (n->mesh == MVR_NO_INDEX)
+            continue;
+        const mvr_dmat4 *w = &f->world[i];
+        bool mirrored = mvr_dmat4_det3(w) < 0.0;
+        const scene_mesh *m = &s->meshes[n->mesh];
+        for (uint32_t k = 0; k < m->primitive_count; ++k) {
+            uint32_t pi = m->first_primitive + k;
+            const scene_primitive *p = &s->primitives[pi];
+            const mvr_material_desc *mat = mvr_scene_material(s, p->material);
+            mvr_draw *d = &f->draws[f->draw_count];
+            d->primitive = pi;
+            d->material = p->material;
+            d->features = mvr_draw_features(p, mat);
+            d->block = f->draw_count;
+            d->pass = mat->alpha_mode == MVR_ALPHA_BLEND  ? MVR_PASS_BLEND
+                      : mat->alpha_mode == MVR_ALPHA_MASK ? MVR_PASS_MASK
+                                                          : MVR_PASS_OPAQUE;
+            d->mirrored = mirrored;
+            mvr_dvec3 center = mvr_dvec3_scale(mvr_dvec3_add(p->bounds_min, p->bounds_max), 0.5);
+            d->depth = (float)mvr_dvec3_length(mvr_dvec3_sub(mvr_dmat4_transform_point(w, center), origin));
+            /* material index: the default material sits after the scene's */
+            uint32_t material_slot = p->material == MVR_NO_INDEX ? s->material_count : p->material;
+            d->material_page = material_slot / material_capacity;
+            pack_draw_block(f->draw_blocks + (size_t)d->block * stride, w, origin,
+                            material_slot % material_capacity);
+            f->draw_count++;
+        }
+    }
+    qsort(f->draws, f->draw_count, sizeof *f->draws, compare_draws);
+    memset(f->pass_first, 0, sizeof f->pass_first);
+    memset(f->pass_count, 0, sizeof f->pass_count);
+    for (uint32_t i = f->draw_count; i-- > 0;) {
+        f->pass_first[f->draws[i].pass] = i;
+        f->pass_count[f->draws[i].pass]++;
+    }
+    pack_lights(f, s, origin);
+    return MVR_OK;
+}
+
+void mvr_frame_free(mvr_frame *f)
+{
+    free(f->draws);
+    free(f->draw_blocks);
+    free(f->world);
+    memset(f, 0, sizeof *f);
+}

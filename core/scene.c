@@ -1,0 +1,530 @@
+/* mvr_scene: owns copies of everything; validates before it accepts. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene_internal.h"
+
+static mvr_result fail(mvr_scene *s, mvr_result r, const char *fmt, ...) MVR_PRINTF(3, 4);
+static mvr_result fail(mvr_scene *s, mvr_result r, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    mvr_str_vformat(s->last_error, sizeof s->last_error, fmt, ap);
+    va_end(ap);
+    mvr_log(&s->logger, MVR_LOG_ERROR, MVR_LOG_ID_ERROR_RESULT, "%s: %s", mvr_result_name(r),
+            s->last_error);
+    return r;
+}
+
+/* Grows *items to hold one more element of size elem. */
+static bool grow(void **items, uint32_t *cap, uint32_t count, size_t elem)
+{
+    if (count < *cap)
+        return true;
+    uint32_t new_cap = *cap ? *cap * 2 : 16;
+    size_t bytes;
+    if (new_cap <= *cap || !mvr_size_mul(new_cap, elem, &bytes))
+        return false;
+    void *p = realloc(*items, bytes);
+    if (!p)
+        return false;
+    *items = p;
+    *cap = new_cap;
+    return true;
+}
+#define GROW(s, field, count, cap) grow((void **)&(s)->field, &(s)->cap, (s)->count, sizeof *(s)->field)
+
+static void *copy_floats(const float *src, uint32_t count, uint32_t per, bool *oom)
+{
+    if (!src)
+        return NULL;
+    size_t n, bytes;
+    if (!mvr_size_mul(count, per, &n) || !mvr_size_mul(n, sizeof(float), &bytes)) {
+        *oom = true;
+        return NULL;
+    }
+    float *p = malloc(bytes ? bytes : 1);
+    if (!p) {
+        *oom = true;
+        return NULL;
+    }
+    memcpy(p, src, bytes);
+    return p;
+}
+
+mvr_result mvr_scene_create(const mvr_scene_desc *desc, mvr_scene **out, mvr_error *error)
+{
+    if (!out)
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_create: out_scene is NULL");
+    *out = NULL;
+    mvr_scene *s = calloc(1, sizeof *s);
+    if (!s)
+        return mvr_error_set(error, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_create: out of memory");
+    if (desc)
+        s->logger = desc->logger;
+    s->geometry_version = s->material_version = s->transform_version = 1;
+    *out = s;
+    if (error) {
+        error->result = MVR_OK;
+        error->message[0] = '\0';
+    }
+    return MVR_OK;
+}
+
+static void free_primitive(scene_primitive *p)
+{
+    free(p->positions);
+    free(p->normals);
+    free(p->tangents);
+    free(p->uv0);
+    free(p->uv1);
+    free(p->colors);
+    free(p->indices);
+}
+
+void mvr_scene_destroy(mvr_scene *s)
+{
+    if (!s)
+        return;
+    for (uint32_t i = 0; i < s->image_count; ++i)
+        free(s->images[i].rgba);
+    for (uint32_t i = 0; i < s->primitive_count; ++i)
+        free_primitive(&s->primitives[i]);
+    free(s->images);
+    free(s->materials);
+    free(s->primitives);
+    free(s->meshes);
+    free(s->nodes);
+    free(s->lights);
+    free(s->cameras);
+    free(s);
+}
+
+const char *mvr_scene_last_error(const mvr_scene *s)
+{
+    return s ? s->last_error : "mvr_scene_last_error: scene is NULL";
+}
+
+/* FNV-1a, 64-bit: identifies identical pixel data. */
+static uint64_t hash_bytes(const uint8_t *p, size_t n, uint64_t h)
+{
+    for (size_t i = 0; i < n; ++i) {
+        h ^= p[i];
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
+mvr_result mvr_scene_add_image(mvr_scene *s, const mvr_image_desc *d, mvr_image_id *out)
+{
+    if (!s || !d || !out)
+        return s ? fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_image: NULL argument")
+                 : MVR_ERROR_INVALID_ARGUMENT;
+    out->id = 0;
+    if (d->width == 0 || d->height == 0 || d->width > 16384 || d->height > 16384)
+        return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                    "mvr_scene_add_image(%s): size %ux%u is not within 1..16384",
+                    d->name ? d->name : "", d->width, d->height);
+    if (!d->rgba8)
+        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_image(%s): no pixels",
+                    d->name ? d->name : "");
+    size_t bytes;
+    if (!mvr_size_mul((size_t)d->width * d->height, 4, &bytes))
+        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_image: size overflows");
+    if (!GROW(s, images, image_count, image_cap))
+        return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_image: out of memory");
+    scene_image *img = &s->images[s->image_count];
+    memset(img, 0, sizeof *img);
+    img->rgba = malloc(bytes);
+    if (!img->rgba)
+        return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_image: out of memory (%zu bytes)", bytes);
+    memcpy(img->rgba, d->rgba8, bytes);
+    img->width = d->width;
+    img->height = d->height;
+    img->hash = hash_bytes(img->rgba, bytes, 14695981039346656037ull ^ ((uint64_t)d->width << 32 | d->height));
+    mvr_str_copy(img->name, sizeof img->name, d->name);
+    s->image_count++;
+    s->geometry_version++;
+    out->id = s->image_count;
+    return MVR_OK;
+}
+
+mvr_material_desc mvr_material_defaults(void)
+{
+    mvr_material_desc m;
+    memset(&m, 0, sizeof m);
+    for (int i = 0; i < 4; ++i)
+        m.base_color_factor[i] = 1.0f;
+    m.metallic_factor = 1.0f;
+    m.roughness_factor = 1.0f;
+    return m;
+}
+
+static bool finite_floats(const float *v, size_t n)
+{
+    for (size_t i = 0; i < n; ++i)
+        if (!isfinite(v[i]))
+            return false;
+    return true;
+}
+
+static mvr_result check_texture(mvr_scene *s, const mvr_texture_ref *t, const char *role,
+                                const char *material)
+{
+    if (t->image.id > s->image_count)
+        return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                    "mvr_scene_add_material(%s): %s texture names image %u; the scene has %u",
+                    material, role, t->image.id, s->image_count);
+    if (t->texcoord > 1)
+        return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                    "mvr_scene_add_material(%s): %s texture uses TEXCOORD_%u; 0 and 1 are supported",
+                    material, role, t->texcoord);
+    if ((unsigned)t->sampler.mag_filter > MVR_FILTER_LINEAR_MIPMAP_LINEAR ||
+        (unsigned)t->sampler.min_filter > MVR_FILTER_LINEAR_MIPMAP_LINEAR ||
+        (unsigned)t->sampler.wrap_s > MVR_WRAP_MIRRORED_REPEAT ||
+        (unsigned)t->sampler.wrap_t > MVR_WRAP_MIRRORED_REPEAT)
+        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_material(%s): %s sampler has an unknown enum",
+                    material, role);
+    if (!finite_floats(t->transform.offset, 2) || !finite_floats(t->transform.scale, 2) ||
+        !isfinite(t->transform.rotation))
+        return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                    "mvr_scene_add_material(%s): %s texture transform is not finite", material, role);
+    return MVR_OK;
+}
+
+mvr_result mvr_scene_add_material(mvr_scene *s, const mvr_material_desc *d, mvr_material_id *out)
+{
+    if (!s || !d || !out)
+        return s ? fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_material: NULL argument")
+                 : MVR_ERROR_INVALID_ARGUMENT;
+    out->id = 0;
+    const char *name = d->name ? d->name : "";
+    if ((unsigned)d->alpha_mode > MVR_ALPHA_BLEND)
+        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_material(%s): unknown alpha mode %d",
+                    name, (int)d->alpha_mode);
+    const struct { const mvr_texture_ref *t; const char *role; } roles[] = {
+        {&d->base_color, "base color"}, {&d->metallic_roughness, "metallic-roughness"},
+        {&d->normal, "normal"}, {&d->occlusion, "occlusion"}, {&d->emissive, "emissive"}};
+    for (size_t i = 0; i < MVR_ARRAY_COUNT(roles); ++i) {
+        mvr_result r = check_texture(s, roles[i].t, roles[i].role, name);
+        if (r != MVR_OK)
+            return r;
+    }
+    if (!GROW(s, materials, material_count, material_cap))
+        return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_material: out of memory");
+    scene_material *m = &s->materials[s->material_count];
+    m->desc = *d;
+    m->desc.name = NULL;
+    mvr_str_copy(m->name, sizeof m->name, name);
+    /* Zero means default for these (a factor of 0 would be meaningless). */
+    if (m->desc.emissive_strength == 0.0f)
+        m->desc.emissive_strength = 1.0f;
+    if (m->desc.normal_scale == 0.0f)
+        m->desc.normal_scale = 1.0f;
+    if (m->desc.occlusion_strength == 0.0f)
+        m->desc.occlusion_strength = 1.0f;
+    if (m->desc.alpha_cutoff == 0.0f)
+        m->desc.alpha_cutoff = 0.5f;
+    s->material_count++;
+    s->material_version++;
+    out->id = s->material_count;
+    return MVR_OK;
+}
+
+const mvr_material_desc *mvr_scene_material(const mvr_scene *s, uint32_t index)
+{
+    static const mvr_material_desc fallback = {
+        {1.0f, 1.0f, 1.0f, 1.0f}, 1.0f, 1.0f, {0, 0, 0}, 1.0f, 1.0f, 1.0f, 0.5f,
+        MVR_ALPHA_OPAQUE, false, false, {{0}, {0}, 0, {0}}, {{0}, {0}, 0, {0}},
+        {{0}, {0}, 0, {0}}, {{0}, {0}, 0, {0}}, {{0}, {0}, 0, {0}}, NULL};
+    return index < s->material_count ? &s->materials[index].desc : &fallback;
+}
+
+static mvr_result add_primitive(mvr_scene *s, const mvr_primitive_desc *d, const char *mesh, uint32_t k)
+{
+    if (d->vertex_count == 0 || !d->positions)
+        return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                    "mvr_scene_add_mesh(%s): primitive %u has no positions", mesh, k);
+    if ((unsigned)d->mode > MVR_PRIMITIVE_POINTS)
+        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_mesh(%s): primitive %u: unknown mode",
+                    mesh, k);
+    if (d->material.id > s->material_count)
+        return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                    "mvr_scene_add_mesh(%s): primitive %u names material %u; the scene has %u",
+                    mesh, k, d->material.id, s->material_count);
+    if (!finite_floats(d->positions, (size_t)d->vertex_count * 3))
+        return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                    "mvr_scene_add_mesh(%s): primitive %u has NaN or infinite positions", mesh, k);
+    uint32_t count = d->index_count ? d->index_count : d->vertex_count;
+    uint32_t per = d->mode == MVR_PRIMITIVE_TRIANGLES ? 3u : d->mode == MVR_PRIMITIVE_LINES ? 2u : 1u;
+    if (count % per != 0)
+        return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                    "mvr_scene_add_mesh(%s): primitive %u: %u %s is not a multiple of %u",
+                    mesh, k, count, d->index_count ? "indices" : "vertices", per);
+    if (d->index_count && !d->indices16 == !d->indices32)
+        return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                    "mvr_scene_add_mesh(%s): primitive %u: give exactly one of indices16 / indices32",
+                    mesh, k);
+    for (uint32_t i = 0; i < d->index_count; ++i) {
+        uint32_t v = d->indices16 ? d->indices16[i] : d->indices32[i];
+        if (v >= d->vertex_count)
+            return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                        "mvr_scene_add_mesh(%s): primitive %u: index %u at %u is out of range (%u vertices)",
+                        mesh, k, v, i, d->vertex_count);
+    }
+    if (!GROW(s, primitives, primitive_count, primitive_cap))
+        return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_mesh: out of memory");
+    scene_primitive *p = &s->primitives[s->primitive_count];
+    memset(p, 0, sizeof *p);
+    bool oom = false;
+    p->vertex_count = d->vertex_count;
+    p->positions = copy_floats(d->positions, d->vertex_count, 3, &oom);
+    p->normals = copy_floats(d->normals, d->vertex_count, 3, &oom);
+    p->tangents = copy_floats(d->tangents, d->vertex_count, 4, &oom);
+    p->uv0 = copy_floats(d->texcoords0, d->vertex_count, 2, &oom);
+    p->uv1 = copy_floats(d->texcoords1, d->vertex_count, 2, &oom);
+    p->colors = copy_floats(d->colors, d->vertex_count, 4, &oom);
+    if (d->index_count && !oom) {
+        p->indices = malloc((size_t)d->index_count * sizeof *p->indices);
+        if (!p->indices)
+            oom = true;
+        else {
+            p->small_indices = true;
+            for (uint32_t i = 0; i < d->index_count; ++i) {
+                p->indices[i] = d->indices16 ? d->indices16[i] : d->indices32[i];
+                if (p->indices[i] > 0xFFFEu)
+                    p->small_indices = false;
+            }
+        }
+    }
+    if (oom) {
+        free_primitive(p);
+        return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_mesh(%s): out of memory", mesh);
+    }
+    p->index_count = d->index_count;
+    p->mode = d->mode;
+    p->material = d->material.id ? d->material.id - 1 : MVR_NO_INDEX;
+    p->bounds_min = mvr_dvec3_make(INFINITY, INFINITY, INFINITY);
+    p->bounds_max = mvr_dvec3_make(-INFINITY, -INFINITY, -INFINITY);
+    for (uint32_t i = 0; i < d->vertex_count; ++i) {
+        const float *v = d->positions + (size_t)i * 3;
+        p->bounds_min = mvr_dvec3_make(fmin(p->bounds_min.x, v[0]), fmin(p->bounds_min.y, v[1]),
+                                       fmin(p->bounds_min.z, v[2]));
+        p->bounds_max = mvr_dvec3_make(fmax(p->bounds_max.x, v[0]), fmax(p->bounds_max.y, v[1]),
+                                       fmax(p->bounds_max.z, v[2]));
+    }
+    s->primitive_count++;
+    return MVR_OK;
+}
+
+mvr_result mvr_scene_add_mesh(mvr_scene *s, const mvr_mesh_desc *d, mvr_mesh_id *out)
+{
+    if (!s || !d || !out)
+        return s ? fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_mesh: NULL argument")
+                 : MVR_ERROR_INVALID_ARGUMENT;
+    out->id = 0;
+    const char *name = d->name ? d->name : "";
+    if (d->primitive_count == 0 || !d->primitives)
+        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_mesh(%s): no primitives", name);
+    if (!GROW(s, meshes, mesh_count, mesh_cap))
+        return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_mesh: out of memory");
+    uint32_t first = s->primitive_count;
+    for (uint32_t k = 0; k < d->primitive_count; ++k) {
+        mvr_result r = add_primitive(s, &d->primitives[k], name, k);
+        if (r != MVR_OK) {
+            while (s->primitive_count > first)
+                free_primitive(&s->primitives[--s->primitive_count]);
+            return r;
+        }
+    }
+    scene_mesh *m = &s->meshes[s->mesh_count];
+    m->first_primitive = first;
+    m->primitive_count = d->primitive_count;
+    mvr_str_copy(m->name, sizeof m->name, name);
+    s->mesh_count++;
+    s->geometry_version++;
+    out->id = s->mesh_count;
+    return MVR_OK;
+}
+
+mvr_result mvr_scene_add_light(mvr_scene *s, const mvr_light_desc *d, mvr_light_id *out)
+{
+    if (!s || !d || !out)
+        return s ? fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_light: NULL argument")
+                 : MVR_ERROR_INVALID_ARGUMENT;
+    out->id = 0;
+    if ((unsigned)d->type > MVR_LIGHT_SPOT)
+        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_light: unknown type %d", (int)d->type);
+    if (!finite_floats(d->color, 3) || !isfinite(d->intensity) || d->intensity < 0 ||
+        !isfinite(d->range) || d->range < 0)
+        return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                    "mvr_scene_add_light: color, intensity and range must be finite and >= 0");
+    if (!GROW(s, lights, light_count, light_cap))
+        return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_light: out of memory");
+    mvr_light_desc l = *d;
+    if (l.color[0] == 0 && l.color[1] == 0 && l.color[2] == 0)
+        l.color[0] = l.color[1] = l.color[2] = 1.0f;
+    if (l.outer_cone_angle <= 0.0f)
+        l.outer_cone_angle = (float)(3.14159265358979323846 / 4.0);
+    if (l.inner_cone_angle >= l.outer_cone_angle)
+        l.inner_cone_angle = 0.999f * l.outer_cone_angle;
+    s->lights[s->light_count++] = l;
+    s->transform_version++;
+    out->id = s->light_count;
+    return MVR_OK;
+}
+
+mvr_result mvr_scene_add_camera(mvr_scene *s, const mvr_projection *p, mvr_camera_id *out)
+{
+    if (!s || !p || !out)
+        return s ? fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_camera: NULL argument")
+                 : MVR_ERROR_INVALID_ARGUMENT;
+    out->id = 0;
+    if ((unsigned)p->type > MVR_PROJECTION_MATRIX)
+        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_camera: unknown projection %d",
+                    (int)p->type);
+    if (!GROW(s, cameras, camera_count, camera_cap))
+        return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_camera: out of memory");
+    s->cameras[s->camera_count++] = *p;
+    out->id = s->camera_count;
+    return MVR_OK;
+}
+
+static bool all_zero(const double *v, int n)
+{
+    for (int i = 0; i < n; ++i)
+        if (v[i] != 0.0)
+            return false;
+    return true;
+}
+
+static bool finite_doubles(const double *v, int n)
+{
+    for (int i = 0; i < n; ++i)
+        if (!isfinite(v[i]))
+            return false;
+    return true;
+}
+
+static void set_trs(scene_node *n, const double t[3], const double r[4], const double sc[3])
+{
+    n->translation = mvr_dvec3_make(t[0], t[1], t[2]);
+    mvr_dquat q = {r[0], r[1], r[2], r[3]};
+    if (all_zero(r, 4))
+        q.w = 1.0;
+    n->rotation = mvr_dquat_normalize(q); /* glTF requires unit quaternions; be lenient */
+    n->scale = all_zero(sc, 3) ? mvr_dvec3_make(1, 1, 1) : mvr_dvec3_make(sc[0], sc[1], sc[2]);
+}
+
+mvr_result mvr_scene_add_node(mvr_scene *s, const mvr_node_desc *d, mvr_node_id *out)
+{
+    if (!s || !d || !out)
+        return s ? fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_node: NULL argument")
+                 : MVR_ERROR_INVALID_ARGUMENT;
+    out->id = 0;
+    const char *name = d->name ? d->name : "";
+    if (d->parent.id > s->node_count || d->mesh.id > s->mesh_count ||
+        d->light.id > s->light_count || d->camera.id > s->camera_count)
+        return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                    "mvr_scene_add_node(%s): parent %u / mesh %u / light %u / camera %u out of range "
+                    "(%u nodes, %u meshes, %u lights, %u cameras)",
+                    name, d->parent.id, d->mesh.id, d->light.id, d->camera.id, s->node_count,
+                    s->mesh_count, s->light_count, s->camera_count);
+    if (d->use_matrix ? !finite_doubles(d->matrix, 16)
+                      : !(finite_doubles(d->translation, 3) && finite_doubles(d->rotation, 4) &&
+                          finite_doubles(d->scale, 3)))
+        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_node(%s): transform is not finite", name);
+    if (!GROW(s, nodes, node_count, node_cap))
+        return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_node: out of memory");
+    scene_node *n = &s->nodes[s->node_count];
+    memset(n, 0, sizeof *n);
+    n->parent = d->parent.id ? d->parent.id - 1 : MVR_NO_INDEX;
+    n->use_matrix = d->use_matrix;
+    if (d->use_matrix)
+        memcpy(n->matrix.m, d->matrix, sizeof n->matrix.m);
+    else
+        set_trs(n, d->translation, d->rotation, d->scale);
+    n->mesh = d->mesh.id ? d->mesh.id - 1 : MVR_NO_INDEX;
+    n->light = d->light.id ? d->light.id - 1 : MVR_NO_INDEX;
+    n->camera = d->camera.id ? d->camera.id - 1 : MVR_NO_INDEX;
+    mvr_str_copy(n->name, sizeof n->name, name);
+    s->node_count++;
+    s->transform_version++;
+    out->id = s->node_count;
+    return MVR_OK;
+}
+
+mvr_result mvr_scene_set_node_transform(mvr_scene *s, mvr_node_id node, const double t[3],
+                                        const double r[4], const double sc[3])
+{
+    if (!s || !t || !r || !sc)
+        return s ? fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_set_node_transform: NULL argument")
+                 : MVR_ERROR_INVALID_ARGUMENT;
+    if (node.id == 0 || node.id > s->node_count)
+        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_set_node_transform: node %u out of range",
+                    node.id);
+    if (!finite_doubles(t, 3) || !finite_doubles(r, 4) || !finite_doubles(sc, 3))
+        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_set_node_transform: not finite");
+    scene_node *n = &s->nodes[node.id - 1];
+    n->use_matrix = false;
+    set_trs(n, t, r, sc);
+    s->transform_version++;
+    return MVR_OK;
+}
+
+void mvr_scene_set_ambient(mvr_scene *s, const float rgb[3])
+{
+    if (!s || !rgb || !finite_floats(rgb, 3))
+        return;
+    memcpy(s->ambient, rgb, sizeof s->ambient);
+    s->transform_version++;
+}
+
+void mvr_scene_world_matrices(const mvr_scene *s, mvr_dmat4 *out)
+{
+    for (uint32_t i = 0; i < s->node_count; ++i) {
+        const scene_node *n = &s->nodes[i];
+        mvr_dmat4 local = n->use_matrix ? n->matrix : mvr_dmat4_trs(n->translation, n->rotation, n->scale);
+        out[i] = n->parent == MVR_NO_INDEX ? local : mvr_dmat4_mul(&out[n->parent], &local);
+    }
+}
+
+void mvr_scene_get_info(const mvr_scene *s, mvr_scene_info *out)
+{
+    memset(out, 0, sizeof *out);
+    if (!s)
+        return;
+    out->images = s->image_count;
+    out->materials = s->material_count;
+    out->meshes = s->mesh_count;
+    out->primitives = s->primitive_count;
+    out->nodes = s->node_count;
+    out->lights = s->light_count;
+    out->cameras = s->camera_count;
+    mvr_dvec3 lo = mvr_dvec3_make(INFINITY, INFINITY, INFINITY);
+    mvr_dvec3 hi = mvr_dvec3_make(-INFINITY, -INFINITY, -INFINITY);
+    mvr_dmat4 *world = s->node_count ? malloc(s->node_count * sizeof *world) : NULL;
+    if (world) {
+        mvr_scene_world_matrices(s, world);
+        for (uint32_t i = 0; i < s->node_count; ++i) {
+            if (s->nodes[i].mesh == MVR_NO_INDEX)
+                continue;
+            const scene_mesh *m = &s->meshes[s->nodes[i].mesh];
+            for (uint32_t k = 0; k < m->primitive_count; ++k) {
+                const scene_primitive *p = &s->primitives[m->first_primitive + k];
+                for (int c = 0; c < 8; ++c) {
+                    mvr_dvec3 corner = mvr_dvec3_make(c & 1 ? p->bounds_max.x : p->bounds_min.x,
+                                                      c & 2 ? p->bounds_max.y : p->bounds_min.y,
+                                                      c & 4 ? p->bounds_max.z : p->bounds_min.z);
+                    mvr_dvec3 w = mvr_dmat4_transform_point(&world[i], corner);
+                    lo = mvr_dvec3_make(fmin(lo.x, w.x), fmin(lo.y, w.y), fmin(lo.z, w.z));
+                    hi = mvr_dvec3_make(fmax(hi.x, w.x), fmax(hi.y, w.y), fmax(hi.z, w.z));
+                }
+            }
+        }
+        free(world);
+    }
+    out->bounds_min[0] = lo.x; out->bounds_min[1] = lo.y; out->bounds_min[2] = lo.z;
+    out->bounds_max[0] = hi.x; out->bounds_max[1] = hi.y; out->bounds_max[2] = hi.z;
+}
