@@ -2,6 +2,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "scene_internal.h"
 
@@ -53,6 +54,16 @@ static void *copy_floats(const float *src, uint32_t count, uint32_t per, bool *o
     return p;
 }
 
+/* FNV-1a, 64-bit: identifies identical pixel data. */
+static uint64_t hash_bytes(const uint8_t *p, size_t n, uint64_t h)
+{
+    for (size_t i = 0; i < n; ++i) {
+        h ^= p[i];
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
 mvr_result mvr_scene_create(const mvr_scene_desc *desc, mvr_scene **out, mvr_error *error)
 {
     if (!out)
@@ -64,6 +75,11 @@ mvr_result mvr_scene_create(const mvr_scene_desc *desc, mvr_scene **out, mvr_err
     if (desc)
         s->logger = desc->logger;
     s->geometry_version = s->material_version = s->transform_version = 1;
+    /* address and creation time (C11 timespec_get), mixed */
+    struct timespec ts = {0, 0};
+    timespec_get(&ts, TIME_UTC);
+    uint64_t t = (uint64_t)ts.tv_sec * 1000000000ull + (uint64_t)ts.tv_nsec;
+    s->serial = hash_bytes((const uint8_t *)&t, sizeof t, (uint64_t)(uintptr_t)s * 0x9E3779B97F4A7C15ull);
     *out = s;
     if (error) {
         error->result = MVR_OK;
@@ -101,19 +117,14 @@ void mvr_scene_destroy(mvr_scene *s)
     free(s);
 }
 
+uint64_t mvr_scene_serial(const mvr_scene *s)
+{
+    return s->serial;
+}
+
 const char *mvr_scene_last_error(const mvr_scene *s)
 {
     return s ? s->last_error : "mvr_scene_last_error: scene is NULL";
-}
-
-/* FNV-1a, 64-bit: identifies identical pixel data. */
-static uint64_t hash_bytes(const uint8_t *p, size_t n, uint64_t h)
-{
-    for (size_t i = 0; i < n; ++i) {
-        h ^= p[i];
-        h *= 1099511628211ull;
-    }
-    return h;
 }
 
 mvr_result mvr_scene_add_image(mvr_scene *s, const mvr_image_desc *d, mvr_image_id *out)

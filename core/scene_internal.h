@@ -68,7 +68,12 @@ struct mvr_scene {
     uint64_t geometry_version;   /* meshes, images */
     uint64_t material_version;
     uint64_t transform_version;  /* node transforms, lights, ambient */
+    /* Tells scenes apart for a renderer's cache even when a new scene is
+     * allocated where a destroyed one was. */
+    uint64_t serial;
 };
+
+uint64_t mvr_scene_serial(const mvr_scene *scene);
 
 /* The resolved default material (glTF's defaults). */
 const mvr_material_desc *mvr_scene_material(const mvr_scene *scene, uint32_t index);

@@ -246,15 +246,21 @@ void main()
     vec3 t = mvr_safe_normalize(v_tangent.xyz - n * dot(n, v_tangent.xyz), vec3(0.0));
     vec3 b = cross(n, t) * (v_tangent.w < 0.0 ? -1.0 : 1.0);
 #else
-    // No tangents: derive the frame from position and UV derivatives,
-    // guarded against degenerate UVs (zero determinant leaves n unperturbed).
+    // No tangents: t = dP/du from position and UV derivatives; b = n x t,
+    // turned to point towards -v (image up: glTF normal maps are +Y up with
+    // uv (0,0) at the image's top-left). Degenerate UVs (zero determinant)
+    // leave n unperturbed.
     vec3 dp1 = dFdx(v_position), dp2 = dFdy(v_position);
     vec2 duv1 = dFdx(nuv), duv2 = dFdy(nuv);
     float det = duv1.x * duv2.y - duv1.y * duv2.x;
     vec3 t = vec3(0.0), b = vec3(0.0);
     if (abs(det) > 1e-20) {
-        t = mvr_safe_normalize((dp1 * duv2.y - dp2 * duv1.y) / det, vec3(0.0));
-        b = mvr_safe_normalize((dp2 * duv1.x - dp1 * duv2.x) / det, vec3(0.0));
+        vec3 dpdu = (dp1 * duv2.y - dp2 * duv1.y) / det;
+        vec3 dpdv = (dp2 * duv1.x - dp1 * duv2.x) / det;
+        t = mvr_safe_normalize(dpdu - n * dot(n, dpdu), vec3(0.0));
+        b = cross(n, t);
+        if (dot(b, dpdv) > 0.0)
+            b = -b;
     }
 #endif
     vec3 tn = MVR_SAMPLE(mvr_normal_tex, nuv, m.layers.z).xyz * 2.0 - 1.0;

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli_common.h"
 #include "commands.h"
 #include "json.h"
 #include "mvr/mvr.h"
@@ -23,11 +24,7 @@ static void info_usage(FILE *out)
             "Creates a GL context through a provider and prints its version, the\n"
             "extensions and limits mvr uses, and the known driver bugs it detected.\n"
             "\n"
-            "options:\n"
-            "  --context NAME      default | surfaceless | device | pbuffer | osmesa\n"
-            "                      (default: surfaceless, then device, then pbuffer)\n"
-            "  --api NAME          gles | desktop (default: gles on EGL, desktop on osmesa)\n"
-            "  --device N          with --context device: the N-th EGL device (1-based)\n"
+            "options:\n" CLI_CONTEXT_HELP
             "  --json              machine-readable output on stdout\n"
             "  --debug             debug context; driver messages go to stderr\n"
             "  --require-multiview exit with status 3 unless GL_OVR_multiview2 is usable\n"
@@ -37,23 +34,17 @@ static void info_usage(FILE *out)
             "exit status: 0 ok, 1 no context, 2 bad usage, 3 a required capability is missing\n");
 }
 
-static void log_to_stderr(mvr_log_level level, mvr_log_id id, const char *message, void *user)
-{
-    (void)user;
-    if (id == MVR_LOG_ID_ERROR_RESULT)
-        return; /* the command prints the error it got back itself */
-    static const char *const names[] = {"", "error", "warning", "info", "debug"};
-    fprintf(stderr, "mvr info: %s: %s\n", (unsigned)level < 5 ? names[level] : "?", message);
-}
-
 static int parse(int argc, char **argv, info_options *o)
 {
     memset(o, 0, sizeof *o);
-    o->desc.logger.fn = log_to_stderr;
-    o->desc.logger.level = MVR_LOG_WARNING;
+    cli_logger(&o->desc.logger, "info", false);
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
-        const char *value = i + 1 < argc ? argv[i + 1] : NULL;
+        int c = cli_context_option("info", argc, argv, &i, &o->desc);
+        if (c < 0)
+            return MVR_EXIT_USAGE;
+        if (c > 0)
+            continue;
         if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
             info_usage(stdout);
             return -1;
@@ -63,46 +54,17 @@ static int parse(int argc, char **argv, info_options *o)
             o->desc.debug = true;
         } else if (strcmp(a, "--verbose") == 0) {
             o->verbose = true;
-            o->desc.logger.level = MVR_LOG_DEBUG;
+            cli_logger(&o->desc.logger, "info", true);
         } else if (strcmp(a, "--require-multiview") == 0) {
             o->require_multiview = true;
-        } else if (strcmp(a, "--context") == 0 && value) {
-            if (mvr_context_provider_from_name(value, &o->desc.provider) != MVR_OK ||
-                o->desc.provider == MVR_CONTEXT_PROVIDER_EXTERNAL) {
-                fprintf(stderr, "mvr info: unknown context provider '%s' (default, surfaceless, "
-                                "device, pbuffer, osmesa)\n", value);
-                return MVR_EXIT_USAGE;
-            }
-            ++i;
-        } else if (strcmp(a, "--api") == 0 && value) {
-            if (strcmp(value, "gles") == 0)
-                o->desc.api = MVR_GL_API_GLES;
-            else if (strcmp(value, "desktop") == 0)
-                o->desc.api = MVR_GL_API_DESKTOP;
-            else {
-                fprintf(stderr, "mvr info: unknown api '%s' (gles, desktop)\n", value);
-                return MVR_EXIT_USAGE;
-            }
-            ++i;
-        } else if (strcmp(a, "--device") == 0 && value) {
-            char *end = NULL;
-            long n = strtol(value, &end, 10);
-            if (!end || *end || n < 1 || n > 1024) {
-                fprintf(stderr, "mvr info: --device takes a number from 1\n");
-                return MVR_EXIT_USAGE;
-            }
-            o->desc.device_index = (int)n;
-            ++i;
         } else {
-            fprintf(stderr, "mvr info: unknown or incomplete option '%s'\n\n", a);
+            fprintf(stderr, "mvr info: unknown option '%s'\n\n", a);
             info_usage(stderr);
             return MVR_EXIT_USAGE;
         }
     }
-    if (o->desc.device_index > 0 && o->desc.provider != MVR_CONTEXT_PROVIDER_DEVICE) {
-        fprintf(stderr, "mvr info: --device needs --context device\n");
+    if (!cli_context_check("info", &o->desc))
         return MVR_EXIT_USAGE;
-    }
     return MVR_EXIT_OK;
 }
 
@@ -255,11 +217,6 @@ int mvr_cmd_info(int argc, char **argv)
     int rc = parse(argc, argv, &o);
     if (rc != MVR_EXIT_OK)
         return rc < 0 ? MVR_EXIT_OK : rc;
-    if (o.desc.provider == MVR_CONTEXT_PROVIDER_OSMESA &&
-        !mvr_context_provider_built(MVR_CONTEXT_PROVIDER_OSMESA)) {
-        fprintf(stderr, "mvr info: this mvr was built without the osmesa provider\n");
-        return MVR_EXIT_FAILURE;
-    }
     mvr_context *ctx = NULL;
     mvr_error err;
     if (mvr_context_create(&o.desc, &ctx, &err) != MVR_OK) {

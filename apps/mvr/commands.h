@@ -10,5 +10,6 @@ enum {
 };
 
 int mvr_cmd_info(int argc, char **argv);
+int mvr_cmd_render(int argc, char **argv);
 
 #endif

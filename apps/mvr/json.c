@@ -83,3 +83,9 @@ void json_bool(json_writer *w, const char *key, bool value)
     key_prefix(w, key);
     fputs(value ? "true" : "false", w->out);
 }
+
+void json_null(json_writer *w, const char *key)
+{
+    key_prefix(w, key);
+    fputs("null", w->out);
+}

@@ -17,5 +17,6 @@ void json_string(json_writer *w, const char *key, const char *value);
 void json_int(json_writer *w, const char *key, long long value);
 void json_double(json_writer *w, const char *key, double value);
 void json_bool(json_writer *w, const char *key, bool value);
+void json_null(json_writer *w, const char *key);
 
 #endif

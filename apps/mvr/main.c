@@ -11,6 +11,7 @@ static void usage(FILE *out)
             "usage: mvr <command> [options]\n"
             "\n"
             "commands:\n"
+            "  render   render a scene into N views headless; one PNG per view\n"
             "  info     print the GL capabilities mvr sees through a context provider\n"
             "\n"
             "  mvr <command> --help   options of a command\n"
@@ -34,6 +35,8 @@ int main(int argc, char **argv)
     }
     if (strcmp(cmd, "info") == 0)
         return mvr_cmd_info(argc - 1, argv + 1);
+    if (strcmp(cmd, "render") == 0)
+        return mvr_cmd_render(argc - 1, argv + 1);
     fprintf(stderr, "mvr: unknown command '%s'\n\n", cmd);
     usage(stderr);
     return MVR_EXIT_USAGE;

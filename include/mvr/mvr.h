@@ -549,6 +549,27 @@ typedef struct mvr_frame_stats {
 /* Stats of the last render (waits for its GPU timer result where there is one). */
 void mvr_renderer_get_stats(mvr_renderer *renderer, mvr_frame_stats *out);
 
+
+/* ------------------------------------------------------------------ demo scenes
+ *
+ * Scenes generated in code (no files), with views to match: the default for
+ * `mvr render` and the benchmark's workload.
+ *   stereo  a small room with varied materials and lights, eyes 64 mm apart
+ *   cube    the room from its center: six 90-degree views (cube-map faces)
+ *   city    a grid of thousands of buildings over 64+ textured materials
+ *   ring    N cameras in a circle around an object
+ */
+typedef struct mvr_demo_desc {
+    uint32_t views;              /* 0 = the demo's own count (stereo 2, cube 6, city 2, ring 8) */
+    uint32_t width, height;      /* layer size, for aspect ratios; 0 = square */
+    mvr_logger logger;
+} mvr_demo_desc;
+
+/* The i-th demo's name; NULL past the last. */
+const char *mvr_demo_name(uint32_t index);
+mvr_result mvr_demo_create(const char *name, const mvr_demo_desc *desc, mvr_scene **out_scene,
+                           mvr_view_set **out_views, mvr_error *out_error);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,0 +1,74 @@
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli_common.h"
+
+static void log_to_stderr(mvr_log_level level, mvr_log_id id, const char *message, void *user)
+{
+    if (id == MVR_LOG_ID_ERROR_RESULT)
+        return; /* the command prints the error it got back itself */
+    static const char *const names[] = {"", "error", "warning", "info", "debug"};
+    fprintf(stderr, "mvr %s: %s: %s\n", (const char *)user, (unsigned)level < 5 ? names[level] : "?",
+            message);
+}
+
+void cli_logger(mvr_logger *logger, const char *command, bool verbose)
+{
+    logger->fn = log_to_stderr;
+    logger->user_data = (void *)(uintptr_t)command;
+    logger->level = verbose ? MVR_LOG_DEBUG : MVR_LOG_WARNING;
+}
+
+int cli_context_option(const char *command, int argc, char **argv, int *i, mvr_context_desc *desc)
+{
+    const char *a = argv[*i];
+    const char *value = *i + 1 < argc ? argv[*i + 1] : NULL;
+    if (strcmp(a, "--context") != 0 && strcmp(a, "--api") != 0 && strcmp(a, "--device") != 0)
+        return 0;
+    if (!value) {
+        fprintf(stderr, "mvr %s: %s needs a value\n", command, a);
+        return -1;
+    }
+    if (strcmp(a, "--context") == 0) {
+        if (mvr_context_provider_from_name(value, &desc->provider) != MVR_OK ||
+            desc->provider == MVR_CONTEXT_PROVIDER_EXTERNAL) {
+            fprintf(stderr, "mvr %s: unknown context provider '%s' (default, surfaceless, device, "
+                            "pbuffer, osmesa)\n", command, value);
+            return -1;
+        }
+    } else if (strcmp(a, "--api") == 0) {
+        if (strcmp(value, "gles") == 0)
+            desc->api = MVR_GL_API_GLES;
+        else if (strcmp(value, "desktop") == 0)
+            desc->api = MVR_GL_API_DESKTOP;
+        else {
+            fprintf(stderr, "mvr %s: unknown api '%s' (gles, desktop)\n", command, value);
+            return -1;
+        }
+    } else {
+        char *end = NULL;
+        long n = strtol(value, &end, 10);
+        if (!end || *end || n < 1 || n > 1024) {
+            fprintf(stderr, "mvr %s: --device takes a number from 1\n", command);
+            return -1;
+        }
+        desc->device_index = (int)n;
+    }
+    *i += 1;
+    return 1;
+}
+
+bool cli_context_check(const char *command, const mvr_context_desc *desc)
+{
+    if (desc->device_index > 0 && desc->provider != MVR_CONTEXT_PROVIDER_DEVICE) {
+        fprintf(stderr, "mvr %s: --device needs --context device\n", command);
+        return false;
+    }
+    if (desc->provider == MVR_CONTEXT_PROVIDER_OSMESA &&
+        !mvr_context_provider_built(MVR_CONTEXT_PROVIDER_OSMESA)) {
+        fprintf(stderr, "mvr %s: this mvr was built without the osmesa provider\n", command);
+        return false;
+    }
+    return true;
+}

@@ -1,0 +1,27 @@
+/* Options and helpers every mvr command shares. */
+#ifndef MVR_CLI_COMMON_H
+#define MVR_CLI_COMMON_H
+
+#include <stdbool.h>
+
+#include "mvr/mvr.h"
+
+/* Logs warnings and errors (all levels with verbose) to stderr, prefixed with
+ * the command; skips MVR_LOG_ID_ERROR_RESULT, which commands print themselves. */
+void cli_logger(mvr_logger *logger, const char *command, bool verbose);
+
+/* Parses --context NAME, --api NAME, --device N at argv[*i] into desc.
+ * Returns 1 if consumed (advancing *i), 0 if not a context option, -1 on a
+ * bad value (message printed). */
+int cli_context_option(const char *command, int argc, char **argv, int *i, mvr_context_desc *desc);
+
+/* Checks the combination; prints and returns false when it is not valid. */
+bool cli_context_check(const char *command, const mvr_context_desc *desc);
+
+#define CLI_CONTEXT_HELP \
+    "  --context NAME      default | surfaceless | device | pbuffer | osmesa\n" \
+    "                      (default: surfaceless, then device, then pbuffer)\n" \
+    "  --api NAME          gles | desktop (default: gles on EGL, desktop on osmesa)\n" \
+    "  --device N          with --context device: the N-th EGL device (1-based)\n"
+
+#endif

@@ -1,0 +1,365 @@
+/* mvr render: a demo scene (or, with the glTF loader, a file) into N views,
+ * one PNG per view plus a contact sheet, and the frame's stats. */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "cli_common.h"
+#include "commands.h"
+#include "json.h"
+#include "png_write.h"
+
+typedef struct render_options {
+    mvr_context_desc context;
+    const char *demo;
+    const char *scene_file;
+    uint32_t views, width, height, frames;
+    const char *out_dir;
+    const char *stats_file;
+    mvr_view_path view_path;
+    mvr_color_format format;
+    mvr_render_desc render;
+    bool quiet;
+} render_options;
+
+static void render_usage(FILE *out)
+{
+    fprintf(out,
+            "usage: mvr render [--demo NAME | SCENE] [options]\n"
+            "\n"
+            "Renders a scene into N views headless and writes one PNG per view\n"
+            "(view_00.png, ...) and a contact sheet of all views side by side.\n"
+            "\n"
+            "options:\n"
+            "  --demo NAME         stereo | cube | city | ring (default: stereo)\n"
+            "  --views N           number of views (default: the demo's own)\n"
+            "  --size WxH          layer size in pixels (default: 640x480)\n"
+            "  --out DIR           output directory (default: out), created if missing\n"
+            "  --view-path P       auto | multiview | loop (default: auto; env MVR_VIEW_PATH)\n"
+            "  --format F          srgb8 | rgba8 | rgba16f (default: srgb8)\n"
+            "  --exposure X        linear exposure multiplier (default: 1)\n"
+            "  --clear R,G,B[,A]   linear clear color (default: a dark opaque sky)\n"
+            "  --tone-map T        none | aces | pbr-neutral (default: none)\n"
+            "  --frames N          render N frames (the last is written; default: 1)\n"
+            "  --stats FILE.json   write the last frame's stats as JSON\n"
+            "  --quiet             print only errors\n" CLI_CONTEXT_HELP
+            "  -h, --help          this text\n");
+}
+
+static bool parse_u32(const char *s, uint32_t lo, uint32_t hi, uint32_t *out)
+{
+    char *end = NULL;
+    errno = 0;
+    unsigned long v = strtoul(s, &end, 10);
+    if (errno || !end || *end || v < lo || v > hi)
+        return false;
+    *out = (uint32_t)v;
+    return true;
+}
+
+static int parse(int argc, char **argv, render_options *o)
+{
+    memset(o, 0, sizeof *o);
+    cli_logger(&o->context.logger, "render", false);
+    o->width = 640;
+    o->height = 480;
+    o->frames = 1;
+    o->out_dir = "out";
+    o->render.exposure = 1.0f;
+    /* an opaque dark sky: the library's default clear is transparent black */
+    const float sky[4] = {0.02f, 0.025f, 0.035f, 1.0f};
+    memcpy(o->render.clear_color, sky, sizeof sky);
+    for (int i = 1; i < argc; ++i) {
+        const char *a = argv[i];
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        int c = cli_context_option("render", argc, argv, &i, &o->context);
+        if (c < 0)
+            return MVR_EXIT_USAGE;
+        if (c > 0)
+            continue;
+        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+            render_usage(stdout);
+            return -1;
+        } else if (strcmp(a, "--quiet") == 0) {
+            o->quiet = true;
+        } else if (a[0] == '-' && a[1] == '-' && !v) {
+            fprintf(stderr, "mvr render: %s needs a value\n", a);
+            return MVR_EXIT_USAGE;
+        } else if (strcmp(a, "--demo") == 0) {
+            o->demo = v, ++i;
+        } else if (strcmp(a, "--views") == 0) {
+            if (!parse_u32(v, 1, 1024, &o->views)) {
+                fprintf(stderr, "mvr render: --views takes 1..1024\n");
+                return MVR_EXIT_USAGE;
+            }
+            ++i;
+        } else if (strcmp(a, "--frames") == 0) {
+            if (!parse_u32(v, 1, 100000, &o->frames)) {
+                fprintf(stderr, "mvr render: --frames takes 1..100000\n");
+                return MVR_EXIT_USAGE;
+            }
+            ++i;
+        } else if (strcmp(a, "--size") == 0) {
+            char w[16] = "", h[16] = "";
+            const char *x = strchr(v, 'x');
+            if (!x || (size_t)(x - v) >= sizeof w || strlen(x + 1) >= sizeof h) {
+                fprintf(stderr, "mvr render: --size takes WxH, e.g. 640x480\n");
+                return MVR_EXIT_USAGE;
+            }
+            memcpy(w, v, (size_t)(x - v));
+            strcpy(h, x + 1);
+            if (!parse_u32(w, 1, 16384, &o->width) || !parse_u32(h, 1, 16384, &o->height)) {
+                fprintf(stderr, "mvr render: --size takes WxH with 1..16384 each\n");
+                return MVR_EXIT_USAGE;
+            }
+            ++i;
+        } else if (strcmp(a, "--out") == 0) {
+            o->out_dir = v, ++i;
+        } else if (strcmp(a, "--stats") == 0) {
+            o->stats_file = v, ++i;
+        } else if (strcmp(a, "--view-path") == 0) {
+            if (strcmp(v, "auto") == 0)
+                o->view_path = MVR_VIEW_PATH_AUTO;
+            else if (strcmp(v, "multiview") == 0)
+                o->view_path = MVR_VIEW_PATH_MULTIVIEW;
+            else if (strcmp(v, "loop") == 0)
+                o->view_path = MVR_VIEW_PATH_LOOP;
+            else {
+                fprintf(stderr, "mvr render: --view-path takes auto, multiview or loop\n");
+                return MVR_EXIT_USAGE;
+            }
+            ++i;
+        } else if (strcmp(a, "--format") == 0) {
+            if (strcmp(v, "srgb8") == 0)
+                o->format = MVR_COLOR_FORMAT_DEFAULT;
+            else if (strcmp(v, "rgba8") == 0)
+                o->format = MVR_COLOR_FORMAT_RGBA8;
+            else if (strcmp(v, "rgba16f") == 0)
+                o->format = MVR_COLOR_FORMAT_RGBA16F;
+            else {
+                fprintf(stderr, "mvr render: --format takes srgb8, rgba8 or rgba16f\n");
+                return MVR_EXIT_USAGE;
+            }
+            ++i;
+        } else if (strcmp(a, "--clear") == 0) {
+            float rgba[4] = {0, 0, 0, 1};
+            int n = sscanf(v, "%f,%f,%f,%f", &rgba[0], &rgba[1], &rgba[2], &rgba[3]);
+            if (n < 3) {
+                fprintf(stderr, "mvr render: --clear takes R,G,B[,A] (linear, 0..1)\n");
+                return MVR_EXIT_USAGE;
+            }
+            memcpy(o->render.clear_color, rgba, sizeof rgba);
+            ++i;
+        } else if (strcmp(a, "--exposure") == 0) {
+            char *end = NULL;
+            o->render.exposure = strtof(v, &end);
+            if (!end || *end || !(o->render.exposure > 0.0f)) {
+                fprintf(stderr, "mvr render: --exposure takes a number > 0\n");
+                return MVR_EXIT_USAGE;
+            }
+            ++i;
+        } else if (strcmp(a, "--tone-map") == 0) {
+            if (strcmp(v, "none") == 0)
+                o->render.tone_map = MVR_TONE_MAP_NONE;
+            else if (strcmp(v, "aces") == 0)
+                o->render.tone_map = MVR_TONE_MAP_ACES;
+            else if (strcmp(v, "pbr-neutral") == 0)
+                o->render.tone_map = MVR_TONE_MAP_KHR_PBR_NEUTRAL;
+            else {
+                fprintf(stderr, "mvr render: --tone-map takes none, aces or pbr-neutral\n");
+                return MVR_EXIT_USAGE;
+            }
+            ++i;
+        } else if (a[0] != '-' && !o->scene_file) {
+            o->scene_file = a;
+        } else {
+            fprintf(stderr, "mvr render: unknown option '%s'\n\n", a);
+            render_usage(stderr);
+            return MVR_EXIT_USAGE;
+        }
+    }
+    if (o->demo && o->scene_file) {
+        fprintf(stderr, "mvr render: give --demo NAME or a SCENE file, not both\n");
+        return MVR_EXIT_USAGE;
+    }
+    if (!o->demo && !o->scene_file)
+        o->demo = "stereo";
+    if (!cli_context_check("render", &o->context))
+        return MVR_EXIT_USAGE;
+    return MVR_EXIT_OK;
+}
+
+static bool make_dir(const char *path)
+{
+    if (mkdir(path, 0777) == 0 || errno == EEXIST)
+        return true;
+    fprintf(stderr, "mvr render: cannot create %s: %s\n", path, strerror(errno));
+    return false;
+}
+
+static void write_stats_json(FILE *f, const mvr_frame_stats *s, const char *demo, uint32_t w, uint32_t h)
+{
+    json_writer jw = {f, 0, {false}};
+    json_begin_object(&jw, NULL);
+    json_string(&jw, "scene", demo);
+    json_int(&jw, "width", w);
+    json_int(&jw, "height", h);
+    json_string(&jw, "view_path", mvr_view_path_name(s->view_path));
+    json_int(&jw, "views", s->views);
+    json_int(&jw, "passes", s->passes);
+    json_int(&jw, "draws", s->draws);
+    json_int(&jw, "program_binds", s->program_binds);
+    json_int(&jw, "texture_binds", s->texture_binds);
+    json_int(&jw, "ubo_range_binds", s->ubo_range_binds);
+    json_int(&jw, "upload_bytes", (long long)s->upload_bytes);
+    json_int(&jw, "view_upload_bytes", (long long)s->view_upload_bytes);
+    json_int(&jw, "programs_compiled", s->programs_compiled);
+    json_string(&jw, "depth_mode", s->reversed_z ? "reversed_z" : "standard");
+    json_double(&jw, "cpu_ms", s->cpu_ms);
+    if (s->gpu_ms >= 0)
+        json_double(&jw, "gpu_ms", s->gpu_ms);
+    else
+        json_null(&jw, "gpu_ms");
+    json_end_object(&jw);
+}
+
+/* Lays the views out in a grid (side by side up to 4, then ~square). */
+static bool write_contact_sheet(const char *path, uint8_t *const *layers, uint32_t n, uint32_t w, uint32_t h)
+{
+    uint32_t cols = n <= 4 ? n : 1;
+    while (n > 4 && cols * cols < n)
+        cols++;
+    uint32_t rows = (n + cols - 1) / cols;
+    uint32_t gap = 4, W = cols * w + (cols - 1) * gap, H = rows * h + (rows - 1) * gap;
+    uint8_t *sheet = calloc((size_t)W * H, 4);
+    if (!sheet)
+        return false;
+    for (size_t i = 0; i < (size_t)W * H; ++i)
+        sheet[i * 4 + 3] = 255;
+    for (uint32_t k = 0; k < n; ++k) {
+        uint32_t cx = (k % cols) * (w + gap), cy = (k / cols) * (h + gap); /* from the top */
+        for (uint32_t y = 0; y < h; ++y) {
+            /* layers are bottom-up; the sheet is written top-down */
+            const uint8_t *src = layers[k] + (size_t)(h - 1 - y) * w * 4;
+            memcpy(sheet + ((size_t)(cy + y) * W + cx) * 4, src, (size_t)w * 4);
+        }
+    }
+    bool ok = png_write_rgba8(path, sheet, W, H, false);
+    free(sheet);
+    return ok;
+}
+
+int mvr_cmd_render(int argc, char **argv)
+{
+    render_options o;
+    int rc = parse(argc, argv, &o);
+    if (rc != MVR_EXIT_OK)
+        return rc < 0 ? MVR_EXIT_OK : rc;
+    if (o.scene_file) {
+        fprintf(stderr, "mvr render: %s: loading glTF files comes with the glTF loader; use --demo NAME\n",
+                o.scene_file);
+        return MVR_EXIT_FAILURE;
+    }
+    if (!make_dir(o.out_dir))
+        return MVR_EXIT_FAILURE;
+
+    mvr_error err;
+    mvr_context *ctx = NULL;
+    mvr_scene *scene = NULL;
+    mvr_view_set *views = NULL;
+    mvr_renderer *renderer = NULL;
+    mvr_target *target = NULL;
+    uint8_t **layers = NULL;
+    rc = MVR_EXIT_FAILURE;
+    if (mvr_context_create(&o.context, &ctx, &err) != MVR_OK) {
+        fprintf(stderr, "mvr render: %s\n", err.message);
+        goto done;
+    }
+    mvr_demo_desc dd = {o.views, o.width, o.height, o.context.logger};
+    if (mvr_demo_create(o.demo, &dd, &scene, &views, &err) != MVR_OK) {
+        fprintf(stderr, "mvr render: %s\n", err.message);
+        rc = err.result == MVR_ERROR_INVALID_ARGUMENT ? MVR_EXIT_USAGE : MVR_EXIT_FAILURE;
+        goto done;
+    }
+    mvr_renderer_desc rd = {ctx, o.view_path, o.context.logger};
+    if (mvr_renderer_create(&rd, &renderer, &err) != MVR_OK) {
+        fprintf(stderr, "mvr render: %s\n", err.message);
+        goto done;
+    }
+    uint32_t n = mvr_view_set_count(views);
+    mvr_target_desc td = {o.width, o.height, n, o.format, 0, 0, 0};
+    if (mvr_target_create(renderer, &td, &target) != MVR_OK) {
+        fprintf(stderr, "mvr render: %s\n", mvr_renderer_last_error(renderer));
+        goto done;
+    }
+    for (uint32_t f = 0; f < o.frames; ++f) {
+        if (mvr_renderer_render(renderer, scene, views, target, &o.render) != MVR_OK) {
+            fprintf(stderr, "mvr render: %s\n", mvr_renderer_last_error(renderer));
+            goto done;
+        }
+    }
+    layers = calloc(n, sizeof *layers);
+    if (!layers)
+        goto done;
+    size_t bytes = (size_t)o.width * o.height * 4;
+    for (uint32_t k = 0; k < n; ++k) {
+        layers[k] = malloc(bytes);
+        if (!layers[k] || mvr_renderer_read_layer(renderer, target, k, MVR_READBACK_RGBA8, layers[k], bytes) != MVR_OK) {
+            fprintf(stderr, "mvr render: reading layer %u: %s\n", k, mvr_renderer_last_error(renderer));
+            goto done;
+        }
+        char path[4096];
+        snprintf(path, sizeof path, "%s/view_%02u.png", o.out_dir, k);
+        if (!png_write_rgba8(path, layers[k], o.width, o.height, true)) {
+            fprintf(stderr, "mvr render: cannot write %s\n", path);
+            goto done;
+        }
+    }
+    char sheet[4096];
+    snprintf(sheet, sizeof sheet, "%s/contact_sheet.png", o.out_dir);
+    if (!write_contact_sheet(sheet, layers, n, o.width, o.height)) {
+        fprintf(stderr, "mvr render: cannot write %s\n", sheet);
+        goto done;
+    }
+    mvr_frame_stats st;
+    mvr_renderer_get_stats(renderer, &st);
+    if (o.stats_file) {
+        FILE *f = fopen(o.stats_file, "w");
+        if (!f) {
+            fprintf(stderr, "mvr render: cannot write %s: %s\n", o.stats_file, strerror(errno));
+            goto done;
+        }
+        write_stats_json(f, &st, o.demo, o.width, o.height);
+        fclose(f);
+    }
+    if (!o.quiet) {
+        const mvr_caps *c = mvr_context_caps(ctx);
+        printf("mvr render: %s, %u views of %ux%u on %s (%s)\n", o.demo, n, o.width, o.height, c->renderer,
+               mvr_context_provider_name(mvr_context_get_provider(ctx)));
+        printf("  view path   %s: %u passes for %u views (GL_MAX_VIEWS_OVR %d)\n",
+               mvr_view_path_name(st.view_path), st.passes, st.views, c->limits.max_views_ovr);
+        printf("  depth       %s\n", st.reversed_z ? "reversed-Z (clip control, float depth)" : "standard");
+        printf("  draws %u, program binds %u, texture binds %u, uniform range binds %u\n", st.draws,
+               st.program_binds, st.texture_binds, st.ubo_range_binds);
+        if (st.gpu_ms >= 0)
+            printf("  time        cpu %.2f ms, gpu %.2f ms (last frame)\n", st.cpu_ms, st.gpu_ms);
+        else
+            printf("  time        cpu %.2f ms, gpu n/a (last frame)\n", st.cpu_ms);
+        printf("  images      %s/view_00.png .. view_%02u.png\n", o.out_dir, n - 1);
+        printf("  contact     %s\n", sheet);
+    }
+    rc = MVR_EXIT_OK;
+done:
+    if (layers)
+        for (uint32_t k = 0; k < mvr_view_set_count(views); ++k)
+            free(layers[k]);
+    free(layers);
+    mvr_target_destroy(target);
+    mvr_renderer_destroy(renderer);
+    mvr_view_set_destroy(views);
+    mvr_scene_destroy(scene);
+    mvr_context_destroy(ctx);
+    return rc;
+}

@@ -1,0 +1,314 @@
+/*
+ * The frame: per-draw data written once into the uniform ring whatever the
+ * number of views, then one framebuffer pass per chunk of views (multiview:
+ * up to GL_MAX_VIEWS_OVR consecutive layers sharing a viewport) or per view
+ * (loop), each drawing the opaque, alpha-masked and blended draws in order.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "renderer_internal.h"
+
+/* Views per uniform block (MVR_MAX_VIEWS of shaders/views.glsl). */
+#define VIEWS_PER_BLOCK 64u
+#define VIEW_BLOCK_SIZE (VIEWS_PER_BLOCK * (MVR_VIEW_MATRIX_SIZE + MVR_VIEW_EYE_SIZE))
+
+typedef struct view_chunk {
+    uint32_t base;               /* first view (= layer) */
+    uint32_t count;              /* views in the pass */
+    mvr_viewport viewport;
+} view_chunk;
+
+static GLsizeiptr align_up(GLsizeiptr v, GLsizeiptr a)
+{
+    return (v + a - 1) / a * a;
+}
+
+static bool same_viewport(mvr_viewport a, mvr_viewport b)
+{
+    return a.x == b.x && a.y == b.y && a.width == b.width && a.height == b.height;
+}
+
+/* Splits the enabled views into passes. Multiview chunks hold consecutive
+ * layers with one viewport (the GL has one viewport per pass), at most
+ * max_views of them, never crossing a view block. */
+static uint32_t make_chunks(const mvr_view_set *views, const mvr_target *t, bool multiview,
+                            uint32_t max_views, view_chunk *out)
+{
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < views->count; ++i) {
+        const mvr_view_desc *v = &views->views[i];
+        mvr_viewport vp = mvr_view_viewport(v, t->desc.width, t->desc.height);
+        if (v->disabled || vp.width == 0 || vp.height == 0)
+            continue;
+        if (multiview && n > 0) {
+            view_chunk *c = &out[n - 1];
+            if (c->base + c->count == i && c->count < max_views && same_viewport(c->viewport, vp) &&
+                c->base / VIEWS_PER_BLOCK == i / VIEWS_PER_BLOCK) {
+                c->count++;
+                continue;
+            }
+        }
+        out[n].base = i;
+        out[n].count = 1;
+        out[n].viewport = vp;
+        n++;
+    }
+    return n;
+}
+
+/* Exact sRGB encode (IEC 61966-2-1) for clear colors of UNORM targets. */
+static float srgb_encode(float c)
+{
+    c = c < 0.0f ? 0.0f : c > 1.0f ? 1.0f : c;
+    return c <= 0.0031308f ? c * 12.92f : 1.055f * powf(c, 1.0f / 2.4f) - 0.055f;
+}
+
+typedef struct frame_layout {
+    GLintptr draws, lights, views;   /* offsets in the ring buffer */
+    GLsizeiptr lights_size;
+    uint32_t view_blocks;
+} frame_layout;
+
+static mvr_result upload_frame(mvr_renderer *r, const mvr_view_set *views, const mvr_target *t,
+                               frame_layout *lay)
+{
+    const mvr_gl_api_table *gl = r->gl;
+    const mvr_frame *f = &r->frame;
+    GLsizeiptr align = (GLsizeiptr)r->ubo_alignment;
+    GLsizeiptr draw_bytes = (GLsizeiptr)f->draw_count * f->block_stride;
+    uint32_t light_count = f->light_counts[0] + f->light_counts[1] + f->light_counts[2];
+    lay->lights_size = (GLsizeiptr)light_count * MVR_LIGHT_BLOCK_SIZE;
+    lay->view_blocks = (views->count + VIEWS_PER_BLOCK - 1) / VIEWS_PER_BLOCK;
+    GLsizeiptr view_block_stride = align_up(VIEW_BLOCK_SIZE, align);
+    GLsizeiptr rel_lights = align_up(draw_bytes, align);
+    GLsizeiptr rel_views = align_up(rel_lights + lay->lights_size, align);
+    GLsizeiptr total = rel_views + view_block_stride * lay->view_blocks;
+    mvr_result res = mvr_ring_begin_frame(r, total);
+    if (res != MVR_OK)
+        return res;
+    GLintptr seg = (GLintptr)r->ring.current * r->ring.segment_size;
+    lay->draws = seg;
+    lay->lights = seg + rel_lights;
+    lay->views = seg + rel_views;
+    /* view-independent: every draw's block and the lights, once */
+    if (draw_bytes)
+        gl->BufferSubData(GL_UNIFORM_BUFFER, lay->draws, draw_bytes, f->draw_blocks);
+    if (lay->lights_size)
+        gl->BufferSubData(GL_UNIFORM_BUFFER, lay->lights, lay->lights_size, f->light_blocks);
+    r->upload_bytes += (uint64_t)draw_bytes + (uint64_t)lay->lights_size;
+    /* per view: its matrix and eye position, relative to the set's origin */
+    float matrices[VIEWS_PER_BLOCK][16];
+    float eyes[VIEWS_PER_BLOCK][4];
+    for (uint32_t b = 0; b < lay->view_blocks; ++b) {
+        uint32_t first = b * VIEWS_PER_BLOCK;
+        uint32_t n = views->count - first < VIEWS_PER_BLOCK ? views->count - first : VIEWS_PER_BLOCK;
+        for (uint32_t k = 0; k < n; ++k) {
+            const mvr_view_desc *v = &views->views[first + k];
+            mvr_viewport vp = mvr_view_viewport(v, t->desc.width, t->desc.height);
+            mvr_view_gpu_matrices(v, views->origin, vp, r->reversed_z, matrices[k], eyes[k]);
+        }
+        GLintptr at = lay->views + (GLintptr)b * view_block_stride;
+        gl->BufferSubData(GL_UNIFORM_BUFFER, at, (GLsizeiptr)n * MVR_VIEW_MATRIX_SIZE, matrices);
+        gl->BufferSubData(GL_UNIFORM_BUFFER, at + (GLintptr)VIEWS_PER_BLOCK * MVR_VIEW_MATRIX_SIZE,
+                          (GLsizeiptr)n * MVR_VIEW_EYE_SIZE, eyes);
+        r->view_upload_bytes += (uint64_t)n * (MVR_VIEW_MATRIX_SIZE + MVR_VIEW_EYE_SIZE);
+    }
+    return MVR_OK;
+}
+
+typedef struct pass_context {
+    mvr_renderer *r;
+    const mvr_scene *scene;
+    const frame_layout *lay;
+    const mvr_render_desc *desc;
+    uint32_t output_features;
+    uint32_t num_views;          /* 0 on the loop path */
+    int32_t view_base;           /* within the bound view block */
+    uint32_t last_features;      /* program lookup cache */
+    mvr_program_entry *last_program;
+} pass_context;
+
+static mvr_result bind_program(pass_context *pc, uint32_t features)
+{
+    mvr_renderer *r = pc->r;
+    mvr_program_entry *e = pc->last_program;
+    if (!e || pc->last_features != features) {
+        const mvr_frame *f = &r->frame;
+        mvr_shader_variant v;
+        memset(&v, 0, sizeof v);
+        v.program = MVR_PROGRAM_MESH;
+        v.features = features | pc->output_features;
+        v.num_views = pc->num_views;
+        v.directional_lights = (uint8_t)f->light_counts[0];
+        v.point_lights = (uint8_t)f->light_counts[1];
+        v.spot_lights = (uint8_t)f->light_counts[2];
+        v.material_capacity = (uint16_t)r->material_capacity;
+        mvr_result res = mvr_renderer_program(r, &v, &e);
+        if (res != MVR_OK)
+            return res;
+        pc->last_program = e;
+        pc->last_features = features;
+    }
+    mvr_state_program(&r->state, e->program);
+    const mvr_gl_api_table *gl = r->gl;
+    if (e->view_base != pc->view_base) {
+        gl->Uniform1i(e->loc_view_base, pc->view_base);
+        e->view_base = pc->view_base;
+    }
+    if (e->frame_serial != r->frame_serial) {
+        gl->Uniform3fv(e->loc_ambient, 1, pc->scene->ambient);
+        gl->Uniform1f(e->loc_exposure, pc->desc->exposure);
+        e->frame_serial = r->frame_serial;
+    }
+    return MVR_OK;
+}
+
+static const uint32_t role_bits[5] = {MVR_FEATURE_BASE_COLOR_TEX, MVR_FEATURE_METAL_ROUGH_TEX,
+                                      MVR_FEATURE_NORMAL_TEX, MVR_FEATURE_OCCLUSION_TEX,
+                                      MVR_FEATURE_EMISSIVE_TEX};
+
+static mvr_result draw_list(pass_context *pc, mvr_pass_kind kind)
+{
+    mvr_renderer *r = pc->r;
+    const mvr_frame *f = &r->frame;
+    const mvr_gpu_scene *g = &r->gpu;
+    const mvr_gl_api_table *gl = r->gl;
+    mvr_state_cache *st = &r->state;
+    GLenum depth_func = r->reversed_z ? GL_GREATER : GL_LESS;
+    if (kind == MVR_PASS_BLEND) {
+        /* glTF BLEND: non-premultiplied "over"; blended surfaces do not write depth */
+        mvr_state_depth(st, true, depth_func, GL_FALSE);
+        mvr_state_blend(st, true, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    } else {
+        mvr_state_depth(st, true, depth_func, GL_TRUE);
+        mvr_state_blend(st, false, GL_ONE, GL_ZERO, GL_ONE, GL_ZERO);
+    }
+    for (uint32_t i = 0; i < f->pass_count[kind]; ++i) {
+        const mvr_draw *d = &f->draws[f->pass_first[kind] + i];
+        mvr_result res = bind_program(pc, d->features);
+        if (res != MVR_OK)
+            return res;
+        mvr_state_ubo_range(st, MVR_BLOCK_DRAW, r->ring.buffer,
+                            pc->lay->draws + (GLintptr)d->block * f->block_stride, MVR_DRAW_BLOCK_SIZE);
+        mvr_state_ubo_range(st, MVR_BLOCK_MATERIALS, g->material_ubo,
+                            (GLintptr)d->material_page * g->material_page_stride,
+                            (GLsizeiptr)r->material_capacity * MVR_MATERIAL_BLOCK_SIZE);
+        uint32_t slot = d->material == MVR_NO_INDEX ? g->material_count - 1 : d->material;
+        const mvr_gpu_material *m = &g->materials[slot];
+        for (GLuint k = 0; k < 5; ++k) {
+            if (!(d->features & role_bits[k]))
+                continue;
+            mvr_state_texture(st, k, GL_TEXTURE_2D, m->textures[k]);
+            mvr_state_sampler(st, k, m->samplers[k]);
+        }
+        bool double_sided = (d->features & MVR_FEATURE_DOUBLE_SIDED) != 0;
+        mvr_state_cull(st, !double_sided, d->mirrored ? GL_CW : GL_CCW);
+        const mvr_gpu_primitive *p = &g->primitives[d->primitive];
+        mvr_state_vao(st, p->vao);
+        if (p->ibo)
+            gl->DrawElements(p->mode, p->count, p->index_type, NULL);
+        else
+            gl->DrawArrays(p->mode, 0, p->count);
+        r->stats.draws++;
+    }
+    return MVR_OK;
+}
+
+mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, const mvr_view_set *views,
+                                   mvr_target *t, const mvr_render_desc *desc, mvr_view_path path)
+{
+    char why[256] = "";
+    uint32_t stride = (uint32_t)align_up(MVR_DRAW_BLOCK_SIZE, (GLsizeiptr)r->ubo_alignment);
+    mvr_result res = mvr_frame_build(&r->frame, scene, views->origin, stride, r->material_capacity,
+                                     why, sizeof why);
+    if (res != MVR_OK)
+        return mvr_renderer_fail(r, res, "frame: %s", why);
+    if (r->frame.lights_dropped)
+        mvr_log(&r->logger, MVR_LOG_WARNING, MVR_LOG_ID_GENERAL,
+                "mvr: %u lights beyond %d of one type are not drawn", r->frame.lights_dropped,
+                MVR_SHADER_MAX_LIGHTS_PER_TYPE);
+    frame_layout lay;
+    res = upload_frame(r, views, t, &lay);
+    if (res != MVR_OK)
+        return res;
+
+    bool multiview = path == MVR_VIEW_PATH_MULTIVIEW;
+    uint32_t max_views = (uint32_t)r->ctx->caps.limits.max_views_ovr;
+    if (max_views > VIEWS_PER_BLOCK)
+        max_views = VIEWS_PER_BLOCK;
+    view_chunk *chunks = malloc(views->count * sizeof *chunks);
+    if (!chunks)
+        return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "render: out of memory");
+    uint32_t chunk_count = make_chunks(views, t, multiview, max_views, chunks);
+
+    pass_context pc;
+    memset(&pc, 0, sizeof pc);
+    pc.r = r;
+    pc.scene = scene;
+    pc.lay = &lay;
+    pc.desc = desc;
+    if (t->internal_format == GL_RGBA8)
+        pc.output_features |= MVR_FEATURE_SRGB_OUTPUT;
+    if (desc->tone_map == MVR_TONE_MAP_ACES)
+        pc.output_features |= MVR_FEATURE_TONEMAP_ACES;
+    else if (desc->tone_map == MVR_TONE_MAP_KHR_PBR_NEUTRAL)
+        pc.output_features |= MVR_FEATURE_TONEMAP_PBR_NEUTRAL;
+
+    mvr_state_cache *st = &r->state;
+    if (r->reversed_z)
+        mvr_state_clip_control(st, GL_LOWER_LEFT_EXT, GL_ZERO_TO_ONE_EXT);
+    else if (r->gl->ClipControl && r->ctx->caps.ext.ext_clip_control)
+        mvr_state_clip_control(st, GL_LOWER_LEFT_EXT, GL_NEGATIVE_ONE_TO_ONE_EXT);
+    mvr_state_scissor_test(st, false);
+    float clear[4];
+    memcpy(clear, desc->clear_color, sizeof clear);
+    if (t->internal_format == GL_RGBA8)
+        for (int c = 0; c < 3; ++c)
+            clear[c] = srgb_encode(clear[c]);
+    float clear_depth = r->reversed_z ? 0.0f : 1.0f;
+    GLsizeiptr view_block_stride = align_up(VIEW_BLOCK_SIZE, (GLsizeiptr)r->ubo_alignment);
+    uint32_t light_total = r->frame.light_counts[0] + r->frame.light_counts[1] + r->frame.light_counts[2];
+
+    for (uint32_t c = 0; c < chunk_count && res == MVR_OK; ++c) {
+        const view_chunk *ch = &chunks[c];
+        GLuint fbo = 0;
+        res = mvr_target_framebuffer(t, ch->base, multiview ? ch->count : 0, &fbo);
+        if (res != MVR_OK)
+            break;
+        mvr_state_draw_framebuffer(st, fbo);
+        mvr_state_viewport(st, ch->viewport.x, ch->viewport.y, (GLsizei)ch->viewport.width,
+                           (GLsizei)ch->viewport.height);
+        /* clear only the view's viewport: other views may share the layer */
+        bool partial = ch->viewport.x != 0 || ch->viewport.y != 0 || ch->viewport.width != t->desc.width ||
+                       ch->viewport.height != t->desc.height;
+        if (partial) {
+            mvr_state_scissor_test(st, true);
+            r->gl->Scissor(ch->viewport.x, ch->viewport.y, (GLsizei)ch->viewport.width,
+                           (GLsizei)ch->viewport.height);
+        }
+        mvr_state_color_mask(st, true);
+        mvr_state_depth(st, true, r->reversed_z ? GL_GREATER : GL_LESS, GL_TRUE);
+        r->gl->ClearBufferfv(GL_COLOR, 0, clear);
+        r->gl->ClearBufferfv(GL_DEPTH, 0, &clear_depth);
+        if (partial)
+            mvr_state_scissor_test(st, false);
+
+        uint32_t block = ch->base / VIEWS_PER_BLOCK;
+        mvr_state_ubo_range(st, MVR_BLOCK_VIEWS, r->ring.buffer,
+                            lay.views + (GLintptr)block * view_block_stride, VIEW_BLOCK_SIZE);
+        if (light_total)
+            mvr_state_ubo_range(st, MVR_BLOCK_LIGHTS, r->ring.buffer, lay.lights, lay.lights_size);
+        pc.num_views = multiview ? ch->count : 0;
+        pc.view_base = (int32_t)(ch->base - block * VIEWS_PER_BLOCK);
+        pc.last_program = NULL;
+        for (int k = 0; k < MVR_PASS_KIND_COUNT && res == MVR_OK; ++k)
+            res = draw_list(&pc, (mvr_pass_kind)k);
+        r->stats.passes++;
+        r->stats.views += multiview ? ch->count : 1;
+    }
+    free(chunks);
+    mvr_ring_end_frame(r);
+    return res;
+}

@@ -1,0 +1,387 @@
+/* mvr_renderer: create/destroy, programs, the uniform ring, timers, stats,
+ * readback. Drawing is in passes.c, scene uploads in gpu_scene.c. */
+#define _POSIX_C_SOURCE 200809L
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "renderer_internal.h"
+
+const char *mvr_view_path_name(mvr_view_path path)
+{
+    switch (path) {
+    case MVR_VIEW_PATH_AUTO: return "auto";
+    case MVR_VIEW_PATH_MULTIVIEW: return "multiview";
+    case MVR_VIEW_PATH_LOOP: return "loop";
+    }
+    return NULL;
+}
+
+const char *mvr_color_format_name(mvr_color_format format)
+{
+    switch (format) {
+    case MVR_COLOR_FORMAT_DEFAULT: return "srgb8_alpha8";
+    case MVR_COLOR_FORMAT_RGBA8: return "rgba8";
+    case MVR_COLOR_FORMAT_RGBA16F: return "rgba16f";
+    case MVR_COLOR_FORMAT_RGBA32F: return "rgba32f";
+    }
+    return NULL;
+}
+
+mvr_result mvr_renderer_fail(mvr_renderer *r, mvr_result result, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    mvr_str_vformat(r->last_error, sizeof r->last_error, fmt, ap);
+    va_end(ap);
+    mvr_log(&r->logger, MVR_LOG_ERROR, MVR_LOG_ID_ERROR_RESULT, "%s: %s", mvr_result_name(result),
+            r->last_error);
+    return result;
+}
+
+const char *mvr_renderer_last_error(const mvr_renderer *r)
+{
+    return r ? r->last_error : "mvr_renderer_last_error: renderer is NULL";
+}
+
+/* MVR_VIEW_PATH=loop|multiview|auto overrides the descriptor (tests, benchmarks). */
+static mvr_view_path env_view_path(mvr_view_path from_desc, const mvr_logger *logger)
+{
+    const char *env = getenv("MVR_VIEW_PATH");
+    if (!env || !*env)
+        return from_desc;
+    for (int p = MVR_VIEW_PATH_AUTO; p <= MVR_VIEW_PATH_LOOP; ++p)
+        if (strcmp(env, mvr_view_path_name((mvr_view_path)p)) == 0)
+            return (mvr_view_path)p;
+    mvr_log(logger, MVR_LOG_WARNING, MVR_LOG_ID_GENERAL,
+            "mvr: MVR_VIEW_PATH=%s is not auto, multiview or loop; ignored", env);
+    return from_desc;
+}
+
+static void timer_init(mvr_renderer *r)
+{
+    const mvr_caps *c = &r->ctx->caps;
+    memset(&r->timer, 0, sizeof r->timer);
+    if (!c->ext.ext_disjoint_timer_query)
+        return;
+    GLint bits = 0;
+    r->gl->GetQueryiv(GL_TIMESTAMP_EXT, GL_QUERY_COUNTER_BITS_EXT, &bits);
+    while (r->gl->GetError() != GL_NO_ERROR) {
+    }
+    /* Timestamps are taken with no multiview framebuffer bound (timer queries
+     * are undefined while one is), so they bracket the passes from outside. */
+    r->timer.timestamps = bits > 0;
+    if (r->timer.timestamps)
+        r->gl->GenQueries(2, r->timer.queries);
+}
+
+mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out, mvr_error *error)
+{
+    if (!out || !desc)
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_renderer_create: NULL argument");
+    *out = NULL;
+    if (!desc->context)
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_renderer_create: no context");
+    if (!mvr_view_path_name(desc->view_path))
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
+                             "mvr_renderer_create: view_path %d is not an mvr_view_path",
+                             (int)desc->view_path);
+    mvr_renderer *r = calloc(1, sizeof *r);
+    if (!r)
+        return mvr_error_set(error, MVR_ERROR_OUT_OF_MEMORY, "mvr_renderer_create: out of memory");
+    r->ctx = desc->context;
+    r->gl = &desc->context->gl;
+    r->logger = desc->logger.fn ? desc->logger : desc->context->logger;
+    r->requested_path = env_view_path(desc->view_path, &r->logger);
+    const mvr_caps *c = &r->ctx->caps;
+    r->reversed_z = c->ext.ext_clip_control;
+    r->ubo_alignment = (uint32_t)(c->limits.uniform_buffer_offset_alignment > 0
+                                      ? c->limits.uniform_buffer_offset_alignment : 256);
+    uint32_t cap = (uint32_t)c->limits.max_uniform_block_size / MVR_MATERIAL_BLOCK_SIZE;
+    r->material_capacity = cap > MVR_SHADER_MAX_MATERIAL_CAPACITY ? MVR_SHADER_MAX_MATERIAL_CAPACITY : cap;
+    if (r->material_capacity == 0) {
+        free(r);
+        return mvr_error_set(error, MVR_ERROR_UNSUPPORTED,
+                             "mvr_renderer_create: GL_MAX_UNIFORM_BLOCK_SIZE %d holds no material",
+                             c->limits.max_uniform_block_size);
+    }
+    mvr_state_init(&r->state, r->gl, r->ctx->provider_kind != MVR_CONTEXT_PROVIDER_EXTERNAL);
+    timer_init(r);
+    mvr_result res = mvr_gl_check(r->ctx, "mvr_renderer_create", false);
+    if (res != MVR_OK) {
+        mvr_error_set(error, res, "%s", mvr_context_last_error(r->ctx));
+        mvr_renderer_destroy(r);
+        return res;
+    }
+    *out = r;
+    return MVR_OK;
+}
+
+void mvr_renderer_destroy(mvr_renderer *r)
+{
+    if (!r)
+        return;
+    const mvr_gl_api_table *gl = r->gl;
+    mvr_gpu_scene_release(r);
+    for (uint32_t i = 0; i < r->program_count; ++i)
+        gl->DeleteProgram(r->programs[i].program);
+    free(r->programs);
+    for (int i = 0; i < MVR_RING_SEGMENTS; ++i)
+        if (r->ring.fences[i])
+            gl->DeleteSync(r->ring.fences[i]);
+    if (r->ring.buffer)
+        gl->DeleteBuffers(1, &r->ring.buffer);
+    if (r->timer.timestamps)
+        gl->DeleteQueries(2, r->timer.queries);
+    mvr_frame_free(&r->frame);
+    free(r);
+}
+
+static bool same_variant(const mvr_shader_variant *a, const mvr_shader_variant *b)
+{
+    return a->program == b->program && a->features == b->features && a->num_views == b->num_views &&
+           a->directional_lights == b->directional_lights && a->point_lights == b->point_lights &&
+           a->spot_lights == b->spot_lights && a->material_capacity == b->material_capacity;
+}
+
+mvr_result mvr_renderer_program(mvr_renderer *r, const mvr_shader_variant *v, mvr_program_entry **out)
+{
+    for (uint32_t i = 0; i < r->program_count; ++i) {
+        if (same_variant(&r->programs[i].variant, v)) {
+            *out = &r->programs[i];
+            return MVR_OK;
+        }
+    }
+    if (r->program_count == r->program_cap) {
+        uint32_t cap = r->program_cap ? r->program_cap * 2 : 16;
+        mvr_program_entry *p = realloc(r->programs, cap * sizeof *p);
+        if (!p)
+            return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "program cache: out of memory");
+        r->programs = p;
+        r->program_cap = cap;
+    }
+    GLuint program = 0;
+    mvr_result res = mvr_gl_program_build(r->ctx, v, &program);
+    if (res != MVR_OK)
+        return mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
+    mvr_program_entry *e = &r->programs[r->program_count++];
+    memset(e, 0, sizeof *e);
+    e->variant = *v;
+    e->program = program;
+    e->loc_view_base = r->gl->GetUniformLocation(program, "mvr_view_base");
+    e->loc_ambient = r->gl->GetUniformLocation(program, "mvr_ambient");
+    e->loc_exposure = r->gl->GetUniformLocation(program, "mvr_exposure");
+    e->view_base = INT32_MIN;
+    r->compiled_this_frame++;
+    *out = e;
+    return MVR_OK;
+}
+
+mvr_result mvr_ring_begin_frame(mvr_renderer *r, GLsizeiptr size)
+{
+    const mvr_gl_api_table *gl = r->gl;
+    mvr_ring *ring = &r->ring;
+    if (size > ring->segment_size) {
+        /* grow: the old buffer may still be read by queued draws; GL keeps it
+         * alive until they finish, so deleting it here is safe */
+        for (int i = 0; i < MVR_RING_SEGMENTS; ++i) {
+            if (ring->fences[i])
+                gl->DeleteSync(ring->fences[i]);
+            ring->fences[i] = 0;
+        }
+        if (ring->buffer) {
+            mvr_state_forget_buffer(&r->state, ring->buffer);
+            gl->DeleteBuffers(1, &ring->buffer);
+        }
+        GLsizeiptr seg = 64 * 1024;
+        while (seg < size)
+            seg *= 2;
+        gl->GenBuffers(1, &ring->buffer);
+        gl->BindBuffer(GL_UNIFORM_BUFFER, ring->buffer);
+        gl->BufferData(GL_UNIFORM_BUFFER, seg * MVR_RING_SEGMENTS, NULL, GL_DYNAMIC_DRAW);
+        ring->segment_size = seg;
+        ring->current = 0;
+    } else {
+        ring->current = (ring->current + 1) % MVR_RING_SEGMENTS;
+    }
+    GLsync fence = ring->fences[ring->current];
+    if (fence) {
+        /* the GPU may still read this segment from three frames ago */
+        gl->ClientWaitSync(fence, GL_SYNC_FLUSH_COMMANDS_BIT, (GLuint64)10 * 1000 * 1000 * 1000);
+        gl->DeleteSync(fence);
+        ring->fences[ring->current] = 0;
+    }
+    gl->BindBuffer(GL_UNIFORM_BUFFER, ring->buffer);
+    return MVR_OK;
+}
+
+void mvr_ring_end_frame(mvr_renderer *r)
+{
+    r->ring.fences[r->ring.current] = r->gl->FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+}
+
+static double thread_cpu_ms(void)
+{
+    struct timespec ts;
+    if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts) != 0)
+        return 0.0;
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
+
+static bool multiview_usable(const mvr_renderer *r)
+{
+    const mvr_caps *c = &r->ctx->caps;
+    return c->ext.ovr_multiview2 && c->limits.max_views_ovr >= 1 &&
+           r->gl->FramebufferTextureMultiviewOVR != NULL;
+}
+
+mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view_set *views,
+                               mvr_target *target, const mvr_render_desc *desc)
+{
+    if (!r)
+        return MVR_ERROR_INVALID_ARGUMENT;
+    if (!scene || !views || !target)
+        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "mvr_renderer_render: NULL scene, views or target");
+    if (target->renderer != r)
+        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT,
+                                 "mvr_renderer_render: the target belongs to another renderer");
+    uint32_t layers = target->desc.layers;
+    if (views->count > layers)
+        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT,
+                                 "mvr_renderer_render: %u views but the target has %u layers",
+                                 views->count, layers);
+    mvr_render_desc d;
+    if (desc)
+        d = *desc;
+    else
+        memset(&d, 0, sizeof d);
+    if ((unsigned)d.tone_map > MVR_TONE_MAP_KHR_PBR_NEUTRAL)
+        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "mvr_renderer_render: unknown tone map %d",
+                                 (int)d.tone_map);
+    if (d.exposure == 0.0f)
+        d.exposure = 1.0f;
+
+    mvr_view_path path = r->requested_path;
+    if (path == MVR_VIEW_PATH_AUTO)
+        path = multiview_usable(r) ? MVR_VIEW_PATH_MULTIVIEW : MVR_VIEW_PATH_LOOP;
+    if (path == MVR_VIEW_PATH_MULTIVIEW && !multiview_usable(r))
+        return mvr_renderer_fail(r, MVR_ERROR_UNSUPPORTED,
+                                 "mvr_renderer_render: the multiview path was forced but %s has no "
+                                 "usable GL_OVR_multiview2",
+                                 r->ctx->caps.renderer);
+
+    double cpu_start = thread_cpu_ms();
+    if (r->ctx->provider_kind == MVR_CONTEXT_PROVIDER_EXTERNAL)
+        mvr_state_invalidate(&r->state);
+    memset(&r->state.counters, 0, sizeof r->state.counters);
+    r->compiled_this_frame = 0;
+    r->upload_bytes = r->view_upload_bytes = 0;
+    r->frame_serial++;
+    memset(&r->stats, 0, sizeof r->stats);
+    r->stats.gpu_ms = -1.0;
+
+    if (r->timer.timestamps) {
+        mvr_state_draw_framebuffer(&r->state, 0); /* never time with a multiview FBO bound */
+        r->gl->QueryCounter(r->timer.queries[0], GL_TIMESTAMP_EXT);
+    }
+    mvr_result res = mvr_gpu_scene_sync(r, scene);
+    if (res == MVR_OK)
+        res = mvr_renderer_draw_frame(r, scene, views, target, &d, path);
+    if (r->timer.timestamps) {
+        mvr_state_draw_framebuffer(&r->state, 0);
+        r->gl->QueryCounter(r->timer.queries[1], GL_TIMESTAMP_EXT);
+        r->timer.pending = res == MVR_OK;
+    }
+    if (res == MVR_OK)
+        res = mvr_gl_check(r->ctx, "mvr_renderer_render", false);
+    if (res != MVR_OK && !r->last_error[0])
+        mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
+
+    mvr_frame_stats *st = &r->stats;
+    st->view_path = path;
+    st->program_binds = r->state.counters.program_binds;
+    st->texture_binds = r->state.counters.texture_binds;
+    st->ubo_range_binds = r->state.counters.ubo_range_binds;
+    st->upload_bytes = r->upload_bytes;
+    st->view_upload_bytes = r->view_upload_bytes;
+    st->programs_compiled = r->compiled_this_frame;
+    st->reversed_z = r->reversed_z;
+    st->cpu_ms = thread_cpu_ms() - cpu_start;
+    return res;
+}
+
+void mvr_renderer_get_stats(mvr_renderer *r, mvr_frame_stats *out)
+{
+    if (!r || !out)
+        return;
+    if (r->timer.pending) {
+        GLuint64 t0 = 0, t1 = 0;
+        GLint disjoint = 0;
+        r->gl->GetQueryObjectui64v(r->timer.queries[0], GL_QUERY_RESULT, &t0);
+        r->gl->GetQueryObjectui64v(r->timer.queries[1], GL_QUERY_RESULT, &t1);
+        if (r->ctx->caps.api == MVR_GL_API_GLES)
+            r->gl->GetIntegerv(GL_GPU_DISJOINT_EXT, &disjoint);
+        r->stats.gpu_ms = (!disjoint && t1 >= t0) ? (double)(t1 - t0) * 1e-6 : -1.0;
+        r->timer.pending = false;
+    }
+    *out = r->stats;
+}
+
+mvr_result mvr_renderer_read_layer(mvr_renderer *r, mvr_target *t, uint32_t layer,
+                                   mvr_readback_format format, void *dst, size_t size)
+{
+    if (!r)
+        return MVR_ERROR_INVALID_ARGUMENT;
+    if (!t || !dst || t->renderer != r)
+        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "mvr_renderer_read_layer: bad target or buffer");
+    if (layer >= t->desc.layers)
+        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT,
+                                 "mvr_renderer_read_layer: layer %u of %u", layer, t->desc.layers);
+    if ((unsigned)format > MVR_READBACK_RGBA32F)
+        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "mvr_renderer_read_layer: unknown format");
+    size_t pixels = (size_t)t->desc.width * t->desc.height;
+    size_t need = pixels * 4 * (format == MVR_READBACK_RGBA32F ? sizeof(float) : 1);
+    if (size < need)
+        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT,
+                                 "mvr_renderer_read_layer: buffer of %zu bytes, %zu needed", size, need);
+    /* One layer attached alone: reading from a multiview framebuffer is an error. */
+    GLuint fbo = 0;
+    mvr_result res = mvr_target_framebuffer(t, layer, 0, &fbo);
+    if (res != MVR_OK)
+        return res;
+    const mvr_gl_api_table *gl = r->gl;
+    mvr_state_read_framebuffer(&r->state, fbo);
+    gl->ReadBuffer(GL_COLOR_ATTACHMENT0);
+    gl->PixelStorei(GL_PACK_ALIGNMENT, 1);
+    bool float_target = t->internal_format == GL_RGBA16F || t->internal_format == GL_RGBA32F;
+    GLsizei w = (GLsizei)t->desc.width, h = (GLsizei)t->desc.height;
+    if (float_target == (format == MVR_READBACK_RGBA32F)) {
+        gl->ReadPixels(0, 0, w, h, GL_RGBA, float_target ? GL_FLOAT : GL_UNSIGNED_BYTE, dst);
+    } else if (float_target) {
+        /* float storage read as bytes: GLES reads float buffers as FLOAT only */
+        float *tmp = malloc(pixels * 4 * sizeof *tmp);
+        if (!tmp)
+            return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "mvr_renderer_read_layer: out of memory");
+        gl->ReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, tmp);
+        uint8_t *out = dst;
+        for (size_t i = 0; i < pixels * 4; ++i) {
+            float v = tmp[i] < 0.0f ? 0.0f : tmp[i] > 1.0f ? 1.0f : tmp[i];
+            out[i] = (uint8_t)(v * 255.0f + 0.5f);
+        }
+        free(tmp);
+    } else {
+        /* 8-bit storage read as floats: normalized */
+        uint8_t *tmp = malloc(pixels * 4);
+        if (!tmp)
+            return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "mvr_renderer_read_layer: out of memory");
+        gl->ReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, tmp);
+        float *out = dst;
+        for (size_t i = 0; i < pixels * 4; ++i)
+            out[i] = (float)tmp[i] / 255.0f;
+        free(tmp);
+    }
+    gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
+    return mvr_gl_check(r->ctx, "mvr_renderer_read_layer", true) == MVR_OK
+               ? MVR_OK
+               : mvr_renderer_fail(r, MVR_ERROR_GL, "%s", mvr_context_last_error(r->ctx));
+}

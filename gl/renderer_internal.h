@@ -1,0 +1,140 @@
+/* The renderer's internals, shared by gl/renderer.c, gpu_scene.c, targets.c
+ * and passes.c. */
+#ifndef MVR_RENDERER_INTERNAL_H
+#define MVR_RENDERER_INTERNAL_H
+
+#include "context_internal.h"
+#include "frame.h"
+#include "program.h"
+#include "state_cache.h"
+#include "view_set.h"
+
+/* One compiled shader variant. */
+typedef struct mvr_program_entry {
+    mvr_shader_variant variant;
+    GLuint program;
+    GLint loc_view_base, loc_ambient, loc_exposure;
+    int32_t view_base;           /* last value set (INT32_MIN = unknown) */
+    uint64_t frame_serial;       /* frame whose per-frame uniforms are set */
+} mvr_program_entry;
+
+/* GPU copy of one scene primitive. */
+typedef struct mvr_gpu_primitive {
+    GLuint vao, vbo, ibo;
+    GLenum mode, index_type;
+    GLsizei count;
+    uint32_t textures[5];        /* index into gpu_scene textures + 1 per role; 0 = none */
+    uint32_t samplers[5];        /* index into sampler cache + 1 */
+} mvr_gpu_primitive;
+
+typedef struct mvr_gpu_texture {
+    uint32_t image;              /* scene image index */
+    bool srgb;
+    GLuint texture;
+} mvr_gpu_texture;
+
+typedef struct mvr_gpu_sampler {
+    mvr_sampler_desc desc;
+    GLuint sampler;
+} mvr_gpu_sampler;
+
+/* Per-material texture bindings (the per-material path: one 2D texture per image). */
+typedef struct mvr_gpu_material {
+    GLuint textures[5];          /* 0 = role unused */
+    GLuint samplers[5];
+} mvr_gpu_material;
+
+/* What the renderer has uploaded of one scene. */
+typedef struct mvr_gpu_scene {
+    const mvr_scene *scene;
+    uint64_t scene_serial;
+    uint64_t geometry_version, material_version;
+    mvr_gpu_primitive *primitives;
+    uint32_t primitive_count;
+    mvr_gpu_texture *textures;
+    uint32_t texture_count, texture_cap;
+    mvr_gpu_sampler *samplers;
+    uint32_t sampler_count, sampler_cap;
+    mvr_gpu_material *materials; /* scene materials + the default one */
+    uint32_t material_count;
+    GLuint material_ubo;
+    uint32_t material_pages;
+    GLsizeiptr material_page_stride; /* bytes between pages (aligned) */
+} mvr_gpu_scene;
+
+/* Uniform data of one frame goes into one segment of a ring buffer; a fence
+ * per segment keeps the CPU from overwriting what the GPU still reads. */
+#define MVR_RING_SEGMENTS 3
+typedef struct mvr_ring {
+    GLuint buffer;
+    GLsizeiptr segment_size;
+    uint32_t current;
+    GLsync fences[MVR_RING_SEGMENTS];
+} mvr_ring;
+
+typedef struct mvr_fbo_entry {
+    uint32_t base, count;        /* layers; count 0 = a single-layer (non-multiview) FBO */
+    GLuint fbo;
+} mvr_fbo_entry;
+
+struct mvr_target {
+    mvr_renderer *renderer;
+    mvr_target_desc desc;
+    GLenum internal_format;
+    GLuint color, depth;
+    bool owns_color;
+    mvr_fbo_entry *fbos;
+    uint32_t fbo_count, fbo_cap;
+};
+
+typedef struct mvr_timer {
+    GLuint queries[2];
+    bool pending;
+    bool timestamps;             /* GL_TIMESTAMP counters usable */
+} mvr_timer;
+
+struct mvr_renderer {
+    mvr_context *ctx;
+    const mvr_gl_api_table *gl;
+    mvr_logger logger;
+    char last_error[MVR_ERROR_MESSAGE_SIZE];
+    mvr_view_path requested_path;
+    bool reversed_z;
+    uint32_t ubo_alignment;
+    uint32_t material_capacity;
+    mvr_state_cache state;
+    mvr_program_entry *programs;
+    uint32_t program_count, program_cap;
+    mvr_gpu_scene gpu;
+    mvr_frame frame;
+    mvr_ring ring;
+    mvr_timer timer;
+    uint64_t frame_serial;
+    mvr_frame_stats stats;
+    uint32_t compiled_this_frame;
+    uint64_t upload_bytes, view_upload_bytes;
+};
+
+mvr_result mvr_renderer_fail(mvr_renderer *r, mvr_result result, const char *fmt, ...) MVR_PRINTF(3, 4);
+
+/* Program of a variant, compiled on first use. */
+mvr_result mvr_renderer_program(mvr_renderer *r, const mvr_shader_variant *v, mvr_program_entry **out);
+
+/* gpu_scene.c: uploads what changed in the scene (geometry, textures, materials). */
+mvr_result mvr_gpu_scene_sync(mvr_renderer *r, const mvr_scene *scene);
+void mvr_gpu_scene_release(mvr_renderer *r);
+
+/* targets.c: a framebuffer for layers [base, base + count) (multiview when
+ * count > 0) or one layer (count = 0), created on first use. */
+mvr_result mvr_target_framebuffer(mvr_target *t, uint32_t base, uint32_t count, GLuint *out);
+
+/* passes.c */
+mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, const mvr_view_set *views,
+                                   mvr_target *target, const mvr_render_desc *desc, mvr_view_path path);
+
+/* Ring: room for `size` bytes of this frame's uniform data; the offset is
+ * aligned to the GL's uniform buffer offset alignment. */
+mvr_result mvr_ring_begin_frame(mvr_renderer *r, GLsizeiptr size);
+void mvr_ring_end_frame(mvr_renderer *r);
+
+#endif
