@@ -84,6 +84,36 @@ static bool probe_multiview_msaa_array(mvr_context *ctx)
     return ok;
 }
 
+/* Does glFramebufferTextureMultiviewOVR accept a mip level other than 0?
+ * The extension allows any level of the texture, but Mesa 25 answers
+ * GL_INVALID_OPERATION (measured here). Tried on a tiny texture; bindings
+ * restored. */
+static bool probe_multiview_level_zero_only(mvr_context *ctx)
+{
+    const mvr_gl_api_table *gl = &ctx->gl;
+    if (!ctx->caps.ext.ovr_multiview)
+        return false;
+    GLint old_fbo = 0, old_tex = 0;
+    gl->GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &old_fbo);
+    gl->GetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &old_tex);
+    GLuint tex = 0, fbo = 0;
+    gl->GenTextures(1, &tex);
+    gl->BindTexture(GL_TEXTURE_2D_ARRAY, tex);
+    gl->TexStorage3D(GL_TEXTURE_2D_ARRAY, 2, GL_RGBA8, 4, 4, 2);
+    gl->GenFramebuffers(1, &fbo);
+    gl->BindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+    gl->FramebufferTextureMultiviewOVR(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, tex, 1, 0, 2);
+    bool refused = gl->GetError() != GL_NO_ERROR ||
+                   gl->CheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE;
+    while (gl->GetError() != GL_NO_ERROR) {
+    }
+    gl->BindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)old_fbo);
+    gl->BindTexture(GL_TEXTURE_2D_ARRAY, (GLuint)old_tex);
+    gl->DeleteFramebuffers(1, &fbo);
+    gl->DeleteTextures(1, &tex);
+    return refused;
+}
+
 static void probe_bugs(mvr_context *ctx)
 {
     mvr_caps *c = &ctx->caps;
@@ -103,6 +133,13 @@ static void probe_bugs(mvr_context *ctx)
      * rasterizing at its end, so at large sizes with cheap draws a per-view
      * loop can be faster (measured here). The path policy measures both. */
     c->bugs.multiview_pass_defers_raster = llvmpipe && c->ext.ovr_multiview;
+
+    /* Targets at a mip level other than 0 then take the loop path. */
+    c->bugs.multiview_level_zero_only = probe_multiview_level_zero_only(ctx);
+    if (c->bugs.multiview_level_zero_only)
+        mvr_log(&ctx->logger, MVR_LOG_DEBUG, MVR_LOG_ID_DRIVER_BUG,
+                "mvr: %s attaches only mip level 0 with multiview; other levels use the loop path",
+                c->renderer);
 
     if (c->bugs.mediump_is_fp16)
         mvr_log(&ctx->logger, MVR_LOG_DEBUG, MVR_LOG_ID_DRIVER_BUG,

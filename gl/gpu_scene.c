@@ -164,17 +164,30 @@ static mvr_result upload_geometry(mvr_renderer *r, const mvr_scene *s)
         for (size_t a = 0; a < MVR_ARRAY_COUNT(attrs); ++a)
             if (attrs[a].data)
                 total += (size_t)sp->vertex_count * (size_t)attrs[a].size * sizeof(float);
+        /* staged and uploaded in one call: sub-data updates of a STATIC_DRAW
+         * buffer are a slow path drivers warn about */
+        uint8_t *staging = malloc(total ? total : 1);
+        if (!staging)
+            return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "upload: out of memory");
+        size_t at = 0;
+        for (size_t a = 0; a < MVR_ARRAY_COUNT(attrs); ++a) {
+            if (!attrs[a].data)
+                continue;
+            size_t bytes = (size_t)sp->vertex_count * (size_t)attrs[a].size * sizeof(float);
+            memcpy(staging + at, attrs[a].data, bytes);
+            at += bytes;
+        }
         gl->GenVertexArrays(1, &p->vao);
         mvr_state_vao(&r->state, p->vao);
         gl->GenBuffers(1, &p->vbo);
         mvr_state_array_buffer(&r->state, p->vbo);
-        gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)total, NULL, GL_STATIC_DRAW);
+        gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)total, staging, GL_STATIC_DRAW);
+        free(staging);
         size_t offset = 0;
         for (size_t a = 0; a < MVR_ARRAY_COUNT(attrs); ++a) {
             if (!attrs[a].data)
                 continue;
             size_t bytes = (size_t)sp->vertex_count * (size_t)attrs[a].size * sizeof(float);
-            gl->BufferSubData(GL_ARRAY_BUFFER, (GLintptr)offset, (GLsizeiptr)bytes, attrs[a].data);
             gl->EnableVertexAttribArray(attrs[a].location);
             gl->VertexAttribPointer(attrs[a].location, attrs[a].size, GL_FLOAT, GL_FALSE, 0,
                                     (const void *)(uintptr_t)offset);

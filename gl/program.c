@@ -95,8 +95,8 @@ mvr_result mvr_gl_program_build(mvr_context *ctx, const mvr_shader_variant *vari
     bind_block(gl, program, "mvr_draw", MVR_BLOCK_DRAW);
     bind_block(gl, program, "mvr_materials", MVR_BLOCK_MATERIALS);
     bind_block(gl, program, "mvr_lights", MVR_BLOCK_LIGHTS);
-    GLint previous = 0;
-    gl->GetIntegerv(GL_CURRENT_PROGRAM, &previous);
+    /* ES 3.0 sets sampler units only on the current program; it stays current
+     * (restoring the previous one by name is wrong when that one was deleted) */
     gl->UseProgram(program);
     bind_sampler(gl, program, "mvr_base_color_tex", MVR_UNIT_BASE_COLOR);
     bind_sampler(gl, program, "mvr_metal_rough_tex", MVR_UNIT_METAL_ROUGH);
@@ -104,7 +104,6 @@ mvr_result mvr_gl_program_build(mvr_context *ctx, const mvr_shader_variant *vari
     bind_sampler(gl, program, "mvr_occlusion_tex", MVR_UNIT_OCCLUSION);
     bind_sampler(gl, program, "mvr_emissive_tex", MVR_UNIT_EMISSIVE);
     bind_sampler(gl, program, "mvr_source", MVR_UNIT_COMPOSITE_SOURCE);
-    gl->UseProgram((GLuint)previous);
     r = mvr_gl_check(ctx, "mvr_gl_program_build", false);
     if (r != MVR_OK) {
         gl->DeleteProgram(program);

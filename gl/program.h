@@ -24,8 +24,8 @@ enum {
 };
 
 /* Builds the variant into a linked program with its blocks and samplers bound.
- * On failure ctx's last error holds the compile / link log. The current
- * program binding is restored. */
+ * On failure ctx's last error holds the compile / link log. On success the
+ * new program is left current (callers with a state cache record that). */
 mvr_result mvr_gl_program_build(mvr_context *ctx, const mvr_shader_variant *variant,
                                 GLuint *out_program);
 

@@ -105,7 +105,7 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
                              "mvr_renderer_create: GL_MAX_UNIFORM_BLOCK_SIZE %d holds no material",
                              c->limits.max_uniform_block_size);
     }
-    mvr_state_init(&r->state, r->gl, r->ctx->provider_kind != MVR_CONTEXT_PROVIDER_EXTERNAL);
+    mvr_state_init(&r->state, r->gl, false);
     timer_init(r);
     mvr_result res = mvr_gl_check(r->ctx, "mvr_renderer_create", false);
     if (res != MVR_OK) {
@@ -164,6 +164,7 @@ mvr_result mvr_renderer_program(mvr_renderer *r, const mvr_shader_variant *v, mv
     mvr_result res = mvr_gl_program_build(r->ctx, v, &program);
     if (res != MVR_OK)
         return mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
+    mvr_state_assume_program(&r->state, program);
     mvr_program_entry *e = &r->programs[r->program_count++];
     memset(e, 0, sizeof *e);
     e->variant = *v;
@@ -235,6 +236,11 @@ static bool multiview_usable(const mvr_renderer *r)
            r->gl->FramebufferTextureMultiviewOVR != NULL;
 }
 
+static bool t_level_ok(const mvr_renderer *r, const mvr_target *t)
+{
+    return t->desc.external_level == 0 || !r->ctx->caps.bugs.multiview_level_zero_only;
+}
+
 mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view_set *views,
                                mvr_target *target, const mvr_render_desc *desc)
 {
@@ -261,18 +267,26 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
     if (d.exposure == 0.0f)
         d.exposure = 1.0f;
 
+    /* multiview where it works for this target: a mip level other than 0
+     * cannot be attached with multiview on some drivers (bugs struct) */
+    bool level_ok = t_level_ok(r, target);
     mvr_view_path path = r->requested_path;
     if (path == MVR_VIEW_PATH_AUTO)
-        path = multiview_usable(r) ? MVR_VIEW_PATH_MULTIVIEW : MVR_VIEW_PATH_LOOP;
+        path = multiview_usable(r) && level_ok ? MVR_VIEW_PATH_MULTIVIEW : MVR_VIEW_PATH_LOOP;
     if (path == MVR_VIEW_PATH_MULTIVIEW && !multiview_usable(r))
         return mvr_renderer_fail(r, MVR_ERROR_UNSUPPORTED,
                                  "mvr_renderer_render: the multiview path was forced but %s has no "
                                  "usable GL_OVR_multiview2",
                                  r->ctx->caps.renderer);
+    if (path == MVR_VIEW_PATH_MULTIVIEW && !level_ok)
+        return mvr_renderer_fail(r, MVR_ERROR_UNSUPPORTED,
+                                 "mvr_renderer_render: the multiview path was forced but %s attaches "
+                                 "only mip level 0 with multiview (the target is level %u)",
+                                 r->ctx->caps.renderer, target->desc.external_level);
 
     double cpu_start = thread_cpu_ms();
-    if (r->ctx->provider_kind == MVR_CONTEXT_PROVIDER_EXTERNAL)
-        mvr_state_invalidate(&r->state);
+    /* the application or another renderer may have changed GL state since */
+    mvr_state_invalidate(&r->state);
     memset(&r->state.counters, 0, sizeof r->state.counters);
     r->compiled_this_frame = 0;
     r->upload_bytes = r->view_upload_bytes = 0;
@@ -344,6 +358,7 @@ mvr_result mvr_renderer_read_layer(mvr_renderer *r, mvr_target *t, uint32_t laye
     if (size < need)
         return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT,
                                  "mvr_renderer_read_layer: buffer of %zu bytes, %zu needed", size, need);
+    mvr_state_invalidate(&r->state);
     /* One layer attached alone: reading from a multiview framebuffer is an error. */
     GLuint fbo = 0;
     mvr_result res = mvr_target_framebuffer(t, layer, 0, &fbo);

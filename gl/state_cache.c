@@ -57,6 +57,12 @@ void mvr_state_program(mvr_state_cache *s, GLuint program)
     s->counters.program_binds++;
 }
 
+void mvr_state_assume_program(mvr_state_cache *s, GLuint program)
+{
+    s->program = program;
+    s->counters.program_binds++;
+}
+
 void mvr_state_vao(mvr_state_cache *s, GLuint vao)
 {
     if (s->vao == vao)

@@ -1,9 +1,10 @@
 /*
  * The one GL state cache: every state change the renderer makes goes through
  * it, so redundant calls are dropped and binds are counted for the stats. Its
- * defaults are GL's own initial state. On an external context the
- * application may have changed anything, so the cache is invalidated (every
- * entry unknown) at the start of each render.
+ * defaults are GL's own initial state. The application, or another renderer
+ * on the same context, may change anything between frames, so the renderer
+ * invalidates the cache (every entry unknown) at the start of each call that
+ * touches GL.
  */
 #ifndef MVR_STATE_CACHE_H
 #define MVR_STATE_CACHE_H
@@ -50,6 +51,8 @@ void mvr_state_init(mvr_state_cache *s, const mvr_gl_api_table *gl, bool known);
 void mvr_state_invalidate(mvr_state_cache *s);
 
 void mvr_state_program(mvr_state_cache *s, GLuint program);
+/* Records a program made current outside the cache (by the program builder). */
+void mvr_state_assume_program(mvr_state_cache *s, GLuint program);
 void mvr_state_vao(mvr_state_cache *s, GLuint vao);
 void mvr_state_array_buffer(mvr_state_cache *s, GLuint buffer);
 void mvr_state_draw_framebuffer(mvr_state_cache *s, GLuint fbo);

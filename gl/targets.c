@@ -53,6 +53,7 @@ mvr_result mvr_target_create(mvr_renderer *r, const mvr_target_desc *d, mvr_targ
         return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "mvr_target_create: out of memory");
     t->renderer = r;
     t->desc = desc;
+    mvr_state_invalidate(&r->state);
     t->internal_format = gl_color_format(desc.color_format);
     const mvr_gl_api_table *gl = r->gl;
     if (desc.external_color_texture) {

@@ -127,6 +127,7 @@ static const int_field limit_fields[] = {
 #define BUG(member, label) {#member, label, offsetof(mvr_caps, bugs.member)}
 static const bool_field bug_fields[] = {
     BUG(timer_query_in_multiview_undefined, "timer queries undefined under multiview"),
+    BUG(multiview_level_zero_only, "multiview attaches mip level 0 only"),
     BUG(mediump_is_fp16, "mediump computed in fp16"),
     BUG(multiview_pass_defers_raster, "multiview pass defers rasterization"),
 };

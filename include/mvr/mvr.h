@@ -196,6 +196,7 @@ typedef struct mvr_caps_limits {
  * around where it matters (gl/caps.c says how each is detected and why). */
 typedef struct mvr_caps_bugs {
     bool timer_query_in_multiview_undefined;
+    bool multiview_level_zero_only;  /* multiview attaches mip level 0 only (Mesa 25) */
     bool mediump_is_fp16;
     bool multiview_pass_defers_raster;
 } mvr_caps_bugs;

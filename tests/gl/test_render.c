@@ -1,0 +1,309 @@
+/* gl: the multiview and loop view paths give byte-identical layers (this holds
+ * on llvmpipe), for every demo and 1, 2, 6 and 10 views, into mvr's own
+ * target and into an application's texture array; the stats count what the
+ * frame model promises. */
+#include <stdlib.h>
+
+#include "gl_test_util.h"
+#include "renderer_internal.h"
+
+#define W 64
+#define H 48
+
+typedef struct rendered {
+    uint32_t views;
+    uint8_t *pixels;             /* views * W * H * 4 */
+    mvr_frame_stats first, second;
+} rendered;
+
+static mvr_renderer *make_renderer(mvr_test_state *t, mvr_context *ctx, mvr_view_path path)
+{
+    mvr_renderer_desc rd = {ctx, path, {0}};
+    mvr_renderer *r = NULL;
+    mvr_error err;
+    CHECK_MSG(t, mvr_renderer_create(&rd, &r, &err) == MVR_OK, "%s", err.message);
+    return r;
+}
+
+/* Renders a demo twice (the second frame is the steady state) and reads every layer. */
+static bool render_demo(mvr_test_state *t, mvr_context *ctx, const char *demo, uint32_t views,
+                        mvr_view_path path, const mvr_target_desc *external, rendered *out)
+{
+    memset(out, 0, sizeof *out);
+    mvr_scene *scene = NULL;
+    mvr_view_set *vs = NULL;
+    mvr_error err;
+    mvr_demo_desc dd = {views, W, H, {0}};
+    if (mvr_demo_create(demo, &dd, &scene, &vs, &err) != MVR_OK) {
+        CHECK_MSG(t, 0, "demo %s: %s", demo, err.message);
+        return false;
+    }
+    mvr_renderer *r = make_renderer(t, ctx, path);
+    mvr_target *target = NULL;
+    mvr_target_desc td = {W, H, views, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0};
+    if (external)
+        td = *external;
+    bool ok = r && mvr_target_create(r, &td, &target) == MVR_OK;
+    CHECK_MSG(t, ok, "target: %s", r ? mvr_renderer_last_error(r) : "no renderer");
+    mvr_render_desc rdesc = {{0.1f, 0.2f, 0.3f, 1.0f}, 1.0f, MVR_TONE_MAP_NONE};
+    for (int frame = 0; ok && frame < 2; ++frame) {
+        ok = mvr_renderer_render(r, scene, vs, target, &rdesc) == MVR_OK;
+        CHECK_MSG(t, ok, "%s x%u %s: %s", demo, views, mvr_view_path_name(path), mvr_renderer_last_error(r));
+        if (ok)
+            mvr_renderer_get_stats(r, frame == 0 ? &out->first : &out->second);
+    }
+    if (ok) {
+        out->views = views;
+        out->pixels = malloc((size_t)views * W * H * 4);
+        for (uint32_t k = 0; ok && k < views; ++k) {
+            ok = mvr_renderer_read_layer(r, target, k, MVR_READBACK_RGBA8, out->pixels + (size_t)k * W * H * 4,
+                                         (size_t)W * H * 4) == MVR_OK;
+            CHECK_MSG(t, ok, "read layer %u: %s", k, mvr_renderer_last_error(r));
+        }
+    }
+    mvr_target_destroy(target);
+    mvr_renderer_destroy(r);
+    mvr_view_set_destroy(vs);
+    mvr_scene_destroy(scene);
+    return ok;
+}
+
+static uint32_t count_diff(const uint8_t *a, const uint8_t *b, size_t pixels)
+{
+    uint32_t n = 0;
+    for (size_t i = 0; i < pixels; ++i)
+        n += memcmp(a + i * 4, b + i * 4, 4) != 0;
+    return n;
+}
+
+/* Not a blank frame: enough distinct colors that a broken draw would show. */
+static uint32_t distinct_colors(const uint8_t *p, size_t pixels)
+{
+    uint32_t seen[64] = {0}, n = 0;
+    for (size_t i = 0; i < pixels && n < 64; ++i) {
+        uint32_t c = (uint32_t)p[i * 4] | (uint32_t)p[i * 4 + 1] << 8 | (uint32_t)p[i * 4 + 2] << 16;
+        bool found = false;
+        for (uint32_t k = 0; k < n; ++k)
+            found |= seen[k] == c;
+        if (!found)
+            seen[n++] = c;
+    }
+    return n;
+}
+
+static void paths_agree(mvr_test_state *t, const char *demo)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    const mvr_caps *c = mvr_context_caps(ctx);
+    if (!c->ext.ovr_multiview2) {
+        mvr_context_destroy(ctx);
+        CHECK_MSG(t, !mvr_test_in_ci(), "CI needs GL_OVR_multiview2");
+        SKIP(t, "no GL_OVR_multiview2: nothing to compare the loop path with");
+    }
+    uint32_t max_views = (uint32_t)c->limits.max_views_ovr;
+    static const uint32_t counts[] = {1, 2, 6, 10};
+    uint64_t steady_upload = 0;
+    for (size_t i = 0; i < MVR_ARRAY_COUNT(counts); ++i) {
+        uint32_t n = counts[i];
+        rendered mv, loop;
+        memset(&mv, 0, sizeof mv);
+        memset(&loop, 0, sizeof loop);
+        bool ok = render_demo(t, ctx, demo, n, MVR_VIEW_PATH_MULTIVIEW, NULL, &mv) &&
+                  render_demo(t, ctx, demo, n, MVR_VIEW_PATH_LOOP, NULL, &loop);
+        if (ok) {
+            for (uint32_t k = 0; k < n; ++k) {
+                const uint8_t *a = mv.pixels + (size_t)k * W * H * 4, *b = loop.pixels + (size_t)k * W * H * 4;
+                uint32_t d = count_diff(a, b, (size_t)W * H);
+                CHECK_MSG(t, d == 0, "%s, %u views, layer %u: %u of %u pixels differ between multiview and loop",
+                          demo, n, k, d, W * H);
+                CHECK_MSG(t, distinct_colors(a, (size_t)W * H) >= 8, "%s layer %u looks blank", demo, k);
+            }
+            /* distinct views render distinct images (not one view copied) */
+            if (n >= 2)
+                CHECK_MSG(t, count_diff(mv.pixels, mv.pixels + (size_t)W * H * 4, (size_t)W * H) > 0,
+                          "%s: views 0 and 1 are identical", demo);
+            uint32_t expect_passes = (n + max_views - 1) / max_views;
+            CHECK_MSG(t, mv.second.passes == expect_passes, "%s x%u multiview: %u passes, expected %u", demo, n,
+                      mv.second.passes, expect_passes);
+            CHECK_MSG(t, loop.second.passes == n, "%s x%u loop: %u passes", demo, n, loop.second.passes);
+            CHECK_EQ_INT(t, mv.second.view_path, MVR_VIEW_PATH_MULTIVIEW);
+            CHECK_EQ_INT(t, loop.second.view_path, MVR_VIEW_PATH_LOOP);
+            CHECK_EQ_INT(t, mv.second.views, n);
+            CHECK_EQ_INT(t, loop.second.views, n);
+            /* the loop path repeats every draw per view; multiview per chunk */
+            CHECK_EQ_INT(t, loop.second.draws * expect_passes, mv.second.draws * n);
+            /* view-independent uploads do not grow with N, and are the same on both paths */
+            if (i == 0)
+                steady_upload = mv.second.upload_bytes;
+            CHECK_MSG(t, mv.second.upload_bytes == steady_upload && loop.second.upload_bytes == steady_upload,
+                      "%s x%u: upload_bytes %llu / %llu, with 1 view %llu", demo, n,
+                      (unsigned long long)mv.second.upload_bytes, (unsigned long long)loop.second.upload_bytes,
+                      (unsigned long long)steady_upload);
+            CHECK(t, mv.first.upload_bytes > mv.second.upload_bytes); /* geometry and textures once */
+            CHECK_EQ_INT(t, mv.second.view_upload_bytes, (uint64_t)n * 80u);
+            CHECK_EQ_INT(t, mv.second.programs_compiled, 0); /* cached after the first frame */
+        }
+        free(mv.pixels);
+        free(loop.pixels);
+    }
+    mvr_context_destroy(ctx);
+}
+
+static void stereo_paths_agree(mvr_test_state *t) { paths_agree(t, "stereo"); }
+static void cube_paths_agree(mvr_test_state *t) { paths_agree(t, "cube"); }
+static void city_paths_agree(mvr_test_state *t) { paths_agree(t, "city"); }
+static void ring_paths_agree(mvr_test_state *t) { paths_agree(t, "ring"); }
+
+/* An application-owned array (as an XR swapchain image): views land in its
+ * layers from base_layer on, at its mip level; layers outside stay untouched;
+ * the pixels equal those of mvr's own target. */
+static GLuint app_array(const mvr_gl_api_table *gl, GLsizei levels, GLsizei w, GLsizei h)
+{
+    GLuint tex = 0, fbo = 0;
+    gl->GenTextures(1, &tex);
+    gl->BindTexture(GL_TEXTURE_2D_ARRAY, tex);
+    gl->TexStorage3D(GL_TEXTURE_2D_ARRAY, levels, GL_SRGB8_ALPHA8, w, h, 4);
+    gl->GenFramebuffers(1, &fbo);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, fbo);
+    const float magenta[4] = {1, 0, 1, 1};
+    for (GLint level = 0; level < levels; ++level)
+        for (GLint layer = 0; layer < 4; ++layer) {
+            gl->FramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, tex, level, layer);
+            gl->ClearBufferfv(GL_COLOR, 0, magenta);
+        }
+    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl->DeleteFramebuffers(1, &fbo);
+    return tex;
+}
+
+static void check_untouched(mvr_test_state *t, const mvr_gl_api_table *gl, GLuint tex, GLint level)
+{
+    GLuint fbo = 0;
+    gl->GenFramebuffers(1, &fbo);
+    gl->BindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+    for (GLint layer = 0; layer < 4; layer += 3) {
+        uint8_t px[4] = {0};
+        gl->FramebufferTextureLayer(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, tex, level, layer);
+        gl->ReadPixels(W / 2, H / 2, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, px);
+        CHECK_MSG(t, px[0] == 255 && px[1] == 0 && px[2] == 255, "level %d layer %d was written: %u %u %u",
+                  level, layer, px[0], px[1], px[2]);
+    }
+    gl->BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    gl->DeleteFramebuffers(1, &fbo);
+}
+
+static void application_texture_array(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    const mvr_gl_api_table *gl = &ctx->gl;
+    GLuint mipped = app_array(gl, 2, W * 2, H * 2); /* level 1 is W x H */
+    GLuint plain = app_array(gl, 1, W, H);
+    CHECK(t, mvr_gl_check(ctx, "test setup", true) == MVR_OK);
+    rendered own;
+    memset(&own, 0, sizeof own);
+    bool have_own = render_demo(t, ctx, "stereo", 2, MVR_VIEW_PATH_AUTO, NULL, &own);
+    const struct { GLuint tex; uint32_t level; mvr_view_path path; } cases[] = {
+        {plain, 0, MVR_VIEW_PATH_AUTO}, {plain, 0, MVR_VIEW_PATH_LOOP},
+        {mipped, 1, MVR_VIEW_PATH_AUTO}, {mipped, 1, MVR_VIEW_PATH_LOOP}};
+    for (size_t i = 0; have_own && i < MVR_ARRAY_COUNT(cases); ++i) {
+        mvr_target_desc ext = {W, H, 2, MVR_COLOR_FORMAT_DEFAULT, cases[i].tex, cases[i].level, 1};
+        rendered app;
+        memset(&app, 0, sizeof app);
+        if (render_demo(t, ctx, "stereo", 2, cases[i].path, &ext, &app)) {
+            CHECK_MSG(t, count_diff(app.pixels, own.pixels, (size_t)W * H * 2) == 0,
+                      "application array (level %u, %s) and mvr's target differ", cases[i].level,
+                      mvr_view_path_name(cases[i].path));
+            /* multiview where the driver attaches the level, the loop path where it cannot */
+            bool mv = mvr_context_caps(ctx)->ext.ovr_multiview2 && cases[i].path == MVR_VIEW_PATH_AUTO &&
+                      (cases[i].level == 0 || !mvr_context_caps(ctx)->bugs.multiview_level_zero_only);
+            CHECK_EQ_INT(t, app.second.view_path, mv ? MVR_VIEW_PATH_MULTIVIEW : MVR_VIEW_PATH_LOOP);
+        }
+        free(app.pixels);
+        check_untouched(t, gl, cases[i].tex, (GLint)cases[i].level);
+    }
+    free(own.pixels);
+    gl->DeleteTextures(1, &mipped);
+    gl->DeleteTextures(1, &plain);
+    mvr_context_destroy(ctx);
+}
+
+/* A wrong application texture is refused with a message, not a crash. */
+static void bad_targets_are_refused(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    mvr_renderer *r = make_renderer(t, ctx, MVR_VIEW_PATH_AUTO);
+    mvr_target *target = NULL;
+    mvr_target_desc d = {0, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0};
+    CHECK(t, mvr_target_create(r, &d, &target) == MVR_ERROR_INVALID_ARGUMENT && !target);
+    d = (mvr_target_desc){W, H, 100000, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0};
+    CHECK(t, mvr_target_create(r, &d, &target) == MVR_ERROR_INVALID_ARGUMENT);
+    CHECK(t, strstr(mvr_renderer_last_error(r), "GL_MAX_ARRAY_TEXTURE_LAYERS") != NULL);
+    /* a 2D texture is not a 2D array */
+    GLuint tex = 0;
+    ctx->gl.GenTextures(1, &tex);
+    ctx->gl.BindTexture(GL_TEXTURE_2D, tex);
+    ctx->gl.TexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, W, H);
+    d = (mvr_target_desc){W, H, 2, MVR_COLOR_FORMAT_RGBA8, tex, 0, 0};
+    mvr_result res = mvr_target_create(r, &d, &target);
+    CHECK_MSG(t, res == MVR_ERROR_GL || res == MVR_ERROR_FRAMEBUFFER, "%s", mvr_result_name(res));
+    CHECK(t, target == NULL);
+    ctx->gl.DeleteTextures(1, &tex);
+    /* more views than layers */
+    mvr_scene *scene = NULL;
+    mvr_view_set *vs = NULL;
+    mvr_demo_desc dd = {3, W, H, {0}};
+    CHECK(t, mvr_demo_create("ring", &dd, &scene, &vs, NULL) == MVR_OK);
+    d = (mvr_target_desc){W, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0};
+    CHECK(t, mvr_target_create(r, &d, &target) == MVR_OK);
+    CHECK(t, mvr_renderer_render(r, scene, vs, target, NULL) == MVR_ERROR_INVALID_ARGUMENT);
+    CHECK(t, strstr(mvr_renderer_last_error(r), "3 views") != NULL);
+    uint8_t small[16];
+    CHECK(t, mvr_renderer_read_layer(r, target, 0, MVR_READBACK_RGBA8, small, sizeof small) ==
+                 MVR_ERROR_INVALID_ARGUMENT);
+    CHECK(t, mvr_renderer_read_layer(r, target, 5, MVR_READBACK_RGBA8, small, sizeof small) ==
+                 MVR_ERROR_INVALID_ARGUMENT);
+    mvr_target_destroy(target);
+    mvr_view_set_destroy(vs);
+    mvr_scene_destroy(scene);
+    mvr_renderer_destroy(r);
+    mvr_context_destroy(ctx);
+}
+
+/* Disabled views leave their layer alone and cost no pass. */
+static void disabled_views_are_skipped(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    mvr_scene *scene = NULL;
+    mvr_view_set *vs = NULL;
+    mvr_demo_desc dd = {4, W, H, {0}};
+    CHECK(t, mvr_demo_create("ring", &dd, &scene, &vs, NULL) == MVR_OK);
+    mvr_view_desc v = vs->views[2];
+    v.disabled = true;
+    CHECK(t, mvr_view_set_update(vs, 2, &v) == MVR_OK);
+    mvr_renderer *r = make_renderer(t, ctx, MVR_VIEW_PATH_AUTO);
+    mvr_target *target = NULL;
+    mvr_target_desc d = {W, H, 4, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0};
+    CHECK(t, mvr_target_create(r, &d, &target) == MVR_OK);
+    CHECK(t, mvr_renderer_render(r, scene, vs, target, NULL) == MVR_OK);
+    mvr_frame_stats st;
+    mvr_renderer_get_stats(r, &st);
+    CHECK_EQ_INT(t, st.views, 3);
+    /* views 0,1 and 3 are not consecutive: two multiview passes (or three loop passes) */
+    CHECK_EQ_INT(t, st.passes, st.view_path == MVR_VIEW_PATH_MULTIVIEW ? 2 : 3);
+    mvr_target_destroy(target);
+    mvr_renderer_destroy(r);
+    mvr_view_set_destroy(vs);
+    mvr_scene_destroy(scene);
+    mvr_context_destroy(ctx);
+}
+
+MVR_TEST_MAIN(TEST(stereo_paths_agree), TEST(cube_paths_agree), TEST(city_paths_agree), TEST(ring_paths_agree),
+              TEST(application_texture_array), TEST(bad_targets_are_refused), TEST(disabled_views_are_skipped))
