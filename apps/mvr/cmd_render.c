@@ -191,12 +191,28 @@ static int parse(int argc, char **argv, render_options *o)
     return MVR_EXIT_OK;
 }
 
+/* mkdir -p: creates the directory and any missing parents. */
 static bool make_dir(const char *path)
 {
-    if (mkdir(path, 0777) == 0 || errno == EEXIST)
-        return true;
-    fprintf(stderr, "mvr render: cannot create %s: %s\n", path, strerror(errno));
-    return false;
+    char buf[4096];
+    size_t n = strlen(path);
+    if (n == 0 || n >= sizeof buf) {
+        fprintf(stderr, "mvr render: bad output directory '%s'\n", path);
+        return false;
+    }
+    memcpy(buf, path, n + 1);
+    for (size_t i = 1; i <= n; ++i) {
+        if (buf[i] != '/' && buf[i] != '\0')
+            continue;
+        char saved = buf[i];
+        buf[i] = '\0';
+        if (mkdir(buf, 0777) != 0 && errno != EEXIST) {
+            fprintf(stderr, "mvr render: cannot create %s: %s\n", buf, strerror(errno));
+            return false;
+        }
+        buf[i] = saved;
+    }
+    return true;
 }
 
 static void write_stats_json(FILE *f, const mvr_frame_stats *s, const char *demo, uint32_t w, uint32_t h)
@@ -338,8 +354,9 @@ int mvr_cmd_render(int argc, char **argv)
         const mvr_caps *c = mvr_context_caps(ctx);
         printf("mvr render: %s, %u views of %ux%u on %s (%s)\n", o.demo, n, o.width, o.height, c->renderer,
                mvr_context_provider_name(mvr_context_get_provider(ctx)));
-        printf("  view path   %s: %u passes for %u views (GL_MAX_VIEWS_OVR %d)\n",
-               mvr_view_path_name(st.view_path), st.passes, st.views, c->limits.max_views_ovr);
+        printf("  view path   %s: %u pass%s for %u view%s (GL_MAX_VIEWS_OVR %d)\n",
+               mvr_view_path_name(st.view_path), st.passes, st.passes == 1 ? "" : "es", st.views,
+               st.views == 1 ? "" : "s", c->limits.max_views_ovr);
         printf("  depth       %s\n", st.reversed_z ? "reversed-Z (clip control, float depth)" : "standard");
         printf("  draws %u, program binds %u, texture binds %u, uniform range binds %u\n", st.draws,
                st.program_binds, st.texture_binds, st.ubo_range_binds);
