@@ -260,14 +260,14 @@ mvr_dmat4 mvr_dmat4_normal_matrix(const mvr_dmat4 *a)
     c[6] = m[1] * m[6] - m[2] * m[5];
     c[7] = m[2] * m[4] - m[0] * m[6];
     c[8] = m[0] * m[5] - m[1] * m[4];
-    /* c[] holds the cofactors C(col,row) laid out so that normal' = cof * n:
-     * column j of the result is c[j*3 .. j*3+2]. */
+    /* c[col * 3 + row] is the cofactor C[row][col]; the inverse-transpose is
+     * C / det, stored column-major like every matrix here */
     double det = mvr_dmat4_det3(a);
     double s = (det != 0.0 && isfinite(det)) ? 1.0 / det : 1.0;
     mvr_dmat4 r = mvr_dmat4_identity();
     for (int col = 0; col < 3; ++col)
         for (int row = 0; row < 3; ++row)
-            r.m[col * 4 + row] = c[row * 3 + col] * s;
+            r.m[col * 4 + row] = c[col * 3 + row] * s;
     return r;
 }
 

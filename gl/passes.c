@@ -273,8 +273,12 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
 
     for (uint32_t c = 0; c < chunk_count && res == MVR_OK; ++c) {
         const view_chunk *ch = &chunks[c];
+        /* one view gains nothing from multiview, and on llvmpipe a 1-view
+         * multiview pass costs about 50% more CPU than a plain one (measured
+         * with tests/bench/bench_views): a plain single-layer pass instead */
+        bool mv_pass = multiview && ch->count > 1;
         GLuint fbo = 0;
-        res = mvr_target_framebuffer(t, ch->base, multiview ? ch->count : 0, &fbo);
+        res = mvr_target_framebuffer(t, ch->base, mv_pass ? ch->count : 0, &fbo);
         if (res != MVR_OK)
             break;
         mvr_state_draw_framebuffer(st, fbo);
@@ -300,13 +304,14 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
                             lay.views + (GLintptr)block * view_block_stride, VIEW_BLOCK_SIZE);
         if (light_total)
             mvr_state_ubo_range(st, MVR_BLOCK_LIGHTS, r->ring.buffer, lay.lights, lay.lights_size);
-        pc.num_views = multiview ? ch->count : 0;
+        pc.num_views = mv_pass ? ch->count : 0;
         pc.view_base = (int32_t)(ch->base - block * VIEWS_PER_BLOCK);
         pc.last_program = NULL;
         for (int k = 0; k < MVR_PASS_KIND_COUNT && res == MVR_OK; ++k)
             res = draw_list(&pc, (mvr_pass_kind)k);
         r->stats.passes++;
-        r->stats.views += multiview ? ch->count : 1;
+        r->stats.multiview_passes += mv_pass;
+        r->stats.views += ch->count;
     }
     free(chunks);
     mvr_ring_end_frame(r);

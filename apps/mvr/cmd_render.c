@@ -225,6 +225,7 @@ static void write_stats_json(FILE *f, const mvr_frame_stats *s, const char *demo
     json_string(&jw, "view_path", mvr_view_path_name(s->view_path));
     json_int(&jw, "views", s->views);
     json_int(&jw, "passes", s->passes);
+    json_int(&jw, "multiview_passes", s->multiview_passes);
     json_int(&jw, "draws", s->draws);
     json_int(&jw, "program_binds", s->program_binds);
     json_int(&jw, "texture_binds", s->texture_binds);

@@ -535,6 +535,8 @@ typedef struct mvr_frame_stats {
     mvr_view_path view_path;     /* the path that ran */
     uint32_t views;              /* enabled views rendered */
     uint32_t passes;             /* framebuffer passes (multiview chunks or loop views) */
+    uint32_t multiview_passes;   /* passes through a multiview framebuffer (a chunk of one
+                                    view takes a plain pass: same pixels, less work) */
     uint32_t draws;
     uint32_t program_binds;
     uint32_t texture_binds;

@@ -131,6 +131,11 @@ static void paths_agree(mvr_test_state *t, const char *demo)
             CHECK_EQ_INT(t, mv.second.view_path, MVR_VIEW_PATH_MULTIVIEW);
             CHECK_EQ_INT(t, loop.second.view_path, MVR_VIEW_PATH_LOOP);
             CHECK_EQ_INT(t, mv.second.views, n);
+            /* chunks of one view take plain passes: 10 views at 6 per pass = 6 + 4 */
+            uint32_t expect_mv = n / max_views + (n % max_views > 1);
+            CHECK_MSG(t, mv.second.multiview_passes == expect_mv, "%s x%u: %u multiview passes, expected %u", demo,
+                      n, mv.second.multiview_passes, expect_mv);
+            CHECK_EQ_INT(t, loop.second.multiview_passes, 0);
             CHECK_EQ_INT(t, loop.second.views, n);
             /* the loop path repeats every draw per view; multiview per chunk */
             CHECK_EQ_INT(t, loop.second.draws * expect_passes, mv.second.draws * n);

@@ -1,0 +1,185 @@
+/* core: the scene validates every count, index and reference, owns copies,
+ * and the frame prep packs what the shaders read. */
+#include <math.h>
+
+#include "frame.h"
+#include "mvr_test.h"
+#include "scene_internal.h"
+
+static const float tri[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+
+static mvr_scene *new_scene(void)
+{
+    mvr_scene *s = NULL;
+    mvr_scene_create(NULL, &s, NULL);
+    return s;
+}
+
+static void bad_meshes_are_refused(mvr_test_state *t)
+{
+    mvr_scene *s = new_scene();
+    mvr_mesh_id id;
+    mvr_primitive_desc p = {0};
+    p.vertex_count = 3;
+    p.positions = tri;
+    mvr_mesh_desc m = {&p, 1, "tri"};
+    CHECK(t, mvr_scene_add_mesh(s, &m, &id) == MVR_OK && id.id == 1);
+
+    uint16_t idx[3] = {0, 1, 3};
+    p.index_count = 3;
+    p.indices16 = idx;
+    CHECK(t, mvr_scene_add_mesh(s, &m, &id) == MVR_ERROR_INVALID_ARGUMENT && id.id == 0);
+    CHECK_MSG(t, strstr(mvr_scene_last_error(s), "index 3 at 2 is out of range") != NULL, "%s",
+              mvr_scene_last_error(s));
+    idx[2] = 2;
+    p.index_count = 2;
+    CHECK(t, mvr_scene_add_mesh(s, &m, &id) == MVR_ERROR_INVALID_ARGUMENT);
+    CHECK(t, strstr(mvr_scene_last_error(s), "multiple of 3") != NULL);
+    p.index_count = 3;
+    uint32_t idx32[3] = {0, 1, 2};
+    p.indices32 = idx32;
+    CHECK(t, mvr_scene_add_mesh(s, &m, &id) == MVR_ERROR_INVALID_ARGUMENT); /* both index arrays */
+    p.indices32 = NULL;
+    p.material.id = 5;
+    CHECK(t, mvr_scene_add_mesh(s, &m, &id) == MVR_ERROR_INVALID_ARGUMENT);
+    CHECK(t, strstr(mvr_scene_last_error(s), "material 5") != NULL);
+    p.material.id = 0;
+    float nan_tri[9] = {0, 0, 0, NAN, 0, 0, 0, 1, 0};
+    p.positions = nan_tri;
+    CHECK(t, mvr_scene_add_mesh(s, &m, &id) == MVR_ERROR_INVALID_ARGUMENT);
+    CHECK(t, strstr(mvr_scene_last_error(s), "NaN") != NULL);
+    p.positions = NULL;
+    CHECK(t, mvr_scene_add_mesh(s, &m, &id) == MVR_ERROR_INVALID_ARGUMENT);
+    m.primitive_count = 0;
+    CHECK(t, mvr_scene_add_mesh(s, &m, &id) == MVR_ERROR_INVALID_ARGUMENT);
+    /* nothing half-added by the failures */
+    mvr_scene_info info;
+    mvr_scene_get_info(s, &info);
+    CHECK_EQ_INT(t, info.meshes, 1);
+    CHECK_EQ_INT(t, info.primitives, 1);
+    mvr_scene_destroy(s);
+}
+
+static void references_are_checked(mvr_test_state *t)
+{
+    mvr_scene *s = new_scene();
+    mvr_node_id n;
+    mvr_node_desc d = {0};
+    d.parent.id = 1;
+    CHECK(t, mvr_scene_add_node(s, &d, &n) == MVR_ERROR_INVALID_ARGUMENT); /* no node 1 yet */
+    d.parent.id = 0;
+    d.translation[0] = INFINITY;
+    CHECK(t, mvr_scene_add_node(s, &d, &n) == MVR_ERROR_INVALID_ARGUMENT);
+    d.translation[0] = 0;
+    CHECK(t, mvr_scene_add_node(s, &d, &n) == MVR_OK && n.id == 1);
+    mvr_material_desc md = mvr_material_defaults();
+    md.base_color.image.id = 1;
+    mvr_material_id mid;
+    CHECK(t, mvr_scene_add_material(s, &md, &mid) == MVR_ERROR_INVALID_ARGUMENT);
+    CHECK(t, strstr(mvr_scene_last_error(s), "base color texture names image 1") != NULL);
+    md.base_color.image.id = 0;
+    md.normal.texcoord = 2;
+    md.normal.image.id = 0;
+    CHECK(t, mvr_scene_add_material(s, &md, &mid) == MVR_ERROR_INVALID_ARGUMENT);
+    mvr_light_desc l = {MVR_LIGHT_POINT, {1, 1, 1}, -1.0f, 0, 0, 0};
+    mvr_light_id lid;
+    CHECK(t, mvr_scene_add_light(s, &l, &lid) == MVR_ERROR_INVALID_ARGUMENT);
+    mvr_image_desc img = {0, 4, NULL, "empty"};
+    mvr_image_id iid;
+    CHECK(t, mvr_scene_add_image(s, &img, &iid) == MVR_ERROR_INVALID_ARGUMENT);
+    CHECK(t, mvr_scene_add_image(NULL, &img, &iid) == MVR_ERROR_INVALID_ARGUMENT);
+    CHECK(t, mvr_scene_set_node_transform(s, (mvr_node_id){7}, d.translation, d.rotation, d.scale) ==
+                 MVR_ERROR_INVALID_ARGUMENT);
+    mvr_scene_destroy(s);
+    mvr_scene_destroy(NULL);
+}
+
+static void frame_packs_draws_relative_to_origin(mvr_test_state *t)
+{
+    mvr_scene *s = new_scene();
+    mvr_material_desc blend = mvr_material_defaults();
+    blend.alpha_mode = MVR_ALPHA_BLEND;
+    mvr_material_id opaque_m, blend_m;
+    mvr_material_desc opaque = mvr_material_defaults();
+    CHECK(t, mvr_scene_add_material(s, &opaque, &opaque_m) == MVR_OK);
+    CHECK(t, mvr_scene_add_material(s, &blend, &blend_m) == MVR_OK);
+    mvr_primitive_desc p = {0};
+    p.vertex_count = 3;
+    p.positions = tri;
+    p.material = opaque_m;
+    mvr_mesh_desc m = {&p, 1, "a"};
+    mvr_mesh_id a, b;
+    CHECK(t, mvr_scene_add_mesh(s, &m, &a) == MVR_OK);
+    p.material = blend_m;
+    CHECK(t, mvr_scene_add_mesh(s, &m, &b) == MVR_OK);
+    /* parent far away, children near it, one mirrored */
+    mvr_node_desc nd = {0};
+    nd.translation[0] = 1e7;
+    mvr_node_id parent;
+    CHECK(t, mvr_scene_add_node(s, &nd, &parent) == MVR_OK);
+    memset(&nd, 0, sizeof nd);
+    nd.parent = parent;
+    nd.mesh = a;
+    nd.translation[2] = -2;
+    nd.scale[0] = -1, nd.scale[1] = 1, nd.scale[2] = 1;
+    mvr_node_id child;
+    CHECK(t, mvr_scene_add_node(s, &nd, &child) == MVR_OK);
+    nd.mesh = b;
+    nd.scale[0] = 0;
+    nd.translation[2] = -5;
+    CHECK(t, mvr_scene_add_node(s, &nd, &child) == MVR_OK);
+    nd.translation[2] = -3;
+    CHECK(t, mvr_scene_add_node(s, &nd, &child) == MVR_OK);
+
+    mvr_frame f;
+    memset(&f, 0, sizeof f);
+    char why[128];
+    CHECK(t, mvr_frame_build(&f, s, mvr_dvec3_make(1e7, 0, 0), 256, 64, why, sizeof why) == MVR_OK);
+    CHECK_EQ_INT(t, f.draw_count, 3);
+    CHECK_EQ_INT(t, f.pass_count[MVR_PASS_OPAQUE], 1);
+    CHECK_EQ_INT(t, f.pass_count[MVR_PASS_BLEND], 2);
+    const mvr_draw *o = &f.draws[f.pass_first[MVR_PASS_OPAQUE]];
+    CHECK(t, o->mirrored);
+    float model[16];
+    memcpy(model, f.draw_blocks + (size_t)o->block * 256, sizeof model);
+    CHECK_MSG(t, model[12] == 0.0f && model[14] == -2.0f, "relative translation %g %g", (double)model[12],
+              (double)model[14]);
+    /* blended draws back to front */
+    const mvr_draw *b0 = &f.draws[f.pass_first[MVR_PASS_BLEND]], *b1 = b0 + 1;
+    CHECK(t, b0->depth > b1->depth);
+    CHECK(t, !b0->mirrored);
+    int32_t info[4];
+    memcpy(info, f.draw_blocks + (size_t)o->block * 256 + 128, sizeof info);
+    CHECK_EQ_INT(t, info[0], 0); /* material slot 0 */
+    CHECK(t, mvr_frame_build(&f, s, mvr_dvec3_make(0, 0, 0), 100, 64, why, sizeof why) != MVR_OK);
+    mvr_frame_free(&f);
+    mvr_scene_destroy(s);
+}
+
+static void features_follow_attributes_and_material(mvr_test_state *t)
+{
+    float uv[6] = {0, 0, 1, 0, 0, 1};
+    scene_primitive p;
+    memset(&p, 0, sizeof p);
+    p.positions = (float *)tri;
+    p.normals = (float *)tri;
+    mvr_material_desc m = mvr_material_defaults();
+    m.base_color.image.id = 1;
+    /* no UVs: the texture cannot be sampled, so no texture feature */
+    CHECK_EQ_INT(t, mvr_draw_features(&p, &m) & MVR_FEATURE_BASE_COLOR_TEX, 0);
+    p.uv0 = uv;
+    uint32_t f = mvr_draw_features(&p, &m);
+    CHECK(t, (f & MVR_FEATURE_BASE_COLOR_TEX) && (f & MVR_FEATURE_UV0) && (f & MVR_FEATURE_NORMALS));
+    CHECK(t, !(f & MVR_FEATURE_UV1));
+    m.unlit = true;
+    f = mvr_draw_features(&p, &m);
+    CHECK(t, (f & MVR_FEATURE_UNLIT) && !(f & MVR_FEATURE_NORMALS));
+    m.unlit = false;
+    m.normal.image.id = 1;
+    CHECK(t, !(mvr_draw_features(&p, &m) & MVR_FEATURE_TANGENTS)); /* no tangents given */
+    p.tangents = uv;
+    CHECK(t, mvr_draw_features(&p, &m) & MVR_FEATURE_TANGENTS);
+}
+
+MVR_TEST_MAIN(TEST(bad_meshes_are_refused), TEST(references_are_checked),
+              TEST(frame_packs_draws_relative_to_origin), TEST(features_follow_attributes_and_material))
