@@ -2,6 +2,7 @@
  * on llvmpipe), for every demo and 1, 2, 6 and 10 views, into mvr's own
  * target and into an application's texture array; the stats count what the
  * frame model promises. */
+#include <math.h>
 #include <stdlib.h>
 
 #include "gl_test_util.h"
@@ -310,5 +311,89 @@ static void disabled_views_are_skipped(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
-MVR_TEST_MAIN(TEST(stereo_paths_agree), TEST(cube_paths_agree), TEST(city_paths_agree), TEST(ring_paths_agree),
+/* Renders the ring demo's first view (no blended materials: a UNORM target
+ * blends sRGB-encoded values, an sRGB target blends in linear space, so
+ * blended pixels differ by design) into a target of the given format, and
+ * reads it back as RGBA32F. */
+static float *render_format(mvr_test_state *t, mvr_context *ctx, mvr_color_format format, mvr_tone_map tone)
+{
+    mvr_scene *scene = NULL;
+    mvr_view_set *vs = NULL;
+    mvr_demo_desc dd = {1, W, H, {0}};
+    CHECK(t, mvr_demo_create("ring", &dd, &scene, &vs, NULL) == MVR_OK);
+    mvr_renderer *r = make_renderer(t, ctx, MVR_VIEW_PATH_AUTO);
+    mvr_target *target = NULL;
+    mvr_target_desc td = {W, H, 1, format, 0, 0, 0};
+    mvr_render_desc rd = {{0.2f, 0.1f, 0.05f, 1.0f}, 1.0f, tone};
+    float *px = malloc((size_t)W * H * 4 * sizeof *px);
+    bool ok = mvr_target_create(r, &td, &target) == MVR_OK && mvr_renderer_render(r, scene, vs, target, &rd) == MVR_OK &&
+              mvr_renderer_read_layer(r, target, 0, MVR_READBACK_RGBA32F, px, (size_t)W * H * 4 * sizeof *px) == MVR_OK;
+    CHECK_MSG(t, ok, "%s: %s", mvr_color_format_name(format), mvr_renderer_last_error(r));
+    if (ok && format != MVR_COLOR_FORMAT_RGBA16F) {
+        /* RGBA32F readback of 8-bit storage = the RGBA8 readback / 255 */
+        uint8_t *bytes = malloc((size_t)W * H * 4);
+        CHECK(t, mvr_renderer_read_layer(r, target, 0, MVR_READBACK_RGBA8, bytes, (size_t)W * H * 4) == MVR_OK);
+        for (size_t i = 0; i < (size_t)W * H * 4; ++i)
+            if (px[i] != (float)bytes[i] / 255.0f) {
+                CHECK_MSG(t, 0, "float readback %g vs byte %u at %zu", (double)px[i], bytes[i], i);
+                break;
+            }
+        free(bytes);
+    }
+    mvr_target_destroy(target);
+    mvr_renderer_destroy(r);
+    mvr_view_set_destroy(vs);
+    mvr_scene_destroy(scene);
+    if (!ok) {
+        free(px);
+        return NULL;
+    }
+    return px;
+}
+
+static float srgb_encode(float c)
+{
+    c = c < 0.0f ? 0.0f : c > 1.0f ? 1.0f : c;
+    return c <= 0.0031308f ? c * 12.92f : 1.055f * powf(c, 1.0f / 2.4f) - 0.055f;
+}
+
+/* The shader's exact sRGB encode (UNORM target) and the GL's (sRGB target)
+ * agree to within one step; a linear half-float target, encoded here, too.
+ * Tone mapping changes the image but keeps it within [0, 1]. */
+static void color_formats_agree(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    float *srgb = render_format(t, ctx, MVR_COLOR_FORMAT_DEFAULT, MVR_TONE_MAP_NONE);
+    float *unorm = render_format(t, ctx, MVR_COLOR_FORMAT_RGBA8, MVR_TONE_MAP_NONE);
+    float *half = render_format(t, ctx, MVR_COLOR_FORMAT_RGBA16F, MVR_TONE_MAP_NONE);
+    float *aces = render_format(t, ctx, MVR_COLOR_FORMAT_DEFAULT, MVR_TONE_MAP_ACES);
+    if (srgb && unorm && half && aces) {
+        float worst_unorm = 0, worst_half = 0;
+        size_t aces_changed = 0;
+        for (size_t i = 0; i < (size_t)W * H * 4; ++i) {
+            bool alpha = i % 4 == 3;
+            float d1 = fabsf(srgb[i] - unorm[i]);
+            float d2 = fabsf(srgb[i] - (alpha ? half[i] : srgb_encode(half[i])));
+            worst_unorm = d1 > worst_unorm ? d1 : worst_unorm;
+            worst_half = d2 > worst_half ? d2 : worst_half;
+            aces_changed += aces[i] != srgb[i];
+            CHECK(t, aces[i] >= 0.0f && aces[i] <= 1.0f);
+        }
+        printf("  sRGB target vs shader encode: %.2f/255; vs half float: %.2f/255\n", worst_unorm * 255.0f,
+               worst_half * 255.0f);
+        /* one step: the two encodes round differently near half-way values */
+        CHECK_MSG(t, worst_unorm <= 1.0f / 255.0f + 1e-6f, "shader sRGB encode is %g/255 off", worst_unorm * 255.0);
+        CHECK_MSG(t, worst_half <= 1.0f / 255.0f + 1e-3f, "half-float target is %g/255 off", worst_half * 255.0);
+        CHECK(t, aces_changed > (size_t)W * H);
+    }
+    free(srgb);
+    free(unorm);
+    free(half);
+    free(aces);
+    mvr_context_destroy(ctx);
+}
+
+MVR_TEST_MAIN(TEST(color_formats_agree), TEST(stereo_paths_agree), TEST(cube_paths_agree), TEST(city_paths_agree), TEST(ring_paths_agree),
               TEST(application_texture_array), TEST(bad_targets_are_refused), TEST(disabled_views_are_skipped))
