@@ -44,6 +44,11 @@ int mvr_size_add(size_t a, size_t b, size_t *out);
 void mvr_log(const mvr_logger *logger, mvr_log_level level, mvr_log_id id, const char *fmt, ...)
     MVR_PRINTF(4, 5);
 
+/* Records a failure of a call on an object: formats the message into the
+ * object's last-error buffer, logs it as MVR_LOG_ID_ERROR_RESULT, returns result. */
+mvr_result mvr_error_record(char *buf, size_t size, const mvr_logger *logger, mvr_result result,
+                            const char *fmt, va_list ap) MVR_PRINTF(5, 0);
+
 /* Fills an optional mvr_error and returns result, for create calls. */
 mvr_result mvr_error_set(mvr_error *error, mvr_result result, const char *fmt, ...)
     MVR_PRINTF(3, 4);

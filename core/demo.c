@@ -86,6 +86,21 @@ static mvr_node_id node(builder *b, mvr_mesh_id m, double x, double y, double z,
     return id;
 }
 
+/* A node rotated by angle about X (planes turned to face a viewer, tori). */
+static void node_tilted(builder *b, mvr_mesh_id m, double x, double y, double z, double angle)
+{
+    mvr_node_desc d;
+    memset(&d, 0, sizeof d);
+    d.mesh = m;
+    d.translation[0] = x;
+    d.translation[1] = y;
+    d.translation[2] = z;
+    d.rotation[0] = sin(angle * 0.5);
+    d.rotation[3] = cos(angle * 0.5);
+    mvr_node_id id = {0};
+    TRY(b, mvr_scene_add_node(b->scene, &d, &id));
+}
+
 /* A light on a node at position p shining along dir. */
 static void light(builder *b, const mvr_light_desc *l, double px, double py, double pz, double dx, double dy,
                   double dz)
@@ -143,15 +158,7 @@ static void build_room(builder *b)
     mvr_mesh_id floor_mesh = mesh(b, SHAPE_PLANE, 2.0f, 4.0f, 2.5f, floor_m, false, "floor");
     node(b, floor_mesh, 0, 0, 0, 0, 1, 1, 1);
     mvr_mesh_id ceiling_mesh = mesh(b, SHAPE_PLANE, 2.0f, 1.0f, 2.5f, ceiling_m, false, "ceiling");
-    {
-        mvr_node_desc d;
-        memset(&d, 0, sizeof d);
-        d.mesh = ceiling_mesh;
-        d.translation[1] = 3.0;
-        d.rotation[0] = 1.0; /* 180 degrees about X: faces down */
-        mvr_node_id id;
-        TRY(b, mvr_scene_add_node(b->scene, &d, &id));
-    }
+    node_tilted(b, ceiling_mesh, 0, 3.0, 0, PI); /* faces down */
     /* walls from boxes (thin), so both sides and edges are closed */
     mvr_mesh_id side_wall = mesh(b, SHAPE_BOX, 0.05f, 1.5f, 2.5f, wall_m, false, "side wall");
     node(b, side_wall, -2.05, 1.5, 0, 0, 1, 1, 1);
@@ -189,19 +196,9 @@ static void build_room(builder *b)
     glow.metallic_factor = 0.0f;
     glow.emissive_factor[0] = 0.2f, glow.emissive_factor[1] = 0.6f, glow.emissive_factor[2] = 1.0f;
     glow.emissive_strength = 2.0f;
-    {
-        mvr_mesh_id torus = mesh(b, SHAPE_TORUS, 0.3f, 0.06f, 0, material(b, &glow), false, "glow torus");
-        mvr_node_desc d;
-        memset(&d, 0, sizeof d);
-        d.mesh = torus;
-        d.translation[0] = -0.1;
-        d.translation[1] = 1.45;
-        d.translation[2] = -2.1;
-        d.rotation[0] = sin(1.3 * 0.5); /* ring turned towards the viewer */
-        d.rotation[3] = cos(1.3 * 0.5);
-        mvr_node_id id;
-        TRY(b, mvr_scene_add_node(b->scene, &d, &id));
-    }
+    /* the ring turned towards the viewer */
+    node_tilted(b, mesh(b, SHAPE_TORUS, 0.3f, 0.06f, 0, material(b, &glow), false, "glow torus"), -0.1, 1.45,
+                -2.1, 1.3);
 
     mvr_material_desc leaf = mvr_material_defaults();
     leaf.metallic_factor = 0.0f;
@@ -210,19 +207,8 @@ static void build_room(builder *b)
     leaf.double_sided = true;
     leaf.base_color.image = image(b, DEMO_LEAF_MASK, 128, leaf0, leaf1, 11);
     leaf.base_color.sampler.wrap_s = leaf.base_color.sampler.wrap_t = MVR_WRAP_CLAMP_TO_EDGE;
-    mvr_mesh_id leaf_mesh = mesh(b, SHAPE_PLANE, 0.25f, 1.0f, 0.4f, material(b, &leaf), false, "leaf");
-    {
-        mvr_node_desc d;
-        memset(&d, 0, sizeof d);
-        d.mesh = leaf_mesh;
-        d.translation[0] = 1.4;
-        d.translation[1] = 1.0;
-        d.translation[2] = -0.8;
-        d.rotation[0] = sin(1.2 * 0.5); /* tilted towards the viewer */
-        d.rotation[3] = cos(1.2 * 0.5);
-        mvr_node_id id;
-        TRY(b, mvr_scene_add_node(b->scene, &d, &id));
-    }
+    node_tilted(b, mesh(b, SHAPE_PLANE, 0.25f, 1.0f, 0.4f, material(b, &leaf), false, "leaf"), 1.4, 1.0, -0.8,
+                1.2);
 
     mvr_material_desc glass = mvr_material_defaults();
     glass.base_color_factor[0] = 0.6f, glass.base_color_factor[1] = 0.85f, glass.base_color_factor[2] = 0.9f;
@@ -333,17 +319,7 @@ static void build_ring_object(builder *b)
     ring.base_color.transform.scale[0] = 2.0f;
     ring.base_color.transform.scale[1] = 1.0f;
     ring.base_color.transform.rotation = 0.3f;
-    {
-        mvr_mesh_id torus = mesh(b, SHAPE_TORUS, 0.5f, 0.18f, 0, material(b, &ring), false, "torus");
-        mvr_node_desc d;
-        memset(&d, 0, sizeof d);
-        d.mesh = torus;
-        d.translation[1] = 1.35;
-        d.rotation[0] = sin(0.6 * 0.5);
-        d.rotation[3] = cos(0.6 * 0.5);
-        mvr_node_id id;
-        TRY(b, mvr_scene_add_node(b->scene, &d, &id));
-    }
+    node_tilted(b, mesh(b, SHAPE_TORUS, 0.5f, 0.18f, 0, material(b, &ring), false, "torus"), 0, 1.35, 0, 0.6);
     mvr_material_desc chrome = mvr_material_defaults();
     chrome.base_color_factor[0] = chrome.base_color_factor[1] = chrome.base_color_factor[2] = 0.95f;
     chrome.roughness_factor = 0.15f;

@@ -31,3 +31,11 @@ mvr_result mvr_error_set(mvr_error *error, mvr_result result, const char *fmt, .
     }
     return result;
 }
+
+mvr_result mvr_error_record(char *buf, size_t size, const mvr_logger *logger, mvr_result result,
+                            const char *fmt, va_list ap)
+{
+    mvr_str_vformat(buf, size, fmt, ap);
+    mvr_log(logger, MVR_LOG_ERROR, MVR_LOG_ID_ERROR_RESULT, "%s: %s", mvr_result_name(result), buf);
+    return result;
+}

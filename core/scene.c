@@ -11,10 +11,8 @@ static mvr_result fail(mvr_scene *s, mvr_result r, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    mvr_str_vformat(s->last_error, sizeof s->last_error, fmt, ap);
+    mvr_error_record(s->last_error, sizeof s->last_error, &s->logger, r, fmt, ap);
     va_end(ap);
-    mvr_log(&s->logger, MVR_LOG_ERROR, MVR_LOG_ID_ERROR_RESULT, "%s: %s", mvr_result_name(r),
-            s->last_error);
     return r;
 }
 

@@ -53,65 +53,64 @@ static int get_int(mvr_context *ctx, GLenum pname)
     return (int)v;
 }
 
-/* Does a multisampled 2D array attach with glFramebufferTextureMultiviewOVR?
- * Tried on tiny objects; the bindings it touches are restored. */
-static bool probe_multiview_msaa_array(mvr_context *ctx)
+/* Tries glFramebufferTextureMultiviewOVR on a tiny texture of `target` (made
+ * by alloc) at `level`: true when it attaches without error and completes.
+ * The bindings it touches are restored. */
+static bool multiview_attaches(mvr_context *ctx, GLenum target, GLenum binding,
+                               void (*alloc)(const mvr_gl_api_table *gl), GLint level)
 {
     const mvr_gl_api_table *gl = &ctx->gl;
-    bool core = ctx->caps.api == MVR_GL_API_GLES ? version_at_least(&ctx->caps, 3, 2)
-                                                 : version_at_least(&ctx->caps, 4, 2);
-    if (!ctx->caps.ext.ovr_multiview || !core || !gl->TexStorage3DMultisample ||
-        ctx->caps.limits.max_samples < 2)
-        return false;
     GLint old_fbo = 0, old_tex = 0;
     gl->GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &old_fbo);
-    gl->GetIntegerv(GL_TEXTURE_BINDING_2D_MULTISAMPLE_ARRAY, &old_tex);
+    gl->GetIntegerv(binding, &old_tex);
     GLuint tex = 0, fbo = 0;
     gl->GenTextures(1, &tex);
-    gl->BindTexture(GL_TEXTURE_2D_MULTISAMPLE_ARRAY, tex);
-    gl->TexStorage3DMultisample(GL_TEXTURE_2D_MULTISAMPLE_ARRAY, 2, GL_RGBA8, 4, 4, 2, GL_TRUE);
+    gl->BindTexture(target, tex);
+    alloc(gl);
     gl->GenFramebuffers(1, &fbo);
     gl->BindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
-    gl->FramebufferTextureMultiviewOVR(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, tex, 0, 0, 2);
+    gl->FramebufferTextureMultiviewOVR(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, tex, level, 0, 2);
     bool ok = gl->GetError() == GL_NO_ERROR &&
               gl->CheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
     while (gl->GetError() != GL_NO_ERROR) {
     }
     gl->BindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)old_fbo);
-    gl->BindTexture(GL_TEXTURE_2D_MULTISAMPLE_ARRAY, (GLuint)old_tex);
+    gl->BindTexture(target, (GLuint)old_tex);
     gl->DeleteFramebuffers(1, &fbo);
     gl->DeleteTextures(1, &tex);
     return ok;
 }
 
+static void alloc_msaa_array(const mvr_gl_api_table *gl)
+{
+    gl->TexStorage3DMultisample(GL_TEXTURE_2D_MULTISAMPLE_ARRAY, 2, GL_RGBA8, 4, 4, 2, GL_TRUE);
+}
+
+static void alloc_mipped_array(const mvr_gl_api_table *gl)
+{
+    gl->TexStorage3D(GL_TEXTURE_2D_ARRAY, 2, GL_RGBA8, 4, 4, 2);
+}
+
+/* Does a multisampled 2D array attach with glFramebufferTextureMultiviewOVR? */
+static bool probe_multiview_msaa_array(mvr_context *ctx)
+{
+    bool core = ctx->caps.api == MVR_GL_API_GLES ? version_at_least(&ctx->caps, 3, 2)
+                                                 : version_at_least(&ctx->caps, 4, 2);
+    if (!ctx->caps.ext.ovr_multiview || !core || !ctx->gl.TexStorage3DMultisample ||
+        ctx->caps.limits.max_samples < 2)
+        return false;
+    return multiview_attaches(ctx, GL_TEXTURE_2D_MULTISAMPLE_ARRAY, GL_TEXTURE_BINDING_2D_MULTISAMPLE_ARRAY,
+                              alloc_msaa_array, 0);
+}
+
 /* Does glFramebufferTextureMultiviewOVR accept a mip level other than 0?
  * The extension allows any level of the texture, but Mesa 25 answers
- * GL_INVALID_OPERATION (measured here). Tried on a tiny texture; bindings
- * restored. */
+ * GL_INVALID_OPERATION (measured here). */
 static bool probe_multiview_level_zero_only(mvr_context *ctx)
 {
-    const mvr_gl_api_table *gl = &ctx->gl;
     if (!ctx->caps.ext.ovr_multiview)
         return false;
-    GLint old_fbo = 0, old_tex = 0;
-    gl->GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &old_fbo);
-    gl->GetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &old_tex);
-    GLuint tex = 0, fbo = 0;
-    gl->GenTextures(1, &tex);
-    gl->BindTexture(GL_TEXTURE_2D_ARRAY, tex);
-    gl->TexStorage3D(GL_TEXTURE_2D_ARRAY, 2, GL_RGBA8, 4, 4, 2);
-    gl->GenFramebuffers(1, &fbo);
-    gl->BindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
-    gl->FramebufferTextureMultiviewOVR(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, tex, 1, 0, 2);
-    bool refused = gl->GetError() != GL_NO_ERROR ||
-                   gl->CheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE;
-    while (gl->GetError() != GL_NO_ERROR) {
-    }
-    gl->BindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)old_fbo);
-    gl->BindTexture(GL_TEXTURE_2D_ARRAY, (GLuint)old_tex);
-    gl->DeleteFramebuffers(1, &fbo);
-    gl->DeleteTextures(1, &tex);
-    return refused;
+    return !multiview_attaches(ctx, GL_TEXTURE_2D_ARRAY, GL_TEXTURE_BINDING_2D_ARRAY, alloc_mipped_array, 1);
 }
 
 static void probe_bugs(mvr_context *ctx)

@@ -83,10 +83,8 @@ mvr_result mvr_context_fail(mvr_context *ctx, mvr_result result, const char *fmt
 {
     va_list ap;
     va_start(ap, fmt);
-    mvr_str_vformat(ctx->last_error, sizeof ctx->last_error, fmt, ap);
+    mvr_error_record(ctx->last_error, sizeof ctx->last_error, &ctx->logger, result, fmt, ap);
     va_end(ap);
-    mvr_log(&ctx->logger, MVR_LOG_ERROR, MVR_LOG_ID_ERROR_RESULT, "%s: %s",
-            mvr_result_name(result), ctx->last_error);
     return result;
 }
 

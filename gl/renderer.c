@@ -32,10 +32,8 @@ mvr_result mvr_renderer_fail(mvr_renderer *r, mvr_result result, const char *fmt
 {
     va_list ap;
     va_start(ap, fmt);
-    mvr_str_vformat(r->last_error, sizeof r->last_error, fmt, ap);
+    mvr_error_record(r->last_error, sizeof r->last_error, &r->logger, result, fmt, ap);
     va_end(ap);
-    mvr_log(&r->logger, MVR_LOG_ERROR, MVR_LOG_ID_ERROR_RESULT, "%s: %s", mvr_result_name(result),
-            r->last_error);
     return result;
 }
 

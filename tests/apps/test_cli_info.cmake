@@ -1,23 +1,6 @@
 # ctest script: the mvr CLI's info command, as a user and a machine read it.
 # cmake -DMVR=path/to/mvr -DREQUIRE_MULTIVIEW=ON|OFF -DWITH_OSMESA=ON|OFF -P test_cli_info.cmake
-set(n_failed 0)
-set(n_passed 0)
-# expect("what is checked" <if() condition...>): a macro, so the condition is
-# re-parsed: no empty strings and no backslash escapes in it.
-macro(expect msg)
-  if(${ARGN})
-    math(EXPR n_passed "${n_passed} + 1")
-  else()
-    message("FAIL: ${msg}")
-    math(EXPR n_failed "${n_failed} + 1")
-  endif()
-endmacro()
-function(run out_rc out_stdout out_stderr)
-  execute_process(COMMAND ${MVR} ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE so ERROR_VARIABLE se)
-  set(${out_rc} "${rc}" PARENT_SCOPE)
-  set(${out_stdout} "${so}" PARENT_SCOPE)
-  set(${out_stderr} "${se}" PARENT_SCOPE)
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/cli_expect.cmake)
 
 # --help everywhere, exit 0, on stdout
 run(rc so se --help)
@@ -83,7 +66,4 @@ run(rc so se info --context pbuffer)
 expect("pbuffer without a display exits 1 (got ${rc})" rc EQUAL 1)
 expect("pbuffer failure names the result: ${se}" se MATCHES "MVR_ERROR_NO_DISPLAY")
 
-message("${n_passed} passed, ${n_failed} failed")
-if(n_failed GREATER 0)
-  message(FATAL_ERROR "${n_failed} CLI checks failed")
-endif()
+expect_summary("CLI")

@@ -1,23 +1,6 @@
 # ctest script: `mvr render` as the README's first command uses it.
 # cmake -DMVR=path/to/mvr -DOUT=dir -DREQUIRE_MULTIVIEW=ON|OFF -P test_cli_render.cmake
-set(n_failed 0)
-set(n_passed 0)
-# expect("what is checked" <if() condition...>): a macro, so the condition is
-# re-parsed: no empty strings and no backslash escapes in it.
-macro(expect msg)
-  if(${ARGN})
-    math(EXPR n_passed "${n_passed} + 1")
-  else()
-    message("FAIL: ${msg}")
-    math(EXPR n_failed "${n_failed} + 1")
-  endif()
-endmacro()
-function(run out_rc out_stdout out_stderr)
-  execute_process(COMMAND ${MVR} ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE so ERROR_VARIABLE se)
-  set(${out_rc} "${rc}" PARENT_SCOPE)
-  set(${out_stdout} "${so}" PARENT_SCOPE)
-  set(${out_stderr} "${se}" PARENT_SCOPE)
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/cli_expect.cmake)
 file(REMOVE_RECURSE ${OUT})
 
 # the README's command: two eyes, one PNG each, a contact sheet, the paths that ran
@@ -86,7 +69,4 @@ run(rc so se render --help)
 expect("render --help exits 0 (got ${rc})" rc EQUAL 0)
 expect("render --help documents --view-path" so MATCHES "--view-path")
 
-message("${n_passed} passed, ${n_failed} failed")
-if(n_failed GREATER 0)
-  message(FATAL_ERROR "${n_failed} CLI render checks failed")
-endif()
+expect_summary("CLI render")

@@ -1,0 +1,26 @@
+# Shared by the CLI test scripts: counters, expect(), run(), and the summary.
+set(n_failed 0)
+set(n_passed 0)
+# expect("what is checked" <if() condition...>): a macro, so the condition is
+# re-parsed: no empty strings and no backslash escapes in it.
+macro(expect msg)
+  if(${ARGN})
+    math(EXPR n_passed "${n_passed} + 1")
+  else()
+    message("FAIL: ${msg}")
+    math(EXPR n_failed "${n_failed} + 1")
+  endif()
+endmacro()
+# run(rc stdout stderr ARGS...): runs ${MVR} with ARGS.
+function(run out_rc out_stdout out_stderr)
+  execute_process(COMMAND ${MVR} ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE so ERROR_VARIABLE se)
+  set(${out_rc} "${rc}" PARENT_SCOPE)
+  set(${out_stdout} "${so}" PARENT_SCOPE)
+  set(${out_stderr} "${se}" PARENT_SCOPE)
+endfunction()
+macro(expect_summary what)
+  message("${n_passed} passed, ${n_failed} failed")
+  if(n_failed GREATER 0)
+    message(FATAL_ERROR "${n_failed} ${what} checks failed")
+  endif()
+endmacro()
