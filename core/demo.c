@@ -67,8 +67,11 @@ static mvr_mesh_id mesh(builder *b, shape s, float a, float bb, float c, mvr_mat
     return id;
 }
 
-static mvr_node_id node(builder *b, mvr_mesh_id m, double x, double y, double z, double yaw, double sx,
-                        double sy, double sz)
+enum { AXIS_X = 0, AXIS_Y = 1 };
+
+/* A mesh node at (x, y, z), turned by angle about an axis, scaled. */
+static void node(builder *b, mvr_mesh_id m, double x, double y, double z, int axis, double angle, double sx,
+                 double sy, double sz)
 {
     mvr_node_desc d;
     memset(&d, 0, sizeof d);
@@ -76,27 +79,11 @@ static mvr_node_id node(builder *b, mvr_mesh_id m, double x, double y, double z,
     d.translation[0] = x;
     d.translation[1] = y;
     d.translation[2] = z;
-    d.rotation[1] = sin(yaw * 0.5);
-    d.rotation[3] = cos(yaw * 0.5);
+    d.rotation[axis] = sin(angle * 0.5);
+    d.rotation[3] = cos(angle * 0.5);
     d.scale[0] = sx;
     d.scale[1] = sy;
     d.scale[2] = sz;
-    mvr_node_id id = {0};
-    TRY(b, mvr_scene_add_node(b->scene, &d, &id));
-    return id;
-}
-
-/* A node rotated by angle about X (planes turned to face a viewer, tori). */
-static void node_tilted(builder *b, mvr_mesh_id m, double x, double y, double z, double angle)
-{
-    mvr_node_desc d;
-    memset(&d, 0, sizeof d);
-    d.mesh = m;
-    d.translation[0] = x;
-    d.translation[1] = y;
-    d.translation[2] = z;
-    d.rotation[0] = sin(angle * 0.5);
-    d.rotation[3] = cos(angle * 0.5);
     mvr_node_id id = {0};
     TRY(b, mvr_scene_add_node(b->scene, &d, &id));
 }
@@ -156,23 +143,23 @@ static void build_room(builder *b)
 
     /* floor and ceiling, walls: planes are XZ facing +Y, turned by the node */
     mvr_mesh_id floor_mesh = mesh(b, SHAPE_PLANE, 2.0f, 4.0f, 2.5f, floor_m, false, "floor");
-    node(b, floor_mesh, 0, 0, 0, 0, 1, 1, 1);
+    node(b, floor_mesh, 0, 0, 0, AXIS_Y, 0, 1, 1, 1);
     mvr_mesh_id ceiling_mesh = mesh(b, SHAPE_PLANE, 2.0f, 1.0f, 2.5f, ceiling_m, false, "ceiling");
-    node_tilted(b, ceiling_mesh, 0, 3.0, 0, PI); /* faces down */
+    node(b, ceiling_mesh, 0, 3.0, 0, AXIS_X, PI, 1, 1, 1); /* faces down */
     /* walls from boxes (thin), so both sides and edges are closed */
     mvr_mesh_id side_wall = mesh(b, SHAPE_BOX, 0.05f, 1.5f, 2.5f, wall_m, false, "side wall");
-    node(b, side_wall, -2.05, 1.5, 0, 0, 1, 1, 1);
-    node(b, side_wall, 2.05, 1.5, 0, 0, 1, 1, 1);
+    node(b, side_wall, -2.05, 1.5, 0, AXIS_Y, 0, 1, 1, 1);
+    node(b, side_wall, 2.05, 1.5, 0, AXIS_Y, 0, 1, 1, 1);
     mvr_mesh_id end_wall = mesh(b, SHAPE_BOX, 2.0f, 1.5f, 0.05f, wall_m, false, "end wall");
-    node(b, end_wall, 0, 1.5, -2.55, 0, 1, 1, 1);
-    node(b, end_wall, 0, 1.5, 2.55, 0, 1, 1, 1);
+    node(b, end_wall, 0, 1.5, -2.55, AXIS_Y, 0, 1, 1, 1);
+    node(b, end_wall, 0, 1.5, 2.55, AXIS_Y, 0, 1, 1, 1);
 
     /* objects */
     mvr_material_desc gold = mvr_material_defaults();
     gold.base_color_factor[0] = 1.0f, gold.base_color_factor[1] = 0.77f, gold.base_color_factor[2] = 0.34f;
     gold.metallic_factor = 1.0f;
     gold.roughness_factor = 0.3f;
-    node(b, mesh(b, SHAPE_SPHERE, 0.45f, 0, 0, material(b, &gold), false, "gold sphere"), -0.9, 0.45, -1.0, 0, 1,
+    node(b, mesh(b, SHAPE_SPHERE, 0.45f, 0, 0, material(b, &gold), false, "gold sphere"), -0.9, 0.45, -1.0, AXIS_Y, 0, 1,
          1, 1);
 
     mvr_material_desc plastic = mvr_material_defaults();
@@ -182,13 +169,13 @@ static void build_room(builder *b)
     plastic.metallic_roughness.image = image(b, DEMO_NOISE, 128, rough0, rough1, 3);
     plastic.occlusion.image = plastic.metallic_roughness.image;
     plastic.occlusion_strength = 0.5f;
-    node(b, mesh(b, SHAPE_SPHERE, 0.4f, 0, 0, material(b, &plastic), false, "red sphere"), 0.9, 0.4, -1.6, 0, 1,
+    node(b, mesh(b, SHAPE_SPHERE, 0.4f, 0, 0, material(b, &plastic), false, "red sphere"), 0.9, 0.4, -1.6, AXIS_Y, 0, 1,
          1, 1);
 
     mvr_material_desc painted = mvr_material_defaults();
     painted.metallic_factor = 0.0f;
     painted.roughness_factor = 0.5f;
-    node(b, mesh(b, SHAPE_BOX, 0.35f, 0.35f, 0.35f, material(b, &painted), true, "colored box"), 0.1, 0.35, -2.0,
+    node(b, mesh(b, SHAPE_BOX, 0.35f, 0.35f, 0.35f, material(b, &painted), true, "colored box"), 0.1, 0.35, -2.0, AXIS_Y,
          0.6, 1, 1, 1);
 
     mvr_material_desc glow = mvr_material_defaults();
@@ -197,8 +184,8 @@ static void build_room(builder *b)
     glow.emissive_factor[0] = 0.2f, glow.emissive_factor[1] = 0.6f, glow.emissive_factor[2] = 1.0f;
     glow.emissive_strength = 2.0f;
     /* the ring turned towards the viewer */
-    node_tilted(b, mesh(b, SHAPE_TORUS, 0.3f, 0.06f, 0, material(b, &glow), false, "glow torus"), -0.1, 1.45,
-                -2.1, 1.3);
+    node(b, mesh(b, SHAPE_TORUS, 0.3f, 0.06f, 0, material(b, &glow), false, "glow torus"), -0.1, 1.45,
+                -2.1, AXIS_X, 1.3, 1, 1, 1);
 
     mvr_material_desc leaf = mvr_material_defaults();
     leaf.metallic_factor = 0.0f;
@@ -207,8 +194,8 @@ static void build_room(builder *b)
     leaf.double_sided = true;
     leaf.base_color.image = image(b, DEMO_LEAF_MASK, 128, leaf0, leaf1, 11);
     leaf.base_color.sampler.wrap_s = leaf.base_color.sampler.wrap_t = MVR_WRAP_CLAMP_TO_EDGE;
-    node_tilted(b, mesh(b, SHAPE_PLANE, 0.25f, 1.0f, 0.4f, material(b, &leaf), false, "leaf"), 1.4, 1.0, -0.8,
-                1.2);
+    node(b, mesh(b, SHAPE_PLANE, 0.25f, 1.0f, 0.4f, material(b, &leaf), false, "leaf"), 1.4, 1.0, -0.8, AXIS_X,
+                1.2, 1, 1, 1);
 
     mvr_material_desc glass = mvr_material_defaults();
     glass.base_color_factor[0] = 0.6f, glass.base_color_factor[1] = 0.85f, glass.base_color_factor[2] = 0.9f;
@@ -217,13 +204,13 @@ static void build_room(builder *b)
     glass.roughness_factor = 0.05f;
     glass.alpha_mode = MVR_ALPHA_BLEND;
     glass.double_sided = true;
-    node(b, mesh(b, SHAPE_BOX, 0.4f, 0.5f, 0.02f, material(b, &glass), false, "glass pane"), 0.55, 0.5, -0.55,
+    node(b, mesh(b, SHAPE_BOX, 0.4f, 0.5f, 0.02f, material(b, &glass), false, "glass pane"), 0.55, 0.5, -0.55, AXIS_Y,
          -0.35, 1, 1, 1);
 
     mvr_material_desc marker = mvr_material_defaults();
     marker.base_color_factor[0] = 1.0f, marker.base_color_factor[1] = 0.85f, marker.base_color_factor[2] = 0.0f;
     marker.unlit = true;
-    node(b, mesh(b, SHAPE_BOX, 0.08f, 0.08f, 0.08f, material(b, &marker), false, "unlit marker"), 1.2, 0.08, -0.2,
+    node(b, mesh(b, SHAPE_BOX, 0.08f, 0.08f, 0.08f, material(b, &marker), false, "unlit marker"), 1.2, 0.08, -0.2, AXIS_Y,
          0.3, 1, 1, 1);
 
     /* lights: a dim sun through the (implied) window, a ceiling bulb, a spot on the spheres */
@@ -244,7 +231,7 @@ static void build_city(builder *b)
     ground.metallic_factor = 0.0f;
     ground.roughness_factor = 0.95f;
     ground.base_color.image = image(b, DEMO_CHECKER, 64, asphalt0, asphalt1, 5);
-    node(b, mesh(b, SHAPE_PLANE, 100.0f, 50.0f, 100.0f, material(b, &ground), false, "ground"), 0, 0, 0, 0, 1, 1,
+    node(b, mesh(b, SHAPE_PLANE, 100.0f, 50.0f, 100.0f, material(b, &ground), false, "ground"), 0, 0, 0, AXIS_Y, 0, 1, 1,
          1);
     /* 64 textured facade materials + 8 plain ones */
     enum { TEXTURED = 64, PLAIN = 8, GRID = 64 };
@@ -289,7 +276,7 @@ static void build_city(builder *b)
             h ^= h >> 15;
             double height = 2.0 + (double)(h % 1000) / 1000.0 * (x % 9 == 4 && z % 7 == 3 ? 30.0 : 10.0);
             double px = ((double)x - (GRID - 1) * 0.5) * spacing, pz = ((double)z - (GRID - 1) * 0.5) * spacing;
-            node(b, boxes[h % (TEXTURED + PLAIN)], px, 0, pz, 0, 2.0, height, 2.0);
+            node(b, boxes[h % (TEXTURED + PLAIN)], px, 0, pz, AXIS_Y, 0, 2.0, height, 2.0);
         }
     mvr_light_desc sun = {MVR_LIGHT_DIRECTIONAL, {1.0f, 0.96f, 0.9f}, 3.0f, 0, 0, 0};
     light(b, &sun, 0, 50, 0, -0.5, -1.0, -0.3);
@@ -305,11 +292,11 @@ static void build_ring_object(builder *b)
     floor.metallic_factor = 0.0f;
     floor.roughness_factor = 0.8f;
     floor.base_color.image = image(b, DEMO_CHECKER, 128, stone0, stone1, 2);
-    node(b, mesh(b, SHAPE_PLANE, 6.0f, 6.0f, 6.0f, material(b, &floor), false, "floor"), 0, 0, 0, 0, 1, 1, 1);
+    node(b, mesh(b, SHAPE_PLANE, 6.0f, 6.0f, 6.0f, material(b, &floor), false, "floor"), 0, 0, 0, AXIS_Y, 0, 1, 1, 1);
     mvr_material_desc pedestal = mvr_material_defaults();
     pedestal.metallic_factor = 0.0f;
     pedestal.roughness_factor = 0.4f;
-    node(b, mesh(b, SHAPE_BOX, 0.6f, 0.4f, 0.6f, material(b, &pedestal), true, "pedestal"), 0, 0.4, 0, 0.3, 1, 1,
+    node(b, mesh(b, SHAPE_BOX, 0.6f, 0.4f, 0.6f, material(b, &pedestal), true, "pedestal"), 0, 0.4, 0, AXIS_Y, 0.3, 1, 1,
          1);
     mvr_material_desc ring = mvr_material_defaults();
     ring.metallic_factor = 0.0f;
@@ -319,11 +306,11 @@ static void build_ring_object(builder *b)
     ring.base_color.transform.scale[0] = 2.0f;
     ring.base_color.transform.scale[1] = 1.0f;
     ring.base_color.transform.rotation = 0.3f;
-    node_tilted(b, mesh(b, SHAPE_TORUS, 0.5f, 0.18f, 0, material(b, &ring), false, "torus"), 0, 1.35, 0, 0.6);
+    node(b, mesh(b, SHAPE_TORUS, 0.5f, 0.18f, 0, material(b, &ring), false, "torus"), 0, 1.35, 0, AXIS_X, 0.6, 1, 1, 1);
     mvr_material_desc chrome = mvr_material_defaults();
     chrome.base_color_factor[0] = chrome.base_color_factor[1] = chrome.base_color_factor[2] = 0.95f;
     chrome.roughness_factor = 0.15f;
-    node(b, mesh(b, SHAPE_SPHERE, 0.25f, 0, 0, material(b, &chrome), false, "chrome"), 0, 1.35, 0, 0, 1, 1, 1);
+    node(b, mesh(b, SHAPE_SPHERE, 0.25f, 0, 0, material(b, &chrome), false, "chrome"), 0, 1.35, 0, AXIS_Y, 0, 1, 1, 1);
     mvr_light_desc key = {MVR_LIGHT_DIRECTIONAL, {1.0f, 0.97f, 0.92f}, 2.5f, 0, 0, 0};
     light(b, &key, 0, 5, 0, -0.4, -1.0, -0.6);
     mvr_light_desc fill = {MVR_LIGHT_POINT, {0.6f, 0.7f, 1.0f}, 20.0f, 0, 0, 0};
