@@ -14,6 +14,7 @@ const char *mvr_result_name(mvr_result result)
     case MVR_ERROR_FRAMEBUFFER: return "MVR_ERROR_FRAMEBUFFER";
     case MVR_ERROR_IO: return "MVR_ERROR_IO";
     case MVR_ERROR_PARSE: return "MVR_ERROR_PARSE";
+    case MVR_ERROR_INVALID_ASSET: return "MVR_ERROR_INVALID_ASSET";
     case MVR_ERROR_INTERNAL: return "MVR_ERROR_INTERNAL";
     case MVR_RESULT_COUNT_: break;
     }

@@ -1,6 +1,7 @@
 /* mvr render: a demo scene (or, with the glTF loader, a file) into N views,
  * one PNG per view plus a contact sheet, and the frame's stats. */
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -9,7 +10,7 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "json.h"
-#include "png_write.h"
+#include "mvr/mvr_image.h"
 
 typedef struct render_options {
     mvr_context_desc context;
@@ -20,6 +21,8 @@ typedef struct render_options {
     const char *stats_file;
     mvr_view_path view_path;
     mvr_color_format format;
+    bool format_set;
+    bool exr;                    /* output EXR (linear float) instead of PNG */
     mvr_render_desc render;
     bool quiet;
 } render_options;
@@ -29,8 +32,8 @@ static void render_usage(FILE *out)
     fprintf(out,
             "usage: mvr render [--demo NAME | SCENE] [options]\n"
             "\n"
-            "Renders a scene into N views headless and writes one PNG per view\n"
-            "(view_00.png, ...) and a contact sheet of all views side by side.\n"
+            "Renders a scene into N views headless and writes one image per view\n"
+            "(view_00.png, ...) and a contact sheet (PNG) of all views side by side.\n"
             "\n"
             "options:\n"
             "  --demo NAME         stereo | cube | city | ring (default: stereo)\n"
@@ -38,7 +41,8 @@ static void render_usage(FILE *out)
             "  --size WxH          layer size in pixels (default: 640x480)\n"
             "  --out DIR           output directory (default: out), created if missing\n"
             "  --view-path P       auto | multiview | loop (default: auto; env MVR_VIEW_PATH)\n"
-            "  --format F          srgb8 | rgba8 | rgba16f (default: srgb8)\n"
+            "  --format F          png (8-bit sRGB) | exr (half float, linear) (default: png)\n"
+            "  --target-format F   srgb8 | rgba8 | rgba16f (default: srgb8; rgba16f for exr)\n"
             "  --exposure X        linear exposure multiplier (default: 1)\n"
             "  --clear R,G,B[,A]   linear clear color (default: a dark opaque sky)\n"
             "  --tone-map T        none | aces | pbr-neutral (default: none)\n"
@@ -132,6 +136,15 @@ static int parse(int argc, char **argv, render_options *o)
             }
             ++i;
         } else if (strcmp(a, "--format") == 0) {
+            if (strcmp(v, "png") == 0 || strcmp(v, "exr") == 0)
+                o->exr = v[0] == 'e';
+            else {
+                fprintf(stderr, "mvr render: --format takes png or exr\n");
+                return MVR_EXIT_USAGE;
+            }
+            ++i;
+        } else if (strcmp(a, "--target-format") == 0) {
+            o->format_set = true;
             if (strcmp(v, "srgb8") == 0)
                 o->format = MVR_COLOR_FORMAT_DEFAULT;
             else if (strcmp(v, "rgba8") == 0)
@@ -139,7 +152,7 @@ static int parse(int argc, char **argv, render_options *o)
             else if (strcmp(v, "rgba16f") == 0)
                 o->format = MVR_COLOR_FORMAT_RGBA16F;
             else {
-                fprintf(stderr, "mvr render: --format takes srgb8, rgba8 or rgba16f\n");
+                fprintf(stderr, "mvr render: --target-format takes srgb8, rgba8 or rgba16f\n");
                 return MVR_EXIT_USAGE;
             }
             ++i;
@@ -188,6 +201,8 @@ static int parse(int argc, char **argv, render_options *o)
         o->demo = "stereo";
     if (!cli_context_check("render", &o->context))
         return MVR_EXIT_USAGE;
+    if (o->exr && !o->format_set)
+        o->format = MVR_COLOR_FORMAT_RGBA16F; /* linear HDR values for EXR */
     return MVR_EXIT_OK;
 }
 
@@ -242,6 +257,17 @@ static void write_stats_json(FILE *f, const mvr_frame_stats *s, const char *demo
     json_end_object(&jw);
 }
 
+/* Linear floats to sRGB-encoded bytes (exact piecewise encode). */
+static void encode_srgb_bytes(const float *in, uint8_t *out, size_t pixels)
+{
+    for (size_t i = 0; i < pixels * 4; ++i) {
+        float c = in[i] < 0.0f ? 0.0f : in[i] > 1.0f ? 1.0f : in[i];
+        if (i % 4 != 3)
+            c = c <= 0.0031308f ? c * 12.92f : 1.055f * powf(c, 1.0f / 2.4f) - 0.055f;
+        out[i] = (uint8_t)(c * 255.0f + 0.5f);
+    }
+}
+
 /* Lays the views out in a grid (side by side up to 4, then ~square). */
 static bool write_contact_sheet(const char *path, uint8_t *const *layers, uint32_t n, uint32_t w, uint32_t h)
 {
@@ -263,7 +289,11 @@ static bool write_contact_sheet(const char *path, uint8_t *const *layers, uint32
             memcpy(sheet + ((size_t)(cy + y) * W + cx) * 4, src, (size_t)w * 4);
         }
     }
-    bool ok = png_write_rgba8(path, sheet, W, H, false);
+    mvr_image_view view = {W, H, MVR_PIXEL_U8, false, sheet};
+    mvr_error err;
+    bool ok = mvr_image_write(path, &view, &err) == MVR_OK;
+    if (!ok)
+        fprintf(stderr, "mvr render: %s\n", err.message);
     free(sheet);
     return ok;
 }
@@ -320,20 +350,33 @@ int mvr_cmd_render(int argc, char **argv)
     layers = calloc(n, sizeof *layers);
     if (!layers)
         goto done;
-    size_t bytes = (size_t)o.width * o.height * 4;
+    size_t pixels = (size_t)o.width * o.height;
+    float *floats = o.exr ? malloc(pixels * 4 * sizeof *floats) : NULL;
+    if (o.exr && !floats)
+        goto done;
     for (uint32_t k = 0; k < n; ++k) {
-        layers[k] = malloc(bytes);
-        if (!layers[k] || mvr_renderer_read_layer(renderer, target, k, MVR_READBACK_RGBA8, layers[k], bytes) != MVR_OK) {
+        layers[k] = malloc(pixels * 4);
+        if (!layers[k] ||
+            mvr_renderer_read_layer(renderer, target, k, MVR_READBACK_RGBA8, layers[k], pixels * 4) != MVR_OK ||
+            (o.exr && mvr_renderer_read_layer(renderer, target, k, MVR_READBACK_RGBA32F, floats,
+                                              pixels * 4 * sizeof *floats) != MVR_OK)) {
             fprintf(stderr, "mvr render: reading layer %u: %s\n", k, mvr_renderer_last_error(renderer));
+            free(floats);
             goto done;
         }
+        if (o.exr && o.format == MVR_COLOR_FORMAT_RGBA16F)
+            encode_srgb_bytes(floats, layers[k], pixels); /* the sheet shows display values */
         char path[4096];
-        snprintf(path, sizeof path, "%s/view_%02u.png", o.out_dir, k);
-        if (!png_write_rgba8(path, layers[k], o.width, o.height, true)) {
-            fprintf(stderr, "mvr render: cannot write %s\n", path);
+        snprintf(path, sizeof path, "%s/view_%02u.%s", o.out_dir, k, o.exr ? "exr" : "png");
+        mvr_image_view view = {o.width, o.height, o.exr ? MVR_PIXEL_F32 : MVR_PIXEL_U8, true,
+                               o.exr ? (const void *)floats : (const void *)layers[k]};
+        if (mvr_image_write(path, &view, &err) != MVR_OK) {
+            fprintf(stderr, "mvr render: %s\n", err.message);
+            free(floats);
             goto done;
         }
     }
+    free(floats);
     char sheet[4096];
     snprintf(sheet, sizeof sheet, "%s/contact_sheet.png", o.out_dir);
     if (!write_contact_sheet(sheet, layers, n, o.width, o.height)) {
@@ -365,7 +408,8 @@ int mvr_cmd_render(int argc, char **argv)
             printf("  time        cpu %.2f ms, gpu %.2f ms (last frame)\n", st.cpu_ms, st.gpu_ms);
         else
             printf("  time        cpu %.2f ms, gpu n/a (last frame)\n", st.cpu_ms);
-        printf("  images      %s/view_00.png .. view_%02u.png\n", o.out_dir, n - 1);
+        printf("  images      %s/view_00.%s .. view_%02u.%s\n", o.out_dir, o.exr ? "exr" : "png", n - 1,
+               o.exr ? "exr" : "png");
         printf("  contact     %s\n", sheet);
     }
     rc = MVR_EXIT_OK;

@@ -40,6 +40,7 @@ typedef enum mvr_result {
     MVR_ERROR_FRAMEBUFFER,      /* a framebuffer is incomplete */
     MVR_ERROR_IO,               /* a file could not be read or written */
     MVR_ERROR_PARSE,            /* malformed input data */
+    MVR_ERROR_INVALID_ASSET,    /* a file that is not valid (glTF, image): the message names the part */
     MVR_ERROR_INTERNAL,         /* a bug in mvr: please report it */
     MVR_RESULT_COUNT_
 } mvr_result;

@@ -49,6 +49,18 @@ if(EXISTS ${OUT}/loop/stats.json)
   expect("loop and multiview write the same left eye" loop_left STREQUAL left)
 endif()
 
+# EXR output: linear half floats from a float target
+run(rc so se render --demo ring --views 2 --size 64x48 --format exr --out ${OUT}/exr --quiet)
+expect("exr render exits 0 (got ${rc}): ${se}" rc EQUAL 0)
+expect("view_00.exr written" EXISTS ${OUT}/exr/view_00.exr)
+expect("the contact sheet stays PNG" EXISTS ${OUT}/exr/contact_sheet.png)
+if(EXISTS ${OUT}/exr/view_00.exr)
+  file(READ ${OUT}/exr/view_00.exr head LIMIT 4 HEX)
+  expect("view_00.exr is OpenEXR (${head})" head STREQUAL "762f3101")
+endif()
+run(rc so se render --format tiff)
+expect("--format tiff exits 2 (got ${rc})" rc EQUAL 2)
+
 # every demo renders
 foreach(demo cube city ring)
   run(rc so se render --demo ${demo} --size 64x48 --out ${OUT}/${demo} --quiet)

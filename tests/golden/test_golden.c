@@ -9,8 +9,7 @@
 
 #include "mvr_test.h"
 #include "mvr/mvr.h"
-#include "png_read.h"
-#include "png_write.h"
+#include "mvr/mvr_image.h"
 
 #define W 160
 #define H 120
@@ -19,46 +18,46 @@
 
 static bool compare(mvr_test_state *t, const char *name, const uint8_t *bottom_up, const char *path)
 {
+    mvr_image_view actual = {W, H, MVR_PIXEL_U8, true, bottom_up};
+    mvr_error err;
     if (getenv("MVR_UPDATE_GOLDEN")) {
-        CHECK_MSG(t, png_write_rgba8(path, bottom_up, W, H, true), "cannot write %s", path);
+        CHECK_MSG(t, mvr_image_write(path, &actual, &err) == MVR_OK, "%s", err.message);
         printf("  updated %s\n", path);
         return true;
     }
-    char why[256];
-    uint32_t w = 0, h = 0;
-    uint8_t *gold = png_read_rgba8(path, &w, &h, why, sizeof why);
-    if (!gold) {
-        CHECK_MSG(t, 0, "%s: %s (MVR_UPDATE_GOLDEN=1 makes it)", path, why);
+    mvr_image_data gold;
+    if (mvr_image_read(path, MVR_PIXEL_U8, &gold, &err) != MVR_OK) {
+        CHECK_MSG(t, 0, "%s (MVR_UPDATE_GOLDEN=1 makes it)", err.message);
         return false;
     }
-    bool ok = w == W && h == H;
-    CHECK_MSG(t, ok, "%s is %ux%u, expected %ux%u", path, w, h, W, H);
-    uint32_t differing = 0, worst = 0;
-    for (uint32_t y = 0; ok && y < H; ++y)
-        for (uint32_t x = 0; x < W; ++x) {
-            const uint8_t *a = bottom_up + ((size_t)(H - 1 - y) * W + x) * 4, *b = gold + ((size_t)y * W + x) * 4;
-            uint32_t d = 0;
-            for (int c = 0; c < 4; ++c) {
-                uint32_t e = (uint32_t)abs((int)a[c] - (int)b[c]);
-                d = e > d ? e : d;
-            }
-            differing += d > 0;
-            worst = d > worst ? d : worst;
-        }
-    double fraction = (double)differing / (W * H);
+    mvr_image_view expected = {gold.width, gold.height, MVR_PIXEL_U8, false, gold.pixels};
+    mvr_image_compare_result r;
+    char diff[512];
+    snprintf(diff, sizeof diff, "%s.diff.png", name);
+    /* a channel more than 1/255 off fails outright: the threshold sits
+     * between one and two steps */
+    bool ok = mvr_image_compare(&actual, &expected, 1.5 / 255.0, NULL, &r, &err) == MVR_OK;
+    CHECK_MSG(t, ok, "%s: %s", name, err.message);
     if (ok) {
-        printf("  %s: %u pixels differ (%.3f%%), worst channel %u/255\n", name, differing, fraction * 100.0, worst);
-        ok = worst <= MAX_CHANNEL_DIFF && fraction <= MAX_DIFF_FRACTION;
+        uint64_t differing = 0;
+        mvr_image_compare_result any;
+        mvr_image_compare(&actual, &expected, 0.1 / 255.0, NULL, &any, &err);
+        differing = any.pixels_over;
+        double fraction = (double)differing / (W * H);
+        printf("  %s: %llu pixels differ (%.3f%%), worst channel %.0f/255, PSNR %.1f dB\n", name,
+               (unsigned long long)differing, fraction * 100.0, r.max_abs * 255.0, r.psnr);
+        ok = r.pixels_over == 0 && fraction <= MAX_DIFF_FRACTION;
         CHECK_MSG(t, ok, "%s differs from %s beyond the tolerance (<= %d/255 on <= %.1f%% of pixels)", name, path,
                   MAX_CHANNEL_DIFF, MAX_DIFF_FRACTION * 100.0);
         if (!ok) {
             char out[512];
             snprintf(out, sizeof out, "%s.actual.png", name);
-            png_write_rgba8(out, bottom_up, W, H, true);
-            printf("  wrote %s for a look\n", out);
+            mvr_image_write(out, &actual, &err);
+            mvr_image_compare(&actual, &expected, 1.5 / 255.0, diff, &r, &err);
+            printf("  wrote %s and %s for a look\n", out, diff);
         }
     }
-    free(gold);
+    mvr_image_free(&gold);
     return ok;
 }
 

@@ -1,0 +1,263 @@
+// mvr_image: OpenImageIO behind the C ABI of mvr_image.h. No exception
+// leaves this file; every failure becomes an mvr_result with a message.
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+#include <string>
+
+#include "mvr/mvr_image.h"
+
+namespace {
+
+using namespace OIIO;
+
+mvr_result fail(mvr_error *error, mvr_result r, const std::string &msg)
+{
+    if (error) {
+        error->result = r;
+        std::snprintf(error->message, sizeof error->message, "%s", msg.c_str());
+    }
+    return r;
+}
+
+// A file name OpenImageIO can pick a reader by: a MIME type becomes one.
+std::string name_for_hint(const char *hint)
+{
+    std::string h = hint ? hint : "";
+    if (h == "image/png")
+        return "image.png";
+    if (h == "image/jpeg" || h == "image/jpg")
+        return "image.jpg";
+    if (h == "image/webp")
+        return "image.webp";
+    if (h == "image/ktx2" || h == "image/vnd-ms.dds")
+        return "";
+    if (h.find('.') != std::string::npos)
+        return h;
+    return "";
+}
+
+// Signature sniffing, for hints that say nothing (glTF images may lack a MIME type).
+std::string name_for_bytes(const unsigned char *p, size_t n)
+{
+    static const unsigned char png[8] = {137, 80, 78, 71, 13, 10, 26, 10};
+    if (n >= 8 && std::memcmp(p, png, 8) == 0)
+        return "image.png";
+    if (n >= 3 && p[0] == 0xFF && p[1] == 0xD8 && p[2] == 0xFF)
+        return "image.jpg";
+    return "";
+}
+
+ImageSpec rgba_spec(const mvr_image_view *v, TypeDesc type)
+{
+    return ImageSpec(int(v->width), int(v->height), 4, type);
+}
+
+// The view's pixels as an ImageBuf (rows top first), float for comparisons.
+bool to_buf(const mvr_image_view *v, ImageBuf &out, bool as_float)
+{
+    if (!v || !v->pixels || v->width == 0 || v->height == 0)
+        return false;
+    TypeDesc src = v->type == MVR_PIXEL_F32 ? TypeDesc::FLOAT : TypeDesc::UINT8;
+    ImageBuf buf(rgba_spec(v, as_float ? TypeDesc::FLOAT : src));
+    size_t px = v->type == MVR_PIXEL_F32 ? 16 : 4;
+    stride_t ystride = stride_t(v->width * px);
+    const char *first = static_cast<const char *>(v->pixels);
+    if (v->bottom_up) {
+        first += size_t(v->height - 1) * size_t(ystride);
+        ystride = -ystride;
+    }
+    if (!buf.set_pixels(ROI(0, int(v->width), 0, int(v->height), 0, 1, 0, 4), src, first, AutoStride, ystride))
+        return false;
+    out.swap(buf);
+    return true;
+}
+
+}  // namespace
+
+extern "C" void mvr_image_free(mvr_image_data *image)
+{
+    if (!image)
+        return;
+    std::free(image->pixels);
+    std::memset(image, 0, sizeof *image);
+}
+
+// Reads an opened ImageInput into RGBA of the given type.
+static mvr_result read_rgba(ImageInput *in, mvr_pixel_type type, uint32_t max_dimension, const std::string &what,
+                            mvr_image_data *out, mvr_error *error)
+{
+    const ImageSpec &spec = in->spec();
+    uint32_t cap = max_dimension ? max_dimension : 16384;
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || uint32_t(spec.width) > cap ||
+        uint32_t(spec.height) > cap || spec.depth > 1)
+        return fail(error, MVR_ERROR_INVALID_ASSET,
+                    what + ": " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                        " is not within 1.." + std::to_string(cap));
+    int nc = spec.nchannels;
+    size_t pixels = size_t(spec.width) * size_t(spec.height);
+    TypeDesc t = type == MVR_PIXEL_F32 ? TypeDesc::FLOAT : TypeDesc::UINT8;
+    size_t bytes_per = type == MVR_PIXEL_F32 ? 4 : 1;
+    std::vector<unsigned char> raw(pixels * size_t(nc) * bytes_per);
+    if (!in->read_image(0, 0, 0, nc, t, raw.data()))
+        return fail(error, MVR_ERROR_INVALID_ASSET, what + ": " + in->geterror());
+    void *rgba = std::malloc(pixels * 4 * bytes_per);
+    if (!rgba)
+        return fail(error, MVR_ERROR_OUT_OF_MEMORY, what + ": out of memory");
+    // expand gray, gray-alpha, RGB; keep the first four channels of more
+    for (size_t i = 0; i < pixels; ++i) {
+        for (int c = 0; c < 4; ++c) {
+            int src = nc == 1 ? 0 : nc == 2 ? (c < 3 ? 0 : 1) : c;
+            bool have = (nc == 1 || nc == 3) ? c < 3 : true;
+            if (type == MVR_PIXEL_F32) {
+                const float *r = reinterpret_cast<const float *>(raw.data());
+                static_cast<float *>(rgba)[i * 4 + size_t(c)] = have && src < nc ? r[i * size_t(nc) + size_t(src)] : 1.0f;
+            } else {
+                static_cast<unsigned char *>(rgba)[i * 4 + size_t(c)] =
+                    have && src < nc ? raw[i * size_t(nc) + size_t(src)] : 255;
+            }
+        }
+    }
+    out->width = uint32_t(spec.width);
+    out->height = uint32_t(spec.height);
+    out->type = type;
+    out->pixels = rgba;
+    return MVR_OK;
+}
+
+extern "C" mvr_result mvr_image_decode(const void *data, size_t size, const char *format_hint,
+                                       uint32_t max_dimension, mvr_image_data *out, mvr_error *error)
+{
+    if (!out || !data || size == 0)
+        return fail(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_decode: no data");
+    std::memset(out, 0, sizeof *out);
+    try {
+        const auto *bytes = static_cast<const unsigned char *>(data);
+        std::string name = name_for_hint(format_hint);
+        if (name.empty())
+            name = name_for_bytes(bytes, size);
+        if (name.empty())
+            return fail(error, MVR_ERROR_UNSUPPORTED,
+                        std::string("mvr_image_decode: unknown image format (") + (format_hint ? format_hint : "no type") +
+                            "); PNG and JPEG are read");
+        Filesystem::IOMemReader mem(bytes, size);
+        auto in = ImageInput::open(name, nullptr, &mem);
+        if (!in)
+            return fail(error, MVR_ERROR_INVALID_ASSET, "mvr_image_decode: " + OIIO::geterror());
+        return read_rgba(in.get(), MVR_PIXEL_U8, max_dimension, "mvr_image_decode", out, error);
+    } catch (const std::exception &e) {
+        return fail(error, MVR_ERROR_INVALID_ASSET, std::string("mvr_image_decode: ") + e.what());
+    } catch (...) {
+        return fail(error, MVR_ERROR_INTERNAL, "mvr_image_decode: unknown exception");
+    }
+}
+
+extern "C" mvr_result mvr_image_read(const char *path, mvr_pixel_type type, mvr_image_data *out, mvr_error *error)
+{
+    if (!path || !out)
+        return fail(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_read: NULL argument");
+    std::memset(out, 0, sizeof *out);
+    try {
+        auto in = ImageInput::open(path);
+        if (!in)
+            return fail(error, MVR_ERROR_IO, std::string("mvr_image_read(") + path + "): " + OIIO::geterror());
+        return read_rgba(in.get(), type, 0, std::string("mvr_image_read(") + path + ")", out, error);
+    } catch (const std::exception &e) {
+        return fail(error, MVR_ERROR_IO, std::string("mvr_image_read: ") + e.what());
+    } catch (...) {
+        return fail(error, MVR_ERROR_INTERNAL, "mvr_image_read: unknown exception");
+    }
+}
+
+static float srgb_decode(float c)
+{
+    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+extern "C" mvr_result mvr_image_write(const char *path, const mvr_image_view *image, mvr_error *error)
+{
+    if (!path || !image || !image->pixels || image->width == 0 || image->height == 0)
+        return fail(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_write: NULL or empty image");
+    try {
+        std::string p = path;
+        std::string ext = p.size() > 4 ? p.substr(p.size() - 4) : "";
+        for (char &c : ext)
+            c = char(std::tolower(static_cast<unsigned char>(c)));
+        bool exr = ext == ".exr";
+        if (!exr && ext != ".png")
+            return fail(error, MVR_ERROR_INVALID_ARGUMENT,
+                        std::string("mvr_image_write(") + path + "): the name must end in .png or .exr");
+        ImageBuf buf;
+        if (!to_buf(image, buf, exr))
+            return fail(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_write: bad pixels");
+        if (exr && image->type == MVR_PIXEL_U8) {
+            // 8-bit input is sRGB-encoded; EXR holds linear values
+            for (ImageBuf::Iterator<float> it(buf); !it.done(); ++it)
+                for (int c = 0; c < 3; ++c)
+                    it[c] = srgb_decode(it[c]);
+        }
+        ImageSpec spec = buf.spec();
+        spec.set_format(exr ? TypeDesc::HALF : TypeDesc::UINT8);
+        if (!exr)
+            spec.attribute("oiio:ColorSpace", "sRGB");
+        auto out = ImageOutput::create(p);
+        if (!out || !out->open(p, spec))
+            return fail(error, MVR_ERROR_IO,
+                        std::string("mvr_image_write(") + path + "): " + (out ? out->geterror() : OIIO::geterror()));
+        bool ok = buf.write(out.get());
+        std::string err = ok ? "" : buf.geterror();
+        if (!out->close() || !ok)
+            return fail(error, MVR_ERROR_IO, std::string("mvr_image_write(") + path + "): " + err + out->geterror());
+        return MVR_OK;
+    } catch (const std::exception &e) {
+        return fail(error, MVR_ERROR_IO, std::string("mvr_image_write: ") + e.what());
+    } catch (...) {
+        return fail(error, MVR_ERROR_INTERNAL, "mvr_image_write: unknown exception");
+    }
+}
+
+extern "C" mvr_result mvr_image_compare(const mvr_image_view *a, const mvr_image_view *b, double threshold,
+                                        const char *diff_path, mvr_image_compare_result *out, mvr_error *error)
+{
+    if (!a || !b || !out)
+        return fail(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_compare: NULL argument");
+    if (a->width != b->width || a->height != b->height)
+        return fail(error, MVR_ERROR_INVALID_ARGUMENT,
+                    "mvr_image_compare: sizes differ (" + std::to_string(a->width) + "x" + std::to_string(a->height) +
+                        " vs " + std::to_string(b->width) + "x" + std::to_string(b->height) + ")");
+    try {
+        ImageBuf A, B;
+        if (!to_buf(a, A, true) || !to_buf(b, B, true))
+            return fail(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_compare: bad pixels");
+        // a difference counts as over the threshold only when strictly greater
+        ImageBufAlgo::CompareResults r = ImageBufAlgo::compare(A, B, float(threshold), float(threshold));
+        if (r.error)
+            return fail(error, MVR_ERROR_INTERNAL, "mvr_image_compare: " + A.geterror() + B.geterror());
+        out->rmse = r.rms_error;
+        out->psnr = r.PSNR;
+        out->max_abs = r.maxerror;
+        out->mean_abs = r.meanerror;
+        out->pixels_over = uint64_t(r.nfail);
+        out->fraction_over = double(r.nfail) / (double(a->width) * double(a->height));
+        if (diff_path) {
+            ImageBuf diff = ImageBufAlgo::absdiff(A, B);
+            ImageSpec spec = diff.spec();
+            spec.set_format(TypeDesc::UINT8);
+            // alpha 1 so the difference is visible in any viewer
+            ImageBufAlgo::fill(diff, {1.0f}, ROI(0, diff.spec().width, 0, diff.spec().height, 0, 1, 3, 4));
+            if (!diff.write(diff_path, TypeDesc::UINT8))
+                return fail(error, MVR_ERROR_IO, std::string("mvr_image_compare: ") + diff.geterror());
+        }
+        return MVR_OK;
+    } catch (const std::exception &e) {
+        return fail(error, MVR_ERROR_INTERNAL, std::string("mvr_image_compare: ") + e.what());
+    } catch (...) {
+        return fail(error, MVR_ERROR_INTERNAL, "mvr_image_compare: unknown exception");
+    }
+}

@@ -1,0 +1,71 @@
+/*
+ * mvr_image: image files in and out, and image comparison, through
+ * OpenImageIO behind a C ABI (so C programs use it without C++ headers).
+ * Used by the glTF loader (texture decoding), the CLI (PNG / EXR output), the
+ * tests (golden images) and the benchmark (error against a reference).
+ */
+#ifndef MVR_IMAGE_H
+#define MVR_IMAGE_H
+
+#include "mvr/mvr.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum mvr_pixel_type {
+    MVR_PIXEL_U8 = 0,            /* 8-bit unsigned normalized */
+    MVR_PIXEL_F32                /* 32-bit float */
+} mvr_pixel_type;
+
+/* RGBA pixels in memory, 4 channels. */
+typedef struct mvr_image_view {
+    uint32_t width, height;
+    mvr_pixel_type type;
+    bool bottom_up;              /* first row is the image's bottom (GL readback order) */
+    const void *pixels;
+} mvr_image_view;
+
+/* An image mvr_image_* allocated; free with mvr_image_free. Rows top first. */
+typedef struct mvr_image_data {
+    uint32_t width, height;
+    mvr_pixel_type type;
+    void *pixels;                /* width * height * 4 values */
+} mvr_image_data;
+
+void mvr_image_free(mvr_image_data *image);
+
+/* Decodes an encoded image (PNG, JPEG, ... as OpenImageIO reads them) from
+ * memory into RGBA8: gray, gray-alpha and RGB are expanded, 16-bit scaled.
+ * format_hint: a MIME type ("image/png") or a file name whose extension names
+ * the format. Images larger than max_dimension (0 = 16384) either way are refused. */
+mvr_result mvr_image_decode(const void *data, size_t size, const char *format_hint,
+                            uint32_t max_dimension, mvr_image_data *out, mvr_error *error);
+
+/* Reads a file into RGBA8 or RGBA float. */
+mvr_result mvr_image_read(const char *path, mvr_pixel_type type, mvr_image_data *out, mvr_error *error);
+
+/* Writes a file; the format follows the extension: .png (8-bit, the bytes as
+ * given: sRGB-encoded for mvr's sRGB targets), .exr (half float, linear:
+ * floats are written as given, 8-bit input is sRGB-decoded first). */
+mvr_result mvr_image_write(const char *path, const mvr_image_view *image, mvr_error *error);
+
+typedef struct mvr_image_compare_result {
+    double rmse;                 /* over all channels, in [0, 1] units */
+    double psnr;                 /* dB; infinite for identical images */
+    double max_abs;              /* largest channel difference, [0, 1] units */
+    double mean_abs;
+    uint64_t pixels_over;        /* pixels with a channel difference > threshold */
+    double fraction_over;        /* pixels_over / pixel count */
+} mvr_image_compare_result;
+
+/* Compares two images of the same size channel by channel (OpenImageIO's
+ * ImageBufAlgo::compare) in [0, 1] units; threshold likewise (e.g. 2/255).
+ * diff_path (optional) receives |a - b| as an image. */
+mvr_result mvr_image_compare(const mvr_image_view *a, const mvr_image_view *b, double threshold,
+                             const char *diff_path, mvr_image_compare_result *out, mvr_error *error);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
