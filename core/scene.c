@@ -537,3 +537,19 @@ void mvr_scene_get_info(const mvr_scene *s, mvr_scene_info *out)
     out->bounds_min[0] = lo.x; out->bounds_min[1] = lo.y; out->bounds_min[2] = lo.z;
     out->bounds_max[0] = hi.x; out->bounds_max[1] = hi.y; out->bounds_max[2] = hi.z;
 }
+
+uint32_t mvr_scene_camera_node_count(const mvr_scene *s)
+{
+    uint32_t n = 0;
+    for (uint32_t i = 0; s && i < s->node_count; ++i)
+        n += s->nodes[i].camera != MVR_NO_INDEX;
+    return n;
+}
+
+mvr_node_id mvr_scene_camera_node(const mvr_scene *s, uint32_t index)
+{
+    for (uint32_t i = 0; s && i < s->node_count; ++i)
+        if (s->nodes[i].camera != MVR_NO_INDEX && index-- == 0)
+            return (mvr_node_id){i + 1};
+    return (mvr_node_id){0};
+}

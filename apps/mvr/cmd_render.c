@@ -1,6 +1,7 @@
 /* mvr render: a demo scene (or, with the glTF loader, a file) into N views,
  * one PNG per view plus a contact sheet, and the frame's stats. */
 #include <errno.h>
+#include <stdarg.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -10,12 +11,17 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "json.h"
+#include "mvr/mvr_gltf.h"
 #include "mvr/mvr_image.h"
 
 typedef struct render_options {
     mvr_context_desc context;
     const char *demo;
     const char *scene_file;
+    int camera;                  /* -1 = frame the scene with layout */
+    mvr_view_layout layout;
+    double ipd;
+    uint32_t gltf_scene;         /* 1-based; 0 = the file's default */
     uint32_t views, width, height, frames;
     const char *out_dir;
     const char *stats_file;
@@ -30,14 +36,20 @@ typedef struct render_options {
 static void render_usage(FILE *out)
 {
     fprintf(out,
-            "usage: mvr render [--demo NAME | SCENE] [options]\n"
+            "usage: mvr render [--demo NAME | SCENE.gltf | SCENE.glb] [options]\n"
             "\n"
             "Renders a scene into N views headless and writes one image per view\n"
             "(view_00.png, ...) and a contact sheet (PNG) of all views side by side.\n"
             "\n"
             "options:\n"
             "  --demo NAME         stereo | cube | city | ring (default: stereo)\n"
-            "  --views N           number of views (default: the demo's own)\n"
+            "  --views N           number of views (default: the demo's or layout's own)\n"
+            "  --camera K          SCENE: view from the file's K-th camera node (0-based);\n"
+            "                      N views are eyes --ipd apart along its right axis\n"
+            "  --layout L          SCENE without --camera: stereo | cube | ring | grid around\n"
+            "                      the scene's bounding sphere (default: stereo)\n"
+            "  --ipd M             distance between stereo eyes in scene units (default: 0.064)\n"
+            "  --scene K           SCENE: the file's K-th scene (0-based; default: its default)\n"
             "  --size WxH          layer size in pixels (default: 640x480)\n"
             "  --out DIR           output directory (default: out), created if missing\n"
             "  --view-path P       auto | multiview | loop (default: auto; env MVR_VIEW_PATH)\n"
@@ -72,6 +84,7 @@ static int parse(int argc, char **argv, render_options *o)
     o->frames = 1;
     o->out_dir = "out";
     o->render.exposure = 1.0f;
+    o->camera = -1;
     /* an opaque dark sky: the library's default clear is transparent black */
     const float sky[4] = {0.02f, 0.025f, 0.035f, 1.0f};
     memcpy(o->render.clear_color, sky, sizeof sky);
@@ -96,6 +109,42 @@ static int parse(int argc, char **argv, render_options *o)
         } else if (strcmp(a, "--views") == 0) {
             if (!parse_u32(v, 1, 1024, &o->views)) {
                 fprintf(stderr, "mvr render: --views takes 1..1024\n");
+                return MVR_EXIT_USAGE;
+            }
+            ++i;
+        } else if (strcmp(a, "--camera") == 0) {
+            uint32_t k = 0;
+            if (!parse_u32(v, 0, 1u << 20, &k)) {
+                fprintf(stderr, "mvr render: --camera takes a camera node index from 0\n");
+                return MVR_EXIT_USAGE;
+            }
+            o->camera = (int)k;
+            ++i;
+        } else if (strcmp(a, "--scene") == 0) {
+            uint32_t k = 0;
+            if (!parse_u32(v, 0, 1u << 20, &k)) {
+                fprintf(stderr, "mvr render: --scene takes a scene index from 0\n");
+                return MVR_EXIT_USAGE;
+            }
+            o->gltf_scene = k + 1;
+            ++i;
+        } else if (strcmp(a, "--layout") == 0) {
+            bool found = false;
+            for (int l = MVR_LAYOUT_STEREO; l <= MVR_LAYOUT_GRID; ++l)
+                if (strcmp(v, mvr_view_layout_name((mvr_view_layout)l)) == 0) {
+                    o->layout = (mvr_view_layout)l;
+                    found = true;
+                }
+            if (!found) {
+                fprintf(stderr, "mvr render: --layout takes stereo, cube, ring or grid\n");
+                return MVR_EXIT_USAGE;
+            }
+            ++i;
+        } else if (strcmp(a, "--ipd") == 0) {
+            char *end = NULL;
+            o->ipd = strtod(v, &end);
+            if (!end || *end || !(o->ipd > 0.0)) {
+                fprintf(stderr, "mvr render: --ipd takes a distance > 0\n");
                 return MVR_EXIT_USAGE;
             }
             ++i;
@@ -193,6 +242,10 @@ static int parse(int argc, char **argv, render_options *o)
             return MVR_EXIT_USAGE;
         }
     }
+    if (!o->scene_file && (o->camera >= 0 || o->gltf_scene)) {
+        fprintf(stderr, "mvr render: --camera and --scene are for a SCENE file\n");
+        return MVR_EXIT_USAGE;
+    }
     if (o->demo && o->scene_file) {
         fprintf(stderr, "mvr render: give --demo NAME or a SCENE file, not both\n");
         return MVR_EXIT_USAGE;
@@ -207,6 +260,17 @@ static int parse(int argc, char **argv, render_options *o)
 }
 
 /* mkdir -p: creates the directory and any missing parents. */
+/* mvr_error_set for the CLI (the library's helper is internal). */
+static mvr_result mvr_error_set_cli(mvr_error *e, mvr_result r, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    e->result = r;
+    vsnprintf(e->message, sizeof e->message, fmt, ap);
+    va_end(ap);
+    return r;
+}
+
 static bool make_dir(const char *path)
 {
     char buf[4096];
@@ -298,17 +362,66 @@ static bool write_contact_sheet(const char *path, uint8_t *const *layers, uint32
     return ok;
 }
 
+/* Views from a camera node of the file: N eyes ipd apart along its right axis. */
+static mvr_result camera_views(const mvr_scene *scene, uint32_t k, uint32_t n, double ipd, mvr_view_set **out,
+                               mvr_error *err)
+{
+    mvr_node_id node = mvr_scene_camera_node(scene, k);
+    mvr_view_desc base;
+    if (!node.id || mvr_scene_camera_view(scene, node, &base) != MVR_OK)
+        return mvr_error_set_cli(err, MVR_ERROR_INVALID_ARGUMENT, "the file has %u camera nodes; --camera %u is not one",
+                                 mvr_scene_camera_node_count(scene), k);
+    mvr_view_desc *v = calloc(n, sizeof *v);
+    if (!v)
+        return MVR_ERROR_OUT_OF_MEMORY;
+    /* the camera's right axis: its orientation applied to +X */
+    double x = base.orientation[0], y = base.orientation[1], z = base.orientation[2], w = base.orientation[3];
+    double right[3] = {1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y)};
+    for (uint32_t i = 0; i < n; ++i) {
+        double offset = ((double)i - (double)(n - 1) * 0.5) * ipd;
+        v[i] = base;
+        for (int c = 0; c < 3; ++c)
+            v[i].position[c] += right[c] * offset;
+    }
+    mvr_view_set_desc vd = {n, v, false, {0, 0, 0}};
+    mvr_result r = mvr_view_set_create(&vd, out, err);
+    free(v);
+    return r;
+}
+
+static int load_scene_file(const render_options *o, mvr_scene **scene, mvr_view_set **views)
+{
+    mvr_gltf_options go;
+    memset(&go, 0, sizeof go);
+    go.scene = o->gltf_scene;
+    go.logger = o->context.logger;
+    mvr_gltf_info info;
+    mvr_error err;
+    if (mvr_gltf_load_file(o->scene_file, &go, scene, &info, &err) != MVR_OK) {
+        fprintf(stderr, "mvr render: %s (%s)\n", err.message, mvr_result_name(err.result));
+        return MVR_EXIT_FAILURE;
+    }
+    double ipd = o->ipd > 0 ? o->ipd : 0.064;
+    mvr_result r;
+    if (o->camera >= 0) {
+        r = camera_views(*scene, (uint32_t)o->camera, o->views ? o->views : 2, ipd, views, &err);
+    } else {
+        mvr_framing_desc fd = {o->layout, o->views, ipd, (double)o->width / (double)o->height};
+        r = mvr_view_set_frame_scene(*scene, &fd, views, &err);
+    }
+    if (r != MVR_OK) {
+        fprintf(stderr, "mvr render: %s: %s\n", o->scene_file, err.message);
+        return MVR_EXIT_FAILURE;
+    }
+    return MVR_EXIT_OK;
+}
+
 int mvr_cmd_render(int argc, char **argv)
 {
     render_options o;
     int rc = parse(argc, argv, &o);
     if (rc != MVR_EXIT_OK)
         return rc < 0 ? MVR_EXIT_OK : rc;
-    if (o.scene_file) {
-        fprintf(stderr, "mvr render: %s: loading glTF files comes with the glTF loader; use --demo NAME\n",
-                o.scene_file);
-        return MVR_EXIT_FAILURE;
-    }
     if (!make_dir(o.out_dir))
         return MVR_EXIT_FAILURE;
 
@@ -324,11 +437,16 @@ int mvr_cmd_render(int argc, char **argv)
         fprintf(stderr, "mvr render: %s\n", err.message);
         goto done;
     }
-    mvr_demo_desc dd = {o.views, o.width, o.height, o.context.logger};
-    if (mvr_demo_create(o.demo, &dd, &scene, &views, &err) != MVR_OK) {
-        fprintf(stderr, "mvr render: %s\n", err.message);
-        rc = err.result == MVR_ERROR_INVALID_ARGUMENT ? MVR_EXIT_USAGE : MVR_EXIT_FAILURE;
-        goto done;
+    if (o.scene_file) {
+        if (load_scene_file(&o, &scene, &views) != MVR_EXIT_OK)
+            goto done;
+    } else {
+        mvr_demo_desc dd = {o.views, o.width, o.height, o.context.logger};
+        if (mvr_demo_create(o.demo, &dd, &scene, &views, &err) != MVR_OK) {
+            fprintf(stderr, "mvr render: %s\n", err.message);
+            rc = err.result == MVR_ERROR_INVALID_ARGUMENT ? MVR_EXIT_USAGE : MVR_EXIT_FAILURE;
+            goto done;
+        }
     }
     mvr_renderer_desc rd = {ctx, o.view_path, o.context.logger};
     if (mvr_renderer_create(&rd, &renderer, &err) != MVR_OK) {
@@ -391,12 +509,12 @@ int mvr_cmd_render(int argc, char **argv)
             fprintf(stderr, "mvr render: cannot write %s: %s\n", o.stats_file, strerror(errno));
             goto done;
         }
-        write_stats_json(f, &st, o.demo, o.width, o.height);
+        write_stats_json(f, &st, o.scene_file ? o.scene_file : o.demo, o.width, o.height);
         fclose(f);
     }
     if (!o.quiet) {
         const mvr_caps *c = mvr_context_caps(ctx);
-        printf("mvr render: %s, %u views of %ux%u on %s (%s)\n", o.demo, n, o.width, o.height, c->renderer,
+        printf("mvr render: %s, %u views of %ux%u on %s (%s)\n", o.scene_file ? o.scene_file : o.demo, n, o.width, o.height, c->renderer,
                mvr_context_provider_name(mvr_context_get_provider(ctx)));
         printf("  view path   %s: %u pass%s for %u view%s (GL_MAX_VIEWS_OVR %d)\n",
                mvr_view_path_name(st.view_path), st.passes, st.passes == 1 ? "" : "es", st.views,

@@ -415,6 +415,10 @@ typedef struct mvr_scene_info {
 } mvr_scene_info;
 void mvr_scene_get_info(const mvr_scene *scene, mvr_scene_info *out);
 
+/* Nodes that carry a camera, in node order. */
+uint32_t mvr_scene_camera_node_count(const mvr_scene *scene);
+mvr_node_id mvr_scene_camera_node(const mvr_scene *scene, uint32_t index); /* {0} past the end */
+
 /* The world pose of a camera node, with its camera's projection, as a view. */
 struct mvr_view_desc;
 mvr_result mvr_scene_camera_view(const mvr_scene *scene, mvr_node_id camera_node,
@@ -553,6 +557,29 @@ typedef struct mvr_frame_stats {
 /* Stats of the last render (waits for its GPU timer result where there is one). */
 void mvr_renderer_get_stats(mvr_renderer *renderer, mvr_frame_stats *out);
 
+
+/* ------------------------------------------------------------------ framing
+ *
+ * Views laid out around a scene's bounding sphere, for files without cameras
+ * (or when the caller wants a layout instead of the file's camera).
+ */
+typedef enum mvr_view_layout {
+    MVR_LAYOUT_STEREO = 0,       /* a row of eyes ipd apart in front of the scene, parallel axes */
+    MVR_LAYOUT_CUBE,             /* six 90-degree views from the center */
+    MVR_LAYOUT_RING,             /* N cameras in a horizontal circle, looking at the center */
+    MVR_LAYOUT_GRID              /* a light-field grid of cameras on a plane, looking at the center */
+} mvr_view_layout;
+
+typedef struct mvr_framing_desc {
+    mvr_view_layout layout;
+    uint32_t views;              /* 0 = the layout's own (stereo 2, cube 6, ring 8, grid 9) */
+    double ipd;                  /* stereo: metres between eyes; 0 = 0.064 */
+    double aspect;               /* width / height of the layers; 0 = 1 */
+} mvr_framing_desc;
+
+const char *mvr_view_layout_name(mvr_view_layout layout);
+mvr_result mvr_view_set_frame_scene(const mvr_scene *scene, const mvr_framing_desc *desc, mvr_view_set **out,
+                                    mvr_error *out_error);
 
 /* ------------------------------------------------------------------ demo scenes
  *

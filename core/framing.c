@@ -1,0 +1,125 @@
+/* Views laid out around a scene's bounding sphere (mvr_view_set_frame_scene). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core_util.h"
+
+#define PI 3.14159265358979323846
+
+const char *mvr_view_layout_name(mvr_view_layout layout)
+{
+    switch (layout) {
+    case MVR_LAYOUT_STEREO: return "stereo";
+    case MVR_LAYOUT_CUBE: return "cube";
+    case MVR_LAYOUT_RING: return "ring";
+    case MVR_LAYOUT_GRID: return "grid";
+    }
+    return NULL;
+}
+
+static void look(mvr_view_desc *v, const double eye[3], const double target[3], const double up[3])
+{
+    mvr_view_look_at(v, eye, target, up);
+}
+
+mvr_result mvr_view_set_frame_scene(const mvr_scene *scene, const mvr_framing_desc *desc, mvr_view_set **out,
+                                    mvr_error *error)
+{
+    if (!scene || !out)
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_view_set_frame_scene: NULL argument");
+    *out = NULL;
+    mvr_framing_desc d;
+    if (desc)
+        d = *desc;
+    else
+        memset(&d, 0, sizeof d);
+    if (!mvr_view_layout_name(d.layout))
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_view_set_frame_scene: unknown layout %d",
+                             (int)d.layout);
+    static const uint32_t defaults[] = {2, 6, 8, 9};
+    uint32_t n = d.views ? d.views : defaults[d.layout];
+    if (n > 1024)
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_view_set_frame_scene: %u views (at most 1024)", n);
+    double ipd = d.ipd > 0 ? d.ipd : 0.064;
+    double aspect = d.aspect > 0 ? d.aspect : 1.0;
+
+    mvr_scene_info info;
+    mvr_scene_get_info(scene, &info);
+    double c[3] = {0, 0, 0}, r = 1.0;
+    if (info.bounds_min[0] <= info.bounds_max[0]) {
+        double ext2 = 0;
+        for (int i = 0; i < 3; ++i) {
+            c[i] = 0.5 * (info.bounds_min[i] + info.bounds_max[i]);
+            double e = 0.5 * (info.bounds_max[i] - info.bounds_min[i]);
+            ext2 += e * e;
+        }
+        r = sqrt(ext2);
+        if (!(r > 1e-9) || !isfinite(r))
+            r = 1.0;
+    }
+    /* vertical field of view 50 degrees; far enough that the sphere fits
+     * the narrower of the two directions, with a margin */
+    double yfov = 50.0 * PI / 180.0;
+    double half = fmin(yfov * 0.5, atan(tan(yfov * 0.5) * aspect));
+    double dist = r / sin(half) * 1.05;
+    double znear = fmax(dist - r, dist * 1e-3) * 0.5;
+    if (d.layout == MVR_LAYOUT_CUBE)
+        znear = r * 1e-3;
+
+    mvr_view_desc *views = calloc(n, sizeof *views);
+    if (!views)
+        return mvr_error_set(error, MVR_ERROR_OUT_OF_MEMORY, "mvr_view_set_frame_scene: out of memory");
+    const double up[3] = {0, 1, 0};
+    uint32_t cols = (uint32_t)ceil(sqrt((double)n));
+    for (uint32_t i = 0; i < n; ++i) {
+        mvr_view_desc *v = &views[i];
+        v->projection.type = MVR_PROJECTION_PERSPECTIVE;
+        v->projection.yfov = yfov;
+        v->projection.aspect = aspect;
+        v->projection.znear = znear;
+        switch (d.layout) {
+        case MVR_LAYOUT_STEREO: {
+            double offset = ((double)i - (double)(n - 1) * 0.5) * ipd;
+            double eye[3] = {c[0] + offset, c[1], c[2] + dist}, target[3] = {c[0] + offset, c[1], c[2]};
+            look(v, eye, target, up);
+            break;
+        }
+        case MVR_LAYOUT_CUBE: {
+            static const double dirs[6][6] = {{1, 0, 0, 0, 1, 0}, {-1, 0, 0, 0, 1, 0}, {0, 1, 0, 0, 0, 1},
+                                              {0, -1, 0, 0, 0, -1}, {0, 0, 1, 0, 1, 0}, {0, 0, -1, 0, 1, 0}};
+            const double *q = dirs[i % 6];
+            double target[3] = {c[0] + q[0], c[1] + q[1], c[2] + q[2]}, u[3] = {q[3], q[4], q[5]};
+            look(v, c, target, u);
+            v->projection.type = MVR_PROJECTION_FRUSTUM;
+            v->projection.angle_left = v->projection.angle_down = -PI / 4;
+            v->projection.angle_right = v->projection.angle_up = PI / 4;
+            break;
+        }
+        case MVR_LAYOUT_RING: {
+            double a = 2.0 * PI * (double)i / (double)n;
+            double eye[3] = {c[0] + dist * sin(a), c[1] + r * 0.25, c[2] + dist * cos(a)};
+            look(v, eye, c, up);
+            break;
+        }
+        case MVR_LAYOUT_GRID: {
+            /* cameras r/4 apart on a plane in front of the scene, toed in */
+            double spacing = r * 0.25;
+            double x = ((double)(i % cols) - (double)(cols - 1) * 0.5) * spacing;
+            double y = ((double)(cols - 1) * 0.5 - (double)(i / cols)) * spacing;
+            double eye[3] = {c[0] + x, c[1] + y, c[2] + dist};
+            look(v, eye, c, up);
+            break;
+        }
+        }
+    }
+    mvr_view_set_desc vd;
+    memset(&vd, 0, sizeof vd);
+    vd.view_count = n;
+    vd.views = views;
+    vd.origin_set = true; /* the scene's center: every view is near it */
+    memcpy(vd.origin, c, sizeof c);
+    mvr_result res = mvr_view_set_create(&vd, out, error);
+    free(views);
+    return res;
+}

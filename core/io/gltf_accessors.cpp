@@ -1,0 +1,277 @@
+// Validated accessor reads: nothing is read before the bytes it needs are
+// known to lie inside the buffer view and the buffer (glTF 2.0, 3.6 and 5.1).
+#include <cmath>
+#include <cstring>
+
+#include "gltf_internal.hpp"
+
+namespace mvr_gltf {
+
+using tinygltf::Accessor;
+using tinygltf::BufferView;
+
+uint64_t mul_checked(uint64_t a, uint64_t b, const std::string &what)
+{
+    if (a != 0 && b > UINT64_MAX / a)
+        refuse(what + ": size overflows");
+    return a * b;
+}
+
+uint64_t add_checked(uint64_t a, uint64_t b, const std::string &what)
+{
+    if (b > UINT64_MAX - a)
+        refuse(what + ": size overflows");
+    return a + b;
+}
+
+uint32_t component_bit(int t)
+{
+    switch (t) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: return 1u << 0;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1u << 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT: return 1u << 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 1u << 3;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return 1u << 4;
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return ANY_FLOAT;
+    default: return 0;
+    }
+}
+
+static uint32_t component_size(int t)
+{
+    switch (t) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+    default: return 0;
+    }
+}
+
+static int type_components(int type)
+{
+    switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return 1;
+    case TINYGLTF_TYPE_VEC2: return 2;
+    case TINYGLTF_TYPE_VEC3: return 3;
+    case TINYGLTF_TYPE_VEC4: return 4;
+    case TINYGLTF_TYPE_MAT2: return 4;
+    case TINYGLTF_TYPE_MAT3: return 9;
+    case TINYGLTF_TYPE_MAT4: return 16;
+    default: return 0;
+    }
+}
+
+// One element component as float (glTF 2.0, 3.11: normalized integers).
+static float component_value(const unsigned char *p, int t, bool normalized)
+{
+    switch (t) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+        int8_t v;
+        std::memcpy(&v, p, 1);
+        return normalized ? std::fmax(float(v) / 127.0f, -1.0f) : float(v);
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? float(p[0]) / 255.0f : float(p[0]);
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+        int16_t v;
+        std::memcpy(&v, p, 2);
+        return normalized ? std::fmax(float(v) / 32767.0f, -1.0f) : float(v);
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+        uint16_t v;
+        std::memcpy(&v, p, 2);
+        return normalized ? float(v) / 65535.0f : float(v);
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+        uint32_t v;
+        std::memcpy(&v, p, 4);
+        return normalized ? float(double(v) / 4294967295.0) : float(v);
+    }
+    default: {
+        float v;
+        std::memcpy(&v, p, 4);
+        return v;
+    }
+    }
+}
+
+// The bytes of a buffer view, after checking it lies inside its buffer.
+static const unsigned char *view_bytes(context &cx, int view_index, uint64_t *length, uint64_t *stride,
+                                       const std::string &what)
+{
+    const auto &m = *cx.model;
+    if (view_index < 0 || size_t(view_index) >= m.bufferViews.size())
+        refuse(what + ": bufferView " + std::to_string(view_index) + " does not exist (" +
+               std::to_string(m.bufferViews.size()) + " bufferViews)");
+    const BufferView &v = m.bufferViews[size_t(view_index)];
+    std::string vname = "bufferViews[" + std::to_string(view_index) + "]";
+    if (v.buffer < 0 || size_t(v.buffer) >= m.buffers.size())
+        refuse(what + ": " + vname + " names buffer " + std::to_string(v.buffer) + ", which does not exist");
+    const auto &data = m.buffers[size_t(v.buffer)].data;
+    uint64_t end = add_checked(uint64_t(v.byteOffset), uint64_t(v.byteLength), vname);
+    if (end > data.size())
+        refuse(what + ": " + vname + " (bytes " + std::to_string(v.byteOffset) + ".." + std::to_string(end) +
+               ") reads past the end of buffer " + std::to_string(v.buffer) + " (" + std::to_string(data.size()) +
+               " bytes)");
+    if (v.byteStride != 0 && (v.byteStride < 4 || v.byteStride > 252 || v.byteStride % 4 != 0))
+        refuse(what + ": " + vname + " byteStride " + std::to_string(v.byteStride) +
+               " is not a multiple of 4 in 4..252");
+    *length = uint64_t(v.byteLength);
+    *stride = uint64_t(v.byteStride);
+    return data.data() + v.byteOffset;
+}
+
+// Checks that count elements of elem bytes, stride apart, from offset fit in length.
+static void check_span(uint64_t offset, uint64_t stride, uint64_t count, uint64_t elem, uint64_t length,
+                       const std::string &what, const std::string &reader, const std::string &view)
+{
+    if (count == 0)
+        return;
+    uint64_t last = add_checked(offset, mul_checked(stride, count - 1, what), what);
+    uint64_t end = add_checked(last, elem, what);
+    if (end > length)
+        refuse(what + ": " + reader + " reads past the end of " + view + " (needs " + std::to_string(end) +
+               " bytes, has " + std::to_string(length) + ")");
+}
+
+// Reads count elements of `comps` components into out (count * comps floats).
+static void read_elements(const unsigned char *base, uint64_t stride, uint64_t count, int comps, int ctype,
+                          bool normalized, float *out)
+{
+    uint32_t cs = component_size(ctype);
+    for (uint64_t i = 0; i < count; ++i)
+        for (int c = 0; c < comps; ++c)
+            out[i * uint64_t(comps) + uint64_t(c)] = component_value(base + i * stride + uint64_t(c) * cs, ctype, normalized);
+}
+
+static const Accessor &accessor_at(context &cx, int index, const std::string &what)
+{
+    const auto &m = *cx.model;
+    if (index < 0 || size_t(index) >= m.accessors.size())
+        refuse(what + ": accessor " + std::to_string(index) + " does not exist (" + std::to_string(m.accessors.size()) +
+               " accessors)");
+    return m.accessors[size_t(index)];
+}
+
+std::vector<float> read_floats(context &cx, int index, int components, const std::string &what,
+                               uint32_t allowed)
+{
+    const Accessor &a = accessor_at(cx, index, what);
+    std::string aname = "accessor " + std::to_string(index);
+    int comps = type_components(a.type);
+    if (comps != components)
+        refuse(what + ": " + aname + " has " + std::to_string(comps) + " components per element, " +
+               std::to_string(components) + " expected");
+    if (!(component_bit(a.componentType) & allowed))
+        refuse(what + ": " + aname + " has componentType " + std::to_string(a.componentType) +
+               ", which this attribute does not allow");
+    uint32_t cs = component_size(a.componentType);
+    uint64_t count = uint64_t(a.count);
+    if (a.count == 0)
+        refuse(what + ": " + aname + " has count 0");
+    if (count > cx.limits.max_vertices)
+        refuse(what + ": " + aname + " count " + std::to_string(count) + " exceeds the cap of " +
+               std::to_string(cx.limits.max_vertices) + " (mvr_gltf_options.max_vertices)");
+    uint64_t elem = uint64_t(cs) * uint64_t(comps);
+    // every check before the allocation: a small file cannot make us allocate
+    // for a count its buffers do not hold
+    const unsigned char *base = nullptr;
+    uint64_t stride = 0;
+    if (a.bufferView >= 0) {
+        uint64_t length = 0;
+        base = view_bytes(cx, a.bufferView, &length, &stride, what);
+        if (stride == 0)
+            stride = elem;
+        if (stride < elem)
+            refuse(what + ": bufferView " + std::to_string(a.bufferView) + " byteStride " + std::to_string(stride) +
+                   " is smaller than an element of " + aname + " (" + std::to_string(elem) + " bytes)");
+        check_span(uint64_t(a.byteOffset), stride, count, elem, length, what, aname,
+                   "bufferView " + std::to_string(a.bufferView));
+    }
+    std::vector<float> out(size_t(mul_checked(count, uint64_t(comps), what)), 0.0f);
+    if (base)
+        read_elements(base + a.byteOffset, stride, count, comps, a.componentType, a.normalized, out.data());
+    if (a.sparse.isSparse) {
+        std::string sname = aname + ".sparse";
+        uint64_t scount = uint64_t(a.sparse.count);
+        if (a.sparse.count <= 0 || scount > count)
+            refuse(what + ": " + sname + " count " + std::to_string(a.sparse.count) + " not in 1.." +
+                   std::to_string(count));
+        int itype = a.sparse.indices.componentType;
+        if (itype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && itype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+            itype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+            refuse(what + ": " + sname + ".indices componentType " + std::to_string(itype) + " is not unsigned");
+        uint64_t ilen = 0, istride = 0, vlen = 0, vstride = 0;
+        const unsigned char *ib = view_bytes(cx, a.sparse.indices.bufferView, &ilen, &istride, what + " (" + sname + ".indices)");
+        const unsigned char *vb = view_bytes(cx, a.sparse.values.bufferView, &vlen, &vstride, what + " (" + sname + ".values)");
+        uint64_t isize = component_size(itype);
+        check_span(uint64_t(a.sparse.indices.byteOffset), isize, scount, isize, ilen, what, sname + ".indices",
+                   "bufferView " + std::to_string(a.sparse.indices.bufferView));
+        check_span(uint64_t(a.sparse.values.byteOffset), elem, scount, elem, vlen, what, sname + ".values",
+                   "bufferView " + std::to_string(a.sparse.values.bufferView));
+        std::vector<float> values(size_t(scount) * size_t(comps));
+        read_elements(vb + a.sparse.values.byteOffset, elem, scount, comps, a.componentType, a.normalized,
+                      values.data());
+        const unsigned char *ip = ib + a.sparse.indices.byteOffset;
+        for (uint64_t k = 0; k < scount; ++k) {
+            uint64_t target = uint64_t(component_value(ip + k * isize, itype, false));
+            if (itype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
+                uint32_t v;
+                std::memcpy(&v, ip + k * isize, 4);
+                target = v; /* exact: floats round above 2^24 */
+            }
+            if (target >= count)
+                refuse(what + ": " + sname + ".indices[" + std::to_string(k) + "] = " + std::to_string(target) +
+                       " is past the accessor's " + std::to_string(count) + " elements");
+            std::memcpy(&out[size_t(target) * size_t(comps)], &values[size_t(k) * size_t(comps)],
+                        size_t(comps) * sizeof(float));
+        }
+    }
+    return out;
+}
+
+std::vector<uint32_t> read_indices(context &cx, int index, const std::string &what)
+{
+    const Accessor &a = accessor_at(cx, index, what);
+    std::string aname = "accessor " + std::to_string(index);
+    if (a.type != TINYGLTF_TYPE_SCALAR)
+        refuse(what + ": " + aname + " is not SCALAR");
+    int t = a.componentType;
+    if (t != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && t != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        t != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+        refuse(what + ": " + aname + " componentType " + std::to_string(t) + " is not an unsigned integer type");
+    uint64_t count = uint64_t(a.count);
+    if (count == 0)
+        refuse(what + ": " + aname + " has count 0");
+    if (count > cx.limits.max_indices)
+        refuse(what + ": " + aname + " count " + std::to_string(count) + " exceeds the cap of " +
+               std::to_string(cx.limits.max_indices) + " (mvr_gltf_options.max_indices)");
+    if (a.sparse.isSparse)
+        refuse(what + ": " + aname + " is a sparse index accessor; mvr reads index accessors from a bufferView");
+    if (a.bufferView < 0)
+        refuse(what + ": " + aname + " has no bufferView");
+    uint64_t length = 0, stride = 0;
+    const unsigned char *base = view_bytes(cx, a.bufferView, &length, &stride, what);
+    uint64_t cs = component_size(t);
+    if (stride != 0 && stride != cs)
+        refuse(what + ": index bufferView " + std::to_string(a.bufferView) + " has a byteStride (indices are tightly packed)");
+    check_span(uint64_t(a.byteOffset), cs, count, cs, length, what, aname, "bufferView " + std::to_string(a.bufferView));
+    std::vector<uint32_t> out(static_cast<size_t>(count));
+    const unsigned char *p = base + a.byteOffset;
+    for (uint64_t i = 0; i < count; ++i) {
+        if (cs == 1) {
+            out[i] = p[i];
+        } else if (cs == 2) {
+            uint16_t v;
+            std::memcpy(&v, p + i * 2, 2);
+            out[i] = v;
+        } else {
+            std::memcpy(&out[i], p + i * 4, 4);
+        }
+    }
+    return out;
+}
+
+}  // namespace mvr_gltf
