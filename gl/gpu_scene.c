@@ -84,7 +84,38 @@ static uint32_t mip_levels(uint32_t w, uint32_t h)
     return n;
 }
 
-/* The GL texture of an image in a color space, uploaded on first use. */
+static bool filter_uses_mipmaps(mvr_filter f)
+{
+    switch (f) {
+    case MVR_FILTER_DEFAULT: /* linear-mipmap-linear */
+    case MVR_FILTER_NEAREST_MIPMAP_NEAREST:
+    case MVR_FILTER_LINEAR_MIPMAP_NEAREST:
+    case MVR_FILTER_NEAREST_MIPMAP_LINEAR:
+    case MVR_FILTER_LINEAR_MIPMAP_LINEAR:
+        return true;
+    case MVR_FILTER_NEAREST:
+    case MVR_FILTER_LINEAR:
+        return false;
+    }
+    return true;
+}
+
+/* Whether any material samples the image with a mipmapped minification filter. */
+static bool image_needs_mipmaps(const mvr_scene *s, uint32_t image)
+{
+    for (uint32_t i = 0; i < s->material_count; ++i) {
+        const mvr_material_desc *m = &s->materials[i].desc;
+        const mvr_texture_ref *roles[5] = {&m->base_color, &m->metallic_roughness, &m->normal, &m->occlusion,
+                                           &m->emissive};
+        for (int k = 0; k < 5; ++k)
+            if (roles[k]->image.id == image + 1 && filter_uses_mipmaps(roles[k]->sampler.min_filter))
+                return true;
+    }
+    return false;
+}
+
+/* The GL texture of an image in a color space, uploaded on first use, with a
+ * mip chain only where a sampler that reads it needs one. */
 static GLuint texture_for(mvr_renderer *r, const mvr_scene *s, uint32_t image, bool srgb)
 {
     mvr_gpu_scene *g = &r->gpu;
@@ -104,14 +135,16 @@ static GLuint texture_for(mvr_renderer *r, const mvr_scene *s, uint32_t image, b
     GLuint t = 0;
     gl->GenTextures(1, &t);
     mvr_state_texture(&r->state, 0, GL_TEXTURE_2D, t);
-    gl->TexStorage2D(GL_TEXTURE_2D, (GLsizei)mip_levels(img->width, img->height),
+    bool mipmaps = image_needs_mipmaps(s, image);
+    gl->TexStorage2D(GL_TEXTURE_2D, mipmaps ? (GLsizei)mip_levels(img->width, img->height) : 1,
                      srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, (GLsizei)img->width, (GLsizei)img->height);
     gl->PixelStorei(GL_UNPACK_ALIGNMENT, 1);
     /* rows as stored, top first: glTF's uv (0, 0) is the image's top-left */
     gl->TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, (GLsizei)img->width, (GLsizei)img->height, GL_RGBA,
                       GL_UNSIGNED_BYTE, img->rgba);
     gl->PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    gl->GenerateMipmap(GL_TEXTURE_2D);
+    if (mipmaps)
+        gl->GenerateMipmap(GL_TEXTURE_2D);
     r->upload_bytes += (uint64_t)img->width * img->height * 4;
     g->textures[g->texture_count].image = image;
     g->textures[g->texture_count].srgb = srgb;

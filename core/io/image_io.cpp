@@ -54,6 +54,28 @@ std::string name_for_bytes(const unsigned char *p, size_t n)
     return "";
 }
 
+// PNG framing (ISO/IEC 15948, 5.3): the signature, then chunks of length +
+// type + data + CRC, the last one IEND, all inside the bytes. Checked before
+// decoding: OpenImageIO 2.4's PNG reader leaks when libpng longjmps out of a
+// read past the end, and a truncated file is refused here with a clear
+// message instead. (This reads chunk lengths; it decodes nothing.)
+bool png_framing_ok(const unsigned char *p, size_t n, std::string *why)
+{
+    size_t at = 8;
+    while (at + 12 <= n) {
+        uint32_t len = uint32_t(p[at]) << 24 | uint32_t(p[at + 1]) << 16 | uint32_t(p[at + 2]) << 8 | p[at + 3];
+        if (len > 0x7FFFFFFFu || uint64_t(at) + 12 + len > n) {
+            *why = "PNG chunk at byte " + std::to_string(at) + " runs past the end of the data (truncated?)";
+            return false;
+        }
+        if (std::memcmp(p + at + 4, "IEND", 4) == 0)
+            return true;
+        at += 12 + size_t(len);
+    }
+    *why = "PNG has no IEND chunk (truncated?)";
+    return false;
+}
+
 ImageSpec rgba_spec(const mvr_image_view *v, TypeDesc type)
 {
     return ImageSpec(int(v->width), int(v->height), 4, type);
@@ -146,6 +168,9 @@ extern "C" mvr_result mvr_image_decode(const void *data, size_t size, const char
             return fail(error, MVR_ERROR_UNSUPPORTED,
                         std::string("mvr_image_decode: unknown image format (") + (format_hint ? format_hint : "no type") +
                             "); PNG and JPEG are read");
+        std::string why;
+        if (name == "image.png" && !png_framing_ok(bytes, size, &why))
+            return fail(error, MVR_ERROR_INVALID_ASSET, "mvr_image_decode: " + why);
         Filesystem::IOMemReader mem(bytes, size);
         auto in = ImageInput::open(name, nullptr, &mem);
         if (!in)
