@@ -1,7 +1,6 @@
 /* mvr render: a demo scene (or, with the glTF loader, a file) into N views,
  * one PNG per view plus a contact sheet, and the frame's stats. */
 #include <errno.h>
-#include <stdarg.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -260,17 +259,6 @@ static int parse(int argc, char **argv, render_options *o)
 }
 
 /* mkdir -p: creates the directory and any missing parents. */
-/* mvr_error_set for the CLI (the library's helper is internal). */
-static mvr_result mvr_error_set_cli(mvr_error *e, mvr_result r, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    e->result = r;
-    vsnprintf(e->message, sizeof e->message, fmt, ap);
-    va_end(ap);
-    return r;
-}
-
 static bool make_dir(const char *path)
 {
     char buf[4096];
@@ -368,9 +356,12 @@ static mvr_result camera_views(const mvr_scene *scene, uint32_t k, uint32_t n, d
 {
     mvr_node_id node = mvr_scene_camera_node(scene, k);
     mvr_view_desc base;
-    if (!node.id || mvr_scene_camera_view(scene, node, &base) != MVR_OK)
-        return mvr_error_set_cli(err, MVR_ERROR_INVALID_ARGUMENT, "the file has %u camera nodes; --camera %u is not one",
-                                 mvr_scene_camera_node_count(scene), k);
+    if (!node.id || mvr_scene_camera_view(scene, node, &base) != MVR_OK) {
+        err->result = MVR_ERROR_INVALID_ARGUMENT;
+        snprintf(err->message, sizeof err->message, "the file has %u camera nodes; --camera %u is not one",
+                 mvr_scene_camera_node_count(scene), k);
+        return err->result;
+    }
     mvr_view_desc *v = calloc(n, sizeof *v);
     if (!v)
         return MVR_ERROR_OUT_OF_MEMORY;
