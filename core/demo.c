@@ -233,7 +233,7 @@ static void build_city(builder *b)
     ground.base_color.image = image(b, DEMO_CHECKER, 64, asphalt0, asphalt1, 5);
     node(b, mesh(b, SHAPE_PLANE, 100.0f, 50.0f, 100.0f, material(b, &ground), false, "ground"), 0, 0, 0, AXIS_Y, 0, 1, 1,
          1);
-    /* 64 textured facade materials + 8 plain ones */
+    /* 64 textured facade materials (two texture sizes) + 8 plain ones */
     enum { TEXTURED = 64, PLAIN = 8, GRID = 64 };
     mvr_material_id mats[TEXTURED + PLAIN];
     for (uint32_t i = 0; i < TEXTURED + PLAIN; ++i) {
@@ -245,7 +245,8 @@ static void build_city(builder *b)
                            (uint8_t)(90 + (h >> 19) % 100), 255};
         uint8_t lit[4] = {(uint8_t)(200 + (h >> 5) % 55), (uint8_t)(190 + (h >> 13) % 60), 140, 255};
         if (i < TEXTURED) {
-            m.base_color.image = image(b, DEMO_WINDOWS, 64, wall, lit, i);
+            /* mixed sizes: three quarters 64x64, a quarter 128x128 (two texture arrays) */
+            m.base_color.image = image(b, DEMO_WINDOWS, i % 4 == 3 ? 128 : 64, wall, lit, i);
         } else {
             m.base_color_factor[0] = (float)wall[0] / 255.0f;
             m.base_color_factor[1] = (float)wall[1] / 255.0f;

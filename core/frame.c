@@ -130,10 +130,12 @@ static int compare_draws(const void *pa, const void *pb)
             return a->depth > b->depth ? -1 : 1;
         return a->block < b->block ? -1 : (a->block > b->block);
     }
-    /* fewest state changes: program (features), then material (textures),
-     * then front to back inside a material */
+    /* fewest state changes: program (features), texture arrays (groups),
+     * material (page, textures), then front to back inside a material */
     if (a->features != b->features)
         return a->features < b->features ? -1 : 1;
+    if (a->group_key != b->group_key)
+        return a->group_key < b->group_key ? -1 : 1;
     if (a->material_page != b->material_page)
         return a->material_page < b->material_page ? -1 : 1;
     if (a->material != b->material)
@@ -199,7 +201,7 @@ static void pack_lights(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin)
 }
 
 mvr_result mvr_frame_build(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin, uint32_t stride,
-                           uint32_t material_capacity, char *why, size_t why_size)
+                           uint32_t material_capacity, const mvr_batch_plan *plan, char *why, size_t why_size)
 {
     if (material_capacity == 0) {
         mvr_str_copy(why, why_size, "material capacity 0");
@@ -264,6 +266,19 @@ mvr_result mvr_frame_build(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin, u
             d->depth = (float)mvr_dvec3_length(mvr_dvec3_sub(mvr_dmat4_transform_point(w, center), origin));
             /* material index: the default material sits after the scene's */
             uint32_t material_slot = p->material == MVR_NO_INDEX ? s->material_count : p->material;
+            d->group_key = 0;
+            if (plan) {
+                uint32_t neutral = mvr_batch_plan_neutral_features(plan, material_slot);
+                if (mat->unlit) /* unlit reads the base color only */
+                    neutral &= MVR_FEATURE_BASE_COLOR_TEX;
+                /* a white layer is white at any coordinates: reading the
+                 * primitive's TEXCOORD_0 for it keeps the textured materials'
+                 * program */
+                if (neutral && p->uv0)
+                    neutral |= MVR_FEATURE_UV0;
+                d->features |= MVR_FEATURE_MATERIAL_ARRAYS | neutral;
+                d->group_key = mvr_batch_plan_group_key(plan, material_slot);
+            }
             d->material_page = material_slot / material_capacity;
             pack_draw_block(f->draw_blocks + (size_t)d->block * stride, w, origin,
                             material_slot % material_capacity);

@@ -7,6 +7,7 @@
 #ifndef MVR_FRAME_H
 #define MVR_FRAME_H
 
+#include "batch_plan.h"
 #include "scene_internal.h"
 #include "shader_gen.h"
 
@@ -30,6 +31,7 @@ typedef struct mvr_draw {
     uint32_t features;           /* mesh feature bits this draw needs */
     uint32_t block;              /* its per-draw block in mvr_frame.draw_blocks */
     uint32_t material_page;      /* which block-sized page of the material table it reads */
+    uint64_t group_key;          /* texture arrays it binds (array path; 0 otherwise) */
     mvr_pass_kind pass;
     bool mirrored;               /* negative determinant: front faces wind clockwise */
     float depth;                 /* distance from the origin to its bounds' center */
@@ -53,10 +55,12 @@ typedef struct mvr_frame {
  * block_stride >= MVR_DRAW_BLOCK_SIZE (the GL's uniform offset alignment);
  * material_capacity: materials per table block (the table is paged; a draw's
  * block holds its index within its page). The default material's slot is
- * the scene's material_count. */
+ * the scene's material_count. plan: the array path's batch plan (draws then
+ * sample texture arrays, white layers fill roles a material lacks, and draws
+ * sort by the arrays they bind); NULL on the per-material path. */
 mvr_result mvr_frame_build(mvr_frame *frame, const mvr_scene *scene, mvr_dvec3 origin,
-                           uint32_t block_stride, uint32_t material_capacity, char *why,
-                           size_t why_size);
+                           uint32_t block_stride, uint32_t material_capacity,
+                           const mvr_batch_plan *plan, char *why, size_t why_size);
 void mvr_frame_free(mvr_frame *frame);
 
 /* Mesh feature bits of a primitive drawn with a material. */

@@ -6,6 +6,7 @@
 
 #include "renderer_internal.h"
 
+
 static GLenum gl_filter(mvr_filter f, bool min)
 {
     switch (f) {
@@ -84,22 +85,6 @@ static uint32_t mip_levels(uint32_t w, uint32_t h)
     return n;
 }
 
-static bool filter_uses_mipmaps(mvr_filter f)
-{
-    switch (f) {
-    case MVR_FILTER_DEFAULT: /* linear-mipmap-linear */
-    case MVR_FILTER_NEAREST_MIPMAP_NEAREST:
-    case MVR_FILTER_LINEAR_MIPMAP_NEAREST:
-    case MVR_FILTER_NEAREST_MIPMAP_LINEAR:
-    case MVR_FILTER_LINEAR_MIPMAP_LINEAR:
-        return true;
-    case MVR_FILTER_NEAREST:
-    case MVR_FILTER_LINEAR:
-        return false;
-    }
-    return true;
-}
-
 /* Whether any material samples the image with a mipmapped minification filter. */
 static bool image_needs_mipmaps(const mvr_scene *s, uint32_t image)
 {
@@ -108,7 +93,7 @@ static bool image_needs_mipmaps(const mvr_scene *s, uint32_t image)
         const mvr_texture_ref *roles[5] = {&m->base_color, &m->metallic_roughness, &m->normal, &m->occlusion,
                                            &m->emissive};
         for (int k = 0; k < 5; ++k)
-            if (roles[k]->image.id == image + 1 && filter_uses_mipmaps(roles[k]->sampler.min_filter))
+            if (roles[k]->image.id == image + 1 && mvr_sampler_uses_mipmaps(&roles[k]->sampler))
                 return true;
     }
     return false;
@@ -152,6 +137,81 @@ static GLuint texture_for(mvr_renderer *r, const mvr_scene *s, uint32_t image, b
     return t;
 }
 
+/* Array path: one GL_TEXTURE_2D_ARRAY per plan group, layers in plan order,
+ * white for a group's neutral layer; mips generated for the whole array. */
+static mvr_result upload_arrays(mvr_renderer *r, const mvr_scene *s)
+{
+    mvr_gpu_scene *g = &r->gpu;
+    const mvr_gl_api_table *gl = r->gl;
+    mvr_result res = mvr_batch_plan_build(&g->plan, s, (uint32_t)r->ctx->caps.limits.max_array_texture_layers);
+    if (res != MVR_OK)
+        return mvr_renderer_fail(r, res, "batch plan: out of memory");
+    for (uint32_t n = 0; n < g->plan.note_count; ++n)
+        mvr_log(&r->logger, MVR_LOG_DEBUG, MVR_LOG_ID_GENERAL, "mvr: batch plan: %s", g->plan.notes[n]);
+    uint32_t count = g->plan.group_count;
+    g->group_textures = calloc(count ? count : 1, sizeof *g->group_textures);
+    g->group_samplers = calloc(count ? count : 1, sizeof *g->group_samplers);
+    if (!g->group_textures || !g->group_samplers)
+        return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "texture arrays: out of memory");
+    uint8_t *white = NULL;
+    gl->PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    for (uint32_t k = 0; k < count; ++k) {
+        const mvr_texture_group *grp = &g->plan.groups[k];
+        GLuint t = 0;
+        gl->GenTextures(1, &t);
+        g->group_textures[k] = t;
+        mvr_state_texture(&r->state, 0, GL_TEXTURE_2D_ARRAY, t);
+        gl->TexStorage3D(GL_TEXTURE_2D_ARRAY, (GLsizei)grp->levels, grp->srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8,
+                         (GLsizei)grp->width, (GLsizei)grp->height, (GLsizei)grp->layer_count);
+        for (uint32_t layer = 0; layer < grp->layer_count; ++layer) {
+            const uint8_t *pixels;
+            uint32_t image = grp->layer_images[layer];
+            if (image == MVR_NO_INDEX) {
+                if (!white) {
+                    size_t bytes = (size_t)grp->width * grp->height * 4;
+                    white = malloc(bytes);
+                    if (!white)
+                        return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "texture arrays: out of memory");
+                    memset(white, 255, bytes);
+                } else {
+                    uint8_t *w = realloc(white, (size_t)grp->width * grp->height * 4);
+                    if (!w) {
+                        free(white);
+                        return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "texture arrays: out of memory");
+                    }
+                    white = w;
+                    memset(white, 255, (size_t)grp->width * grp->height * 4);
+                }
+                pixels = white;
+            } else {
+                pixels = s->images[image].rgba;
+            }
+            gl->TexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, (GLint)layer, (GLsizei)grp->width,
+                              (GLsizei)grp->height, 1, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
+            r->upload_bytes += (uint64_t)grp->width * grp->height * 4;
+        }
+        if (grp->levels > 1)
+            gl->GenerateMipmap(GL_TEXTURE_2D_ARRAY);
+        g->group_samplers[k] = sampler_for(r, &grp->sampler);
+    }
+    gl->PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    free(white);
+    return MVR_OK;
+}
+
+static void release_arrays(mvr_renderer *r)
+{
+    mvr_gpu_scene *g = &r->gpu;
+    for (uint32_t k = 0; g->group_textures && k < g->plan.group_count; ++k) {
+        mvr_state_forget_texture(&r->state, g->group_textures[k]);
+        r->gl->DeleteTextures(1, &g->group_textures[k]);
+    }
+    free(g->group_textures);
+    free(g->group_samplers);
+    g->group_textures = g->group_samplers = NULL;
+    mvr_batch_plan_free(&g->plan);
+}
+
 static void release_geometry(mvr_renderer *r)
 {
     mvr_gpu_scene *g = &r->gpu;
@@ -168,6 +228,7 @@ static void release_geometry(mvr_renderer *r)
     free(g->primitives);
     g->primitives = NULL;
     g->primitive_count = 0;
+    release_arrays(r);
     for (uint32_t i = 0; i < g->texture_count; ++i) {
         mvr_state_forget_texture(&r->state, g->textures[i].texture);
         gl->DeleteTextures(1, &g->textures[i].texture);
@@ -280,6 +341,17 @@ static mvr_result upload_materials(mvr_renderer *r, const mvr_scene *s)
         const mvr_material_desc *m = mvr_scene_material(s, i < s->material_count ? i : MVR_NO_INDEX);
         size_t at = (size_t)(i / cap) * (size_t)g->material_page_stride + (size_t)(i % cap) * MVR_MATERIAL_BLOCK_SIZE;
         mvr_material_pack(m, data + at);
+        if (g->arrays) {
+            /* the array layers of each role (std140: ivec4 layers at 48, extra.x at 64) */
+            const mvr_material_slots *ms = &g->plan.materials[i];
+            int32_t layers[4], emissive;
+            for (int k = 0; k < 4; ++k)
+                layers[k] = ms->layer[k] == MVR_NO_GROUP ? 0 : ms->layer[k];
+            emissive = ms->layer[4] == MVR_NO_GROUP ? 0 : ms->layer[4];
+            memcpy(data + at + 48, layers, sizeof layers);
+            memcpy(data + at + 64, &emissive, sizeof emissive);
+            continue;
+        }
         const mvr_texture_ref *roles[5] = {&m->base_color, &m->metallic_roughness, &m->normal,
                                            &m->occlusion, &m->emissive};
         for (int k = 0; k < 5; ++k) {
@@ -315,14 +387,24 @@ mvr_result mvr_gpu_scene_sync(mvr_renderer *r, const mvr_scene *s)
         g->scene_serial = mvr_scene_serial(s);
     }
     mvr_result res = MVR_OK;
+    bool arrays = r->material_path == MVR_MATERIAL_PATH_ARRAYS;
     bool geometry = !same_scene || g->geometry_version != s->geometry_version;
+    bool materials = geometry || g->material_version != s->material_version;
     if (geometry) {
         res = upload_geometry(r, s);
         if (res != MVR_OK)
             return res;
         g->geometry_version = s->geometry_version;
     }
-    if (geometry || g->material_version != s->material_version) {
+    if (materials && arrays) {
+        /* the plan depends on images and materials: rebuilt with either */
+        release_arrays(r);
+        res = upload_arrays(r, s);
+        if (res != MVR_OK)
+            return res;
+    }
+    g->arrays = arrays;
+    if (materials) {
         res = upload_materials(r, s);
         if (res != MVR_OK)
             return res;

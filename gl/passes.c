@@ -128,6 +128,8 @@ typedef struct pass_context {
     int32_t view_base;           /* within the bound view block */
     uint32_t last_features;      /* program lookup cache */
     mvr_program_entry *last_program;
+    uint8_t *groups_used;        /* array path: groups sampled in this pass */
+    uint32_t groups_used_count;
 } pass_context;
 
 static mvr_result bind_program(pass_context *pc, uint32_t features)
@@ -196,12 +198,28 @@ static mvr_result draw_list(pass_context *pc, mvr_pass_kind kind)
                             (GLintptr)d->material_page * g->material_page_stride,
                             (GLsizeiptr)r->material_capacity * MVR_MATERIAL_BLOCK_SIZE);
         uint32_t slot = d->material == MVR_NO_INDEX ? g->material_count - 1 : d->material;
-        const mvr_gpu_material *m = &g->materials[slot];
-        for (GLuint k = 0; k < 5; ++k) {
-            if (!(d->features & role_bits[k]))
-                continue;
-            mvr_state_texture(st, k, GL_TEXTURE_2D, m->textures[k]);
-            mvr_state_sampler(st, k, m->samplers[k]);
+        if (g->arrays) {
+            /* one array per role and group: binds change only at group boundaries */
+            const mvr_material_slots *ms = &g->plan.materials[slot];
+            for (GLuint k = 0; k < 5; ++k) {
+                if (!(d->features & role_bits[k]) || ms->group[k] == MVR_NO_GROUP)
+                    continue;
+                uint16_t grp = ms->group[k];
+                mvr_state_texture(st, k, GL_TEXTURE_2D_ARRAY, g->group_textures[grp]);
+                mvr_state_sampler(st, k, g->group_samplers[grp]);
+                if (pc->groups_used && !pc->groups_used[grp]) {
+                    pc->groups_used[grp] = 1;
+                    pc->groups_used_count++;
+                }
+            }
+        } else {
+            const mvr_gpu_material *m = &g->materials[slot];
+            for (GLuint k = 0; k < 5; ++k) {
+                if (!(d->features & role_bits[k]))
+                    continue;
+                mvr_state_texture(st, k, GL_TEXTURE_2D, m->textures[k]);
+                mvr_state_sampler(st, k, m->samplers[k]);
+            }
         }
         bool double_sided = (d->features & MVR_FEATURE_DOUBLE_SIDED) != 0;
         mvr_state_cull(st, !double_sided, d->mirrored ? GL_CW : GL_CCW);
@@ -216,13 +234,19 @@ static mvr_result draw_list(pass_context *pc, mvr_pass_kind kind)
     return MVR_OK;
 }
 
+/* The per-draw baseline re-binds textures and uniform ranges every draw. */
+static void st_rebind_setup(mvr_renderer *r)
+{
+    r->state.rebind_always = r->material_path == MVR_MATERIAL_PATH_PER_DRAW;
+}
+
 mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, const mvr_view_set *views,
                                    mvr_target *t, const mvr_render_desc *desc, mvr_view_path path)
 {
     char why[256] = "";
     uint32_t stride = (uint32_t)align_up(MVR_DRAW_BLOCK_SIZE, (GLsizeiptr)r->ubo_alignment);
     mvr_result res = mvr_frame_build(&r->frame, scene, views->origin, stride, r->material_capacity,
-                                     why, sizeof why);
+                                     r->gpu.arrays ? &r->gpu.plan : NULL, why, sizeof why);
     if (res != MVR_OK)
         return mvr_renderer_fail(r, res, "frame: %s", why);
     if (r->frame.lights_dropped)
@@ -239,8 +263,12 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
     if (max_views > VIEWS_PER_BLOCK)
         max_views = VIEWS_PER_BLOCK;
     view_chunk *chunks = malloc(views->count * sizeof *chunks);
-    if (!chunks)
+    uint8_t *groups_used = r->gpu.arrays ? calloc(r->gpu.plan.group_count + 1, 1) : NULL;
+    if (!chunks || (r->gpu.arrays && !groups_used)) {
+        free(chunks);
+        free(groups_used);
         return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "render: out of memory");
+    }
     uint32_t chunk_count = make_chunks(views, t, multiview, max_views, chunks);
 
     pass_context pc;
@@ -249,6 +277,8 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
     pc.scene = scene;
     pc.lay = &lay;
     pc.desc = desc;
+    pc.groups_used = groups_used;
+    st_rebind_setup(r);
     if (t->internal_format == GL_RGBA8)
         pc.output_features |= MVR_FEATURE_SRGB_OUTPUT;
     if (desc->tone_map == MVR_TONE_MAP_ACES)
@@ -299,6 +329,14 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
         if (partial)
             mvr_state_scissor_test(st, false);
 
+        /* each pass binds what it samples (a few binds), so its stats stand
+         * alone: texture_binds = groups used (arrays) or material changes */
+        mvr_state_forget_textures(st);
+        mvr_state_counters before = st->counters;
+        uint32_t draws_before = r->stats.draws;
+        if (groups_used)
+            memset(groups_used, 0, r->gpu.plan.group_count + 1);
+        pc.groups_used_count = 0;
         uint32_t block = ch->base / VIEWS_PER_BLOCK;
         mvr_state_ubo_range(st, MVR_BLOCK_VIEWS, r->ring.buffer,
                             lay.views + (GLintptr)block * view_block_stride, VIEW_BLOCK_SIZE);
@@ -312,8 +350,21 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
         r->stats.passes++;
         r->stats.multiview_passes += mv_pass;
         r->stats.views += ch->count;
+        if (r->pass_stats_count < MVR_MAX_PASS_STATS) {
+            mvr_pass_stats *ps = &r->pass_stats[r->pass_stats_count++];
+            ps->first_view = ch->base;
+            ps->views = ch->count;
+            ps->multiview = mv_pass;
+            ps->draws = r->stats.draws - draws_before;
+            ps->program_binds = st->counters.program_binds - before.program_binds;
+            ps->texture_binds = st->counters.texture_binds - before.texture_binds;
+            ps->ubo_range_binds = st->counters.ubo_range_binds - before.ubo_range_binds;
+            ps->texture_groups = pc.groups_used_count;
+        }
     }
+    st->rebind_always = false;
     free(chunks);
+    free(groups_used);
     mvr_ring_end_frame(r);
     return res;
 }

@@ -17,6 +17,37 @@ const char *mvr_view_path_name(mvr_view_path path)
     return NULL;
 }
 
+const char *mvr_material_path_name(mvr_material_path path)
+{
+    switch (path) {
+    case MVR_MATERIAL_PATH_AUTO: return "auto";
+    case MVR_MATERIAL_PATH_ARRAYS: return "arrays";
+    case MVR_MATERIAL_PATH_PER_MATERIAL: return "per_material";
+    case MVR_MATERIAL_PATH_PER_DRAW: return "per_draw";
+    }
+    return NULL;
+}
+
+/* MVR_MATERIAL_PATH=arrays|per_material|per_draw|auto overrides the descriptor. */
+static mvr_material_path env_material_path(mvr_material_path from_desc, const mvr_logger *logger)
+{
+    const char *env = getenv("MVR_MATERIAL_PATH");
+    mvr_material_path p = from_desc;
+    if (env && *env) {
+        bool found = false;
+        for (int k = MVR_MATERIAL_PATH_AUTO; k <= MVR_MATERIAL_PATH_PER_DRAW; ++k)
+            if (strcmp(env, mvr_material_path_name((mvr_material_path)k)) == 0) {
+                p = (mvr_material_path)k;
+                found = true;
+            }
+        if (!found)
+            mvr_log(logger, MVR_LOG_WARNING, MVR_LOG_ID_GENERAL,
+                    "mvr: MVR_MATERIAL_PATH=%s is not auto, arrays, per_material or per_draw; ignored", env);
+    }
+    /* 2D texture arrays are core in GLES 3.0 and GL 3.0: auto is always arrays */
+    return p == MVR_MATERIAL_PATH_AUTO ? MVR_MATERIAL_PATH_ARRAYS : p;
+}
+
 const char *mvr_color_format_name(mvr_color_format format)
 {
     switch (format) {
@@ -84,6 +115,10 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
         return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
                              "mvr_renderer_create: view_path %d is not an mvr_view_path",
                              (int)desc->view_path);
+    if (!mvr_material_path_name(desc->material_path))
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
+                             "mvr_renderer_create: material_path %d is not an mvr_material_path",
+                             (int)desc->material_path);
     mvr_renderer *r = calloc(1, sizeof *r);
     if (!r)
         return mvr_error_set(error, MVR_ERROR_OUT_OF_MEMORY, "mvr_renderer_create: out of memory");
@@ -91,6 +126,7 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
     r->gl = &desc->context->gl;
     r->logger = desc->logger.fn ? desc->logger : desc->context->logger;
     r->requested_path = env_view_path(desc->view_path, &r->logger);
+    r->material_path = env_material_path(desc->material_path, &r->logger);
     const mvr_caps *c = &r->ctx->caps;
     r->reversed_z = c->ext.ext_clip_control;
     r->ubo_alignment = (uint32_t)(c->limits.uniform_buffer_offset_alignment > 0
@@ -291,6 +327,7 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
     r->frame_serial++;
     memset(&r->stats, 0, sizeof r->stats);
     r->stats.gpu_ms = -1.0;
+    r->pass_stats_count = 0;
 
     if (r->timer.timestamps) {
         mvr_state_draw_framebuffer(&r->state, 0); /* never time with a multiview FBO bound */
@@ -318,6 +355,8 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
     st->view_upload_bytes = r->view_upload_bytes;
     st->programs_compiled = r->compiled_this_frame;
     st->reversed_z = r->reversed_z;
+    st->material_path = r->material_path;
+    st->texture_groups = r->gpu.arrays ? r->gpu.plan.group_count : 0;
     st->cpu_ms = thread_cpu_ms() - cpu_start;
     return res;
 }
@@ -337,6 +376,14 @@ void mvr_renderer_get_stats(mvr_renderer *r, mvr_frame_stats *out)
         r->timer.pending = false;
     }
     *out = r->stats;
+}
+
+bool mvr_renderer_get_pass_stats(const mvr_renderer *r, uint32_t index, mvr_pass_stats *out)
+{
+    if (!r || !out || index >= r->pass_stats_count)
+        return false;
+    *out = r->pass_stats[index];
+    return true;
 }
 
 mvr_result mvr_renderer_read_layer(mvr_renderer *r, mvr_target *t, uint32_t layer,

@@ -3,6 +3,7 @@
 #ifndef MVR_RENDERER_INTERNAL_H
 #define MVR_RENDERER_INTERNAL_H
 
+#include "batch_plan.h"
 #include "context_internal.h"
 #include "frame.h"
 #include "program.h"
@@ -55,7 +56,11 @@ typedef struct mvr_gpu_scene {
     uint32_t texture_count, texture_cap;
     mvr_gpu_sampler *samplers;
     uint32_t sampler_count, sampler_cap;
-    mvr_gpu_material *materials; /* scene materials + the default one */
+    mvr_gpu_material *materials; /* scene materials + the default one (per-material paths) */
+    bool arrays;                 /* uploaded for the array path */
+    mvr_batch_plan plan;         /* array path: texture groups and material slots */
+    GLuint *group_textures;      /* one GL_TEXTURE_2D_ARRAY per plan group */
+    GLuint *group_samplers;
     uint32_t material_count;
     GLuint material_ubo;
     uint32_t material_pages;
@@ -99,6 +104,7 @@ struct mvr_renderer {
     mvr_logger logger;
     char last_error[MVR_ERROR_MESSAGE_SIZE];
     mvr_view_path requested_path;
+    mvr_material_path material_path; /* resolved: never AUTO */
     bool reversed_z;
     uint32_t ubo_alignment;
     uint32_t material_capacity;
@@ -111,6 +117,9 @@ struct mvr_renderer {
     mvr_timer timer;
     uint64_t frame_serial;
     mvr_frame_stats stats;
+#define MVR_MAX_PASS_STATS 256
+    mvr_pass_stats pass_stats[MVR_MAX_PASS_STATS];
+    uint32_t pass_stats_count;
     uint32_t compiled_this_frame;
     uint64_t upload_bytes, view_upload_bytes;
 };

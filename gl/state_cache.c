@@ -39,9 +39,11 @@ void mvr_state_invalidate(mvr_state_cache *s)
 {
     const mvr_gl_api_table *gl = s->gl;
     mvr_state_counters counters = s->counters;
+    bool rebind = s->rebind_always;
     memset(s, 0xFF, sizeof *s);
     s->gl = gl;
     s->counters = counters;
+    s->rebind_always = rebind;
     s->known = false;
     for (int i = 0; i < MVR_STATE_UBO_BINDINGS; ++i)
         s->ubo[i].size = -1;
@@ -100,7 +102,7 @@ void mvr_state_ubo_range(mvr_state_cache *s, GLuint index, GLuint buffer, GLintp
                          GLsizeiptr size)
 {
     mvr_ubo_binding *b = &s->ubo[index];
-    if (b->buffer == buffer && b->offset == offset && b->size == size)
+    if (b->buffer == buffer && b->offset == offset && b->size == size && !s->rebind_always)
         return;
     s->gl->BindBufferRange(GL_UNIFORM_BUFFER, index, buffer, offset, size);
     b->buffer = buffer;
@@ -119,7 +121,7 @@ static void active_unit(mvr_state_cache *s, GLuint unit)
 
 void mvr_state_texture(mvr_state_cache *s, GLuint unit, GLenum target, GLuint texture)
 {
-    if (s->textures[unit] == texture && s->texture_targets[unit] == target)
+    if (s->textures[unit] == texture && s->texture_targets[unit] == target && !s->rebind_always)
         return;
     active_unit(s, unit);
     s->gl->BindTexture(target, texture);
@@ -232,6 +234,12 @@ void mvr_state_forget_texture(mvr_state_cache *s, GLuint texture)
     for (int i = 0; i < MVR_STATE_TEXTURE_UNITS; ++i)
         if (s->textures[i] == texture)
             s->textures[i] = 0;
+}
+
+void mvr_state_forget_textures(mvr_state_cache *s)
+{
+    for (int i = 0; i < MVR_STATE_TEXTURE_UNITS; ++i)
+        s->textures[i] = UNKNOWN_NAME;
 }
 
 void mvr_state_forget_buffer(mvr_state_cache *s, GLuint buffer)

@@ -44,6 +44,10 @@ typedef struct mvr_state_cache {
     GLenum blend_src_rgb, blend_dst_rgb, blend_src_a, blend_dst_a;
     GLenum clip_origin, clip_depth;
     mvr_state_counters counters;
+    /* Benchmark baseline (MVR_MATERIAL_PATH_PER_DRAW): texture and uniform
+     * range binds are sent even when nothing changed, as a renderer without
+     * state tracking would. */
+    bool rebind_always;
 } mvr_state_cache;
 
 /* GL's initial state (known = true), or all unknown (known = false). */
@@ -73,6 +77,8 @@ void mvr_state_clip_control(mvr_state_cache *s, GLenum origin, GLenum depth);
 
 /* Forgets a deleted object wherever the cache holds it (GL unbinds it too). */
 void mvr_state_forget_texture(mvr_state_cache *s, GLuint texture);
+/* Forgets every texture binding: the next bind of each unit is sent. */
+void mvr_state_forget_textures(mvr_state_cache *s);
 void mvr_state_forget_buffer(mvr_state_cache *s, GLuint buffer);
 void mvr_state_forget_framebuffer(mvr_state_cache *s, GLuint fbo);
 void mvr_state_forget_program(mvr_state_cache *s, GLuint program);

@@ -158,7 +158,7 @@ static void json_bools(json_writer *w, const char *section, const bool_field *f,
 
 static void print_json(const mvr_context *ctx, const mvr_caps *c)
 {
-    json_writer w = {stdout, 0, {false}};
+    json_writer w = {stdout, 0, {false}, {0}};
     json_begin_object(&w, NULL);
     json_string(&w, "provider", mvr_context_provider_name(mvr_context_get_provider(ctx)));
     json_string(&w, "api", mvr_gl_api_name(c->api));

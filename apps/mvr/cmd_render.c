@@ -25,6 +25,7 @@ typedef struct render_options {
     const char *out_dir;
     const char *stats_file;
     mvr_view_path view_path;
+    mvr_material_path material_path;
     mvr_color_format format;
     bool format_set;
     bool exr;                    /* output EXR (linear float) instead of PNG */
@@ -52,6 +53,8 @@ static void render_usage(FILE *out)
             "  --size WxH          layer size in pixels (default: 640x480)\n"
             "  --out DIR           output directory (default: out), created if missing\n"
             "  --view-path P       auto | multiview | loop (default: auto; env MVR_VIEW_PATH)\n"
+            "  --material-path P   auto | arrays | per_material | per_draw (default: auto = arrays;\n"
+            "                      env MVR_MATERIAL_PATH)\n"
             "  --format F          png (8-bit sRGB) | exr (half float, linear) (default: png)\n"
             "  --target-format F   srgb8 | rgba8 | rgba16f (default: srgb8; rgba16f for exr)\n"
             "  --exposure X        linear exposure multiplier (default: 1)\n"
@@ -183,6 +186,18 @@ static int parse(int argc, char **argv, render_options *o)
                 return MVR_EXIT_USAGE;
             }
             ++i;
+        } else if (strcmp(a, "--material-path") == 0) {
+            bool found = false;
+            for (int k = MVR_MATERIAL_PATH_AUTO; k <= MVR_MATERIAL_PATH_PER_DRAW; ++k)
+                if (strcmp(v, mvr_material_path_name((mvr_material_path)k)) == 0) {
+                    o->material_path = (mvr_material_path)k;
+                    found = true;
+                }
+            if (!found) {
+                fprintf(stderr, "mvr render: --material-path takes auto, arrays, per_material or per_draw\n");
+                return MVR_EXIT_USAGE;
+            }
+            ++i;
         } else if (strcmp(a, "--format") == 0) {
             if (strcmp(v, "png") == 0 || strcmp(v, "exr") == 0)
                 o->exr = v[0] == 'e';
@@ -282,9 +297,10 @@ static bool make_dir(const char *path)
     return true;
 }
 
-static void write_stats_json(FILE *f, const mvr_frame_stats *s, const char *demo, uint32_t w, uint32_t h)
+static void write_stats_json(FILE *f, const mvr_renderer *r, const mvr_frame_stats *s, const char *demo, uint32_t w,
+                             uint32_t h)
 {
-    json_writer jw = {f, 0, {false}};
+    json_writer jw = {f, 0, {false}, {0}};
     json_begin_object(&jw, NULL);
     json_string(&jw, "scene", demo);
     json_int(&jw, "width", w);
@@ -293,6 +309,8 @@ static void write_stats_json(FILE *f, const mvr_frame_stats *s, const char *demo
     json_int(&jw, "views", s->views);
     json_int(&jw, "passes", s->passes);
     json_int(&jw, "multiview_passes", s->multiview_passes);
+    json_string(&jw, "material_path", mvr_material_path_name(s->material_path));
+    json_int(&jw, "texture_groups", s->texture_groups);
     json_int(&jw, "draws", s->draws);
     json_int(&jw, "program_binds", s->program_binds);
     json_int(&jw, "texture_binds", s->texture_binds);
@@ -306,6 +324,21 @@ static void write_stats_json(FILE *f, const mvr_frame_stats *s, const char *demo
         json_double(&jw, "gpu_ms", s->gpu_ms);
     else
         json_null(&jw, "gpu_ms");
+    json_begin_array(&jw, "pass_stats");
+    mvr_pass_stats ps;
+    for (uint32_t i = 0; mvr_renderer_get_pass_stats(r, i, &ps); ++i) {
+        json_begin_object(&jw, NULL);
+        json_int(&jw, "first_view", ps.first_view);
+        json_int(&jw, "views", ps.views);
+        json_bool(&jw, "multiview", ps.multiview);
+        json_int(&jw, "draws", ps.draws);
+        json_int(&jw, "program_binds", ps.program_binds);
+        json_int(&jw, "texture_binds", ps.texture_binds);
+        json_int(&jw, "ubo_range_binds", ps.ubo_range_binds);
+        json_int(&jw, "texture_groups", ps.texture_groups);
+        json_end_object(&jw);
+    }
+    json_end_array(&jw);
     json_end_object(&jw);
 }
 
@@ -439,7 +472,7 @@ int mvr_cmd_render(int argc, char **argv)
             goto done;
         }
     }
-    mvr_renderer_desc rd = {ctx, o.view_path, o.context.logger};
+    mvr_renderer_desc rd = {ctx, o.view_path, o.context.logger, o.material_path};
     if (mvr_renderer_create(&rd, &renderer, &err) != MVR_OK) {
         fprintf(stderr, "mvr render: %s\n", err.message);
         goto done;
@@ -500,7 +533,7 @@ int mvr_cmd_render(int argc, char **argv)
             fprintf(stderr, "mvr render: cannot write %s: %s\n", o.stats_file, strerror(errno));
             goto done;
         }
-        write_stats_json(f, &st, o.scene_file ? o.scene_file : o.demo, o.width, o.height);
+        write_stats_json(f, renderer, &st, o.scene_file ? o.scene_file : o.demo, o.width, o.height);
         fclose(f);
     }
     if (!o.quiet) {
@@ -511,6 +544,7 @@ int mvr_cmd_render(int argc, char **argv)
                mvr_view_path_name(st.view_path), st.passes, st.passes == 1 ? "" : "es", st.views,
                st.views == 1 ? "" : "s", c->limits.max_views_ovr);
         printf("  depth       %s\n", st.reversed_z ? "reversed-Z (clip control, float depth)" : "standard");
+        printf("  materials   %s: %u texture arrays\n", mvr_material_path_name(st.material_path), st.texture_groups);
         printf("  draws %u, program binds %u, texture binds %u, uniform range binds %u\n", st.draws,
                st.program_binds, st.texture_binds, st.ubo_range_binds);
         if (st.gpu_ms >= 0)

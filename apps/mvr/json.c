@@ -36,18 +36,20 @@ static void key_prefix(json_writer *w, const char *key)
     }
 }
 
-void json_begin_object(json_writer *w, const char *key)
+static void begin(json_writer *w, const char *key, char open, char close)
 {
     key_prefix(w, key);
-    fputc('{', w->out);
+    fputc(open, w->out);
     if (w->depth + 1 < (int)(sizeof w->need_comma / sizeof w->need_comma[0]))
         w->depth++;
     w->need_comma[w->depth] = false;
+    w->closer[w->depth] = close;
 }
 
-void json_end_object(json_writer *w)
+static void end(json_writer *w)
 {
     bool had_members = w->need_comma[w->depth];
+    char close = w->closer[w->depth] ? w->closer[w->depth] : '}';
     if (w->depth > 0)
         w->depth--;
     if (had_members) {
@@ -55,9 +57,29 @@ void json_end_object(json_writer *w)
         for (int i = 0; i < w->depth; ++i)
             fputs("  ", w->out);
     }
-    fputc('}', w->out);
+    fputc(close, w->out);
     if (w->depth == 0)
         fputc('\n', w->out);
+}
+
+void json_begin_object(json_writer *w, const char *key)
+{
+    begin(w, key, '{', '}');
+}
+
+void json_end_object(json_writer *w)
+{
+    end(w);
+}
+
+void json_begin_array(json_writer *w, const char *key)
+{
+    begin(w, key, '[', ']');
+}
+
+void json_end_array(json_writer *w)
+{
+    end(w);
 }
 
 void json_string(json_writer *w, const char *key, const char *value)

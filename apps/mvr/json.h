@@ -9,10 +9,13 @@ typedef struct json_writer {
     FILE *out;
     int depth;
     bool need_comma[32];
+    char closer[32];             /* '}' or ']' per depth */
 } json_writer;
 
-void json_begin_object(json_writer *w, const char *key);
+void json_begin_object(json_writer *w, const char *key); /* key NULL: top level or array element */
 void json_end_object(json_writer *w);
+void json_begin_array(json_writer *w, const char *key);
+void json_end_array(json_writer *w);
 void json_string(json_writer *w, const char *key, const char *value);
 void json_int(json_writer *w, const char *key, long long value);
 void json_double(json_writer *w, const char *key, double value);

@@ -472,6 +472,14 @@ typedef enum mvr_view_path {
 } mvr_view_path;
 const char *mvr_view_path_name(mvr_view_path path);
 
+typedef enum mvr_material_path {
+    MVR_MATERIAL_PATH_AUTO = 0,      /* arrays (env MVR_MATERIAL_PATH overrides) */
+    MVR_MATERIAL_PATH_ARRAYS,        /* textures grouped into 2D arrays, bound once per group per pass */
+    MVR_MATERIAL_PATH_PER_MATERIAL,  /* one 2D texture per image, bound when the material changes */
+    MVR_MATERIAL_PATH_PER_DRAW       /* benchmark baseline: texture and material range re-bound every draw */
+} mvr_material_path;
+const char *mvr_material_path_name(mvr_material_path path);
+
 typedef enum mvr_tone_map {
     MVR_TONE_MAP_NONE = 0,       /* clamp */
     MVR_TONE_MAP_ACES,           /* the fitted ACES curve of the Khronos glTF Sample Renderer */
@@ -482,6 +490,7 @@ typedef struct mvr_renderer_desc {
     mvr_context *context;        /* required; the renderer draws with it */
     mvr_view_path view_path;
     mvr_logger logger;           /* 0 = the context's */
+    mvr_material_path material_path;
 } mvr_renderer_desc;
 
 mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out, mvr_error *out_error);
@@ -550,12 +559,24 @@ typedef struct mvr_frame_stats {
     uint64_t view_upload_bytes;  /* per-view matrices */
     uint32_t programs_compiled;
     bool reversed_z;             /* depth mode: reversed-Z (clip control) or standard */
+    mvr_material_path material_path; /* the material path that ran */
+    uint32_t texture_groups;     /* texture arrays of the scene's batch plan (array path) */
     double cpu_ms;               /* submitting thread, render call */
     double gpu_ms;               /* timer queries; < 0 when not available */
 } mvr_frame_stats;
 
 /* Stats of the last render (waits for its GPU timer result where there is one). */
 void mvr_renderer_get_stats(mvr_renderer *renderer, mvr_frame_stats *out);
+
+typedef struct mvr_pass_stats {
+    uint32_t first_view, views;  /* the views (layers) the pass rendered */
+    bool multiview;
+    uint32_t draws, program_binds, texture_binds, ubo_range_binds;
+    uint32_t texture_groups;     /* distinct texture arrays the pass sampled (array path) */
+} mvr_pass_stats;
+
+/* Stats of pass `index` of the last render (the first 256 passes); false past the end. */
+bool mvr_renderer_get_pass_stats(const mvr_renderer *renderer, uint32_t index, mvr_pass_stats *out);
 
 
 /* ------------------------------------------------------------------ framing

@@ -7,6 +7,7 @@
  * left out): those counts repeat to < 1% on a shared machine, wall time does not.
  *
  * usage: bench_views [--demo NAME] [--size WxH] [--frames N] [--only VIEWS:PATH]
+ *                    [--views 1,2,4,6] [--material-path arrays|per_material|per_draw]
  */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
@@ -69,6 +70,8 @@ int main(int argc, char **argv)
     uint32_t w = 640, h = 480;
     int frames = 20;
     const char *only = NULL;
+    const char *views_list = "1,2,4,6";
+    mvr_material_path material_path = MVR_MATERIAL_PATH_ARRAYS;
     for (int i = 1; i + 1 < argc; i += 2) {
         if (strcmp(argv[i], "--demo") == 0)
             demo = argv[i + 1];
@@ -78,6 +81,12 @@ int main(int argc, char **argv)
             frames = atoi(argv[i + 1]);
         else if (strcmp(argv[i], "--only") == 0)
             only = argv[i + 1];
+        else if (strcmp(argv[i], "--views") == 0)
+            views_list = argv[i + 1];
+        else if (strcmp(argv[i], "--material-path") == 0)
+            for (int k = MVR_MATERIAL_PATH_ARRAYS; k <= MVR_MATERIAL_PATH_PER_DRAW; ++k)
+                if (strcmp(argv[i + 1], mvr_material_path_name((mvr_material_path)k)) == 0)
+                    material_path = (mvr_material_path)k;
     }
     if (frames < 1 || frames > 256)
         frames = 20;
@@ -88,13 +97,21 @@ int main(int argc, char **argv)
         return 1;
     }
     const mvr_caps *c = mvr_context_caps(ctx);
-    printf("# %s, %ux%u, %d frames after 3 warm-up, %s\n", demo, w, h, frames, c->renderer);
-    printf("%-6s %-10s %6s %6s %10s %10s %10s %10s\n", "views", "path", "passes", "draws", "wall_med", "wall_min",
-           "cpu_med", "cpu_min");
-    static const uint32_t counts[] = {1, 2, 4, 6};
+    printf("# %s, %ux%u, %d frames after 3 warm-up, material path %s, %s\n", demo, w, h, frames,
+           mvr_material_path_name(material_path), c->renderer);
+    printf("%-6s %-10s %6s %6s %7s %10s %10s %10s %10s\n", "views", "path", "passes", "draws", "tbinds", "wall_med",
+           "wall_min", "cpu_med", "cpu_min");
+    uint32_t counts[16], ncounts = 0;
+    for (const char *p = views_list; *p && ncounts < 16;) {
+        counts[ncounts++] = (uint32_t)strtoul(p, (char **)&p, 10);
+        if (*p == ',')
+            ++p;
+        else
+            break;
+    }
     static const mvr_view_path paths[] = {MVR_VIEW_PATH_MULTIVIEW, MVR_VIEW_PATH_LOOP};
     for (size_t p = 0; p < 2; ++p)
-        for (size_t k = 0; k < 4; ++k) {
+        for (size_t k = 0; k < ncounts; ++k) {
             char tag[32];
             snprintf(tag, sizeof tag, "%u:%s", counts[k], mvr_view_path_name(paths[p]));
             if (only && strcmp(only, tag) != 0)
@@ -106,7 +123,7 @@ int main(int argc, char **argv)
             mvr_renderer *r = NULL;
             mvr_target *t = NULL;
             mvr_demo_desc dd = {counts[k], w, h, {0}};
-            mvr_renderer_desc rd = {ctx, paths[p], {0}};
+            mvr_renderer_desc rd = {ctx, paths[p], {0}, material_path};
             mvr_target_desc td = {w, h, counts[k], MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0};
             if (mvr_demo_create(demo, &dd, &scene, &views, &err) != MVR_OK ||
                 mvr_renderer_create(&rd, &r, &err) != MVR_OK || mvr_target_create(r, &td, &t) != MVR_OK) {
@@ -122,8 +139,9 @@ int main(int argc, char **argv)
             mvr_renderer_get_stats(r, &st);
             qsort(times.wall, (size_t)frames, sizeof(double), compare_double);
             qsort(times.cpu, (size_t)frames, sizeof(double), compare_double);
-            printf("%-6u %-10s %6u %6u %10.2f %10.2f %10.2f %10.2f\n", counts[k], mvr_view_path_name(paths[p]),
-                   st.passes, st.draws, times.wall[frames / 2], times.wall[0], times.cpu[frames / 2], times.cpu[0]);
+            printf("%-6u %-10s %6u %6u %7u %10.2f %10.2f %10.2f %10.2f\n", counts[k], mvr_view_path_name(paths[p]),
+                   st.passes, st.draws, st.texture_binds, times.wall[frames / 2], times.wall[0], times.cpu[frames / 2],
+                   times.cpu[0]);
             fflush(stdout);
             mvr_target_destroy(t);
             mvr_renderer_destroy(r);

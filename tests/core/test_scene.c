@@ -134,7 +134,7 @@ static void frame_packs_draws_relative_to_origin(mvr_test_state *t)
     mvr_frame f;
     memset(&f, 0, sizeof f);
     char why[128];
-    CHECK(t, mvr_frame_build(&f, s, mvr_dvec3_make(1e7, 0, 0), 256, 64, why, sizeof why) == MVR_OK);
+    CHECK(t, mvr_frame_build(&f, s, mvr_dvec3_make(1e7, 0, 0), 256, 64, NULL, why, sizeof why) == MVR_OK);
     CHECK_EQ_INT(t, f.draw_count, 3);
     CHECK_EQ_INT(t, f.pass_count[MVR_PASS_OPAQUE], 1);
     CHECK_EQ_INT(t, f.pass_count[MVR_PASS_BLEND], 2);
@@ -151,7 +151,7 @@ static void frame_packs_draws_relative_to_origin(mvr_test_state *t)
     int32_t info[4];
     memcpy(info, f.draw_blocks + (size_t)o->block * 256 + 128, sizeof info);
     CHECK_EQ_INT(t, info[0], 0); /* material slot 0 */
-    CHECK(t, mvr_frame_build(&f, s, mvr_dvec3_make(0, 0, 0), 100, 64, why, sizeof why) != MVR_OK);
+    CHECK(t, mvr_frame_build(&f, s, mvr_dvec3_make(0, 0, 0), 100, 64, NULL, why, sizeof why) != MVR_OK);
     mvr_frame_free(&f);
     mvr_scene_destroy(s);
 }

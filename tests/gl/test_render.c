@@ -19,7 +19,7 @@ typedef struct rendered {
 
 static mvr_renderer *make_renderer(mvr_test_state *t, mvr_context *ctx, mvr_view_path path)
 {
-    mvr_renderer_desc rd = {ctx, path, {0}};
+    mvr_renderer_desc rd = {ctx, path, {0}, MVR_MATERIAL_PATH_AUTO};
     mvr_renderer *r = NULL;
     mvr_error err;
     CHECK_MSG(t, mvr_renderer_create(&rd, &r, &err) == MVR_OK, "%s", err.message);

@@ -1,0 +1,293 @@
+#include <stdlib.h>
+#include <string.h>
+
+#include "batch_plan.h"
+#include "shader_gen.h"
+
+static const char *const role_names[MVR_ROLE_COUNT] = {"base color", "metallic-roughness", "normal", "occlusion",
+                                                       "emissive"};
+static const uint32_t role_bits[MVR_ROLE_COUNT] = {MVR_FEATURE_BASE_COLOR_TEX, MVR_FEATURE_METAL_ROUGH_TEX,
+                                                   MVR_FEATURE_NORMAL_TEX, MVR_FEATURE_OCCLUSION_TEX,
+                                                   MVR_FEATURE_EMISSIVE_TEX};
+
+const mvr_texture_ref *mvr_material_role(const mvr_material_desc *m, uint32_t role)
+{
+    switch (role) {
+    case 0: return &m->base_color;
+    case 1: return &m->metallic_roughness;
+    case 2: return &m->normal;
+    case 3: return &m->occlusion;
+    default: return &m->emissive;
+    }
+}
+
+bool mvr_role_is_srgb(uint32_t role)
+{
+    return role == 0 || role == 4;
+}
+
+bool mvr_sampler_uses_mipmaps(const mvr_sampler_desc *s)
+{
+    switch (s->min_filter) {
+    case MVR_FILTER_NEAREST:
+    case MVR_FILTER_LINEAR:
+        return false;
+    case MVR_FILTER_DEFAULT:
+    case MVR_FILTER_NEAREST_MIPMAP_NEAREST:
+    case MVR_FILTER_LINEAR_MIPMAP_NEAREST:
+    case MVR_FILTER_NEAREST_MIPMAP_LINEAR:
+    case MVR_FILTER_LINEAR_MIPMAP_LINEAR:
+        return true;
+    }
+    return true;
+}
+
+/* Defaults resolved, so equal GL state compares equal. */
+static mvr_sampler_desc normalized(mvr_sampler_desc s)
+{
+    if (s.mag_filter == MVR_FILTER_DEFAULT)
+        s.mag_filter = MVR_FILTER_LINEAR;
+    if (s.min_filter == MVR_FILTER_DEFAULT)
+        s.min_filter = MVR_FILTER_LINEAR_MIPMAP_LINEAR;
+    if (s.wrap_s == MVR_WRAP_DEFAULT)
+        s.wrap_s = MVR_WRAP_REPEAT;
+    if (s.wrap_t == MVR_WRAP_DEFAULT)
+        s.wrap_t = MVR_WRAP_REPEAT;
+    return s;
+}
+
+static uint32_t full_chain(uint32_t w, uint32_t h)
+{
+    uint32_t n = 1, m = w > h ? w : h;
+    while (m > 1) {
+        m >>= 1;
+        n++;
+    }
+    return n;
+}
+
+static bool note(mvr_batch_plan *p, const char *fmt, ...) MVR_PRINTF(2, 3);
+static bool note(mvr_batch_plan *p, const char *fmt, ...)
+{
+    if (p->note_count == p->note_cap) {
+        uint32_t cap = p->note_cap ? p->note_cap * 2 : 8;
+        char **n = realloc(p->notes, cap * sizeof *n);
+        if (!n)
+            return false;
+        p->notes = n;
+        p->note_cap = cap;
+    }
+    char buf[256];
+    va_list ap;
+    va_start(ap, fmt);
+    mvr_str_vformat(buf, sizeof buf, fmt, ap);
+    va_end(ap);
+    size_t len = strlen(buf) + 1;
+    p->notes[p->note_count] = malloc(len);
+    if (!p->notes[p->note_count])
+        return false;
+    memcpy(p->notes[p->note_count++], buf, len);
+    return true;
+}
+
+static bool same_key(const mvr_texture_group *g, uint32_t role, uint32_t w, uint32_t h, bool srgb, uint32_t levels,
+                     const mvr_sampler_desc *s)
+{
+    return g->role == role && g->width == w && g->height == h && g->srgb == srgb && g->levels == levels &&
+           g->sampler.mag_filter == s->mag_filter && g->sampler.min_filter == s->min_filter &&
+           g->sampler.wrap_s == s->wrap_s && g->sampler.wrap_t == s->wrap_t;
+}
+
+/* The layer of an image in a group, added if new (identical pixels share one). */
+static bool layer_of(mvr_texture_group *g, const mvr_scene *s, uint32_t image, uint32_t *out)
+{
+    const scene_image *img = &s->images[image];
+    for (uint32_t k = 0; k < g->layer_count; ++k) {
+        uint32_t other = g->layer_images[k];
+        if (other == image ||
+            (other != MVR_NO_INDEX && s->images[other].hash == img->hash &&
+             memcmp(s->images[other].rgba, img->rgba, (size_t)img->width * img->height * 4) == 0)) {
+            *out = k;
+            return true;
+        }
+    }
+    if (g->layer_count == g->layer_cap) {
+        uint32_t cap = g->layer_cap ? g->layer_cap * 2 : 8;
+        uint32_t *n = realloc(g->layer_images, cap * sizeof *n);
+        if (!n)
+            return false;
+        g->layer_images = n;
+        g->layer_cap = cap;
+    }
+    g->layer_images[g->layer_count] = image;
+    *out = g->layer_count++;
+    return true;
+}
+
+/* Why an image starts a new group, relative to the role's first group. */
+static void explain(mvr_batch_plan *p, const mvr_texture_group *first, uint32_t role, uint32_t image,
+                    uint32_t material, uint32_t w, uint32_t h, bool srgb, uint32_t levels, const mvr_sampler_desc *s,
+                    bool full)
+{
+    if (full)
+        note(p, "%s image %u (material %u): group %u is full (GL_MAX_ARRAY_TEXTURE_LAYERS)", role_names[role],
+             image, material, (unsigned)(first - p->groups));
+    else if (first->width != w || first->height != h)
+        note(p, "%s image %u (material %u): size %ux%u differs from group %u (%ux%u)", role_names[role], image,
+             material, w, h, (unsigned)(first - p->groups), first->width, first->height);
+    else if (first->srgb != srgb)
+        note(p, "%s image %u (material %u): format differs from group %u", role_names[role], image, material,
+             (unsigned)(first - p->groups));
+    else if (first->levels != levels)
+        note(p, "%s image %u (material %u): mip count %u differs from group %u (%u)", role_names[role], image,
+             material, levels, (unsigned)(first - p->groups), first->levels);
+    else
+        note(p, "%s image %u (material %u): sampler (filters %d/%d, wrap %d/%d) differs from group %u",
+             role_names[role], image, material, (int)s->mag_filter, (int)s->min_filter, (int)s->wrap_s,
+             (int)s->wrap_t, (unsigned)(first - p->groups));
+}
+
+mvr_result mvr_batch_plan_build(mvr_batch_plan *p, const mvr_scene *s, uint32_t max_layers)
+{
+    mvr_batch_plan_free(p);
+    if (max_layers < 2)
+        max_layers = 2;
+    p->material_count = s->material_count + 1;
+    p->materials = malloc(p->material_count * sizeof *p->materials);
+    if (!p->materials)
+        return MVR_ERROR_OUT_OF_MEMORY;
+    for (uint32_t m = 0; m < p->material_count; ++m)
+        for (int r = 0; r < MVR_ROLE_COUNT; ++r)
+            p->materials[m].group[r] = p->materials[m].layer[r] = MVR_NO_GROUP;
+
+    for (uint32_t m = 0; m < s->material_count; ++m) {
+        const mvr_material_desc *md = &s->materials[m].desc;
+        for (uint32_t role = 0; role < MVR_ROLE_COUNT; ++role) {
+            const mvr_texture_ref *t = mvr_material_role(md, role);
+            if (!t->image.id)
+                continue;
+            uint32_t image = t->image.id - 1;
+            const scene_image *img = &s->images[image];
+            mvr_sampler_desc smp = normalized(t->sampler);
+            bool srgb = mvr_role_is_srgb(role);
+            uint32_t levels = mvr_sampler_uses_mipmaps(&smp) ? full_chain(img->width, img->height) : 1;
+            mvr_texture_group *first = NULL, *fit = NULL;
+            bool full = false;
+            for (uint32_t g = 0; g < p->group_count; ++g) {
+                mvr_texture_group *grp = &p->groups[g];
+                if (grp->role != role)
+                    continue;
+                if (!first)
+                    first = grp;
+                if (same_key(grp, role, img->width, img->height, srgb, levels, &smp)) {
+                    /* room, or the image is already a layer */
+                    bool present = false;
+                    for (uint32_t k = 0; k < grp->layer_count && !present; ++k)
+                        present = grp->layer_images[k] == image;
+                    if (present || grp->layer_count < max_layers) {
+                        fit = grp;
+                        break;
+                    }
+                    full = true;
+                }
+            }
+            if (!fit) {
+                if (first)
+                    explain(p, first, role, image, m, img->width, img->height, srgb, levels, &smp, full);
+                if (p->group_count == p->group_cap) {
+                    uint32_t cap = p->group_cap ? p->group_cap * 2 : 8;
+                    mvr_texture_group *n = realloc(p->groups, cap * sizeof *n);
+                    if (!n)
+                        return MVR_ERROR_OUT_OF_MEMORY;
+                    p->groups = n;
+                    p->group_cap = cap;
+                }
+                fit = &p->groups[p->group_count++];
+                memset(fit, 0, sizeof *fit);
+                fit->role = role;
+                fit->width = img->width;
+                fit->height = img->height;
+                fit->srgb = srgb;
+                fit->levels = levels;
+                fit->sampler = smp;
+                fit->neutral_layer = MVR_NO_INDEX;
+            }
+            uint32_t layer = 0;
+            if (!layer_of(fit, s, image, &layer))
+                return MVR_ERROR_OUT_OF_MEMORY;
+            p->materials[m].group[role] = (uint16_t)(fit - p->groups);
+            p->materials[m].layer[role] = (uint16_t)layer;
+        }
+    }
+
+    /* A material without a texture in a role that other materials sample
+     * reads a white layer of the role's first group: one program and no bind
+     * for both kinds. White is exact for base color, metallic-roughness,
+     * occlusion and emissive (the factor times 1.0); a "flat" normal texel
+     * (128, 128, 255) is not exactly (0, 0, 1), so normal maps keep their own
+     * variant. */
+    for (uint32_t role = 0; role < MVR_ROLE_COUNT; ++role) {
+        if (role == 2)
+            continue;
+        mvr_texture_group *first = NULL;
+        for (uint32_t g = 0; g < p->group_count && !first; ++g)
+            if (p->groups[g].role == role && p->groups[g].layer_count < max_layers)
+                first = &p->groups[g];
+        if (!first)
+            continue;
+        for (uint32_t m = 0; m < p->material_count; ++m) {
+            if (p->materials[m].group[role] != MVR_NO_GROUP)
+                continue;
+            if (first->neutral_layer == MVR_NO_INDEX) {
+                if (first->layer_count == first->layer_cap) {
+                    uint32_t cap = first->layer_cap ? first->layer_cap * 2 : 8;
+                    uint32_t *n = realloc(first->layer_images, cap * sizeof *n);
+                    if (!n)
+                        return MVR_ERROR_OUT_OF_MEMORY;
+                    first->layer_images = n;
+                    first->layer_cap = cap;
+                }
+                first->neutral_layer = first->layer_count;
+                first->layer_images[first->layer_count++] = MVR_NO_INDEX;
+            }
+            p->materials[m].group[role] = (uint16_t)(first - p->groups);
+            p->materials[m].layer[role] = (uint16_t)first->neutral_layer;
+        }
+    }
+    return MVR_OK;
+}
+
+void mvr_batch_plan_free(mvr_batch_plan *p)
+{
+    for (uint32_t g = 0; g < p->group_count; ++g)
+        free(p->groups[g].layer_images);
+    for (uint32_t n = 0; n < p->note_count; ++n)
+        free(p->notes[n]);
+    free(p->groups);
+    free(p->materials);
+    free(p->notes);
+    memset(p, 0, sizeof *p);
+}
+
+uint32_t mvr_batch_plan_neutral_features(const mvr_batch_plan *p, uint32_t slot)
+{
+    uint32_t f = 0;
+    if (slot >= p->material_count)
+        return 0;
+    for (int r = 0; r < MVR_ROLE_COUNT; ++r) {
+        uint16_t g = p->materials[slot].group[r];
+        if (g != MVR_NO_GROUP && p->groups[g].neutral_layer == p->materials[slot].layer[r])
+            f |= role_bits[r];
+    }
+    return f;
+}
+
+uint64_t mvr_batch_plan_group_key(const mvr_batch_plan *p, uint32_t slot)
+{
+    uint64_t k = 0;
+    if (slot >= p->material_count)
+        return 0;
+    for (int r = 0; r < MVR_ROLE_COUNT; ++r)
+        k = k << 12 | (uint64_t)(p->materials[slot].group[r] & 0xFFFu);
+    return k;
+}

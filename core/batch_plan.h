@@ -1,0 +1,61 @@
+/*
+ * The batch plan (backend-free): per texture role, the scene's images grouped
+ * by compatibility key (width, height, sRGB or linear, mip count, sampler);
+ * each group becomes one GL_TEXTURE_2D_ARRAY, one layer per distinct image.
+ * A material records per role (group, layer), so a pass binds each group once
+ * and draws pick their layers through the material table.
+ */
+#ifndef MVR_BATCH_PLAN_H
+#define MVR_BATCH_PLAN_H
+
+#include "scene_internal.h"
+
+#define MVR_ROLE_COUNT 5 /* base color, metallic-roughness, normal, occlusion, emissive */
+#define MVR_NO_GROUP UINT16_MAX
+
+typedef struct mvr_texture_group {
+    uint32_t role;
+    uint32_t width, height;
+    bool srgb;
+    uint32_t levels;             /* 1, or the full mip chain */
+    mvr_sampler_desc sampler;    /* normalized (defaults resolved) */
+    uint32_t *layer_images;      /* scene image per layer; MVR_NO_INDEX = the neutral (white) layer */
+    uint32_t layer_count, layer_cap;
+    uint32_t neutral_layer;      /* MVR_NO_INDEX until a material needs it */
+} mvr_texture_group;
+
+typedef struct mvr_material_slots {
+    uint16_t group[MVR_ROLE_COUNT];   /* MVR_NO_GROUP: the role is not sampled */
+    uint16_t layer[MVR_ROLE_COUNT];
+} mvr_material_slots;
+
+typedef struct mvr_batch_plan {
+    mvr_texture_group *groups;
+    uint32_t group_count, group_cap;
+    mvr_material_slots *materials;    /* scene materials + the default one */
+    uint32_t material_count;
+    char **notes;                     /* why images could not join a group */
+    uint32_t note_count, note_cap;
+} mvr_batch_plan;
+
+/* Builds the plan for a scene; max_layers = GL_MAX_ARRAY_TEXTURE_LAYERS. */
+mvr_result mvr_batch_plan_build(mvr_batch_plan *plan, const mvr_scene *scene, uint32_t max_layers);
+void mvr_batch_plan_free(mvr_batch_plan *plan);
+
+/* Feature bits of the roles a material reads from a neutral (white) layer on
+ * the array path (roles it has no texture in; never the normal role). */
+uint32_t mvr_batch_plan_neutral_features(const mvr_batch_plan *plan, uint32_t material_slot);
+
+/* A sort key of a material's groups (equal keys bind the same arrays). */
+uint64_t mvr_batch_plan_group_key(const mvr_batch_plan *plan, uint32_t material_slot);
+
+/* The texture ref of a role of a material (0 base color .. 4 emissive). */
+const mvr_texture_ref *mvr_material_role(const mvr_material_desc *m, uint32_t role);
+
+/* Whether a role is stored sRGB-encoded (base color and emissive, glTF 2.0 3.9.2). */
+bool mvr_role_is_srgb(uint32_t role);
+
+/* Whether a sampler's minification filter reads mip levels. */
+bool mvr_sampler_uses_mipmaps(const mvr_sampler_desc *s);
+
+#endif
