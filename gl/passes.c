@@ -69,6 +69,8 @@ typedef struct frame_layout {
     GLintptr draws, lights, views;   /* offsets in the ring buffer */
     GLsizeiptr lights_size;
     uint32_t view_blocks;
+    GLintptr draw_materials;         /* per-draw baseline: a material block per draw */
+    GLsizeiptr draw_material_stride;
 } frame_layout;
 
 static mvr_result upload_frame(mvr_renderer *r, const mvr_view_set *views, const mvr_target *t,
@@ -85,6 +87,14 @@ static mvr_result upload_frame(mvr_renderer *r, const mvr_view_set *views, const
     GLsizeiptr rel_lights = align_up(draw_bytes, align);
     GLsizeiptr rel_views = align_up(rel_lights + lay->lights_size, align);
     GLsizeiptr total = rel_views + view_block_stride * lay->view_blocks;
+    /* the per-draw baseline: each draw's material in its own range (plus a
+     * tail, since a bound range covers the whole declared block) */
+    bool per_draw = r->material_path == MVR_MATERIAL_PATH_PER_DRAW;
+    GLsizeiptr table_bytes = (GLsizeiptr)r->material_capacity * MVR_MATERIAL_BLOCK_SIZE;
+    lay->draw_material_stride = align_up(MVR_MATERIAL_BLOCK_SIZE, align);
+    GLsizeiptr rel_materials = align_up(total, align);
+    if (per_draw)
+        total = rel_materials + lay->draw_material_stride * (GLsizeiptr)f->draw_count + table_bytes;
     mvr_result res = mvr_ring_begin_frame(r, total);
     if (res != MVR_OK)
         return res;
@@ -92,6 +102,23 @@ static mvr_result upload_frame(mvr_renderer *r, const mvr_view_set *views, const
     lay->draws = seg;
     lay->lights = seg + rel_lights;
     lay->views = seg + rel_views;
+    lay->draw_materials = seg + rel_materials;
+    if (per_draw && f->draw_count) {
+        uint8_t *mats = calloc((size_t)lay->draw_material_stride, f->draw_count);
+        if (!mats)
+            return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "per-draw materials: out of memory");
+        for (uint32_t i = 0; i < f->draw_count; ++i) {
+            const mvr_draw *d = &f->draws[i];
+            mvr_material_pack(mvr_scene_material(r->gpu.scene, d->material),
+                              mats + (size_t)d->block * (size_t)lay->draw_material_stride);
+            int32_t zero = 0; /* the draw reads element 0 of its own range */
+            memcpy(f->draw_blocks + (size_t)d->block * f->block_stride + 128, &zero, sizeof zero);
+        }
+        gl->BufferSubData(GL_UNIFORM_BUFFER, lay->draw_materials,
+                          lay->draw_material_stride * (GLsizeiptr)f->draw_count, mats);
+        r->upload_bytes += (uint64_t)lay->draw_material_stride * f->draw_count;
+        free(mats);
+    }
     /* view-independent: every draw's block and the lights, once */
     if (draw_bytes)
         gl->BufferSubData(GL_UNIFORM_BUFFER, lay->draws, draw_bytes, f->draw_blocks);
@@ -194,9 +221,14 @@ static mvr_result draw_list(pass_context *pc, mvr_pass_kind kind)
             return res;
         mvr_state_ubo_range(st, MVR_BLOCK_DRAW, r->ring.buffer,
                             pc->lay->draws + (GLintptr)d->block * f->block_stride, MVR_DRAW_BLOCK_SIZE);
-        mvr_state_ubo_range(st, MVR_BLOCK_MATERIALS, g->material_ubo,
-                            (GLintptr)d->material_page * g->material_page_stride,
-                            (GLsizeiptr)r->material_capacity * MVR_MATERIAL_BLOCK_SIZE);
+        if (r->material_path == MVR_MATERIAL_PATH_PER_DRAW) /* baseline: a fragment-visible range per draw */
+            mvr_state_ubo_range(st, MVR_BLOCK_MATERIALS, r->ring.buffer,
+                                pc->lay->draw_materials + (GLintptr)d->block * pc->lay->draw_material_stride,
+                                (GLsizeiptr)r->material_capacity * MVR_MATERIAL_BLOCK_SIZE);
+        else
+            mvr_state_ubo_range(st, MVR_BLOCK_MATERIALS, g->material_ubo,
+                                (GLintptr)d->material_page * g->material_page_stride,
+                                (GLsizeiptr)r->material_capacity * MVR_MATERIAL_BLOCK_SIZE);
         uint32_t slot = d->material == MVR_NO_INDEX ? g->material_count - 1 : d->material;
         if (g->arrays) {
             /* one array per role and group: binds change only at group boundaries */
