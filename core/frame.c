@@ -263,7 +263,18 @@ mvr_result mvr_frame_build(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin, u
                                                           : MVR_PASS_OPAQUE;
             d->mirrored = mirrored;
             mvr_dvec3 center = mvr_dvec3_scale(mvr_dvec3_add(p->bounds_min, p->bounds_max), 0.5);
-            d->depth = (float)mvr_dvec3_length(mvr_dvec3_sub(mvr_dmat4_transform_point(w, center), origin));
+            mvr_dvec3 world_center = mvr_dvec3_sub(mvr_dmat4_transform_point(w, center), origin);
+            d->depth = (float)mvr_dvec3_length(world_center);
+            /* bounding sphere: the box's half diagonal scaled by the largest
+             * axis scale of the world matrix (conservative under shear too) */
+            double half = 0.5 * mvr_dvec3_length(mvr_dvec3_sub(p->bounds_max, p->bounds_min));
+            double sx = mvr_dvec3_length(mvr_dmat4_transform_dir(w, mvr_dvec3_make(1, 0, 0)));
+            double sy = mvr_dvec3_length(mvr_dmat4_transform_dir(w, mvr_dvec3_make(0, 1, 0)));
+            double sz = mvr_dvec3_length(mvr_dmat4_transform_dir(w, mvr_dvec3_make(0, 0, 1)));
+            d->center[0] = world_center.x;
+            d->center[1] = world_center.y;
+            d->center[2] = world_center.z;
+            d->radius = half * fmax(sx, fmax(sy, sz)) * (1.0 + 1e-6) + 1e-9;
             /* material index: the default material sits after the scene's */
             uint32_t material_slot = p->material == MVR_NO_INDEX ? s->material_count : p->material;
             d->group_key = 0;
@@ -302,4 +313,103 @@ void mvr_frame_free(mvr_frame *f)
     free(f->draw_blocks);
     free(f->world);
     memset(f, 0, sizeof *f);
+}
+
+void mvr_frustum_planes(const mvr_dmat4 *vp, bool reversed, mvr_frustum *out)
+{
+    double (*planes)[4] = out->planes;
+    /* row i of a column-major matrix: m[i], m[4 + i], m[8 + i], m[12 + i] */
+    double row[4][4];
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j)
+            row[i][j] = vp->m[j * 4 + i];
+    for (int j = 0; j < 4; ++j) {
+        planes[0][j] = row[3][j] + row[0][j]; /* left:   x >= -w */
+        planes[1][j] = row[3][j] - row[0][j]; /* right:  x <= w */
+        planes[2][j] = row[3][j] + row[1][j]; /* bottom: y >= -w */
+        planes[3][j] = row[3][j] - row[1][j]; /* top:    y <= w */
+        planes[4][j] = reversed ? row[2][j] : row[3][j] + row[2][j]; /* z >= 0 (reversed) or z >= -w */
+        planes[5][j] = row[3][j] - row[2][j]; /* z <= w */
+    }
+    for (int k = 0; k < 6; ++k) {
+        double n = sqrt(planes[k][0] * planes[k][0] + planes[k][1] * planes[k][1] + planes[k][2] * planes[k][2]);
+        if (!(n > 1e-300)) {
+            /* no plane here (reversed-Z's infinite far: z = near > 0 always) */
+            planes[k][0] = planes[k][1] = planes[k][2] = planes[k][3] = 0.0;
+            continue;
+        }
+        for (int j = 0; j < 4; ++j)
+            planes[k][j] /= n;
+    }
+}
+
+bool mvr_sphere_in_frustum(const mvr_frustum *f, const double c[3], double r)
+{
+    for (int k = 0; k < 6; ++k) {
+        const double *p = f->planes[k];
+        if (p[0] == 0.0 && p[1] == 0.0 && p[2] == 0.0)
+            continue;
+        if (p[0] * c[0] + p[1] * c[1] + p[2] * c[2] + p[3] < -r)
+            return false;
+    }
+    return true;
+}
+
+mvr_result mvr_visibility_compute(mvr_visibility *vis, const mvr_frame *f, const mvr_view_set *views,
+                                  uint32_t width, uint32_t height, bool reversed)
+{
+    uint32_t words = (f->draw_count + 63) / 64;
+    size_t need;
+    if (!mvr_size_mul(words ? words : 1, views->count, &need))
+        return MVR_ERROR_OUT_OF_MEMORY;
+    if (need > vis->cap_words) {
+        uint64_t *b = realloc(vis->bits, need * sizeof *b);
+        if (!b)
+            return MVR_ERROR_OUT_OF_MEMORY;
+        vis->bits = b;
+        vis->cap_words = need;
+    }
+    if (views->count > vis->culled_cap) {
+        uint32_t *c = realloc(vis->culled, views->count * sizeof *c);
+        if (!c)
+            return MVR_ERROR_OUT_OF_MEMORY;
+        vis->culled = c;
+        vis->culled_cap = views->count;
+    }
+    vis->views = views->count;
+    vis->words = words ? words : 1;
+    memset(vis->bits, 0, need * sizeof *vis->bits);
+    for (uint32_t v = 0; v < views->count; ++v) {
+        const mvr_view_desc *vd = &views->views[v];
+        mvr_viewport vp = mvr_view_viewport(vd, width, height);
+        /* the same matrix the GPU gets, in double, relative to the origin */
+        mvr_dvec3 rel = mvr_dvec3_sub(mvr_dvec3_make(vd->position[0], vd->position[1], vd->position[2]),
+                                      views->origin);
+        mvr_dquat q = {vd->orientation[0], vd->orientation[1], vd->orientation[2], vd->orientation[3]};
+        if (q.x == 0 && q.y == 0 && q.z == 0 && q.w == 0)
+            q.w = 1;
+        mvr_dmat4 view = mvr_dmat4_view(rel, q);
+        mvr_dmat4 proj = mvr_view_projection(vd, vp, reversed);
+        mvr_dmat4 m = mvr_dmat4_mul(&proj, &view);
+        mvr_frustum frustum;
+        mvr_frustum_planes(&m, reversed, &frustum);
+        uint64_t *row = vis->bits + (size_t)v * vis->words;
+        uint32_t culled = 0;
+        for (uint32_t i = 0; i < f->draw_count; ++i) {
+            const mvr_draw *d = &f->draws[i];
+            if (mvr_sphere_in_frustum(&frustum, d->center, d->radius))
+                row[i / 64] |= (uint64_t)1 << (i % 64);
+            else
+                culled++;
+        }
+        vis->culled[v] = culled;
+    }
+    return MVR_OK;
+}
+
+void mvr_visibility_free(mvr_visibility *vis)
+{
+    free(vis->bits);
+    free(vis->culled);
+    memset(vis, 0, sizeof *vis);
 }

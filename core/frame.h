@@ -8,6 +8,7 @@
 #define MVR_FRAME_H
 
 #include "batch_plan.h"
+#include "view_set.h"
 #include "scene_internal.h"
 #include "shader_gen.h"
 
@@ -35,6 +36,8 @@ typedef struct mvr_draw {
     mvr_pass_kind pass;
     bool mirrored;               /* negative determinant: front faces wind clockwise */
     float depth;                 /* distance from the origin to its bounds' center */
+    double center[3];            /* world bounding sphere, relative to the origin */
+    double radius;
 } mvr_draw;
 
 typedef struct mvr_frame {
@@ -62,6 +65,42 @@ mvr_result mvr_frame_build(mvr_frame *frame, const mvr_scene *scene, mvr_dvec3 o
                            uint32_t block_stride, uint32_t material_capacity,
                            const mvr_batch_plan *plan, char *why, size_t why_size);
 void mvr_frame_free(mvr_frame *frame);
+
+/* Per-view frustum culling: visible[view * words + draw / 64] bit draw % 64
+ * says whether the draw's bounding sphere touches the view's frustum (a
+ * conservative test: a visible draw is never culled). */
+typedef struct mvr_visibility {
+    uint64_t *bits;
+    size_t cap_words;
+    uint32_t views, words;       /* words per view */
+    uint32_t *culled;            /* per view: draws outside its frustum */
+    uint32_t culled_cap;
+} mvr_visibility;
+
+/* The six frustum planes (a, b, c, d; a*x + b*y + c*z + d >= 0 inside) of a
+ * view-projection matrix, from its rows (Gribb and Hartmann, "Fast
+ * Extraction of Viewing Frustum Planes from the World-View-Projection
+ * Matrix", 2001), for clip z in [-w, w] (standard) or [0, w] (reversed).
+ * Degenerate planes (an infinite far plane) come back all zero. */
+typedef struct mvr_frustum {
+    double planes[6][4];
+} mvr_frustum;
+
+void mvr_frustum_planes(const mvr_dmat4 *view_proj, bool reversed, mvr_frustum *out);
+
+/* True when a sphere touches the frustum. */
+bool mvr_sphere_in_frustum(const mvr_frustum *frustum, const double center[3], double radius);
+
+/* Fills visibility for every draw of the frame and every view of the set
+ * (layers width x height, for aspect ratios). */
+mvr_result mvr_visibility_compute(mvr_visibility *vis, const mvr_frame *frame, const mvr_view_set *views,
+                                  uint32_t width, uint32_t height, bool reversed);
+void mvr_visibility_free(mvr_visibility *vis);
+
+static inline bool mvr_visible(const mvr_visibility *vis, uint32_t view, uint32_t draw)
+{
+    return (vis->bits[(size_t)view * vis->words + draw / 64] >> (draw % 64)) & 1u;
+}
 
 /* Mesh feature bits of a primitive drawn with a material. */
 uint32_t mvr_draw_features(const scene_primitive *prim, const mvr_material_desc *material);

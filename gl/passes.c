@@ -157,7 +157,19 @@ typedef struct pass_context {
     mvr_program_entry *last_program;
     uint8_t *groups_used;        /* array path: groups sampled in this pass */
     uint32_t groups_used_count;
+    uint32_t first_view, views;  /* the pass's views: a draw visible in any is drawn */
 } pass_context;
+
+/* Whether a draw (by position in the frame's list) is visible in any view of the pass. */
+static bool visible_in_pass(const mvr_renderer *r, const pass_context *pc, uint32_t draw)
+{
+    if (!r->culling)
+        return true;
+    for (uint32_t v = pc->first_view; v < pc->first_view + pc->views; ++v)
+        if (mvr_visible(&r->vis, v, draw))
+            return true;
+    return false;
+}
 
 static mvr_result bind_program(pass_context *pc, uint32_t features)
 {
@@ -216,6 +228,8 @@ static mvr_result draw_list(pass_context *pc, mvr_pass_kind kind)
     }
     for (uint32_t i = 0; i < f->pass_count[kind]; ++i) {
         const mvr_draw *d = &f->draws[f->pass_first[kind] + i];
+        if (!visible_in_pass(r, pc, f->pass_first[kind] + i))
+            continue;
         mvr_result res = bind_program(pc, d->features);
         if (res != MVR_OK)
             return res;
@@ -285,6 +299,14 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
         mvr_log(&r->logger, MVR_LOG_WARNING, MVR_LOG_ID_GENERAL,
                 "mvr: %u lights beyond %d of one type are not drawn", r->frame.lights_dropped,
                 MVR_SHADER_MAX_LIGHTS_PER_TYPE);
+    if (r->culling) {
+        res = mvr_visibility_compute(&r->vis, &r->frame, views, t->desc.width, t->desc.height, r->reversed_z);
+        if (res != MVR_OK)
+            return mvr_renderer_fail(r, res, "culling: out of memory");
+        for (uint32_t v = 0; v < views->count; ++v)
+            if (!views->views[v].disabled)
+                r->stats.culled += r->vis.culled[v];
+    }
     frame_layout lay;
     res = upload_frame(r, views, t, &lay);
     if (res != MVR_OK)
@@ -375,6 +397,8 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
         if (light_total)
             mvr_state_ubo_range(st, MVR_BLOCK_LIGHTS, r->ring.buffer, lay.lights, lay.lights_size);
         pc.num_views = mv_pass ? ch->count : 0;
+        pc.first_view = ch->base;
+        pc.views = ch->count;
         pc.view_base = (int32_t)(ch->base - block * VIEWS_PER_BLOCK);
         pc.last_program = NULL;
         for (int k = 0; k < MVR_PASS_KIND_COUNT && res == MVR_OK; ++k)

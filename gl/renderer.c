@@ -127,6 +127,8 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
     r->logger = desc->logger.fn ? desc->logger : desc->context->logger;
     r->requested_path = env_view_path(desc->view_path, &r->logger);
     r->material_path = env_material_path(desc->material_path, &r->logger);
+    const char *cull_env = getenv("MVR_CULLING");
+    r->culling = !desc->disable_culling && !(cull_env && strcmp(cull_env, "off") == 0);
     const mvr_caps *c = &r->ctx->caps;
     r->reversed_z = c->ext.ext_clip_control;
     r->ubo_alignment = (uint32_t)(c->limits.uniform_buffer_offset_alignment > 0
@@ -168,6 +170,7 @@ void mvr_renderer_destroy(mvr_renderer *r)
     if (r->timer.timestamps)
         gl->DeleteQueries(2, r->timer.queries);
     mvr_frame_free(&r->frame);
+    mvr_visibility_free(&r->vis);
     free(r);
 }
 
@@ -376,6 +379,13 @@ void mvr_renderer_get_stats(mvr_renderer *r, mvr_frame_stats *out)
         r->timer.pending = false;
     }
     *out = r->stats;
+}
+
+uint32_t mvr_renderer_view_culled(const mvr_renderer *r, uint32_t view)
+{
+    if (!r || !r->culling || view >= r->vis.views)
+        return 0;
+    return r->vis.culled[view];
 }
 
 bool mvr_renderer_get_pass_stats(const mvr_renderer *r, uint32_t index, mvr_pass_stats *out)

@@ -113,6 +113,8 @@ struct mvr_renderer {
     uint32_t program_count, program_cap;
     mvr_gpu_scene gpu;
     mvr_frame frame;
+    bool culling;
+    mvr_visibility vis;          /* per-view visibility of the frame's draws */
     mvr_ring ring;
     mvr_timer timer;
     uint64_t frame_serial;

@@ -311,6 +311,11 @@ static void write_stats_json(FILE *f, const mvr_renderer *r, const mvr_frame_sta
     json_int(&jw, "multiview_passes", s->multiview_passes);
     json_string(&jw, "material_path", mvr_material_path_name(s->material_path));
     json_int(&jw, "texture_groups", s->texture_groups);
+    json_int(&jw, "culled", s->culled);
+    json_begin_array(&jw, "culled_per_view");
+    for (uint32_t v = 0; v < s->views; ++v)
+        json_int(&jw, NULL, mvr_renderer_view_culled(r, v));
+    json_end_array(&jw);
     json_int(&jw, "draws", s->draws);
     json_int(&jw, "program_binds", s->program_binds);
     json_int(&jw, "texture_binds", s->texture_binds);
@@ -472,7 +477,8 @@ int mvr_cmd_render(int argc, char **argv)
             goto done;
         }
     }
-    mvr_renderer_desc rd = {ctx, o.view_path, o.context.logger, o.material_path};
+    mvr_renderer_desc rd = {.context = ctx, .view_path = o.view_path, .logger = o.context.logger,
+                            .material_path = o.material_path};
     if (mvr_renderer_create(&rd, &renderer, &err) != MVR_OK) {
         fprintf(stderr, "mvr render: %s\n", err.message);
         goto done;

@@ -491,6 +491,10 @@ typedef struct mvr_renderer_desc {
     mvr_view_path view_path;
     mvr_logger logger;           /* 0 = the context's */
     mvr_material_path material_path;
+    /* Per-view frustum culling is on by default (conservative bounding
+     * spheres: it never changes pixels); true turns it off. Env
+     * MVR_CULLING=off does the same. */
+    bool disable_culling;
 } mvr_renderer_desc;
 
 mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out, mvr_error *out_error);
@@ -561,6 +565,7 @@ typedef struct mvr_frame_stats {
     bool reversed_z;             /* depth mode: reversed-Z (clip control) or standard */
     mvr_material_path material_path; /* the material path that ran */
     uint32_t texture_groups;     /* texture arrays of the scene's batch plan (array path) */
+    uint32_t culled;             /* summed over views: draws outside a view's frustum */
     double cpu_ms;               /* submitting thread, render call */
     double gpu_ms;               /* timer queries; < 0 when not available */
 } mvr_frame_stats;
@@ -574,6 +579,9 @@ typedef struct mvr_pass_stats {
     uint32_t draws, program_binds, texture_binds, ubo_range_binds;
     uint32_t texture_groups;     /* distinct texture arrays the pass sampled (array path) */
 } mvr_pass_stats;
+
+/* Draws culled in view `view` of the last render (outside its frustum). */
+uint32_t mvr_renderer_view_culled(const mvr_renderer *renderer, uint32_t view);
 
 /* Stats of pass `index` of the last render (the first 256 passes); false past the end. */
 bool mvr_renderer_get_pass_stats(const mvr_renderer *renderer, uint32_t index, mvr_pass_stats *out);

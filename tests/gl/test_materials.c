@@ -57,7 +57,7 @@ static bool render_city(mvr_test_state *t, mvr_context *ctx, mvr_view_path vp, m
     mvr_scene *scene = NULL;
     mvr_view_set *views = NULL;
     mvr_demo_desc dd = {VIEWS, W, H, {0}};
-    mvr_renderer_desc rd = {ctx, vp, {0}, mp};
+    mvr_renderer_desc rd = {.context = ctx, .view_path = vp, .material_path = mp};
     mvr_renderer *r = NULL;
     mvr_target *target = NULL;
     mvr_target_desc td = {W, H, VIEWS, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0};
@@ -141,7 +141,7 @@ static void material_path_environment(mvr_test_state *t)
     if (!ctx)
         return;
     log_sink sink = {0};
-    mvr_renderer_desc rd = {ctx, MVR_VIEW_PATH_AUTO, {log_sink_fn, &sink, MVR_LOG_DEFAULT}, MVR_MATERIAL_PATH_AUTO};
+    mvr_renderer_desc rd = {.context = ctx, .logger = {log_sink_fn, &sink, MVR_LOG_DEFAULT}};
     mvr_renderer *r = NULL;
     setenv("MVR_MATERIAL_PATH", "per_material", 1);
     CHECK(t, mvr_renderer_create(&rd, &r, NULL) == MVR_OK && r->material_path == MVR_MATERIAL_PATH_PER_MATERIAL);

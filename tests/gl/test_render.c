@@ -2,6 +2,7 @@
  * on llvmpipe), for every demo and 1, 2, 6 and 10 views, into mvr's own
  * target and into an application's texture array; the stats count what the
  * frame model promises. */
+#define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdlib.h>
 
@@ -19,7 +20,7 @@ typedef struct rendered {
 
 static mvr_renderer *make_renderer(mvr_test_state *t, mvr_context *ctx, mvr_view_path path)
 {
-    mvr_renderer_desc rd = {ctx, path, {0}, MVR_MATERIAL_PATH_AUTO};
+    mvr_renderer_desc rd = {.context = ctx, .view_path = path};
     mvr_renderer *r = NULL;
     mvr_error err;
     CHECK_MSG(t, mvr_renderer_create(&rd, &r, &err) == MVR_OK, "%s", err.message);
@@ -138,8 +139,11 @@ static void paths_agree(mvr_test_state *t, const char *demo)
                       n, mv.second.multiview_passes, expect_mv);
             CHECK_EQ_INT(t, loop.second.multiview_passes, 0);
             CHECK_EQ_INT(t, loop.second.views, n);
-            /* the loop path repeats every draw per view; multiview per chunk */
-            CHECK_EQ_INT(t, loop.second.draws * expect_passes, mv.second.draws * n);
+            /* culling is the same on both paths; the loop draws each view's
+             * visible draws, multiview the union per chunk */
+            CHECK_EQ_INT(t, mv.second.culled, loop.second.culled);
+            CHECK_EQ_INT(t, (loop.second.draws + loop.second.culled) % n, 0);
+            CHECK(t, mv.second.draws <= loop.second.draws && mv.second.draws * n >= loop.second.draws);
             /* view-independent uploads do not grow with N, and are the same on both paths */
             if (i == 0)
                 steady_upload = mv.second.upload_bytes;
@@ -395,5 +399,86 @@ static void color_formats_agree(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
-MVR_TEST_MAIN(TEST(color_formats_agree), TEST(stereo_paths_agree), TEST(cube_paths_agree), TEST(city_paths_agree), TEST(ring_paths_agree),
+/* A draw outside every frustum is not drawn; one seen by one of two views
+ * is drawn once in multiview and once in the loop; pixels do not change. */
+static void culling_changes_cost_not_pixels(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    mvr_scene *scene = NULL;
+    mvr_scene_create(NULL, &scene, NULL);
+    float tri[9] = {-0.5f, -0.5f, 0, 0.5f, -0.5f, 0, 0, 0.5f, 0};
+    mvr_primitive_desc p = {.vertex_count = 3, .positions = tri};
+    mvr_mesh_desc md = {&p, 1, "tri"};
+    mvr_mesh_id mesh;
+    CHECK(t, mvr_scene_add_mesh(scene, &md, &mesh) == MVR_OK);
+    /* both views look down -Z from x = -3 and x = +3: one triangle in front of
+     * each, one behind both */
+    const double xs[3] = {-3.0, 3.0, 0.0}, zs[3] = {-5.0, -5.0, 50.0};
+    for (int i = 0; i < 3; ++i) {
+        mvr_node_desc nd = {.mesh = mesh, .translation = {xs[i], 0, zs[i]}};
+        mvr_node_id id;
+        CHECK(t, mvr_scene_add_node(scene, &nd, &id) == MVR_OK);
+    }
+    mvr_view_desc views[2] = {{.position = {-3, 0, 0}, .projection = {.yfov = 0.6}},
+                              {.position = {3, 0, 0}, .projection = {.yfov = 0.6}}};
+    mvr_view_set *vs = NULL;
+    mvr_view_set_desc vd = {2, views, false, {0, 0, 0}};
+    CHECK(t, mvr_view_set_create(&vd, &vs, NULL) == MVR_OK);
+    uint8_t *img[2] = {malloc((size_t)W * H * 8), malloc((size_t)W * H * 8)};
+    mvr_view_path paths[2] = {MVR_VIEW_PATH_AUTO, MVR_VIEW_PATH_LOOP};
+    for (int pi = 0; pi < 2; ++pi)
+        for (int cull = 1; cull >= 0; --cull) {
+            mvr_renderer_desc rd = {.context = ctx, .view_path = paths[pi], .disable_culling = !cull};
+            mvr_renderer *r = NULL;
+            mvr_target *target = NULL;
+            mvr_target_desc td = {W, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0};
+            mvr_render_desc desc = {{0.1f, 0.1f, 0.1f, 1.0f}, 1.0f, MVR_TONE_MAP_NONE};
+            bool ok = mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK &&
+                      mvr_renderer_render(r, scene, vs, target, &desc) == MVR_OK;
+            CHECK(t, ok);
+            mvr_frame_stats st;
+            mvr_renderer_get_stats(r, &st);
+            bool multiview = st.view_path == MVR_VIEW_PATH_MULTIVIEW;
+            if (cull) {
+                CHECK_EQ_INT(t, mvr_renderer_view_culled(r, 0), 2); /* the other side's and the one behind */
+                CHECK_EQ_INT(t, mvr_renderer_view_culled(r, 1), 2);
+                CHECK_EQ_INT(t, st.culled, 4);
+                CHECK_EQ_INT(t, st.draws, 2); /* multiview: the union (2) in one pass; loop: one per view */
+            } else {
+                CHECK_EQ_INT(t, st.draws, multiview ? 3 : 6);
+            }
+            for (uint32_t k = 0; ok && k < 2; ++k)
+                CHECK(t, mvr_renderer_read_layer(r, target, k, MVR_READBACK_RGBA8, img[cull] + (size_t)k * W * H * 4,
+                                                 (size_t)W * H * 4) == MVR_OK);
+            mvr_target_destroy(target);
+            mvr_renderer_destroy(r);
+        }
+    CHECK_MSG(t, memcmp(img[0], img[1], (size_t)W * H * 8) == 0, "culling changed pixels");
+    free(img[0]);
+    free(img[1]);
+    /* every demo: the same pixels with culling off */
+    for (uint32_t d = 0; mvr_demo_name(d); ++d) {
+        rendered on, off;
+        setenv("MVR_CULLING", "off", 1);
+        bool ok = render_demo(t, ctx, mvr_demo_name(d), 2, MVR_VIEW_PATH_AUTO, NULL, &off);
+        unsetenv("MVR_CULLING");
+        ok = ok && render_demo(t, ctx, mvr_demo_name(d), 2, MVR_VIEW_PATH_AUTO, NULL, &on);
+        if (ok) {
+            CHECK_MSG(t, count_diff(on.pixels, off.pixels, (size_t)W * H * 2) == 0, "%s: culling changed pixels",
+                      mvr_demo_name(d));
+            CHECK(t, off.second.culled == 0 && on.second.draws <= off.second.draws);
+            printf("  %-7s draws %u with culling, %u without (%u culled over 2 views)\n", mvr_demo_name(d),
+                   on.second.draws, off.second.draws, on.second.culled);
+        }
+        free(on.pixels);
+        free(off.pixels);
+    }
+    mvr_view_set_destroy(vs);
+    mvr_scene_destroy(scene);
+    mvr_context_destroy(ctx);
+}
+
+MVR_TEST_MAIN(TEST(culling_changes_cost_not_pixels), TEST(color_formats_agree), TEST(stereo_paths_agree), TEST(cube_paths_agree), TEST(city_paths_agree), TEST(ring_paths_agree),
               TEST(application_texture_array), TEST(bad_targets_are_refused), TEST(disabled_views_are_skipped))

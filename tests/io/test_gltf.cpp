@@ -77,7 +77,9 @@ static std::vector<uint8_t> render(mvr_test_state *t, mvr_context *ctx, mvr_scen
         CHECK_MSG(t, 0, "%s: framing: %s", what, err.message);
         return out;
     }
-    mvr_renderer_desc rd = {ctx, path, {}, MVR_MATERIAL_PATH_AUTO};
+    mvr_renderer_desc rd = {};
+    rd.context = ctx;
+    rd.view_path = path;
     mvr_renderer *r = nullptr;
     mvr_target *target = nullptr;
     mvr_target_desc td = {W, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0};
