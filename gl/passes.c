@@ -66,12 +66,48 @@ static float srgb_encode(float c)
 }
 
 typedef struct frame_layout {
-    GLintptr draws, lights, views;   /* offsets in the ring buffer */
+    GLuint static_buffer;            /* holds draws and lights (re-sent only when they change) */
+    GLintptr draws, lights;          /* offsets in static_buffer */
+    GLintptr views;                  /* offset in the ring buffer */
     GLsizeiptr lights_size;
     uint32_t view_blocks;
     GLintptr draw_materials;         /* per-draw baseline: a material block per draw */
     GLsizeiptr draw_material_stride;
 } frame_layout;
+
+/* Sends the per-draw blocks and lights into the static buffer: only after the
+ * frame was rebuilt (a transform, material or geometry changed). */
+static mvr_result upload_static(mvr_renderer *r)
+{
+    const mvr_gl_api_table *gl = r->gl;
+    mvr_frame *f = &r->frame;
+    GLsizeiptr align = (GLsizeiptr)r->ubo_alignment;
+    if (r->material_path == MVR_MATERIAL_PATH_PER_DRAW)
+        for (uint32_t i = 0; i < f->draw_count; ++i) {
+            int32_t zero = 0; /* per-draw baseline: each draw reads element 0 of its own range */
+            memcpy(f->draw_blocks + (size_t)i * f->block_stride + 128, &zero, sizeof zero);
+        }
+    GLsizeiptr draw_bytes = (GLsizeiptr)f->draw_count * f->block_stride;
+    uint32_t light_count = f->light_counts[0] + f->light_counts[1] + f->light_counts[2];
+    GLsizeiptr lights_size = (GLsizeiptr)light_count * MVR_LIGHT_BLOCK_SIZE;
+    GLsizeiptr rel_lights = align_up(draw_bytes, align);
+    GLsizeiptr total = rel_lights + lights_size;
+    if (total == 0)
+        return MVR_OK;
+    if (!r->static_buffer)
+        gl->GenBuffers(1, &r->static_buffer);
+    gl->BindBuffer(GL_UNIFORM_BUFFER, r->static_buffer);
+    /* new storage each time (the GPU may still read the old contents) */
+    gl->BufferData(GL_UNIFORM_BUFFER, total, NULL, GL_DYNAMIC_DRAW);
+    mvr_state_forget_buffer(&r->state, r->static_buffer);
+    if (draw_bytes)
+        gl->BufferSubData(GL_UNIFORM_BUFFER, 0, draw_bytes, f->draw_blocks);
+    if (lights_size)
+        gl->BufferSubData(GL_UNIFORM_BUFFER, rel_lights, lights_size, f->light_blocks);
+    r->static_size = total;
+    r->upload_bytes += (uint64_t)draw_bytes + (uint64_t)lights_size;
+    return MVR_OK;
+}
 
 static mvr_result upload_frame(mvr_renderer *r, const mvr_view_set *views, const mvr_target *t,
                                frame_layout *lay)
@@ -82,13 +118,15 @@ static mvr_result upload_frame(mvr_renderer *r, const mvr_view_set *views, const
     GLsizeiptr draw_bytes = (GLsizeiptr)f->draw_count * f->block_stride;
     uint32_t light_count = f->light_counts[0] + f->light_counts[1] + f->light_counts[2];
     lay->lights_size = (GLsizeiptr)light_count * MVR_LIGHT_BLOCK_SIZE;
+    lay->static_buffer = r->static_buffer;
+    lay->draws = 0;
+    lay->lights = align_up(draw_bytes, align);
     lay->view_blocks = (views->count + VIEWS_PER_BLOCK - 1) / VIEWS_PER_BLOCK;
     GLsizeiptr view_block_stride = align_up(VIEW_BLOCK_SIZE, align);
-    GLsizeiptr rel_lights = align_up(draw_bytes, align);
-    GLsizeiptr rel_views = align_up(rel_lights + lay->lights_size, align);
-    GLsizeiptr total = rel_views + view_block_stride * lay->view_blocks;
-    /* the per-draw baseline: each draw's material in its own range (plus a
-     * tail, since a bound range covers the whole declared block) */
+    GLsizeiptr total = view_block_stride * lay->view_blocks;
+    /* the per-draw baseline: each draw's material in its own range, sent every
+     * frame as such a renderer would (plus a tail: a bound range covers the
+     * whole declared block) */
     bool per_draw = r->material_path == MVR_MATERIAL_PATH_PER_DRAW;
     GLsizeiptr table_bytes = (GLsizeiptr)r->material_capacity * MVR_MATERIAL_BLOCK_SIZE;
     lay->draw_material_stride = align_up(MVR_MATERIAL_BLOCK_SIZE, align);
@@ -99,9 +137,7 @@ static mvr_result upload_frame(mvr_renderer *r, const mvr_view_set *views, const
     if (res != MVR_OK)
         return res;
     GLintptr seg = (GLintptr)r->ring.current * r->ring.segment_size;
-    lay->draws = seg;
-    lay->lights = seg + rel_lights;
-    lay->views = seg + rel_views;
+    lay->views = seg;
     lay->draw_materials = seg + rel_materials;
     if (per_draw && f->draw_count) {
         uint8_t *mats = calloc((size_t)lay->draw_material_stride, f->draw_count);
@@ -111,20 +147,12 @@ static mvr_result upload_frame(mvr_renderer *r, const mvr_view_set *views, const
             const mvr_draw *d = &f->draws[i];
             mvr_material_pack(mvr_scene_material(r->gpu.scene, d->material),
                               mats + (size_t)d->block * (size_t)lay->draw_material_stride);
-            int32_t zero = 0; /* the draw reads element 0 of its own range */
-            memcpy(f->draw_blocks + (size_t)d->block * f->block_stride + 128, &zero, sizeof zero);
         }
         gl->BufferSubData(GL_UNIFORM_BUFFER, lay->draw_materials,
                           lay->draw_material_stride * (GLsizeiptr)f->draw_count, mats);
         r->upload_bytes += (uint64_t)lay->draw_material_stride * f->draw_count;
         free(mats);
     }
-    /* view-independent: every draw's block and the lights, once */
-    if (draw_bytes)
-        gl->BufferSubData(GL_UNIFORM_BUFFER, lay->draws, draw_bytes, f->draw_blocks);
-    if (lay->lights_size)
-        gl->BufferSubData(GL_UNIFORM_BUFFER, lay->lights, lay->lights_size, f->light_blocks);
-    r->upload_bytes += (uint64_t)draw_bytes + (uint64_t)lay->lights_size;
     /* per view: its matrix and eye position, relative to the set's origin */
     float matrices[VIEWS_PER_BLOCK][16];
     float eyes[VIEWS_PER_BLOCK][4];
@@ -233,7 +261,7 @@ static mvr_result draw_list(pass_context *pc, mvr_pass_kind kind)
         mvr_result res = bind_program(pc, d->features);
         if (res != MVR_OK)
             return res;
-        mvr_state_ubo_range(st, MVR_BLOCK_DRAW, r->ring.buffer,
+        mvr_state_ubo_range(st, MVR_BLOCK_DRAW, pc->lay->static_buffer,
                             pc->lay->draws + (GLintptr)d->block * f->block_stride, MVR_DRAW_BLOCK_SIZE);
         if (r->material_path == MVR_MATERIAL_PATH_PER_DRAW) /* baseline: a fragment-visible range per draw */
             mvr_state_ubo_range(st, MVR_BLOCK_MATERIALS, r->ring.buffer,
@@ -291,10 +319,31 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
 {
     char why[256] = "";
     uint32_t stride = (uint32_t)align_up(MVR_DRAW_BLOCK_SIZE, (GLsizeiptr)r->ubo_alignment);
-    mvr_result res = mvr_frame_build(&r->frame, scene, views->origin, stride, r->material_capacity,
-                                     r->gpu.arrays ? &r->gpu.plan : NULL, why, sizeof why);
-    if (res != MVR_OK)
-        return mvr_renderer_fail(r, res, "frame: %s", why);
+    /* dirty tracking: the same scene state seen from the same origin reuses
+     * the frame and its uploaded blocks (a static scene sends only views) */
+    bool same = r->frame_key.valid && r->frame_key.scene_serial == mvr_scene_serial(scene) &&
+                r->frame_key.geometry_version == scene->geometry_version &&
+                r->frame_key.material_version == scene->material_version &&
+                r->frame_key.transform_version == scene->transform_version &&
+                r->frame_key.origin.x == views->origin.x && r->frame_key.origin.y == views->origin.y &&
+                r->frame_key.origin.z == views->origin.z;
+    mvr_result res = MVR_OK;
+    if (!same) {
+        r->frame_key.valid = false;
+        res = mvr_frame_build(&r->frame, scene, views->origin, stride, r->material_capacity,
+                              r->gpu.arrays ? &r->gpu.plan : NULL, why, sizeof why);
+        if (res != MVR_OK)
+            return mvr_renderer_fail(r, res, "frame: %s", why);
+        res = upload_static(r);
+        if (res != MVR_OK)
+            return res;
+        r->frame_key.valid = true;
+        r->frame_key.scene_serial = mvr_scene_serial(scene);
+        r->frame_key.geometry_version = scene->geometry_version;
+        r->frame_key.material_version = scene->material_version;
+        r->frame_key.transform_version = scene->transform_version;
+        r->frame_key.origin = views->origin;
+    }
     if (r->frame.lights_dropped)
         mvr_log(&r->logger, MVR_LOG_WARNING, MVR_LOG_ID_GENERAL,
                 "mvr: %u lights beyond %d of one type are not drawn", r->frame.lights_dropped,
@@ -395,7 +444,7 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
         mvr_state_ubo_range(st, MVR_BLOCK_VIEWS, r->ring.buffer,
                             lay.views + (GLintptr)block * view_block_stride, VIEW_BLOCK_SIZE);
         if (light_total)
-            mvr_state_ubo_range(st, MVR_BLOCK_LIGHTS, r->ring.buffer, lay.lights, lay.lights_size);
+            mvr_state_ubo_range(st, MVR_BLOCK_LIGHTS, lay.static_buffer, lay.lights, lay.lights_size);
         pc.num_views = mv_pass ? ch->count : 0;
         pc.first_view = ch->base;
         pc.views = ch->count;

@@ -167,6 +167,8 @@ void mvr_renderer_destroy(mvr_renderer *r)
             gl->DeleteSync(r->ring.fences[i]);
     if (r->ring.buffer)
         gl->DeleteBuffers(1, &r->ring.buffer);
+    if (r->static_buffer)
+        gl->DeleteBuffers(1, &r->static_buffer);
     if (r->timer.timestamps)
         gl->DeleteQueries(2, r->timer.queries);
     mvr_frame_free(&r->frame);

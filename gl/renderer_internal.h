@@ -115,6 +115,15 @@ struct mvr_renderer {
     mvr_frame frame;
     bool culling;
     mvr_visibility vis;          /* per-view visibility of the frame's draws */
+    /* Dirty tracking: the frame (draw list, per-draw blocks, lights) is
+     * rebuilt and re-uploaded only when what it depends on changed. */
+    struct {
+        bool valid;
+        uint64_t scene_serial, geometry_version, material_version, transform_version;
+        mvr_dvec3 origin;
+    } frame_key;
+    GLuint static_buffer;        /* per-draw blocks and lights of the current frame */
+    GLsizeiptr static_size;
     mvr_ring ring;
     mvr_timer timer;
     uint64_t frame_serial;

@@ -152,6 +152,7 @@ static void paths_agree(mvr_test_state *t, const char *demo)
                       (unsigned long long)mv.second.upload_bytes, (unsigned long long)loop.second.upload_bytes,
                       (unsigned long long)steady_upload);
             CHECK(t, mv.first.upload_bytes > mv.second.upload_bytes); /* geometry and textures once */
+            CHECK_EQ_INT(t, mv.second.upload_bytes, 0); /* nothing changed: only views are sent */
             CHECK_EQ_INT(t, mv.second.view_upload_bytes, (uint64_t)n * 80u);
             CHECK_EQ_INT(t, mv.second.programs_compiled, 0); /* cached after the first frame */
         }
@@ -480,5 +481,58 @@ static void culling_changes_cost_not_pixels(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
-MVR_TEST_MAIN(TEST(culling_changes_cost_not_pixels), TEST(color_formats_agree), TEST(stereo_paths_agree), TEST(cube_paths_agree), TEST(city_paths_agree), TEST(ring_paths_agree),
+/* A second identical frame sends only per-view data; a moved node re-sends
+ * the per-draw blocks once; a new origin too; pixels follow. */
+static void dirty_tracking_sends_only_changes(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    mvr_scene *scene = NULL;
+    mvr_view_set *vs = NULL;
+    mvr_demo_desc dd = {2, W, H, {0}};
+    CHECK(t, mvr_demo_create("ring", &dd, &scene, &vs, NULL) == MVR_OK);
+    mvr_renderer_desc rd = {.context = ctx};
+    mvr_renderer *r = NULL;
+    mvr_target *target = NULL;
+    mvr_target_desc td = {W, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0};
+    CHECK(t, mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK);
+    uint64_t up[5];
+    uint8_t before[W * H * 4], after[W * H * 4];
+    for (int f = 0; f < 5; ++f) {
+        if (f == 2) { /* move the torus (node 3 of the ring demo) */
+            double tr[3] = {0.3, 1.35, 0}, rot[4] = {0, 0, 0, 1}, sc[3] = {1, 1, 1};
+            CHECK(t, mvr_scene_set_node_transform(scene, (mvr_node_id){3}, tr, rot, sc) == MVR_OK);
+        }
+        if (f == 4) { /* a new origin: blocks are relative to it */
+            mvr_view_desc v = vs->views[0];
+            v.position[0] += 0.5;
+            CHECK(t, mvr_view_set_update(vs, 0, &v) == MVR_OK);
+        }
+        CHECK(t, mvr_renderer_render(r, scene, vs, target, NULL) == MVR_OK);
+        mvr_frame_stats st;
+        mvr_renderer_get_stats(r, &st);
+        up[f] = st.upload_bytes;
+        CHECK_EQ_INT(t, st.view_upload_bytes, 2 * 80);
+        if (f == 1)
+            mvr_renderer_read_layer(r, target, 1, MVR_READBACK_RGBA8, before, sizeof before);
+        if (f == 3)
+            mvr_renderer_read_layer(r, target, 1, MVR_READBACK_RGBA8, after, sizeof after);
+    }
+    printf("  upload bytes per frame: %llu %llu %llu %llu %llu\n", (unsigned long long)up[0],
+           (unsigned long long)up[1], (unsigned long long)up[2], (unsigned long long)up[3],
+           (unsigned long long)up[4]);
+    CHECK(t, up[0] > 0 && up[1] == 0);          /* first frame: everything; then nothing */
+    CHECK(t, up[2] > 0 && up[2] < up[0]);        /* transforms only: no geometry or textures */
+    CHECK(t, up[3] == 0);
+    CHECK(t, up[4] == up[2]);                    /* a new origin re-sends the blocks */
+    CHECK_MSG(t, memcmp(before, after, sizeof before) != 0, "the moved node did not move");
+    mvr_target_destroy(target);
+    mvr_renderer_destroy(r);
+    mvr_view_set_destroy(vs);
+    mvr_scene_destroy(scene);
+    mvr_context_destroy(ctx);
+}
+
+MVR_TEST_MAIN(TEST(dirty_tracking_sends_only_changes), TEST(culling_changes_cost_not_pixels), TEST(color_formats_agree), TEST(stereo_paths_agree), TEST(cube_paths_agree), TEST(city_paths_agree), TEST(ring_paths_agree),
               TEST(application_texture_array), TEST(bad_targets_are_refused), TEST(disabled_views_are_skipped))
