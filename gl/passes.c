@@ -66,18 +66,18 @@ static float srgb_encode(float c)
 }
 
 typedef struct frame_layout {
-    GLuint static_buffer;            /* holds draws and lights (re-sent only when they change) */
-    GLintptr draws, lights;          /* offsets in static_buffer */
-    GLintptr views;                  /* offset in the ring buffer */
+    GLintptr draws, lights;          /* in the ring's static region (re-sent only on change) */
+    GLintptr views;                  /* in this frame's ring segment */
     GLsizeiptr lights_size;
     uint32_t view_blocks;
     GLintptr draw_materials;         /* per-draw baseline: a material block per draw */
     GLsizeiptr draw_material_stride;
 } frame_layout;
 
-/* Sends the per-draw blocks and lights into the static buffer: only after the
- * frame was rebuilt (a transform, material or geometry changed). */
-static mvr_result upload_static(mvr_renderer *r)
+/* Sends the per-draw blocks and lights into the ring's static region: only
+ * when the frame was rebuilt (a transform, material, geometry or the origin
+ * changed) or the ring was replaced. */
+static void upload_static(mvr_renderer *r)
 {
     const mvr_gl_api_table *gl = r->gl;
     mvr_frame *f = &r->frame;
@@ -91,26 +91,17 @@ static mvr_result upload_static(mvr_renderer *r)
     uint32_t light_count = f->light_counts[0] + f->light_counts[1] + f->light_counts[2];
     GLsizeiptr lights_size = (GLsizeiptr)light_count * MVR_LIGHT_BLOCK_SIZE;
     GLsizeiptr rel_lights = align_up(draw_bytes, align);
-    GLsizeiptr total = rel_lights + lights_size;
-    if (total == 0)
-        return MVR_OK;
-    if (!r->static_buffer)
-        gl->GenBuffers(1, &r->static_buffer);
-    gl->BindBuffer(GL_UNIFORM_BUFFER, r->static_buffer);
-    /* new storage each time (the GPU may still read the old contents) */
-    gl->BufferData(GL_UNIFORM_BUFFER, total, NULL, GL_DYNAMIC_DRAW);
-    mvr_state_forget_buffer(&r->state, r->static_buffer);
+    mvr_ring_reserve_static(r, align_up(rel_lights + lights_size, align) + align);
+    gl->BindBuffer(GL_UNIFORM_BUFFER, r->ring.buffer);
     if (draw_bytes)
         gl->BufferSubData(GL_UNIFORM_BUFFER, 0, draw_bytes, f->draw_blocks);
     if (lights_size)
         gl->BufferSubData(GL_UNIFORM_BUFFER, rel_lights, lights_size, f->light_blocks);
-    r->static_size = total;
     r->upload_bytes += (uint64_t)draw_bytes + (uint64_t)lights_size;
-    return MVR_OK;
 }
 
 static mvr_result upload_frame(mvr_renderer *r, const mvr_view_set *views, const mvr_target *t,
-                               frame_layout *lay)
+                               frame_layout *lay, bool static_current)
 {
     const mvr_gl_api_table *gl = r->gl;
     const mvr_frame *f = &r->frame;
@@ -118,7 +109,6 @@ static mvr_result upload_frame(mvr_renderer *r, const mvr_view_set *views, const
     GLsizeiptr draw_bytes = (GLsizeiptr)f->draw_count * f->block_stride;
     uint32_t light_count = f->light_counts[0] + f->light_counts[1] + f->light_counts[2];
     lay->lights_size = (GLsizeiptr)light_count * MVR_LIGHT_BLOCK_SIZE;
-    lay->static_buffer = r->static_buffer;
     lay->draws = 0;
     lay->lights = align_up(draw_bytes, align);
     lay->view_blocks = (views->count + VIEWS_PER_BLOCK - 1) / VIEWS_PER_BLOCK;
@@ -133,10 +123,16 @@ static mvr_result upload_frame(mvr_renderer *r, const mvr_view_set *views, const
     GLsizeiptr rel_materials = align_up(total, align);
     if (per_draw)
         total = rel_materials + lay->draw_material_stride * (GLsizeiptr)f->draw_count + table_bytes;
-    mvr_result res = mvr_ring_begin_frame(r, total);
+    if (!static_current)
+        upload_static(r);
+    bool reallocated = false;
+    mvr_result res = mvr_ring_begin_frame(r, total, &reallocated);
     if (res != MVR_OK)
         return res;
-    GLintptr seg = (GLintptr)r->ring.current * r->ring.segment_size;
+    if (reallocated) /* a new buffer: its static region is empty */
+        upload_static(r);
+    r->frame_key.valid = true;
+    GLintptr seg = r->ring.static_size + (GLintptr)r->ring.current * r->ring.segment_size;
     lay->views = seg;
     lay->draw_materials = seg + rel_materials;
     if (per_draw && f->draw_count) {
@@ -261,7 +257,7 @@ static mvr_result draw_list(pass_context *pc, mvr_pass_kind kind)
         mvr_result res = bind_program(pc, d->features);
         if (res != MVR_OK)
             return res;
-        mvr_state_ubo_range(st, MVR_BLOCK_DRAW, pc->lay->static_buffer,
+        mvr_state_ubo_range(st, MVR_BLOCK_DRAW, r->ring.buffer,
                             pc->lay->draws + (GLintptr)d->block * f->block_stride, MVR_DRAW_BLOCK_SIZE);
         if (r->material_path == MVR_MATERIAL_PATH_PER_DRAW) /* baseline: a fragment-visible range per draw */
             mvr_state_ubo_range(st, MVR_BLOCK_MATERIALS, r->ring.buffer,
@@ -334,10 +330,6 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
                               r->gpu.arrays ? &r->gpu.plan : NULL, why, sizeof why);
         if (res != MVR_OK)
             return mvr_renderer_fail(r, res, "frame: %s", why);
-        res = upload_static(r);
-        if (res != MVR_OK)
-            return res;
-        r->frame_key.valid = true;
         r->frame_key.scene_serial = mvr_scene_serial(scene);
         r->frame_key.geometry_version = scene->geometry_version;
         r->frame_key.material_version = scene->material_version;
@@ -357,7 +349,7 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
                 r->stats.culled += r->vis.culled[v];
     }
     frame_layout lay;
-    res = upload_frame(r, views, t, &lay);
+    res = upload_frame(r, views, t, &lay, same);
     if (res != MVR_OK)
         return res;
 
@@ -444,7 +436,7 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
         mvr_state_ubo_range(st, MVR_BLOCK_VIEWS, r->ring.buffer,
                             lay.views + (GLintptr)block * view_block_stride, VIEW_BLOCK_SIZE);
         if (light_total)
-            mvr_state_ubo_range(st, MVR_BLOCK_LIGHTS, lay.static_buffer, lay.lights, lay.lights_size);
+            mvr_state_ubo_range(st, MVR_BLOCK_LIGHTS, r->ring.buffer, lay.lights, lay.lights_size);
         pc.num_views = mv_pass ? ch->count : 0;
         pc.first_view = ch->base;
         pc.views = ch->count;

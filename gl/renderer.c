@@ -167,8 +167,7 @@ void mvr_renderer_destroy(mvr_renderer *r)
             gl->DeleteSync(r->ring.fences[i]);
     if (r->ring.buffer)
         gl->DeleteBuffers(1, &r->ring.buffer);
-    if (r->static_buffer)
-        gl->DeleteBuffers(1, &r->static_buffer);
+
     if (r->timer.timestamps)
         gl->DeleteQueries(2, r->timer.queries);
     mvr_frame_free(&r->frame);
@@ -217,30 +216,55 @@ mvr_result mvr_renderer_program(mvr_renderer *r, const mvr_shader_variant *v, mv
     return MVR_OK;
 }
 
-mvr_result mvr_ring_begin_frame(mvr_renderer *r, GLsizeiptr size)
+/* Replaces the ring buffer with one of the given region sizes. The old
+ * buffer may still be read by queued draws; GL keeps it alive until they
+ * finish, so deleting it here is safe. */
+static void ring_allocate(mvr_renderer *r, GLsizeiptr static_size, GLsizeiptr segment_size)
 {
     const mvr_gl_api_table *gl = r->gl;
     mvr_ring *ring = &r->ring;
-    if (size > ring->segment_size) {
-        /* grow: the old buffer may still be read by queued draws; GL keeps it
-         * alive until they finish, so deleting it here is safe */
-        for (int i = 0; i < MVR_RING_SEGMENTS; ++i) {
-            if (ring->fences[i])
-                gl->DeleteSync(ring->fences[i]);
-            ring->fences[i] = 0;
-        }
-        if (ring->buffer) {
-            mvr_state_forget_buffer(&r->state, ring->buffer);
-            gl->DeleteBuffers(1, &ring->buffer);
-        }
-        GLsizeiptr seg = 64 * 1024;
-        while (seg < size)
-            seg *= 2;
-        gl->GenBuffers(1, &ring->buffer);
-        gl->BindBuffer(GL_UNIFORM_BUFFER, ring->buffer);
-        gl->BufferData(GL_UNIFORM_BUFFER, seg * MVR_RING_SEGMENTS, NULL, GL_DYNAMIC_DRAW);
-        ring->segment_size = seg;
-        ring->current = 0;
+    for (int i = 0; i < MVR_RING_SEGMENTS; ++i) {
+        if (ring->fences[i])
+            gl->DeleteSync(ring->fences[i]);
+        ring->fences[i] = 0;
+    }
+    if (ring->buffer) {
+        mvr_state_forget_buffer(&r->state, ring->buffer);
+        gl->DeleteBuffers(1, &ring->buffer);
+    }
+    gl->GenBuffers(1, &ring->buffer);
+    gl->BindBuffer(GL_UNIFORM_BUFFER, ring->buffer);
+    gl->BufferData(GL_UNIFORM_BUFFER, static_size + segment_size * MVR_RING_SEGMENTS, NULL, GL_DYNAMIC_DRAW);
+    ring->static_size = static_size;
+    ring->segment_size = segment_size;
+    ring->current = 0;
+    r->frame_key.valid = false; /* the static region is empty now */
+}
+
+static GLsizeiptr grown(GLsizeiptr have, GLsizeiptr need)
+{
+    GLsizeiptr v = have ? have : 64 * 1024;
+    while (v < need)
+        v *= 2;
+    return v;
+}
+
+bool mvr_ring_reserve_static(mvr_renderer *r, GLsizeiptr size)
+{
+    if (r->ring.buffer && size <= r->ring.static_size)
+        return false;
+    ring_allocate(r, grown(r->ring.static_size, size), r->ring.segment_size ? r->ring.segment_size : 64 * 1024);
+    return true;
+}
+
+mvr_result mvr_ring_begin_frame(mvr_renderer *r, GLsizeiptr size, bool *reallocated)
+{
+    const mvr_gl_api_table *gl = r->gl;
+    mvr_ring *ring = &r->ring;
+    *reallocated = false;
+    if (!ring->buffer || size > ring->segment_size) {
+        ring_allocate(r, ring->static_size, grown(ring->segment_size, size));
+        *reallocated = true;
     } else {
         ring->current = (ring->current + 1) % MVR_RING_SEGMENTS;
     }

@@ -72,6 +72,9 @@ typedef struct mvr_gpu_scene {
 #define MVR_RING_SEGMENTS 3
 typedef struct mvr_ring {
     GLuint buffer;
+    GLsizeiptr static_size;      /* a region before the segments: per-draw blocks and lights,
+                                    re-sent only when they change (same buffer as the views:
+                                    binds of another buffer's ranges cost more in Mesa) */
     GLsizeiptr segment_size;
     uint32_t current;
     GLsync fences[MVR_RING_SEGMENTS];
@@ -122,8 +125,7 @@ struct mvr_renderer {
         uint64_t scene_serial, geometry_version, material_version, transform_version;
         mvr_dvec3 origin;
     } frame_key;
-    GLuint static_buffer;        /* per-draw blocks and lights of the current frame */
-    GLsizeiptr static_size;
+
     mvr_ring ring;
     mvr_timer timer;
     uint64_t frame_serial;
@@ -153,8 +155,11 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
                                    mvr_target *target, const mvr_render_desc *desc, mvr_view_path path);
 
 /* Ring: room for `size` bytes of this frame's uniform data; the offset is
- * aligned to the GL's uniform buffer offset alignment. */
-mvr_result mvr_ring_begin_frame(mvr_renderer *r, GLsizeiptr size);
+ * aligned to the GL's uniform buffer offset alignment. Sets *reallocated when
+ * the buffer was replaced (the static region's contents are then gone). */
+mvr_result mvr_ring_begin_frame(mvr_renderer *r, GLsizeiptr size, bool *reallocated);
+/* Makes the static region at least `size` bytes (reallocating the ring). */
+bool mvr_ring_reserve_static(mvr_renderer *r, GLsizeiptr size);
 void mvr_ring_end_frame(mvr_renderer *r);
 
 #endif
