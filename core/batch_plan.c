@@ -56,7 +56,7 @@ static mvr_sampler_desc normalized(mvr_sampler_desc s)
     return s;
 }
 
-static uint32_t full_chain(uint32_t w, uint32_t h)
+uint32_t mvr_mip_levels(uint32_t w, uint32_t h)
 {
     uint32_t n = 1, m = w > h ? w : h;
     while (m > 1) {
@@ -69,14 +69,8 @@ static uint32_t full_chain(uint32_t w, uint32_t h)
 static bool note(mvr_batch_plan *p, const char *fmt, ...) MVR_PRINTF(2, 3);
 static bool note(mvr_batch_plan *p, const char *fmt, ...)
 {
-    if (p->note_count == p->note_cap) {
-        uint32_t cap = p->note_cap ? p->note_cap * 2 : 8;
-        char **n = realloc(p->notes, cap * sizeof *n);
-        if (!n)
-            return false;
-        p->notes = n;
-        p->note_cap = cap;
-    }
+    if (!mvr_array_grow((void **)&p->notes, &p->note_cap, p->note_count, sizeof *p->notes))
+        return false;
     char buf[256];
     va_list ap;
     va_start(ap, fmt);
@@ -111,14 +105,8 @@ static bool layer_of(mvr_texture_group *g, const mvr_scene *s, uint32_t image, u
             return true;
         }
     }
-    if (g->layer_count == g->layer_cap) {
-        uint32_t cap = g->layer_cap ? g->layer_cap * 2 : 8;
-        uint32_t *n = realloc(g->layer_images, cap * sizeof *n);
-        if (!n)
-            return false;
-        g->layer_images = n;
-        g->layer_cap = cap;
-    }
+    if (!mvr_array_grow((void **)&g->layer_images, &g->layer_cap, g->layer_count, sizeof *g->layer_images))
+        return false;
     g->layer_images[g->layer_count] = image;
     *out = g->layer_count++;
     return true;
@@ -170,7 +158,7 @@ mvr_result mvr_batch_plan_build(mvr_batch_plan *p, const mvr_scene *s, uint32_t 
             const scene_image *img = &s->images[image];
             mvr_sampler_desc smp = normalized(t->sampler);
             bool srgb = mvr_role_is_srgb(role);
-            uint32_t levels = mvr_sampler_uses_mipmaps(&smp) ? full_chain(img->width, img->height) : 1;
+            uint32_t levels = mvr_sampler_uses_mipmaps(&smp) ? mvr_mip_levels(img->width, img->height) : 1;
             mvr_texture_group *first = NULL, *fit = NULL;
             bool full = false;
             for (uint32_t g = 0; g < p->group_count; ++g) {
@@ -194,14 +182,8 @@ mvr_result mvr_batch_plan_build(mvr_batch_plan *p, const mvr_scene *s, uint32_t 
             if (!fit) {
                 if (first)
                     explain(p, first, role, image, m, img->width, img->height, srgb, levels, &smp, full);
-                if (p->group_count == p->group_cap) {
-                    uint32_t cap = p->group_cap ? p->group_cap * 2 : 8;
-                    mvr_texture_group *n = realloc(p->groups, cap * sizeof *n);
-                    if (!n)
-                        return MVR_ERROR_OUT_OF_MEMORY;
-                    p->groups = n;
-                    p->group_cap = cap;
-                }
+                if (!mvr_array_grow((void **)&p->groups, &p->group_cap, p->group_count, sizeof *p->groups))
+                    return MVR_ERROR_OUT_OF_MEMORY;
                 fit = &p->groups[p->group_count++];
                 memset(fit, 0, sizeof *fit);
                 fit->role = role;
@@ -239,14 +221,9 @@ mvr_result mvr_batch_plan_build(mvr_batch_plan *p, const mvr_scene *s, uint32_t 
             if (p->materials[m].group[role] != MVR_NO_GROUP)
                 continue;
             if (first->neutral_layer == MVR_NO_INDEX) {
-                if (first->layer_count == first->layer_cap) {
-                    uint32_t cap = first->layer_cap ? first->layer_cap * 2 : 8;
-                    uint32_t *n = realloc(first->layer_images, cap * sizeof *n);
-                    if (!n)
-                        return MVR_ERROR_OUT_OF_MEMORY;
-                    first->layer_images = n;
-                    first->layer_cap = cap;
-                }
+                if (!mvr_array_grow((void **)&first->layer_images, &first->layer_cap, first->layer_count,
+                                    sizeof *first->layer_images))
+                    return MVR_ERROR_OUT_OF_MEMORY;
                 first->neutral_layer = first->layer_count;
                 first->layer_images[first->layer_count++] = MVR_NO_INDEX;
             }

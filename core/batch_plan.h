@@ -55,6 +55,9 @@ const mvr_texture_ref *mvr_material_role(const mvr_material_desc *m, uint32_t ro
 /* Whether a role is stored sRGB-encoded (base color and emissive, glTF 2.0 3.9.2). */
 bool mvr_role_is_srgb(uint32_t role);
 
+/* Levels of a full mip chain of a w x h image. */
+uint32_t mvr_mip_levels(uint32_t w, uint32_t h);
+
 /* Whether a sampler's minification filter reads mip levels. */
 bool mvr_sampler_uses_mipmaps(const mvr_sampler_desc *s);
 

@@ -4,6 +4,7 @@
 #define MVR_CORE_UTIL_H
 
 #include <stdarg.h>
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -35,6 +36,10 @@ typedef struct mvr_str_builder {
 void mvr_sb_append(mvr_str_builder *sb, const char *text);
 void mvr_sb_appendf(mvr_str_builder *sb, const char *fmt, ...) MVR_PRINTF(2, 3);
 void mvr_sb_free(mvr_str_builder *sb);
+
+/* Grows a malloc'd array *items (capacity *cap, elem bytes each) to hold
+ * count + 1 elements: doubling from 8; false on overflow or out of memory. */
+bool mvr_array_grow(void **items, uint32_t *cap, uint32_t count, size_t elem);
 
 /* Overflow-checked arithmetic: returns 0 and leaves *out alone on overflow. */
 int mvr_size_mul(size_t a, size_t b, size_t *out);

@@ -382,15 +382,8 @@ mvr_result mvr_visibility_compute(mvr_visibility *vis, const mvr_frame *f, const
     for (uint32_t v = 0; v < views->count; ++v) {
         const mvr_view_desc *vd = &views->views[v];
         mvr_viewport vp = mvr_view_viewport(vd, width, height);
-        /* the same matrix the GPU gets, in double, relative to the origin */
-        mvr_dvec3 rel = mvr_dvec3_sub(mvr_dvec3_make(vd->position[0], vd->position[1], vd->position[2]),
-                                      views->origin);
-        mvr_dquat q = {vd->orientation[0], vd->orientation[1], vd->orientation[2], vd->orientation[3]};
-        if (q.x == 0 && q.y == 0 && q.z == 0 && q.w == 0)
-            q.w = 1;
-        mvr_dmat4 view = mvr_dmat4_view(rel, q);
-        mvr_dmat4 proj = mvr_view_projection(vd, vp, reversed);
-        mvr_dmat4 m = mvr_dmat4_mul(&proj, &view);
+        /* the matrix the GPU gets, in double */
+        mvr_dmat4 m = mvr_view_relative_view_proj(vd, views->origin, vp, reversed);
         mvr_frustum frustum;
         mvr_frustum_planes(&m, reversed, &frustum);
         uint64_t *row = vis->bits + (size_t)v * vis->words;

@@ -16,23 +16,7 @@ static mvr_result fail(mvr_scene *s, mvr_result r, const char *fmt, ...)
     return r;
 }
 
-/* Grows *items to hold one more element of size elem. */
-static bool grow(void **items, uint32_t *cap, uint32_t count, size_t elem)
-{
-    if (count < *cap)
-        return true;
-    uint32_t new_cap = *cap ? *cap * 2 : 16;
-    size_t bytes;
-    if (new_cap <= *cap || !mvr_size_mul(new_cap, elem, &bytes))
-        return false;
-    void *p = realloc(*items, bytes);
-    if (!p)
-        return false;
-    *items = p;
-    *cap = new_cap;
-    return true;
-}
-#define GROW(s, field, count, cap) grow((void **)&(s)->field, &(s)->cap, (s)->count, sizeof *(s)->field)
+#define GROW(s, field, count, cap) mvr_array_grow((void **)&(s)->field, &(s)->cap, (s)->count, sizeof *(s)->field)
 
 static void *copy_floats(const float *src, uint32_t count, uint32_t per, bool *oom)
 {

@@ -109,3 +109,19 @@ void mvr_sb_free(mvr_str_builder *sb)
     sb->length = sb->capacity = 0;
     sb->failed = 0;
 }
+
+bool mvr_array_grow(void **items, uint32_t *cap, uint32_t count, size_t elem)
+{
+    if (count < *cap)
+        return true;
+    uint32_t new_cap = *cap ? *cap * 2 : 8;
+    size_t bytes;
+    if (new_cap <= *cap || !mvr_size_mul(new_cap, elem, &bytes))
+        return false;
+    void *p = realloc(*items, bytes);
+    if (!p)
+        return false;
+    *items = p;
+    *cap = new_cap;
+    return true;
+}

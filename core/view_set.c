@@ -199,17 +199,22 @@ mvr_dmat4 mvr_view_projection(const mvr_view_desc *v, mvr_viewport vp, bool reve
     return mvr_dmat4_identity();
 }
 
-void mvr_view_gpu_matrices(const mvr_view_desc *v, mvr_dvec3 origin, mvr_viewport vp, bool reversed,
-                           float view_proj[16], float eye_rel[4])
+mvr_dmat4 mvr_view_relative_view_proj(const mvr_view_desc *v, mvr_dvec3 origin, mvr_viewport vp, bool reversed)
 {
-    mvr_dvec3 pos = mvr_dvec3_make(v->position[0], v->position[1], v->position[2]);
-    mvr_dvec3 rel = mvr_dvec3_sub(pos, origin);
+    mvr_dvec3 rel = mvr_dvec3_sub(mvr_dvec3_make(v->position[0], v->position[1], v->position[2]), origin);
     mvr_dquat q = {v->orientation[0], v->orientation[1], v->orientation[2], v->orientation[3]};
     if (q.x == 0 && q.y == 0 && q.z == 0 && q.w == 0)
         q.w = 1;
     mvr_dmat4 view = mvr_dmat4_view(rel, q);
     mvr_dmat4 proj = mvr_view_projection(v, vp, reversed);
-    mvr_dmat4 vpm = mvr_dmat4_mul(&proj, &view);
+    return mvr_dmat4_mul(&proj, &view);
+}
+
+void mvr_view_gpu_matrices(const mvr_view_desc *v, mvr_dvec3 origin, mvr_viewport vp, bool reversed,
+                           float view_proj[16], float eye_rel[4])
+{
+    mvr_dvec3 rel = mvr_dvec3_sub(mvr_dvec3_make(v->position[0], v->position[1], v->position[2]), origin);
+    mvr_dmat4 vpm = mvr_view_relative_view_proj(v, origin, vp, reversed);
     mvr_mat4f f = mvr_dmat4_to_float(&vpm);
     memcpy(view_proj, f.m, sizeof f.m);
     eye_rel[0] = (float)rel.x;

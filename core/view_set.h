@@ -22,6 +22,10 @@ mvr_viewport mvr_view_viewport(const mvr_view_desc *view, uint32_t width, uint32
  * clip z in [0, 1], else GL's standard convention (finite far enforced). */
 mvr_dmat4 mvr_view_projection(const mvr_view_desc *view, mvr_viewport vp, bool reversed);
 
+/* The view-projection (double) of a view, relative to origin: what the GPU
+ * gets (narrowed) and what culling tests against. */
+mvr_dmat4 mvr_view_relative_view_proj(const mvr_view_desc *view, mvr_dvec3 origin, mvr_viewport vp, bool reversed);
+
 /* view_proj relative to origin (float) and the eye position relative to origin. */
 void mvr_view_gpu_matrices(const mvr_view_desc *view, mvr_dvec3 origin, mvr_viewport vp,
                            bool reversed, float view_proj[16], float eye_rel[4]);

@@ -75,16 +75,6 @@ static GLuint sampler_for(mvr_renderer *r, const mvr_sampler_desc *d)
     return s;
 }
 
-static uint32_t mip_levels(uint32_t w, uint32_t h)
-{
-    uint32_t n = 1, m = w > h ? w : h;
-    while (m > 1) {
-        m >>= 1;
-        n++;
-    }
-    return n;
-}
-
 /* Whether any material samples the image with a mipmapped minification filter. */
 static bool image_needs_mipmaps(const mvr_scene *s, uint32_t image)
 {
@@ -121,7 +111,7 @@ static GLuint texture_for(mvr_renderer *r, const mvr_scene *s, uint32_t image, b
     gl->GenTextures(1, &t);
     mvr_state_texture(&r->state, 0, GL_TEXTURE_2D, t);
     bool mipmaps = image_needs_mipmaps(s, image);
-    gl->TexStorage2D(GL_TEXTURE_2D, mipmaps ? (GLsizei)mip_levels(img->width, img->height) : 1,
+    gl->TexStorage2D(GL_TEXTURE_2D, mipmaps ? (GLsizei)mvr_mip_levels(img->width, img->height) : 1,
                      srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, (GLsizei)img->width, (GLsizei)img->height);
     gl->PixelStorei(GL_UNPACK_ALIGNMENT, 1);
     /* rows as stored, top first: glTF's uv (0, 0) is the image's top-left */
