@@ -95,12 +95,39 @@ bool fs_write(std::string *, const std::string &, const std::vector<unsigned cha
     return false; // the loader never writes
 }
 
-// Images are kept encoded (mvr_image decodes them with OpenImageIO).
-bool keep_encoded(tinygltf::Image *image, const int, std::string *, std::string *, int, int,
-                  const unsigned char *bytes, int size, void *)
+// Images are kept encoded (mvr_image decodes them with OpenImageIO). For an
+// image in a buffer view, tinygltf 2.7 computes bytes and size from the view
+// without checking them against the buffer (found by the fuzzer): the view is
+// checked here, against the model tinygltf is filling (user = the Model),
+// before a byte is read.
+bool keep_encoded(tinygltf::Image *image, const int index, std::string *err, std::string *, int, int,
+                  const unsigned char *bytes, int size, void *user)
 {
-    if (size <= 0)
+    if (size <= 0 || !bytes)
         return false;
+    if (image->bufferView >= 0) {
+        const auto *model = static_cast<const tinygltf::Model *>(user);
+        std::string what = "images[" + std::to_string(index) + "]: bufferView " + std::to_string(image->bufferView);
+        if (size_t(image->bufferView) >= model->bufferViews.size()) {
+            if (err)
+                *err += what + " does not exist\n";
+            return false;
+        }
+        const auto &v = model->bufferViews[size_t(image->bufferView)];
+        if (v.buffer < 0 || size_t(v.buffer) >= model->buffers.size()) {
+            if (err)
+                *err += what + " names a missing buffer\n";
+            return false;
+        }
+        const auto &data = model->buffers[size_t(v.buffer)].data;
+        uint64_t end = uint64_t(v.byteOffset) + uint64_t(v.byteLength);
+        if (end > data.size() || uint64_t(size) > v.byteLength || end < v.byteOffset ||
+            bytes < data.data() || bytes + size > data.data() + data.size()) {
+            if (err)
+                *err += what + " reads past the end of buffer " + std::to_string(v.buffer) + "\n";
+            return false;
+        }
+    }
     image->image.assign(bytes, bytes + size);
     image->as_is = true;
     return true;
@@ -685,8 +712,8 @@ mvr_result load(const unsigned char *bytes, size_t size, const std::string &base
         tinygltf::TinyGLTF loader;
         fs_state fs{cx.limits.max_file_bytes, allow_files, ""};
         loader.SetFsCallbacks(tinygltf::FsCallbacks{fs_exists, fs_expand, fs_read, fs_write, &fs});
-        loader.SetImageLoader(keep_encoded, nullptr);
         Model model;
+        loader.SetImageLoader(keep_encoded, &model);
         std::string err, warn;
         bool ok = glb ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes, unsigned(size), base_dir)
                       : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char *>(bytes),
