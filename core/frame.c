@@ -287,7 +287,12 @@ mvr_result mvr_frame_build(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin, u
                  * program */
                 if (neutral && p->uv0)
                     neutral |= MVR_FEATURE_UV0;
-                d->features |= MVR_FEATURE_MATERIAL_ARRAYS | neutral;
+                d->features |= neutral;
+                /* the array bit only where something is sampled: a draw
+                 * without textures keeps the key (and program) it has on
+                 * every material path */
+                if (d->features & MVR_TEXTURE_FEATURES)
+                    d->features |= MVR_FEATURE_MATERIAL_ARRAYS;
                 d->group_key = mvr_batch_plan_group_key(plan, material_slot);
             }
             d->material_page = material_slot / material_capacity;

@@ -49,6 +49,10 @@ typedef enum mvr_mesh_feature {
     MVR_MESH_FEATURE_ALL_ = (1u << 19) - 1u
 } mvr_mesh_feature;
 
+#define MVR_TEXTURE_FEATURES                                                                        \
+    (MVR_FEATURE_BASE_COLOR_TEX | MVR_FEATURE_METAL_ROUGH_TEX | MVR_FEATURE_NORMAL_TEX |                \
+     MVR_FEATURE_OCCLUSION_TEX | MVR_FEATURE_EMISSIVE_TEX)
+
 /* Feature bits of the composite program. */
 typedef enum mvr_composite_feature {
     MVR_FEATURE_SRGB_ENCODE = 1u << 0,      /* exact piecewise sRGB encode on output */

@@ -2,25 +2,16 @@
 #include <string.h>
 
 #include "program.h"
+#include "program_binary_file.h"
 
-static mvr_result compile_stage(mvr_context *ctx, const mvr_shader_variant *variant,
-                                mvr_shader_stage stage, GLuint *out)
+static mvr_result compile_stage(mvr_context *ctx, const char *name, mvr_shader_stage stage, const char *text,
+                                GLuint *out)
 {
     const mvr_gl_api_table *gl = &ctx->gl;
-    char name[96];
-    mvr_shader_variant_name(variant, name, sizeof name);
-    char why[256] = "";
-    mvr_str_builder src = {0};
-    if (!mvr_shader_source(variant, stage, &src, why, sizeof why)) {
-        mvr_sb_free(&src);
-        return mvr_context_fail(ctx, MVR_ERROR_INVALID_ARGUMENT, "shader variant %s: %s", name, why);
-    }
     GLuint shader = gl->CreateShader(stage == MVR_SHADER_STAGE_VERTEX ? GL_VERTEX_SHADER
                                                                       : GL_FRAGMENT_SHADER);
-    const GLchar *text = src.data;
     gl->ShaderSource(shader, 1, &text, NULL);
     gl->CompileShader(shader);
-    mvr_sb_free(&src);
     GLint ok = GL_FALSE;
     gl->GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
     if (!ok) {
@@ -50,28 +41,80 @@ static void bind_sampler(const mvr_gl_api_table *gl, GLuint program, const char 
         gl->Uniform1i(loc, unit);
 }
 
-mvr_result mvr_gl_program_build(mvr_context *ctx, const mvr_shader_variant *variant,
-                                GLuint *out_program)
+/* Driver identity for binary cache keys: a binary is only ever handed back
+ * to the driver (API, vendor, renderer and version strings) that wrote it. */
+static void driver_identity(const mvr_context *ctx, char *out, size_t size)
+{
+    const mvr_caps *c = &ctx->caps;
+    mvr_str_format(out, size, "%s|%s|%s|%s", c->api == MVR_GL_API_GLES ? "gles" : "gl", c->vendor,
+                   c->renderer, c->version);
+}
+
+static void drain_gl_errors(const mvr_gl_api_table *gl)
+{
+    for (int i = 0; i < 16 && gl->GetError() != GL_NO_ERROR; ++i) {
+    }
+}
+
+/* Links a program from a cached binary; 0 when the driver refuses it (a
+ * driver update can make a binary stale without changing its strings). */
+static GLuint load_binary(mvr_context *ctx, uint32_t format, const void *data, size_t size)
 {
     const mvr_gl_api_table *gl = &ctx->gl;
-    *out_program = 0;
-    if (variant->num_views > 0 && !ctx->caps.ext.ovr_multiview2)
-        return mvr_context_fail(ctx, MVR_ERROR_UNSUPPORTED,
-                                "multiview shader variant on a GL without GL_OVR_multiview2");
-    if (variant->num_views > (uint32_t)ctx->caps.limits.max_views_ovr)
-        return mvr_context_fail(ctx, MVR_ERROR_UNSUPPORTED,
-                                "multiview shader variant with %u views; GL_MAX_VIEWS_OVR is %d",
-                                (unsigned)variant->num_views, ctx->caps.limits.max_views_ovr);
+    drain_gl_errors(gl);
+    GLuint program = gl->CreateProgram();
+    gl->ProgramBinary(program, (GLenum)format, data, (GLsizei)size);
+    GLint ok = GL_FALSE;
+    gl->GetProgramiv(program, GL_LINK_STATUS, &ok);
+    bool clean = gl->GetError() == GL_NO_ERROR;
+    drain_gl_errors(gl);
+    if (ok && clean)
+        return program;
+    gl->DeleteProgram(program);
+    return 0;
+}
+
+static void store_binary(mvr_context *ctx, GLuint program, const char *path, const char *driver, uint64_t key,
+                         mvr_program_build_info *info)
+{
+    const mvr_gl_api_table *gl = &ctx->gl;
+    GLint length = 0;
+    gl->GetProgramiv(program, GL_PROGRAM_BINARY_LENGTH, &length);
+    if (length <= 0) {
+        drain_gl_errors(gl);
+        return;
+    }
+    void *data = malloc((size_t)length);
+    if (!data)
+        return;
+    GLsizei written = 0;
+    GLenum format = 0;
+    gl->GetProgramBinary(program, length, &written, &format, data);
+    if (gl->GetError() == GL_NO_ERROR && written > 0 &&
+        mvr_program_binary_write(path, driver, key, format, data, (size_t)written, info->why, sizeof info->why))
+        info->binary_stored = true;
+    else if (info->why[0])
+        info->binary_store_failed = true;
+    drain_gl_errors(gl);
+    free(data);
+}
+
+static mvr_result link_sources(mvr_context *ctx, const char *name, const char *vs_text, const char *fs_text,
+                               bool retrievable, GLuint *out)
+{
+    const mvr_gl_api_table *gl = &ctx->gl;
     GLuint vs = 0, fs = 0;
-    mvr_result r = compile_stage(ctx, variant, MVR_SHADER_STAGE_VERTEX, &vs);
+    mvr_result r = compile_stage(ctx, name, MVR_SHADER_STAGE_VERTEX, vs_text, &vs);
     if (r != MVR_OK)
         return r;
-    r = compile_stage(ctx, variant, MVR_SHADER_STAGE_FRAGMENT, &fs);
+    r = compile_stage(ctx, name, MVR_SHADER_STAGE_FRAGMENT, fs_text, &fs);
     if (r != MVR_OK) {
         gl->DeleteShader(vs);
         return r;
     }
     GLuint program = gl->CreateProgram();
+    if (retrievable)
+        gl->ProgramParameteri(program, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
     gl->AttachShader(program, vs);
     gl->AttachShader(program, fs);
     gl->LinkProgram(program);
@@ -83,14 +126,82 @@ mvr_result mvr_gl_program_build(mvr_context *ctx, const mvr_shader_variant *vari
     gl->GetProgramiv(program, GL_LINK_STATUS, &ok);
     if (!ok) {
         char log[MVR_ERROR_MESSAGE_SIZE - 64] = "";
-        char name[96];
         gl->GetProgramInfoLog(program, (GLsizei)sizeof log, NULL, log);
         gl->DeleteProgram(program);
-        mvr_shader_variant_name(variant, name, sizeof name);
         mvr_log(&ctx->logger, MVR_LOG_ERROR, MVR_LOG_ID_SHADER, "mvr: linking %s: %s", name, log);
         return mvr_context_fail(ctx, MVR_ERROR_SHADER, "linking %s: %s", name, log);
     }
+    *out = program;
+    return MVR_OK;
+}
 
+mvr_result mvr_gl_program_build_cached(mvr_context *ctx, const mvr_shader_variant *variant, const char *cache_dir,
+                                       mvr_program_build_info *info)
+{
+    const mvr_gl_api_table *gl = &ctx->gl;
+    memset(info, 0, sizeof *info);
+    if (variant->num_views > 0 && !ctx->caps.ext.ovr_multiview2)
+        return mvr_context_fail(ctx, MVR_ERROR_UNSUPPORTED,
+                                "multiview shader variant on a GL without GL_OVR_multiview2");
+    if (variant->num_views > (uint32_t)ctx->caps.limits.max_views_ovr)
+        return mvr_context_fail(ctx, MVR_ERROR_UNSUPPORTED,
+                                "multiview shader variant with %u views; GL_MAX_VIEWS_OVR is %d",
+                                (unsigned)variant->num_views, ctx->caps.limits.max_views_ovr);
+    char name[96];
+    mvr_shader_variant_name(variant, name, sizeof name);
+    char why[256] = "";
+    mvr_str_builder vs_src = {0}, fs_src = {0};
+    if (!mvr_shader_source(variant, MVR_SHADER_STAGE_VERTEX, &vs_src, why, sizeof why) ||
+        !mvr_shader_source(variant, MVR_SHADER_STAGE_FRAGMENT, &fs_src, why, sizeof why)) {
+        mvr_sb_free(&vs_src);
+        mvr_sb_free(&fs_src);
+        return mvr_context_fail(ctx, MVR_ERROR_INVALID_ARGUMENT, "shader variant %s: %s", name, why);
+    }
+
+    /* the binary cache: only where the driver offers a format */
+    bool use_cache = cache_dir && cache_dir[0] && ctx->caps.ext.program_binary && gl->ProgramBinary &&
+                     gl->GetProgramBinary;
+    char driver[MVR_PROGRAM_BINARY_MAX_DRIVER];
+    char path[4096];
+    uint64_t key = 0;
+    GLuint program = 0;
+    if (use_cache) {
+        driver_identity(ctx, driver, sizeof driver);
+        key = mvr_program_binary_key(driver, vs_src.data, fs_src.data);
+        use_cache = mvr_program_binary_path(cache_dir, name, driver, path, sizeof path);
+    }
+    if (use_cache) {
+        uint32_t format = 0;
+        void *data = NULL;
+        size_t size = 0;
+        mvr_program_binary_status st =
+            mvr_program_binary_read(path, driver, key, &format, &data, &size, why, sizeof why);
+        if (st == MVR_PROGRAM_BINARY_HIT) {
+            program = load_binary(ctx, format, data, size);
+            if (!program)
+                mvr_str_copy(why, sizeof why, "the driver refused the binary");
+        }
+        free(data);
+        if (st != MVR_PROGRAM_BINARY_MISS && !program) {
+            info->binary_rejected = true;
+            mvr_str_format(info->why, sizeof info->why, "%s: %s", path, why);
+        }
+        info->from_binary = program != 0;
+    }
+    mvr_result r = MVR_OK;
+    if (!program) {
+        r = link_sources(ctx, name, vs_src.data, fs_src.data, use_cache, &program);
+        if (r == MVR_OK && use_cache)
+            store_binary(ctx, program, path, driver, key, info);
+    }
+    mvr_sb_free(&vs_src);
+    mvr_sb_free(&fs_src);
+    if (r != MVR_OK)
+        return r;
+
+    /* set after a binary load too: "a successful call to ProgramBinary will
+     * reset all uniform variables to their initial values" (ES 3.0 spec,
+     * Program Binaries), and block bindings are not promised either */
     bind_block(gl, program, "mvr_views", MVR_BLOCK_VIEWS);
     bind_block(gl, program, "mvr_draw", MVR_BLOCK_DRAW);
     bind_block(gl, program, "mvr_materials", MVR_BLOCK_MATERIALS);
@@ -109,8 +220,16 @@ mvr_result mvr_gl_program_build(mvr_context *ctx, const mvr_shader_variant *vari
         gl->DeleteProgram(program);
         return r;
     }
-    *out_program = program;
+    info->program = program;
     return MVR_OK;
+}
+
+mvr_result mvr_gl_program_build(mvr_context *ctx, const mvr_shader_variant *variant, GLuint *out_program)
+{
+    mvr_program_build_info info;
+    mvr_result r = mvr_gl_program_build_cached(ctx, variant, NULL, &info);
+    *out_program = info.program;
+    return r;
 }
 
 mvr_result mvr_context_check_shader_variant(mvr_context *ctx, const mvr_shader_variant *variant)

@@ -29,6 +29,22 @@ enum {
 mvr_result mvr_gl_program_build(mvr_context *ctx, const mvr_shader_variant *variant,
                                 GLuint *out_program);
 
+typedef struct mvr_program_build_info {
+    GLuint program;
+    bool from_binary;       /* linked from the binary cache, nothing compiled */
+    bool binary_rejected;   /* a cache entry was there but corrupt, stale or refused */
+    bool binary_stored;     /* compiled, and the binary written to the cache */
+    bool binary_store_failed;
+    char why[512];          /* what was wrong with a rejected entry, or why storing failed */
+} mvr_program_build_info;
+
+/* mvr_gl_program_build with a program binary cache in cache_dir (NULL or ""
+ * = none; also none where the driver offers no binary format). An entry is
+ * used only after its checks pass and the driver accepts it; otherwise the
+ * variant is compiled and the entry rewritten. */
+mvr_result mvr_gl_program_build_cached(mvr_context *ctx, const mvr_shader_variant *variant, const char *cache_dir,
+                                       mvr_program_build_info *info);
+
 /* Builds a variant on ctx and deletes it again: a check that the driver
  * accepts it (tests). */
 mvr_result mvr_context_check_shader_variant(mvr_context *ctx, const mvr_shader_variant *variant);

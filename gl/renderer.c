@@ -141,6 +141,15 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
                              "mvr_renderer_create: GL_MAX_UNIFORM_BLOCK_SIZE %d holds no material",
                              c->limits.max_uniform_block_size);
     }
+    if (desc->program_cache_dir && desc->program_cache_dir[0]) {
+        size_t n = strlen(desc->program_cache_dir);
+        r->program_cache_dir = malloc(n + 1);
+        if (!r->program_cache_dir) {
+            free(r);
+            return mvr_error_set(error, MVR_ERROR_OUT_OF_MEMORY, "mvr_renderer_create: out of memory");
+        }
+        memcpy(r->program_cache_dir, desc->program_cache_dir, n + 1);
+    }
     mvr_state_init(&r->state, r->gl, false);
     timer_init(r);
     mvr_result res = mvr_gl_check(r->ctx, "mvr_renderer_create", false);
@@ -172,6 +181,7 @@ void mvr_renderer_destroy(mvr_renderer *r)
         gl->DeleteQueries(2, r->timer.queries);
     mvr_frame_free(&r->frame);
     mvr_visibility_free(&r->vis);
+    free(r->program_cache_dir);
     free(r);
 }
 
@@ -186,6 +196,7 @@ mvr_result mvr_renderer_program(mvr_renderer *r, const mvr_shader_variant *v, mv
 {
     for (uint32_t i = 0; i < r->program_count; ++i) {
         if (same_variant(&r->programs[i].variant, v)) {
+            r->cache_hits_this_frame++;
             *out = &r->programs[i];
             return MVR_OK;
         }
@@ -198,10 +209,11 @@ mvr_result mvr_renderer_program(mvr_renderer *r, const mvr_shader_variant *v, mv
         r->programs = p;
         r->program_cap = cap;
     }
-    GLuint program = 0;
-    mvr_result res = mvr_gl_program_build(r->ctx, v, &program);
+    mvr_program_build_info info;
+    mvr_result res = mvr_gl_program_build_cached(r->ctx, v, r->program_cache_dir, &info);
     if (res != MVR_OK)
         return mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
+    GLuint program = info.program;
     mvr_state_assume_program(&r->state, program);
     mvr_program_entry *e = &r->programs[r->program_count++];
     memset(e, 0, sizeof *e);
@@ -211,7 +223,22 @@ mvr_result mvr_renderer_program(mvr_renderer *r, const mvr_shader_variant *v, mv
     e->loc_ambient = r->gl->GetUniformLocation(program, "mvr_ambient");
     e->loc_exposure = r->gl->GetUniformLocation(program, "mvr_exposure");
     e->view_base = INT32_MIN;
-    r->compiled_this_frame++;
+    e->from_binary = info.from_binary;
+    if (info.from_binary)
+        r->binary_loads_this_frame++;
+    else
+        r->compiled_this_frame++;
+    if (info.binary_rejected) {
+        r->binary_rejects_this_frame++;
+        mvr_log(&r->logger, MVR_LOG_INFO, MVR_LOG_ID_SHADER, "mvr: program binary cache: %s; rebuilt", info.why);
+    }
+    if (info.binary_store_failed && !r->program_cache_warned) {
+        /* once per renderer: an unwritable directory fails for every variant */
+        r->program_cache_warned = true;
+        mvr_log(&r->logger, MVR_LOG_WARNING, MVR_LOG_ID_SHADER,
+                "mvr: program binary cache: %s (programs still build; later failures are not reported)",
+                info.why);
+    }
     *out = e;
     return MVR_OK;
 }
@@ -351,7 +378,8 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
     /* the application or another renderer may have changed GL state since */
     mvr_state_invalidate(&r->state);
     memset(&r->state.counters, 0, sizeof r->state.counters);
-    r->compiled_this_frame = 0;
+    r->compiled_this_frame = r->cache_hits_this_frame = 0;
+    r->binary_loads_this_frame = r->binary_rejects_this_frame = 0;
     r->upload_bytes = r->view_upload_bytes = 0;
     r->frame_serial++;
     memset(&r->stats, 0, sizeof r->stats);
@@ -383,6 +411,9 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
     st->upload_bytes = r->upload_bytes;
     st->view_upload_bytes = r->view_upload_bytes;
     st->programs_compiled = r->compiled_this_frame;
+    st->program_cache_hits = r->cache_hits_this_frame;
+    st->program_binary_loads = r->binary_loads_this_frame;
+    st->program_binary_rejects = r->binary_rejects_this_frame;
     st->reversed_z = r->reversed_z;
     st->material_path = r->material_path;
     st->texture_groups = r->gpu.arrays ? r->gpu.plan.group_count : 0;
@@ -405,6 +436,35 @@ void mvr_renderer_get_stats(mvr_renderer *r, mvr_frame_stats *out)
         r->timer.pending = false;
     }
     *out = r->stats;
+}
+
+uint32_t mvr_renderer_program_count(const mvr_renderer *r)
+{
+    return r ? r->program_count : 0;
+}
+
+bool mvr_renderer_get_program_info(const mvr_renderer *r, uint32_t index, mvr_program_info *out)
+{
+    if (!r || !out || index >= r->program_count)
+        return false;
+    const mvr_program_entry *e = &r->programs[index];
+    memset(out, 0, sizeof *out);
+    mvr_shader_variant_name(&e->variant, out->name, sizeof out->name);
+    out->mesh = e->variant.program == MVR_PROGRAM_MESH;
+    out->features = e->variant.features;
+    out->num_views = e->variant.num_views;
+    out->lights[0] = e->variant.directional_lights;
+    out->lights[1] = e->variant.point_lights;
+    out->lights[2] = e->variant.spot_lights;
+    out->from_binary_cache = e->from_binary;
+    return true;
+}
+
+const char *mvr_program_feature_name(uint32_t bit)
+{
+    const char *define = mvr_shader_feature_define(MVR_PROGRAM_MESH, bit);
+    /* the #define without its MVR_ prefix */
+    return define && strncmp(define, "MVR_", 4) == 0 ? define + 4 : define;
 }
 
 uint32_t mvr_renderer_view_culled(const mvr_renderer *r, uint32_t view)

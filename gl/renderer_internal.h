@@ -17,6 +17,7 @@ typedef struct mvr_program_entry {
     GLint loc_view_base, loc_ambient, loc_exposure;
     int32_t view_base;           /* last value set (INT32_MIN = unknown) */
     uint64_t frame_serial;       /* frame whose per-frame uniforms are set */
+    bool from_binary;            /* linked from the binary cache */
 } mvr_program_entry;
 
 /* GPU copy of one scene primitive. */
@@ -133,7 +134,9 @@ struct mvr_renderer {
 #define MVR_MAX_PASS_STATS 256
     mvr_pass_stats pass_stats[MVR_MAX_PASS_STATS];
     uint32_t pass_stats_count;
-    uint32_t compiled_this_frame;
+    uint32_t compiled_this_frame, cache_hits_this_frame, binary_loads_this_frame, binary_rejects_this_frame;
+    char *program_cache_dir;     /* NULL = no binary cache */
+    bool program_cache_warned;
     uint64_t upload_bytes, view_upload_bytes;
 };
 

@@ -30,6 +30,7 @@ typedef struct render_options {
     bool format_set;
     bool exr;                    /* output EXR (linear float) instead of PNG */
     mvr_render_desc render;
+    const char *program_cache;   /* directory; NULL = the user's cache directory; "off" = none */
     bool quiet;
 } render_options;
 
@@ -62,6 +63,9 @@ static void render_usage(FILE *out)
             "  --tone-map T        none | aces | pbr-neutral (default: none)\n"
             "  --frames N          render N frames (the last is written; default: 1)\n"
             "  --stats FILE.json   write the last frame's stats as JSON\n"
+            "  --program-cache D   program binaries in D, so a later run compiles no shader;\n"
+            "                      off disables it (default: $XDG_CACHE_HOME/mvr/programs or\n"
+            "                      ~/.cache/mvr/programs)\n"
             "  --quiet             print only errors\n" CLI_CONTEXT_HELP
             "  -h, --help          this text\n");
 }
@@ -174,6 +178,8 @@ static int parse(int argc, char **argv, render_options *o)
             o->out_dir = v, ++i;
         } else if (strcmp(a, "--stats") == 0) {
             o->stats_file = v, ++i;
+        } else if (strcmp(a, "--program-cache") == 0) {
+            o->program_cache = v, ++i;
         } else if (strcmp(a, "--view-path") == 0) {
             if (strcmp(v, "auto") == 0)
                 o->view_path = MVR_VIEW_PATH_AUTO;
@@ -279,7 +285,7 @@ static bool make_dir(const char *path)
     char buf[4096];
     size_t n = strlen(path);
     if (n == 0 || n >= sizeof buf) {
-        fprintf(stderr, "mvr render: bad output directory '%s'\n", path);
+        fprintf(stderr, "mvr render: bad directory '%s'\n", path);
         return false;
     }
     memcpy(buf, path, n + 1);
@@ -295,6 +301,35 @@ static bool make_dir(const char *path)
         buf[i] = saved;
     }
     return true;
+}
+
+/* The program binary cache directory: --program-cache, else the XDG cache
+ * directory; created if missing. NULL (with a warning when the directory
+ * cannot be made) means no cache: the run compiles as usual. */
+static const char *program_cache_dir(const render_options *o, char *buf, size_t size)
+{
+    if (o->program_cache && strcmp(o->program_cache, "off") == 0)
+        return NULL;
+    if (o->program_cache) {
+        snprintf(buf, size, "%s", o->program_cache);
+    } else {
+        const char *xdg = getenv("XDG_CACHE_HOME");
+        const char *home = getenv("HOME");
+        int n;
+        if (xdg && xdg[0] == '/') /* the XDG spec ignores relative paths */
+            n = snprintf(buf, size, "%s/mvr/programs", xdg);
+        else if (home && home[0])
+            n = snprintf(buf, size, "%s/.cache/mvr/programs", home);
+        else
+            return NULL;
+        if (n <= 0 || (size_t)n >= size)
+            return NULL;
+    }
+    if (!make_dir(buf)) {
+        fprintf(stderr, "mvr render: warning: no program cache (cannot create %s)\n", buf);
+        return NULL;
+    }
+    return buf;
 }
 
 static void write_stats_json(FILE *f, const mvr_renderer *r, const mvr_frame_stats *s, const char *demo, uint32_t w,
@@ -323,6 +358,24 @@ static void write_stats_json(FILE *f, const mvr_renderer *r, const mvr_frame_sta
     json_int(&jw, "upload_bytes", (long long)s->upload_bytes);
     json_int(&jw, "view_upload_bytes", (long long)s->view_upload_bytes);
     json_int(&jw, "programs_compiled", s->programs_compiled);
+    json_int(&jw, "program_cache_hits", s->program_cache_hits);
+    json_int(&jw, "program_binary_loads", s->program_binary_loads);
+    json_int(&jw, "program_binary_rejects", s->program_binary_rejects);
+    json_begin_array(&jw, "programs");
+    mvr_program_info pi;
+    for (uint32_t i = 0; mvr_renderer_get_program_info(r, i, &pi); ++i) {
+        json_begin_object(&jw, NULL);
+        json_string(&jw, "name", pi.name);
+        json_int(&jw, "views", pi.num_views);
+        json_begin_array(&jw, "features");
+        for (uint32_t bit = 1; bit != 0; bit <<= 1)
+            if ((pi.features & bit) && mvr_program_feature_name(bit))
+                json_string(&jw, NULL, mvr_program_feature_name(bit));
+        json_end_array(&jw);
+        json_bool(&jw, "from_binary_cache", pi.from_binary_cache);
+        json_end_object(&jw);
+    }
+    json_end_array(&jw);
     json_string(&jw, "depth_mode", s->reversed_z ? "reversed_z" : "standard");
     json_double(&jw, "cpu_ms", s->cpu_ms);
     if (s->gpu_ms >= 0)
@@ -477,8 +530,10 @@ int mvr_cmd_render(int argc, char **argv)
             goto done;
         }
     }
+    char cache_buf[4096];
     mvr_renderer_desc rd = {.context = ctx, .view_path = o.view_path, .logger = o.context.logger,
-                            .material_path = o.material_path};
+                            .material_path = o.material_path,
+                            .program_cache_dir = program_cache_dir(&o, cache_buf, sizeof cache_buf)};
     if (mvr_renderer_create(&rd, &renderer, &err) != MVR_OK) {
         fprintf(stderr, "mvr render: %s\n", err.message);
         goto done;
@@ -551,6 +606,13 @@ int mvr_cmd_render(int argc, char **argv)
                st.views == 1 ? "" : "s", c->limits.max_views_ovr);
         printf("  depth       %s\n", st.reversed_z ? "reversed-Z (clip control, float depth)" : "standard");
         printf("  materials   %s: %u texture arrays\n", mvr_material_path_name(st.material_path), st.texture_groups);
+        uint32_t loaded = 0, count = mvr_renderer_program_count(renderer);
+        mvr_program_info pi;
+        for (uint32_t i = 0; mvr_renderer_get_program_info(renderer, i, &pi); ++i)
+            loaded += pi.from_binary_cache;
+        printf("  programs    %u variant%s: %u compiled, %u from the binary cache%s%s\n", count,
+               count == 1 ? "" : "s", count - loaded, loaded, rd.program_cache_dir ? " in " : " (off)",
+               rd.program_cache_dir ? rd.program_cache_dir : "");
         printf("  draws %u, program binds %u, texture binds %u, uniform range binds %u\n", st.draws,
                st.program_binds, st.texture_binds, st.ubo_range_binds);
         if (st.gpu_ms >= 0)

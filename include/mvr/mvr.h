@@ -495,6 +495,12 @@ typedef struct mvr_renderer_desc {
      * spheres: it never changes pixels); true turns it off. Env
      * MVR_CULLING=off does the same. */
     bool disable_culling;
+    /* A directory for program binaries (glGetProgramBinary), so a later
+     * renderer links variants without compiling them. NULL = no cache. The
+     * directory must exist; entries are checked (checksum, driver, shader
+     * source) before use and rewritten when they fail. Where the driver
+     * offers no binary format the cache is silently unused. */
+    const char *program_cache_dir;
 } mvr_renderer_desc;
 
 mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out, mvr_error *out_error);
@@ -561,7 +567,10 @@ typedef struct mvr_frame_stats {
     uint32_t ubo_range_binds;
     uint64_t upload_bytes;       /* view-independent: geometry, textures, materials, per-draw data */
     uint64_t view_upload_bytes;  /* per-view matrices */
-    uint32_t programs_compiled;
+    uint32_t programs_compiled;  /* variants compiled from source in this render */
+    uint32_t program_cache_hits; /* variant lookups served by a program already built */
+    uint32_t program_binary_loads;   /* variants linked from the binary cache */
+    uint32_t program_binary_rejects; /* cache entries found corrupt, stale or refused (rebuilt) */
     bool reversed_z;             /* depth mode: reversed-Z (clip control) or standard */
     mvr_material_path material_path; /* the material path that ran */
     uint32_t texture_groups;     /* texture arrays of the scene's batch plan (array path) */
@@ -579,6 +588,24 @@ typedef struct mvr_pass_stats {
     uint32_t draws, program_binds, texture_binds, ubo_range_binds;
     uint32_t texture_groups;     /* distinct texture arrays the pass sampled (array path) */
 } mvr_pass_stats;
+
+/* The shader variants a renderer has built, in build order: each is one
+ * feature key (the scene's features, the path and the output) compiled with
+ * #defines, so a scene without textures has no texturing code. */
+typedef struct mvr_program_info {
+    char name[64];               /* e.g. "mesh-mv2-f10021-l1.0.0" */
+    bool mesh;                   /* mesh program (else the composite copy) */
+    uint32_t features;           /* feature bits; mvr_program_feature_name names them */
+    uint32_t num_views;          /* multiview views; 0 = loop path */
+    uint32_t lights[3];          /* directional, point, spot (mesh) */
+    bool from_binary_cache;
+} mvr_program_info;
+
+uint32_t mvr_renderer_program_count(const mvr_renderer *renderer);
+bool mvr_renderer_get_program_info(const mvr_renderer *renderer, uint32_t index, mvr_program_info *out);
+/* The name of one mesh feature bit ("BASE_COLOR_TEX", "NORMAL_TEX", ...);
+ * NULL when the bit is not one. */
+const char *mvr_program_feature_name(uint32_t bit);
 
 /* Draws culled in view `view` of the last render (outside its frustum). */
 uint32_t mvr_renderer_view_culled(const mvr_renderer *renderer, uint32_t view);
