@@ -129,8 +129,10 @@ static void probe_bugs(mvr_context *ctx)
     c->bugs.mediump_is_fp16 = llvmpipe;
 
     /* llvmpipe bins a whole multiview pass as one scene and starts
-     * rasterizing at its end, so at large sizes with cheap draws a per-view
-     * loop can be faster (measured here). The path policy measures both. */
+     * rasterizing at its end, so a per-view loop overlaps one view's
+     * rasterization with the next view's submission; measured on the
+     * benchmark's matrix it is as fast or faster in wall time (auto takes
+     * the loop here: gl/renderer.c, auto_view_path). */
     c->bugs.multiview_pass_defers_raster = llvmpipe && c->ext.ovr_multiview;
 
     /* Targets at a mip level other than 0 then take the loop path. */

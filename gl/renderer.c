@@ -331,6 +331,23 @@ static bool t_level_ok(const mvr_renderer *r, const mvr_target *t)
     return t->desc.external_level == 0 || !r->ctx->caps.bugs.multiview_level_zero_only;
 }
 
+/* auto: multiview where it works, except where a multiview pass starts
+ * rasterizing only at its end (llvmpipe). There a loop pass per view lets
+ * the rasterizer threads work on view k while the submitting thread sends
+ * view k + 1, and measured wall time per frame (tests/bench/run_bench_auto.sh,
+ * docs/benchmarks.md) never favours multiview by more than noise (< 1%),
+ * while the loop wins by up to 27% (city, 256x256, 6 views). The loop costs
+ * the submitting thread more instructions (36% more at 6 views on city): an
+ * application that counts CPU time rather than frame time forces multiview. */
+static mvr_view_path auto_view_path(const mvr_renderer *r, bool level_ok)
+{
+    if (!multiview_usable(r) || !level_ok)
+        return MVR_VIEW_PATH_LOOP;
+    if (r->ctx->caps.bugs.multiview_pass_defers_raster)
+        return MVR_VIEW_PATH_LOOP;
+    return MVR_VIEW_PATH_MULTIVIEW;
+}
+
 mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view_set *views,
                                mvr_target *target, const mvr_render_desc *desc)
 {
@@ -362,7 +379,7 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
     bool level_ok = t_level_ok(r, target);
     mvr_view_path path = r->requested_path;
     if (path == MVR_VIEW_PATH_AUTO)
-        path = multiview_usable(r) && level_ok ? MVR_VIEW_PATH_MULTIVIEW : MVR_VIEW_PATH_LOOP;
+        path = auto_view_path(r, level_ok);
     if (path == MVR_VIEW_PATH_MULTIVIEW && !multiview_usable(r))
         return mvr_renderer_fail(r, MVR_ERROR_UNSUPPORTED,
                                  "mvr_renderer_render: the multiview path was forced but %s has no "

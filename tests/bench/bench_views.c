@@ -1,6 +1,7 @@
 /*
  * bench_views: frame time of a demo (default: city) with 1, 2, 4 and 6 views
- * on the multiview and loop paths. Not a test: it asserts nothing and prints
+ * on the multiview and loop paths, and on auto (the column "ran" says which
+ * path auto took). Not a test: it asserts nothing and prints
  * a table. Run through tests/bench/run_bench_views.sh, which also counts the
  * submitting thread's instructions with callgrind (--toggle-collect on
  * measured_frames, so compiles, uploads and the driver's worker threads are
@@ -99,8 +100,8 @@ int main(int argc, char **argv)
     const mvr_caps *c = mvr_context_caps(ctx);
     printf("# %s, %ux%u, %d frames after 3 warm-up, material path %s, %s\n", demo, w, h, frames,
            mvr_material_path_name(material_path), c->renderer);
-    printf("%-6s %-10s %6s %6s %7s %10s %10s %10s %10s\n", "views", "path", "passes", "draws", "tbinds", "wall_med",
-           "wall_min", "cpu_med", "cpu_min");
+    printf("%-6s %-10s %-10s %6s %6s %7s %10s %10s %10s %10s\n", "views", "path", "ran", "passes", "draws", "tbinds",
+           "wall_med", "wall_min", "cpu_med", "cpu_min");
     uint32_t counts[16], ncounts = 0;
     for (const char *p = views_list; *p && ncounts < 16;) {
         counts[ncounts++] = (uint32_t)strtoul(p, (char **)&p, 10);
@@ -109,8 +110,8 @@ int main(int argc, char **argv)
         else
             break;
     }
-    static const mvr_view_path paths[] = {MVR_VIEW_PATH_MULTIVIEW, MVR_VIEW_PATH_LOOP};
-    for (size_t p = 0; p < 2; ++p)
+    static const mvr_view_path paths[] = {MVR_VIEW_PATH_MULTIVIEW, MVR_VIEW_PATH_LOOP, MVR_VIEW_PATH_AUTO};
+    for (size_t p = 0; p < 3; ++p)
         for (size_t k = 0; k < ncounts; ++k) {
             char tag[32];
             snprintf(tag, sizeof tag, "%u:%s", counts[k], mvr_view_path_name(paths[p]));
@@ -139,8 +140,8 @@ int main(int argc, char **argv)
             mvr_renderer_get_stats(r, &st);
             qsort(times.wall, (size_t)frames, sizeof(double), compare_double);
             qsort(times.cpu, (size_t)frames, sizeof(double), compare_double);
-            printf("%-6u %-10s %6u %6u %7u %10.2f %10.2f %10.2f %10.2f\n", counts[k], mvr_view_path_name(paths[p]),
-                   st.passes, st.draws, st.texture_binds, times.wall[frames / 2], times.wall[0], times.cpu[frames / 2],
+            printf("%-6u %-10s %-10s %6u %6u %7u %10.2f %10.2f %10.2f %10.2f\n", counts[k],
+                   mvr_view_path_name(paths[p]), mvr_view_path_name(st.view_path), st.passes, st.draws, st.texture_binds, times.wall[frames / 2], times.wall[0], times.cpu[frames / 2],
                    times.cpu[0]);
             fflush(stdout);
             mvr_target_destroy(t);

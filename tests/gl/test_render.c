@@ -217,10 +217,13 @@ static void application_texture_array(mvr_test_state *t)
     rendered own;
     memset(&own, 0, sizeof own);
     bool have_own = render_demo(t, ctx, "stereo", 2, MVR_VIEW_PATH_AUTO, NULL, &own);
+    const mvr_caps *caps = mvr_context_caps(ctx);
     const struct { GLuint tex; uint32_t level; mvr_view_path path; } cases[] = {
-        {plain, 0, MVR_VIEW_PATH_AUTO}, {plain, 0, MVR_VIEW_PATH_LOOP},
+        {plain, 0, MVR_VIEW_PATH_MULTIVIEW}, {plain, 0, MVR_VIEW_PATH_AUTO}, {plain, 0, MVR_VIEW_PATH_LOOP},
         {mipped, 1, MVR_VIEW_PATH_AUTO}, {mipped, 1, MVR_VIEW_PATH_LOOP}};
     for (size_t i = 0; have_own && i < MVR_ARRAY_COUNT(cases); ++i) {
+        if (cases[i].path == MVR_VIEW_PATH_MULTIVIEW && !caps->ext.ovr_multiview2)
+            continue;
         mvr_target_desc ext = {W, H, 2, MVR_COLOR_FORMAT_DEFAULT, cases[i].tex, cases[i].level, 1};
         rendered app;
         memset(&app, 0, sizeof app);
@@ -228,9 +231,12 @@ static void application_texture_array(mvr_test_state *t)
             CHECK_MSG(t, count_diff(app.pixels, own.pixels, (size_t)W * H * 2) == 0,
                       "application array (level %u, %s) and mvr's target differ", cases[i].level,
                       mvr_view_path_name(cases[i].path));
-            /* multiview where the driver attaches the level, the loop path where it cannot */
-            bool mv = mvr_context_caps(ctx)->ext.ovr_multiview2 && cases[i].path == MVR_VIEW_PATH_AUTO &&
-                      (cases[i].level == 0 || !mvr_context_caps(ctx)->bugs.multiview_level_zero_only);
+            /* auto: the loop where the driver cannot attach the level with
+             * multiview or where multiview passes defer rasterization */
+            bool level_ok = cases[i].level == 0 || !caps->bugs.multiview_level_zero_only;
+            bool mv = cases[i].path == MVR_VIEW_PATH_MULTIVIEW ||
+                      (cases[i].path == MVR_VIEW_PATH_AUTO && caps->ext.ovr_multiview2 && level_ok &&
+                       !caps->bugs.multiview_pass_defers_raster);
             CHECK_EQ_INT(t, app.second.view_path, mv ? MVR_VIEW_PATH_MULTIVIEW : MVR_VIEW_PATH_LOOP);
         }
         free(app.pixels);
@@ -428,7 +434,8 @@ static void culling_changes_cost_not_pixels(mvr_test_state *t)
     mvr_view_set_desc vd = {2, views, false, {0, 0, 0}};
     CHECK(t, mvr_view_set_create(&vd, &vs, NULL) == MVR_OK);
     uint8_t *img[2] = {malloc((size_t)W * H * 8), malloc((size_t)W * H * 8)};
-    mvr_view_path paths[2] = {MVR_VIEW_PATH_AUTO, MVR_VIEW_PATH_LOOP};
+    bool have_mv = mvr_context_caps(ctx)->ext.ovr_multiview2;
+    mvr_view_path paths[2] = {have_mv ? MVR_VIEW_PATH_MULTIVIEW : MVR_VIEW_PATH_LOOP, MVR_VIEW_PATH_LOOP};
     for (int pi = 0; pi < 2; ++pi)
         for (int cull = 1; cull >= 0; --cull) {
             mvr_renderer_desc rd = {.context = ctx, .view_path = paths[pi], .disable_culling = !cull};
