@@ -466,7 +466,9 @@ typedef struct mvr_renderer mvr_renderer;
 typedef struct mvr_target mvr_target;
 
 typedef enum mvr_view_path {
-    MVR_VIEW_PATH_AUTO = 0,      /* multiview where the GL has it, else loop (env MVR_VIEW_PATH overrides) */
+    MVR_VIEW_PATH_AUTO = 0,      /* the faster for frame time, as measured: multiview where the GL has
+                                    it, loop where multiview defers rasterization to the pass's end
+                                    (llvmpipe) or cannot attach the target (env MVR_VIEW_PATH overrides) */
     MVR_VIEW_PATH_MULTIVIEW,     /* one pass per chunk of <= GL_MAX_VIEWS_OVR views */
     MVR_VIEW_PATH_LOOP           /* one pass per view */
 } mvr_view_path;
