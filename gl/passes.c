@@ -195,6 +195,24 @@ static bool visible_in_pass(const mvr_renderer *r, const pass_context *pc, uint3
     return false;
 }
 
+/* The features MVR_FORCE_FEATURES=inert adds to a draw's key: each compiles
+ * code in that cannot change this draw's pixels. A disabled texture
+ * transform is the identity (exact: x * 1 + y * -0 + 0); UV sets only feed
+ * sampling a draw's material selects by its own bits; a missing COLOR_0
+ * reads the generic attribute, set to (1, 1, 1, 1) (exact); tangents only
+ * matter with a normal map; the array bit without textures only renames
+ * sampler macros. Normals, alpha modes, double-sidedness and unlit change
+ * shading, so they are never forced. */
+static uint32_t inert_features(const mvr_renderer *r, uint32_t features)
+{
+    uint32_t f = MVR_FEATURE_TEXTURE_TRANSFORM | MVR_FEATURE_UV0 | MVR_FEATURE_UV1 | MVR_FEATURE_COLOR0;
+    if (!(features & MVR_FEATURE_NORMAL_TEX))
+        f |= MVR_FEATURE_TANGENTS;
+    if (r->gpu.arrays)
+        f |= MVR_FEATURE_MATERIAL_ARRAYS;
+    return f;
+}
+
 static mvr_result bind_program(pass_context *pc, uint32_t features)
 {
     mvr_renderer *r = pc->r;
@@ -205,6 +223,8 @@ static mvr_result bind_program(pass_context *pc, uint32_t features)
         memset(&v, 0, sizeof v);
         v.program = MVR_PROGRAM_MESH;
         v.features = features | pc->output_features;
+        if (r->force_inert_features)
+            v.features |= inert_features(r, features);
         v.num_views = pc->num_views;
         v.directional_lights = (uint8_t)f->light_counts[0];
         v.point_lights = (uint8_t)f->light_counts[1];
@@ -382,6 +402,8 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
         pc.output_features |= MVR_FEATURE_TONEMAP_PBR_NEUTRAL;
 
     mvr_state_cache *st = &r->state;
+    if (r->force_inert_features) /* what a forced COLOR_0 reads where a primitive has none */
+        r->gl->VertexAttrib4f(5, 1.0f, 1.0f, 1.0f, 1.0f);
     if (r->reversed_z)
         mvr_state_clip_control(st, GL_LOWER_LEFT_EXT, GL_ZERO_TO_ONE_EXT);
     else if (r->gl->ClipControl && r->ctx->caps.ext.ext_clip_control)

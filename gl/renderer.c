@@ -127,6 +127,8 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
     r->logger = desc->logger.fn ? desc->logger : desc->context->logger;
     r->requested_path = env_view_path(desc->view_path, &r->logger);
     r->material_path = env_material_path(desc->material_path, &r->logger);
+    const char *force_env = getenv("MVR_FORCE_FEATURES");
+    r->force_inert_features = force_env && strcmp(force_env, "inert") == 0;
     const char *cull_env = getenv("MVR_CULLING");
     r->culling = !desc->disable_culling && !(cull_env && strcmp(cull_env, "off") == 0);
     const mvr_caps *c = &r->ctx->caps;

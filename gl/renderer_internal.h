@@ -137,6 +137,9 @@ struct mvr_renderer {
     uint32_t compiled_this_frame, cache_hits_this_frame, binary_loads_this_frame, binary_rejects_this_frame;
     char *program_cache_dir;     /* NULL = no binary cache */
     bool program_cache_warned;
+    /* MVR_FORCE_FEATURES=inert: every draw's key gains the features that
+     * cannot change its pixels (tests: skipping changes cost, not pixels) */
+    bool force_inert_features;
     uint64_t upload_bytes, view_upload_bytes;
 };
 

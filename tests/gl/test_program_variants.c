@@ -322,4 +322,72 @@ static void binary_cache_restart_compiles_nothing(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
-MVR_TEST_MAIN(TEST(variants_follow_the_scene), TEST(binary_cache_restart_compiles_nothing))
+/* Renders a demo's two views; counts the variants that carry `bits`. */
+static bool render_demo_pixels(mvr_test_state *t, mvr_context *ctx, const char *demo, mvr_material_path mp,
+                               uint8_t *pixels, uint32_t *variants, uint32_t *with_bits, uint32_t bits)
+{
+    mvr_scene *scene = NULL;
+    mvr_view_set *vs = NULL;
+    mvr_demo_desc dd = {2, W, H, {0}};
+    mvr_error err;
+    if (mvr_demo_create(demo, &dd, &scene, &vs, &err) != MVR_OK) {
+        CHECK_MSG(t, 0, "%s", err.message);
+        return false;
+    }
+    mvr_renderer_desc rd = {.context = ctx, .material_path = mp};
+    mvr_renderer *r = NULL;
+    mvr_target *target = NULL;
+    mvr_target_desc td = {W, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0};
+    bool ok = mvr_renderer_create(&rd, &r, &err) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK &&
+              mvr_renderer_render(r, scene, vs, target, NULL) == MVR_OK;
+    CHECK_MSG(t, ok, "%s: %s", demo, r ? mvr_renderer_last_error(r) : err.message);
+    for (uint32_t k = 0; ok && k < 2; ++k)
+        ok = mvr_renderer_read_layer(r, target, k, MVR_READBACK_RGBA8, pixels + (size_t)k * W * H * 4,
+                                     (size_t)W * H * 4) == MVR_OK;
+    *variants = mvr_renderer_program_count(r);
+    *with_bits = 0;
+    mvr_program_info info;
+    for (uint32_t i = 0; mvr_renderer_get_program_info(r, i, &info); ++i)
+        *with_bits += (info.features & bits) == bits;
+    mvr_target_destroy(target);
+    mvr_renderer_destroy(r);
+    mvr_view_set_destroy(vs);
+    mvr_scene_destroy(scene);
+    return ok;
+}
+
+/* Every demo, both texture paths: the variants built from the scene's
+ * features and variants with every inert feature forced on give the same
+ * bytes, so skipping features changes cost, not pixels. */
+static void forced_features_change_no_pixels(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    static uint8_t lean[2 * W * H * 4], forced[2 * W * H * 4];
+    const uint32_t bits = MVR_FEATURE_TEXTURE_TRANSFORM | MVR_FEATURE_UV0 | MVR_FEATURE_UV1 | MVR_FEATURE_COLOR0;
+    const mvr_material_path paths[2] = {MVR_MATERIAL_PATH_ARRAYS, MVR_MATERIAL_PATH_PER_MATERIAL};
+    for (uint32_t d = 0; mvr_demo_name(d); ++d)
+        for (int p = 0; p < 2; ++p) {
+            const char *demo = mvr_demo_name(d);
+            uint32_t n_lean = 0, lean_bits = 0, n_forced = 0, forced_bits = 0;
+            bool ok = render_demo_pixels(t, ctx, demo, paths[p], lean, &n_lean, &lean_bits, bits);
+            setenv("MVR_FORCE_FEATURES", "inert", 1);
+            ok = ok && render_demo_pixels(t, ctx, demo, paths[p], forced, &n_forced, &forced_bits, bits);
+            unsetenv("MVR_FORCE_FEATURES");
+            if (!ok)
+                continue;
+            const char *mp = mvr_material_path_name(paths[p]);
+            CHECK_MSG(t, forced_bits == n_forced, "%s/%s: %u of %u variants forced", demo, mp, forced_bits, n_forced);
+            CHECK_MSG(t, lean_bits == 0, "%s/%s: a lean variant has every inert feature", demo, mp);
+            size_t diff = 0;
+            for (size_t i = 0; i < sizeof lean; ++i)
+                diff += lean[i] != forced[i];
+            CHECK_MSG(t, diff == 0, "%s/%s: %zu bytes differ with forced features", demo, mp, diff);
+            printf("  %-6s %-12s %u variants, forced %u: identical\n", demo, mp, n_lean, n_forced);
+        }
+    mvr_context_destroy(ctx);
+}
+
+MVR_TEST_MAIN(TEST(variants_follow_the_scene), TEST(binary_cache_restart_compiles_nothing),
+              TEST(forced_features_change_no_pixels))
