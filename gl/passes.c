@@ -254,6 +254,8 @@ static const uint32_t role_bits[5] = {MVR_FEATURE_BASE_COLOR_TEX, MVR_FEATURE_ME
                                       MVR_FEATURE_NORMAL_TEX, MVR_FEATURE_OCCLUSION_TEX,
                                       MVR_FEATURE_EMISSIVE_TEX};
 
+_Static_assert(MVR_PASS_KIND_COUNT == 3, "mvr_frame_stats.sub_passes has one entry per pass kind");
+
 static mvr_result draw_list(pass_context *pc, mvr_pass_kind kind)
 {
     mvr_renderer *r = pc->r;
@@ -262,6 +264,15 @@ static mvr_result draw_list(pass_context *pc, mvr_pass_kind kind)
     const mvr_gl_api_table *gl = r->gl;
     mvr_state_cache *st = &r->state;
     GLenum depth_func = r->reversed_z ? GL_GREATER : GL_LESS;
+    /* pass skipping: a list with nothing visible in this pass sets no state
+     * (no transparent draws, no blend sub-pass) */
+    uint32_t first_visible = f->pass_count[kind];
+    for (uint32_t i = 0; i < f->pass_count[kind] && first_visible == f->pass_count[kind]; ++i)
+        if (visible_in_pass(r, pc, f->pass_first[kind] + i))
+            first_visible = i;
+    if (first_visible == f->pass_count[kind])
+        return MVR_OK;
+    r->stats.sub_passes[kind]++;
     if (kind == MVR_PASS_BLEND) {
         /* glTF BLEND: non-premultiplied "over"; blended surfaces do not write depth */
         mvr_state_depth(st, true, depth_func, GL_FALSE);
@@ -270,7 +281,7 @@ static mvr_result draw_list(pass_context *pc, mvr_pass_kind kind)
         mvr_state_depth(st, true, depth_func, GL_TRUE);
         mvr_state_blend(st, false, GL_ONE, GL_ZERO, GL_ONE, GL_ZERO);
     }
-    for (uint32_t i = 0; i < f->pass_count[kind]; ++i) {
+    for (uint32_t i = first_visible; i < f->pass_count[kind]; ++i) {
         const mvr_draw *d = &f->draws[f->pass_first[kind] + i];
         if (!visible_in_pass(r, pc, f->pass_first[kind] + i))
             continue;

@@ -351,6 +351,11 @@ static void write_stats_json(FILE *f, const mvr_renderer *r, const mvr_frame_sta
     for (uint32_t v = 0; v < s->views; ++v)
         json_int(&jw, NULL, mvr_renderer_view_culled(r, v));
     json_end_array(&jw);
+    json_begin_object(&jw, "sub_passes");
+    json_int(&jw, "opaque", s->sub_passes[0]);
+    json_int(&jw, "mask", s->sub_passes[1]);
+    json_int(&jw, "blend", s->sub_passes[2]);
+    json_end_object(&jw);
     json_int(&jw, "draws", s->draws);
     json_int(&jw, "program_binds", s->program_binds);
     json_int(&jw, "texture_binds", s->texture_binds);

@@ -577,6 +577,11 @@ typedef struct mvr_frame_stats {
     mvr_material_path material_path; /* the material path that ran */
     uint32_t texture_groups;     /* texture arrays of the scene's batch plan (array path) */
     uint32_t culled;             /* summed over views: draws outside a view's frustum */
+    /* Sub-passes drawn, summed over passes: [0] opaque, [1] alpha-masked,
+     * [2] blended (transparent). A pass skips a list with nothing to draw in
+     * it, state changes included: a scene without transparency runs no
+     * blend sub-pass. */
+    uint32_t sub_passes[3];
     double cpu_ms;               /* submitting thread, render call */
     double gpu_ms;               /* timer queries; < 0 when not available */
 } mvr_frame_stats;

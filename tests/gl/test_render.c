@@ -541,5 +541,82 @@ static void dirty_tracking_sends_only_changes(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
-MVR_TEST_MAIN(TEST(dirty_tracking_sends_only_changes), TEST(culling_changes_cost_not_pixels), TEST(color_formats_agree), TEST(stereo_paths_agree), TEST(cube_paths_agree), TEST(city_paths_agree), TEST(ring_paths_agree),
+/* Pass skipping: an opaque scene runs no blend sub-pass; a blended surface
+ * adds one to each pass that sees it, and none where it is culled. */
+static void blend_pass_only_where_needed(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    mvr_scene *scene = NULL;
+    mvr_scene_create(NULL, &scene, NULL);
+    float tri[9] = {-0.5f, -0.5f, 0, 0.5f, -0.5f, 0, 0, 0.5f, 0};
+    mvr_material_desc glass = mvr_material_defaults();
+    glass.alpha_mode = MVR_ALPHA_BLEND;
+    glass.base_color_factor[3] = 0.5f;
+    mvr_material_id glass_id;
+    CHECK(t, mvr_scene_add_material(scene, &glass, &glass_id) == MVR_OK);
+    mvr_primitive_desc solid = {.vertex_count = 3, .positions = tri};
+    mvr_primitive_desc clear = {.vertex_count = 3, .positions = tri, .material = glass_id};
+    mvr_mesh_desc solid_md = {&solid, 1, "solid"}, clear_md = {&clear, 1, "glass"};
+    mvr_mesh_id solid_mesh, clear_mesh;
+    CHECK(t, mvr_scene_add_mesh(scene, &solid_md, &solid_mesh) == MVR_OK);
+    CHECK(t, mvr_scene_add_mesh(scene, &clear_md, &clear_mesh) == MVR_OK);
+    mvr_node_desc nd = {.mesh = solid_mesh, .translation = {0, 0, 50}};
+    mvr_node_id node;
+    CHECK(t, mvr_scene_add_node(scene, &nd, &node) == MVR_OK);
+    mvr_view_desc views[2] = {{.position = {-3, 0, 0}, .projection = {.yfov = 0.6}},
+                              {.position = {3, 0, 0}, .projection = {.yfov = 0.6}}};
+    mvr_view_set *vs = NULL;
+    mvr_view_set_desc vd = {2, views, false, {0, 0, 0}};
+    CHECK(t, mvr_view_set_create(&vd, &vs, NULL) == MVR_OK);
+    mvr_node_desc gd = {.mesh = clear_mesh, .translation = {0, 0, 50}}; /* behind both views */
+    mvr_node_id glass_node;
+    CHECK(t, mvr_scene_add_node(scene, &gd, &glass_node) == MVR_OK);
+    const double hidden[3] = {0, 0, 50}, front0[3] = {-3, 0, -5}, front1[3] = {3, 0, -5};
+    const double rot[4] = {0, 0, 0, 1}, one[3] = {1, 1, 1};
+    mvr_view_path paths[2] = {mvr_context_caps(ctx)->ext.ovr_multiview2 ? MVR_VIEW_PATH_MULTIVIEW : MVR_VIEW_PATH_LOOP,
+                              MVR_VIEW_PATH_LOOP};
+    for (int pi = 0; pi < 2; ++pi) {
+        mvr_renderer *r = make_renderer(t, ctx, paths[pi]);
+        mvr_target *target = NULL;
+        mvr_target_desc td = {W, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0};
+        CHECK(t, r && mvr_target_create(r, &td, &target) == MVR_OK);
+        if (!target) {
+            mvr_renderer_destroy(r);
+            continue;
+        }
+        /* nothing in view: passes clear, no sub-pass runs */
+        CHECK(t, mvr_scene_set_node_transform(scene, node, hidden, rot, one) == MVR_OK);
+        CHECK(t, mvr_scene_set_node_transform(scene, glass_node, hidden, rot, one) == MVR_OK);
+        mvr_frame_stats st;
+        CHECK(t, mvr_renderer_render(r, scene, vs, target, NULL) == MVR_OK);
+        mvr_renderer_get_stats(r, &st);
+        CHECK_EQ_INT(t, st.sub_passes[0] + st.sub_passes[1] + st.sub_passes[2], 0);
+        CHECK_EQ_INT(t, st.draws, 0);
+        /* opaque only, in front of view 0: no blend sub-pass */
+        CHECK(t, mvr_scene_set_node_transform(scene, node, front0, rot, one) == MVR_OK);
+        CHECK(t, mvr_renderer_render(r, scene, vs, target, NULL) == MVR_OK);
+        mvr_renderer_get_stats(r, &st);
+        CHECK_EQ_INT(t, st.sub_passes[0], 1);
+        CHECK_EQ_INT(t, st.sub_passes[2], 0);
+        /* and the glass in front of view 1: one blend sub-pass (multiview:
+         * in the pass of both views; loop: in view 1's pass only) */
+        CHECK(t, mvr_scene_set_node_transform(scene, glass_node, front1, rot, one) == MVR_OK);
+        CHECK(t, mvr_renderer_render(r, scene, vs, target, NULL) == MVR_OK);
+        mvr_renderer_get_stats(r, &st);
+        CHECK_EQ_INT(t, st.sub_passes[0], 1);
+        CHECK_EQ_INT(t, st.sub_passes[1], 0);
+        CHECK_EQ_INT(t, st.sub_passes[2], 1);
+        CHECK_EQ_INT(t, st.passes, st.view_path == MVR_VIEW_PATH_MULTIVIEW ? 1 : 2);
+        CHECK_EQ_INT(t, st.draws, 2);
+        mvr_target_destroy(target);
+        mvr_renderer_destroy(r);
+    }
+    mvr_view_set_destroy(vs);
+    mvr_scene_destroy(scene);
+    mvr_context_destroy(ctx);
+}
+
+MVR_TEST_MAIN(TEST(blend_pass_only_where_needed), TEST(dirty_tracking_sends_only_changes), TEST(culling_changes_cost_not_pixels), TEST(color_formats_agree), TEST(stereo_paths_agree), TEST(cube_paths_agree), TEST(city_paths_agree), TEST(ring_paths_agree),
               TEST(application_texture_array), TEST(bad_targets_are_refused), TEST(disabled_views_are_skipped))
