@@ -302,6 +302,21 @@ mvr_result mvr_frame_build(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin, u
         }
     }
     qsort(f->draws, f->draw_count, sizeof *f->draws, compare_draws);
+    /* blocks in draw order: a run of consecutive draws reads consecutive
+     * blocks, so it can be one instanced draw over one range */
+    if (f->draw_count > 1) {
+        uint8_t *sorted = malloc((size_t)f->draw_count * stride);
+        if (!sorted) {
+            mvr_str_copy(why, why_size, "out of memory");
+            return MVR_ERROR_OUT_OF_MEMORY;
+        }
+        for (uint32_t i = 0; i < f->draw_count; ++i) {
+            memcpy(sorted + (size_t)i * stride, f->draw_blocks + (size_t)f->draws[i].block * stride, stride);
+            f->draws[i].block = i;
+        }
+        memcpy(f->draw_blocks, sorted, (size_t)f->draw_count * stride);
+        free(sorted);
+    }
     memset(f->pass_first, 0, sizeof f->pass_first);
     memset(f->pass_count, 0, sizeof f->pass_count);
     for (uint32_t i = f->draw_count; i-- > 0;) {

@@ -177,6 +177,11 @@ bool mvr_shader_variant_valid(const mvr_shader_variant *v, char *why, size_t why
                        (unsigned)v->material_capacity, MVR_SHADER_MAX_MATERIAL_CAPACITY);
         return false;
     }
+    if (v->draw_capacity > MVR_SHADER_MAX_DRAW_CAPACITY || (v->draw_capacity && v->program != MVR_PROGRAM_MESH)) {
+        mvr_str_format(why, why_size, "draw capacity %u invalid (mesh only, at most %d)",
+                       (unsigned)v->draw_capacity, MVR_SHADER_MAX_DRAW_CAPACITY);
+        return false;
+    }
     return true;
 }
 
@@ -221,6 +226,7 @@ bool mvr_shader_source(const mvr_shader_variant *v, mvr_shader_stage stage, mvr_
         mvr_sb_appendf(out, "#define MVR_MAX_MATERIALS %u\n",
                        v->material_capacity ? (unsigned)v->material_capacity
                                             : (unsigned)MVR_SHADER_DEFAULT_MATERIAL_CAPACITY);
+        mvr_sb_appendf(out, "#define MVR_DRAW_CAPACITY %u\n", v->draw_capacity ? (unsigned)v->draw_capacity : 1u);
         mvr_sb_appendf(out,
                        "#define MVR_DIRECTIONAL_LIGHTS %u\n#define MVR_POINT_LIGHTS %u\n"
                        "#define MVR_SPOT_LIGHTS %u\n",
@@ -250,16 +256,18 @@ bool mvr_shader_source(const mvr_shader_variant *v, mvr_shader_stage stage, mvr_
 void mvr_shader_variant_name(const mvr_shader_variant *v, char *out, size_t size)
 {
     const char *program = mvr_program_kind_name(v->program);
-    char views[16], materials[16] = "";
+    char views[16], materials[16] = "", draws[16] = "";
     if (v->num_views > 0)
         mvr_str_format(views, sizeof views, "mv%u", (unsigned)v->num_views);
     else
         mvr_str_copy(views, sizeof views, "loop");
     if (v->material_capacity)
         mvr_str_format(materials, sizeof materials, "-m%u", (unsigned)v->material_capacity);
-    mvr_str_format(out, size, "%s-%s-f%05x-l%u.%u.%u%s", program ? program : "invalid", views,
+    if (v->draw_capacity > 1)
+        mvr_str_format(draws, sizeof draws, "-i%u", (unsigned)v->draw_capacity);
+    mvr_str_format(out, size, "%s-%s-f%05x-l%u.%u.%u%s%s", program ? program : "invalid", views,
                    (unsigned)v->features, v->directional_lights, v->point_lights, v->spot_lights,
-                   materials);
+                   materials, draws);
 }
 
 /* All bits of a program except those that exclude each other. */
@@ -312,6 +320,8 @@ bool mvr_shader_variant_enumerate(unsigned index, uint32_t max_views, mvr_shader
             out->directional_lights = 1;
             out->point_lights = 2;
             out->spot_lights = 1;
+            /* the lit mesh variants also read instanced draw blocks */
+            out->draw_capacity = MVR_SHADER_MAX_DRAW_CAPACITY;
         }
         return true;
     }

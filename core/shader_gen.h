@@ -67,10 +67,14 @@ typedef struct mvr_shader_variant {
     uint32_t num_views;     /* 0: loop path (view index uniform); n >= 1: multiview, num_views = n */
     uint8_t directional_lights, point_lights, spot_lights;  /* mesh only */
     uint16_t material_capacity; /* materials per table block (mesh); 0 = 64 */
+    uint16_t draw_capacity;     /* per-draw blocks in the draw block, indexed by gl_InstanceID
+                                   (instancing; mesh); 0 = 1 */
 } mvr_shader_variant;
 
 #define MVR_SHADER_DEFAULT_MATERIAL_CAPACITY 64
 #define MVR_SHADER_MAX_MATERIAL_CAPACITY 1024
+/* 144-byte per-draw blocks in GLES 3.0's smallest GL_MAX_UNIFORM_BLOCK_SIZE (16 KiB) */
+#define MVR_SHADER_MAX_DRAW_CAPACITY 113
 
 const char *mvr_program_kind_name(mvr_program_kind kind);
 const char *mvr_shader_stage_name(mvr_shader_stage stage);

@@ -230,6 +230,7 @@ static mvr_result bind_program(pass_context *pc, uint32_t features)
         v.point_lights = (uint8_t)f->light_counts[1];
         v.spot_lights = (uint8_t)f->light_counts[2];
         v.material_capacity = (uint16_t)r->material_capacity;
+        v.draw_capacity = (uint16_t)r->draw_capacity;
         mvr_result res = mvr_renderer_program(r, &v, &e);
         if (res != MVR_OK)
             return res;
@@ -253,6 +254,34 @@ static mvr_result bind_program(pass_context *pc, uint32_t features)
 static const uint32_t role_bits[5] = {MVR_FEATURE_BASE_COLOR_TEX, MVR_FEATURE_METAL_ROUGH_TEX,
                                       MVR_FEATURE_NORMAL_TEX, MVR_FEATURE_OCCLUSION_TEX,
                                       MVR_FEATURE_EMISSIVE_TEX};
+
+/* Instancing: how many draws from position i of a pass list form one
+ * instanced draw. They must follow each other in the list (so their blocks
+ * are consecutive: the frame stores blocks in draw order), all be visible in
+ * this pass, and share what a draw binds: primitive, program features,
+ * winding, and the material table page and textures (the texture-array
+ * group on the array path, the material itself otherwise). Instances are
+ * drawn in order, as the separate draws would be, so pixels do not change.
+ * Blended draws stay single: their order is the sort's back-to-front. */
+static uint32_t instance_run(const pass_context *pc, mvr_pass_kind kind, uint32_t i)
+{
+    const mvr_renderer *r = pc->r;
+    const mvr_frame *f = &r->frame;
+    if (r->draw_capacity <= 1 || kind == MVR_PASS_BLEND)
+        return 1;
+    const mvr_draw *a = &f->draws[f->pass_first[kind] + i];
+    uint32_t n = 1;
+    while (n < r->draw_capacity && i + n < f->pass_count[kind]) {
+        const mvr_draw *b = &f->draws[f->pass_first[kind] + i + n];
+        bool same = b->primitive == a->primitive && b->features == a->features && b->mirrored == a->mirrored &&
+                    b->material_page == a->material_page &&
+                    (r->gpu.arrays ? b->group_key == a->group_key : b->material == a->material);
+        if (!same || !visible_in_pass(r, pc, f->pass_first[kind] + i + n))
+            break;
+        n++;
+    }
+    return n;
+}
 
 _Static_assert(MVR_PASS_KIND_COUNT == 3, "mvr_frame_stats.sub_passes has one entry per pass kind");
 
@@ -281,15 +310,18 @@ static mvr_result draw_list(pass_context *pc, mvr_pass_kind kind)
         mvr_state_depth(st, true, depth_func, GL_TRUE);
         mvr_state_blend(st, false, GL_ONE, GL_ZERO, GL_ONE, GL_ZERO);
     }
+    /* the draw block's declared size: a bound range must cover it */
+    GLsizeiptr draw_range = (GLsizeiptr)r->draw_capacity * MVR_DRAW_BLOCK_SIZE;
     for (uint32_t i = first_visible; i < f->pass_count[kind]; ++i) {
         const mvr_draw *d = &f->draws[f->pass_first[kind] + i];
         if (!visible_in_pass(r, pc, f->pass_first[kind] + i))
             continue;
+        uint32_t instances = instance_run(pc, kind, i);
         mvr_result res = bind_program(pc, d->features);
         if (res != MVR_OK)
             return res;
         mvr_state_ubo_range(st, MVR_BLOCK_DRAW, r->ring.buffer,
-                            pc->lay->draws + (GLintptr)d->block * f->block_stride, MVR_DRAW_BLOCK_SIZE);
+                            pc->lay->draws + (GLintptr)d->block * f->block_stride, draw_range);
         if (r->material_path == MVR_MATERIAL_PATH_PER_DRAW) /* baseline: a fragment-visible range per draw */
             mvr_state_ubo_range(st, MVR_BLOCK_MATERIALS, r->ring.buffer,
                                 pc->lay->draw_materials + (GLintptr)d->block * pc->lay->draw_material_stride,
@@ -326,11 +358,20 @@ static mvr_result draw_list(pass_context *pc, mvr_pass_kind kind)
         mvr_state_cull(st, !double_sided, d->mirrored ? GL_CW : GL_CCW);
         const mvr_gpu_primitive *p = &g->primitives[d->primitive];
         mvr_state_vao(st, p->vao);
-        if (p->ibo)
+        if (instances > 1) {
+            if (p->ibo)
+                gl->DrawElementsInstanced(p->mode, p->count, p->index_type, NULL, (GLsizei)instances);
+            else
+                gl->DrawArraysInstanced(p->mode, 0, p->count, (GLsizei)instances);
+            r->stats.instanced_draw_calls++;
+        } else if (p->ibo) {
             gl->DrawElements(p->mode, p->count, p->index_type, NULL);
-        else
+        } else {
             gl->DrawArrays(p->mode, 0, p->count);
-        r->stats.draws++;
+        }
+        r->stats.draws += instances;
+        r->stats.draw_calls++;
+        i += instances - 1;
     }
     return MVR_OK;
 }

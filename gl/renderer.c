@@ -152,6 +152,17 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
         }
         memcpy(r->program_cache_dir, desc->program_cache_dir, n + 1);
     }
+    /* instancing: the draw block becomes an array indexed by gl_InstanceID,
+     * whose std140 stride (144) must be the ring's block stride, and whose
+     * size fits the GL's uniform block limit */
+    const char *inst_env = getenv("MVR_INSTANCING");
+    bool instancing = !desc->disable_instancing && !(inst_env && strcmp(inst_env, "off") == 0) &&
+                      r->material_path != MVR_MATERIAL_PATH_PER_DRAW &&
+                      MVR_DRAW_BLOCK_SIZE % r->ubo_alignment == 0;
+    uint32_t draw_cap = (uint32_t)c->limits.max_uniform_block_size / MVR_DRAW_BLOCK_SIZE;
+    if (draw_cap > MVR_SHADER_MAX_DRAW_CAPACITY)
+        draw_cap = MVR_SHADER_MAX_DRAW_CAPACITY;
+    r->draw_capacity = instancing && draw_cap > 1 ? draw_cap : 1;
     mvr_state_init(&r->state, r->gl, false);
     timer_init(r);
     mvr_result res = mvr_gl_check(r->ctx, "mvr_renderer_create", false);

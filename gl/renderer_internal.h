@@ -112,6 +112,7 @@ struct mvr_renderer {
     bool reversed_z;
     uint32_t ubo_alignment;
     uint32_t material_capacity;
+    uint32_t draw_capacity;      /* per-draw blocks one instanced draw can read; 1 = no instancing */
     mvr_state_cache state;
     mvr_program_entry *programs;
     uint32_t program_count, program_cap;

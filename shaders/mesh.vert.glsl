@@ -2,10 +2,16 @@
 // on as flat varyings: on llvmpipe a change to anything the fragment stage
 // reads costs a full state snapshot, vertex-only data is much cheaper.
 
+// One block per draw; an instanced draw reads consecutive blocks by
+// gl_InstanceID (a plain draw has gl_InstanceID 0). std140 gives the struct
+// a 144-byte array stride, the size of one block.
+struct mvr_draw_data {
+    mat4 model;              // relative to the view origin
+    mat4 normal_matrix;      // inverse-transpose of the model's upper 3x3
+    ivec4 info;              // x: material index
+};
 layout(std140) uniform mvr_draw {
-    mat4 mvr_model;          // relative to the view origin
-    mat4 mvr_normal_matrix;  // inverse-transpose of the model's upper 3x3
-    ivec4 mvr_draw_info;     // x: material index
+    mvr_draw_data mvr_draws[MVR_DRAW_CAPACITY];
 };
 
 layout(location = 0) in vec3 a_position;
@@ -47,12 +53,13 @@ out vec4 v_color0;
 void main()
 {
     int view = mvr_view_index();
+    mat4 mvr_model = mvr_draws[gl_InstanceID].model;
     vec4 world = mvr_model * vec4(a_position, 1.0);
     v_position = world.xyz;
     v_to_eye = mvr_eye_position[view].xyz - world.xyz;
-    v_material = mvr_draw_info.x;
+    v_material = mvr_draws[gl_InstanceID].info.x;
 #ifdef MVR_NORMALS
-    v_normal = mat3(mvr_normal_matrix) * a_normal;
+    v_normal = mat3(mvr_draws[gl_InstanceID].normal_matrix) * a_normal;
 #endif
 #ifdef MVR_TANGENTS
     v_tangent = vec4(mat3(mvr_model) * a_tangent.xyz, a_tangent.w);

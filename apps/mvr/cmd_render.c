@@ -357,6 +357,8 @@ static void write_stats_json(FILE *f, const mvr_renderer *r, const mvr_frame_sta
     json_int(&jw, "blend", s->sub_passes[2]);
     json_end_object(&jw);
     json_int(&jw, "draws", s->draws);
+    json_int(&jw, "draw_calls", s->draw_calls);
+    json_int(&jw, "instanced_draw_calls", s->instanced_draw_calls);
     json_int(&jw, "program_binds", s->program_binds);
     json_int(&jw, "texture_binds", s->texture_binds);
     json_int(&jw, "ubo_range_binds", s->ubo_range_binds);
@@ -618,8 +620,9 @@ int mvr_cmd_render(int argc, char **argv)
         printf("  programs    %u variant%s: %u compiled, %u from the binary cache%s%s\n", count,
                count == 1 ? "" : "s", count - loaded, loaded, rd.program_cache_dir ? " in " : " (off)",
                rd.program_cache_dir ? rd.program_cache_dir : "");
-        printf("  draws %u, program binds %u, texture binds %u, uniform range binds %u\n", st.draws,
-               st.program_binds, st.texture_binds, st.ubo_range_binds);
+        printf("  draws %u in %u draw calls (%u instanced); binds: program %u, texture %u, uniform range %u\n",
+               st.draws, st.draw_calls, st.instanced_draw_calls, st.program_binds, st.texture_binds,
+               st.ubo_range_binds);
         if (st.gpu_ms >= 0)
             printf("  time        cpu %.2f ms, gpu %.2f ms (last frame)\n", st.cpu_ms, st.gpu_ms);
         else

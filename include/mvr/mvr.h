@@ -503,6 +503,10 @@ typedef struct mvr_renderer_desc {
      * source) before use and rewritten when they fail. Where the driver
      * offers no binary format the cache is silently unused. */
     const char *program_cache_dir;
+    /* Instancing is on by default: consecutive draws of one primitive with
+     * the same program, textures and material page become one instanced
+     * draw (same pixels). true turns it off; so does env MVR_INSTANCING=off. */
+    bool disable_instancing;
 } mvr_renderer_desc;
 
 mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out, mvr_error *out_error);
@@ -563,7 +567,9 @@ typedef struct mvr_frame_stats {
     uint32_t passes;             /* framebuffer passes (multiview chunks or loop views) */
     uint32_t multiview_passes;   /* passes through a multiview framebuffer (a chunk of one
                                     view takes a plain pass: same pixels, less work) */
-    uint32_t draws;
+    uint32_t draws;              /* objects drawn (an instanced draw counts each instance) */
+    uint32_t draw_calls;         /* GL draw commands */
+    uint32_t instanced_draw_calls; /* of those, instanced ones (more than one object) */
     uint32_t program_binds;
     uint32_t texture_binds;
     uint32_t ubo_range_binds;

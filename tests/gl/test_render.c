@@ -618,5 +618,58 @@ static void blend_pass_only_where_needed(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
-MVR_TEST_MAIN(TEST(blend_pass_only_where_needed), TEST(dirty_tracking_sends_only_changes), TEST(culling_changes_cost_not_pixels), TEST(color_formats_agree), TEST(stereo_paths_agree), TEST(cube_paths_agree), TEST(city_paths_agree), TEST(ring_paths_agree),
+/* Instancing changes draw calls, not pixels: every demo at 2 and 10 views on
+ * both view paths, with culling on and off, renders the same bytes with
+ * instancing on and off; on city (one box mesh per material) most draws
+ * ride in instanced calls. */
+static void instancing_changes_calls_not_pixels(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    bool have_mv = mvr_context_caps(ctx)->ext.ovr_multiview2;
+    const uint32_t view_counts[2] = {2, 10};
+    for (uint32_t d = 0; mvr_demo_name(d); ++d)
+        for (int vc = 0; vc < 2; ++vc)
+            for (int pi = 0; pi < 2; ++pi)
+                for (int cull = 0; cull < 2; ++cull) {
+                    const char *demo = mvr_demo_name(d);
+                    uint32_t n = view_counts[vc];
+                    mvr_view_path path = pi == 0 && have_mv ? MVR_VIEW_PATH_MULTIVIEW : MVR_VIEW_PATH_LOOP;
+                    if (!cull)
+                        setenv("MVR_CULLING", "off", 1);
+                    rendered on, off;
+                    bool ok = render_demo(t, ctx, demo, n, path, NULL, &on);
+                    setenv("MVR_INSTANCING", "off", 1);
+                    ok = render_demo(t, ctx, demo, n, path, NULL, &off) && ok;
+                    unsetenv("MVR_INSTANCING");
+                    unsetenv("MVR_CULLING");
+                    if (ok) {
+                        size_t diff = count_diff(on.pixels, off.pixels, (size_t)W * H * n);
+                        CHECK_MSG(t, diff == 0, "%s x%u %s culling %d: instancing changed %zu pixels", demo, n,
+                                  mvr_view_path_name(path), cull, diff);
+                        CHECK_EQ_INT(t, on.second.draws, off.second.draws);
+                        CHECK_EQ_INT(t, off.second.draw_calls, off.second.draws);
+                        CHECK_EQ_INT(t, off.second.instanced_draw_calls, 0);
+                        CHECK(t, on.second.draw_calls <= off.second.draw_calls);
+                        if (strcmp(demo, "city") == 0) {
+                            CHECK(t, on.second.instanced_draw_calls > 0);
+                            /* without culling: one call per box mesh per pass, (4097 draws, 73 meshes) */
+                            if (!cull)
+                                CHECK_MSG(t, on.second.draw_calls * 20 < on.second.draws,
+                                          "city x%u %s: %u calls for %u draws", n, mvr_view_path_name(path),
+                                          on.second.draw_calls, on.second.draws);
+                        }
+                        if (vc == 0 && cull)
+                            printf("  %-6s x%u %-9s: %u draws in %u calls (instancing off: %u)\n", demo, n,
+                                   mvr_view_path_name(path), on.second.draws, on.second.draw_calls,
+                                   off.second.draw_calls);
+                    }
+                    free(on.pixels);
+                    free(off.pixels);
+                }
+    mvr_context_destroy(ctx);
+}
+
+MVR_TEST_MAIN(TEST(instancing_changes_calls_not_pixels), TEST(blend_pass_only_where_needed), TEST(dirty_tracking_sends_only_changes), TEST(culling_changes_cost_not_pixels), TEST(color_formats_agree), TEST(stereo_paths_agree), TEST(cube_paths_agree), TEST(city_paths_agree), TEST(ring_paths_agree),
               TEST(application_texture_array), TEST(bad_targets_are_refused), TEST(disabled_views_are_skipped))
