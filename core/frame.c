@@ -258,6 +258,7 @@ mvr_result mvr_frame_build(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin, u
             d->material = p->material;
             d->features = mvr_draw_features(p, mat);
             d->block = f->draw_count;
+            d->node = i;
             d->pass = mat->alpha_mode == MVR_ALPHA_BLEND  ? MVR_PASS_BLEND
                       : mat->alpha_mode == MVR_ALPHA_MASK ? MVR_PASS_MASK
                                                           : MVR_PASS_OPAQUE;
@@ -296,26 +297,18 @@ mvr_result mvr_frame_build(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin, u
                 d->group_key = mvr_batch_plan_group_key(plan, material_slot);
             }
             d->material_page = material_slot / material_capacity;
-            pack_draw_block(f->draw_blocks + (size_t)d->block * stride, w, origin,
-                            material_slot % material_capacity);
             f->draw_count++;
         }
     }
     qsort(f->draws, f->draw_count, sizeof *f->draws, compare_draws);
     /* blocks in draw order: a run of consecutive draws reads consecutive
      * blocks, so it can be one instanced draw over one range */
-    if (f->draw_count > 1) {
-        uint8_t *sorted = malloc((size_t)f->draw_count * stride);
-        if (!sorted) {
-            mvr_str_copy(why, why_size, "out of memory");
-            return MVR_ERROR_OUT_OF_MEMORY;
-        }
-        for (uint32_t i = 0; i < f->draw_count; ++i) {
-            memcpy(sorted + (size_t)i * stride, f->draw_blocks + (size_t)f->draws[i].block * stride, stride);
-            f->draws[i].block = i;
-        }
-        memcpy(f->draw_blocks, sorted, (size_t)f->draw_count * stride);
-        free(sorted);
+    for (uint32_t i = 0; i < f->draw_count; ++i) {
+        mvr_draw *d = &f->draws[i];
+        uint32_t material_slot = d->material == MVR_NO_INDEX ? s->material_count : d->material;
+        d->block = i;
+        pack_draw_block(f->draw_blocks + (size_t)i * stride, &f->world[d->node], origin,
+                        material_slot % material_capacity);
     }
     memset(f->pass_first, 0, sizeof f->pass_first);
     memset(f->pass_count, 0, sizeof f->pass_count);

@@ -30,7 +30,10 @@ typedef struct mvr_draw {
     uint32_t primitive;          /* scene primitive index */
     uint32_t material;           /* scene material index, MVR_NO_INDEX = default */
     uint32_t features;           /* mesh feature bits this draw needs */
-    uint32_t block;              /* its per-draw block in mvr_frame.draw_blocks */
+    uint32_t block;              /* its per-draw block in mvr_frame.draw_blocks: after the sort
+                                    its position in draws (blocks are packed in draw order);
+                                    before it, creation order (the sort's last tiebreak) */
+    uint32_t node;               /* scene node whose world matrix places it */
     uint32_t material_page;      /* which block-sized page of the material table it reads */
     uint64_t group_key;          /* texture arrays it binds (array path; 0 otherwise) */
     mvr_pass_kind pass;
