@@ -72,8 +72,7 @@ static bool multiview_attaches(mvr_context *ctx, GLenum target, GLenum binding,
     gl->FramebufferTextureMultiviewOVR(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, tex, level, 0, 2);
     bool ok = gl->GetError() == GL_NO_ERROR &&
               gl->CheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
-    while (gl->GetError() != GL_NO_ERROR) {
-    }
+    mvr_gl_clear_errors(gl);
     gl->BindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)old_fbo);
     gl->BindTexture(target, (GLuint)old_tex);
     gl->DeleteFramebuffers(1, &fbo);
@@ -154,8 +153,7 @@ void mvr_caps_probe(mvr_context *ctx)
     bool desktop = c->api == MVR_GL_API_DESKTOP;
 
     /* Leave an application's pending errors alone in the log, not in our results. */
-    while (gl->GetError() != GL_NO_ERROR) {
-    }
+    mvr_gl_clear_errors(gl);
     copy_gl_string(ctx, GL_VENDOR, c->vendor, sizeof c->vendor);
     copy_gl_string(ctx, GL_RENDERER, c->renderer, sizeof c->renderer);
     copy_gl_string(ctx, GL_VERSION, c->version, sizeof c->version);

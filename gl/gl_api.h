@@ -182,4 +182,13 @@ typedef void *(*mvr_gl_loader_fn)(const char *name, void *user_data);
 bool mvr_gl_api_load(mvr_gl_api_table *gl, mvr_gl_loader_fn load, void *user_data,
                      bool desktop, char *missing, size_t missing_size);
 
+/* Reads and drops pending GL errors (after a probe that may fail, or before
+ * one, so an application's errors are not taken for ours). Bounded: a lost
+ * context may report an error on every call. */
+static inline void mvr_gl_clear_errors(const mvr_gl_api_table *gl)
+{
+    for (int i = 0; i < 16 && gl->GetError() != GL_NO_ERROR; ++i) {
+    }
+}
+
 #endif

@@ -50,24 +50,18 @@ static void driver_identity(const mvr_context *ctx, char *out, size_t size)
                    c->renderer, c->version);
 }
 
-static void drain_gl_errors(const mvr_gl_api_table *gl)
-{
-    for (int i = 0; i < 16 && gl->GetError() != GL_NO_ERROR; ++i) {
-    }
-}
-
 /* Links a program from a cached binary; 0 when the driver refuses it (a
  * driver update can make a binary stale without changing its strings). */
 static GLuint load_binary(mvr_context *ctx, uint32_t format, const void *data, size_t size)
 {
     const mvr_gl_api_table *gl = &ctx->gl;
-    drain_gl_errors(gl);
+    mvr_gl_clear_errors(gl);
     GLuint program = gl->CreateProgram();
     gl->ProgramBinary(program, (GLenum)format, data, (GLsizei)size);
     GLint ok = GL_FALSE;
     gl->GetProgramiv(program, GL_LINK_STATUS, &ok);
     bool clean = gl->GetError() == GL_NO_ERROR;
-    drain_gl_errors(gl);
+    mvr_gl_clear_errors(gl);
     if (ok && clean)
         return program;
     gl->DeleteProgram(program);
@@ -81,7 +75,7 @@ static void store_binary(mvr_context *ctx, GLuint program, const char *path, con
     GLint length = 0;
     gl->GetProgramiv(program, GL_PROGRAM_BINARY_LENGTH, &length);
     if (length <= 0) {
-        drain_gl_errors(gl);
+        mvr_gl_clear_errors(gl);
         return;
     }
     void *data = malloc((size_t)length);
@@ -95,7 +89,7 @@ static void store_binary(mvr_context *ctx, GLuint program, const char *path, con
         info->binary_stored = true;
     else if (info->why[0])
         info->binary_store_failed = true;
-    drain_gl_errors(gl);
+    mvr_gl_clear_errors(gl);
     free(data);
 }
 

@@ -87,6 +87,13 @@ static mvr_view_path env_view_path(mvr_view_path from_desc, const mvr_logger *lo
     return from_desc;
 }
 
+/* Debug and test switches read from the environment: true when name=value. */
+static bool env_is(const char *name, const char *value)
+{
+    const char *env = getenv(name);
+    return env && strcmp(env, value) == 0;
+}
+
 static void timer_init(mvr_renderer *r)
 {
     const mvr_caps *c = &r->ctx->caps;
@@ -95,8 +102,7 @@ static void timer_init(mvr_renderer *r)
         return;
     GLint bits = 0;
     r->gl->GetQueryiv(GL_TIMESTAMP_EXT, GL_QUERY_COUNTER_BITS_EXT, &bits);
-    while (r->gl->GetError() != GL_NO_ERROR) {
-    }
+    mvr_gl_clear_errors(r->gl);
     /* Timestamps are taken with no multiview framebuffer bound (timer queries
      * are undefined while one is), so they bracket the passes from outside. */
     r->timer.timestamps = bits > 0;
@@ -127,10 +133,8 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
     r->logger = desc->logger.fn ? desc->logger : desc->context->logger;
     r->requested_path = env_view_path(desc->view_path, &r->logger);
     r->material_path = env_material_path(desc->material_path, &r->logger);
-    const char *force_env = getenv("MVR_FORCE_FEATURES");
-    r->force_inert_features = force_env && strcmp(force_env, "inert") == 0;
-    const char *cull_env = getenv("MVR_CULLING");
-    r->culling = !desc->disable_culling && !(cull_env && strcmp(cull_env, "off") == 0);
+    r->force_inert_features = env_is("MVR_FORCE_FEATURES", "inert");
+    r->culling = !desc->disable_culling && !env_is("MVR_CULLING", "off");
     const mvr_caps *c = &r->ctx->caps;
     r->reversed_z = c->ext.ext_clip_control;
     r->ubo_alignment = (uint32_t)(c->limits.uniform_buffer_offset_alignment > 0
@@ -155,8 +159,7 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
     /* instancing: the draw block becomes an array indexed by gl_InstanceID,
      * whose std140 stride (144) must be the ring's block stride, and whose
      * size fits the GL's uniform block limit */
-    const char *inst_env = getenv("MVR_INSTANCING");
-    bool instancing = !desc->disable_instancing && !(inst_env && strcmp(inst_env, "off") == 0) &&
+    bool instancing = !desc->disable_instancing && !env_is("MVR_INSTANCING", "off") &&
                       r->material_path != MVR_MATERIAL_PATH_PER_DRAW &&
                       MVR_DRAW_BLOCK_SIZE % r->ubo_alignment == 0;
     uint32_t draw_cap = (uint32_t)c->limits.max_uniform_block_size / MVR_DRAW_BLOCK_SIZE;
