@@ -140,49 +140,62 @@ static void variants_follow_the_scene(mvr_test_state *t)
 
 /* ---- binary cache */
 
-typedef struct cache_run {
+/* One render of a demo's two views: stats, the variants built (how many came
+ * from the binary cache, how many carry every bit of `bits`), and the pixels. */
+typedef struct demo_run {
     mvr_frame_stats stats;
-    uint32_t programs, from_binary;
+    uint32_t programs, from_binary, with_bits;
     uint8_t pixels[2 * W * H * 4];
-} cache_run;
+} demo_run;
 
-static bool render_with_cache(mvr_test_state *t, mvr_context *ctx, const char *dir, log_sink *sink, cache_run *out)
+static bool render_demo_run(mvr_test_state *t, mvr_context *ctx, const char *demo, mvr_renderer_desc rd,
+                            uint32_t bits, demo_run *out)
 {
     mvr_scene *scene = NULL;
     mvr_view_set *vs = NULL;
     mvr_demo_desc dd = {2, W, H, {0}};
     mvr_error err;
-    if (mvr_demo_create("stereo", &dd, &scene, &vs, &err) != MVR_OK) {
+    if (mvr_demo_create(demo, &dd, &scene, &vs, &err) != MVR_OK) {
         CHECK_MSG(t, 0, "%s", err.message);
         return false;
     }
-    mvr_renderer_desc rd = {.context = ctx, .program_cache_dir = dir};
-    if (sink) {
-        rd.logger.fn = log_sink_fn;
-        rd.logger.user_data = sink;
-    }
+    rd.context = ctx;
     mvr_renderer *r = NULL;
     mvr_target *target = NULL;
     mvr_target_desc td = {W, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0};
     bool ok = mvr_renderer_create(&rd, &r, &err) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK &&
               mvr_renderer_render(r, scene, vs, target, NULL) == MVR_OK;
-    CHECK_MSG(t, ok, "%s", r ? mvr_renderer_last_error(r) : err.message);
+    CHECK_MSG(t, ok, "%s: %s", demo, r ? mvr_renderer_last_error(r) : err.message);
     if (ok) {
         mvr_renderer_get_stats(r, &out->stats);
         out->programs = mvr_renderer_program_count(r);
-        out->from_binary = 0;
+        out->from_binary = out->with_bits = 0;
         mvr_program_info info;
-        for (uint32_t i = 0; mvr_renderer_get_program_info(r, i, &info); ++i)
+        for (uint32_t i = 0; mvr_renderer_get_program_info(r, i, &info); ++i) {
             out->from_binary += info.from_binary_cache;
-        for (uint32_t k = 0; k < 2; ++k)
-            CHECK(t, mvr_renderer_read_layer(r, target, k, MVR_READBACK_RGBA8, out->pixels + (size_t)k * W * H * 4,
-                                             (size_t)W * H * 4) == MVR_OK);
+            out->with_bits += (info.features & bits) == bits;
+        }
+        for (uint32_t k = 0; ok && k < 2; ++k)
+            ok = mvr_renderer_read_layer(r, target, k, MVR_READBACK_RGBA8, out->pixels + (size_t)k * W * H * 4,
+                                         (size_t)W * H * 4) == MVR_OK;
+        CHECK(t, ok);
     }
     mvr_target_destroy(target);
     mvr_renderer_destroy(r);
     mvr_view_set_destroy(vs);
     mvr_scene_destroy(scene);
     return ok;
+}
+
+/* The stereo demo with a binary cache in dir (NULL: none), logging into sink. */
+static bool render_with_cache(mvr_test_state *t, mvr_context *ctx, const char *dir, log_sink *sink, demo_run *out)
+{
+    mvr_renderer_desc rd = {.program_cache_dir = dir};
+    if (sink) {
+        rd.logger.fn = log_sink_fn;
+        rd.logger.user_data = sink;
+    }
+    return render_demo_run(t, ctx, "stereo", rd, 0, out);
 }
 
 /* The cache's files, sorted, into names[max][512]; returns the count. */
@@ -257,7 +270,7 @@ static void binary_cache_restart_compiles_nothing(mvr_test_state *t)
     }
     char dir[] = "/tmp/mvr-programs-XXXXXX";
     CHECK(t, mkdtemp(dir) != NULL);
-    static cache_run cold, warm, damaged, healed, none;
+    static demo_run cold, warm, damaged, healed, none;
     char files[16][512];
 
     bool ok = render_with_cache(t, ctx, NULL, NULL, &none) && render_with_cache(t, ctx, dir, NULL, &cold);
@@ -314,46 +327,12 @@ static void binary_cache_restart_compiles_nothing(mvr_test_state *t)
 
     /* a directory that does not exist: a warning, and the frame still renders */
     log_sink sink = {0};
-    static cache_run nowhere;
+    static demo_run nowhere;
     CHECK(t, render_with_cache(t, ctx, "/nonexistent-mvr-cache-dir", &sink, &nowhere));
     CHECK(t, nowhere.stats.programs_compiled > 0);
     CHECK(t, sink.warnings >= 1);
     CHECK_EQ_INT(t, sink.errors, 0);
     mvr_context_destroy(ctx);
-}
-
-/* Renders a demo's two views; counts the variants that carry `bits`. */
-static bool render_demo_pixels(mvr_test_state *t, mvr_context *ctx, const char *demo, mvr_material_path mp,
-                               uint8_t *pixels, uint32_t *variants, uint32_t *with_bits, uint32_t bits)
-{
-    mvr_scene *scene = NULL;
-    mvr_view_set *vs = NULL;
-    mvr_demo_desc dd = {2, W, H, {0}};
-    mvr_error err;
-    if (mvr_demo_create(demo, &dd, &scene, &vs, &err) != MVR_OK) {
-        CHECK_MSG(t, 0, "%s", err.message);
-        return false;
-    }
-    mvr_renderer_desc rd = {.context = ctx, .material_path = mp};
-    mvr_renderer *r = NULL;
-    mvr_target *target = NULL;
-    mvr_target_desc td = {W, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0};
-    bool ok = mvr_renderer_create(&rd, &r, &err) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK &&
-              mvr_renderer_render(r, scene, vs, target, NULL) == MVR_OK;
-    CHECK_MSG(t, ok, "%s: %s", demo, r ? mvr_renderer_last_error(r) : err.message);
-    for (uint32_t k = 0; ok && k < 2; ++k)
-        ok = mvr_renderer_read_layer(r, target, k, MVR_READBACK_RGBA8, pixels + (size_t)k * W * H * 4,
-                                     (size_t)W * H * 4) == MVR_OK;
-    *variants = mvr_renderer_program_count(r);
-    *with_bits = 0;
-    mvr_program_info info;
-    for (uint32_t i = 0; mvr_renderer_get_program_info(r, i, &info); ++i)
-        *with_bits += (info.features & bits) == bits;
-    mvr_target_destroy(target);
-    mvr_renderer_destroy(r);
-    mvr_view_set_destroy(vs);
-    mvr_scene_destroy(scene);
-    return ok;
 }
 
 /* Every demo, both texture paths: the variants built from the scene's
@@ -364,27 +343,28 @@ static void forced_features_change_no_pixels(mvr_test_state *t)
     mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
     if (!ctx)
         return;
-    static uint8_t lean[2 * W * H * 4], forced[2 * W * H * 4];
+    static demo_run lean, forced;
     const uint32_t bits = MVR_FEATURE_TEXTURE_TRANSFORM | MVR_FEATURE_UV0 | MVR_FEATURE_UV1 | MVR_FEATURE_COLOR0;
     const mvr_material_path paths[2] = {MVR_MATERIAL_PATH_ARRAYS, MVR_MATERIAL_PATH_PER_MATERIAL};
     for (uint32_t d = 0; mvr_demo_name(d); ++d)
         for (int p = 0; p < 2; ++p) {
             const char *demo = mvr_demo_name(d);
-            uint32_t n_lean = 0, lean_bits = 0, n_forced = 0, forced_bits = 0;
-            bool ok = render_demo_pixels(t, ctx, demo, paths[p], lean, &n_lean, &lean_bits, bits);
+            mvr_renderer_desc rd = {.material_path = paths[p]};
+            bool ok = render_demo_run(t, ctx, demo, rd, bits, &lean);
             setenv("MVR_FORCE_FEATURES", "inert", 1);
-            ok = ok && render_demo_pixels(t, ctx, demo, paths[p], forced, &n_forced, &forced_bits, bits);
+            ok = ok && render_demo_run(t, ctx, demo, rd, bits, &forced);
             unsetenv("MVR_FORCE_FEATURES");
             if (!ok)
                 continue;
             const char *mp = mvr_material_path_name(paths[p]);
-            CHECK_MSG(t, forced_bits == n_forced, "%s/%s: %u of %u variants forced", demo, mp, forced_bits, n_forced);
-            CHECK_MSG(t, lean_bits == 0, "%s/%s: a lean variant has every inert feature", demo, mp);
+            CHECK_MSG(t, forced.with_bits == forced.programs, "%s/%s: %u of %u variants forced", demo, mp,
+                      forced.with_bits, forced.programs);
+            CHECK_MSG(t, lean.with_bits == 0, "%s/%s: a lean variant has every inert feature", demo, mp);
             size_t diff = 0;
-            for (size_t i = 0; i < sizeof lean; ++i)
-                diff += lean[i] != forced[i];
+            for (size_t i = 0; i < sizeof lean.pixels; ++i)
+                diff += lean.pixels[i] != forced.pixels[i];
             CHECK_MSG(t, diff == 0, "%s/%s: %zu bytes differ with forced features", demo, mp, diff);
-            printf("  %-6s %-12s %u variants, forced %u: identical\n", demo, mp, n_lean, n_forced);
+            printf("  %-6s %-12s %u variants, forced %u: identical\n", demo, mp, lean.programs, forced.programs);
         }
     mvr_context_destroy(ctx);
 }

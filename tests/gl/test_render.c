@@ -406,6 +406,18 @@ static void color_formats_agree(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
+/* Two views looking down -Z from x = -3 and x = +3 (about 34 degrees of
+ * vertical field): a unit triangle 5 in front of one is outside the other. */
+static mvr_view_set *side_by_side_views(mvr_test_state *t)
+{
+    mvr_view_desc views[2] = {{.position = {-3, 0, 0}, .projection = {.yfov = 0.6}},
+                              {.position = {3, 0, 0}, .projection = {.yfov = 0.6}}};
+    mvr_view_set *vs = NULL;
+    mvr_view_set_desc vd = {2, views, false, {0, 0, 0}};
+    CHECK(t, mvr_view_set_create(&vd, &vs, NULL) == MVR_OK);
+    return vs;
+}
+
 /* A draw outside every frustum is not drawn; one seen by one of two views
  * is drawn once in multiview and once in the loop; pixels do not change. */
 static void culling_changes_cost_not_pixels(mvr_test_state *t)
@@ -428,11 +440,7 @@ static void culling_changes_cost_not_pixels(mvr_test_state *t)
         mvr_node_id id;
         CHECK(t, mvr_scene_add_node(scene, &nd, &id) == MVR_OK);
     }
-    mvr_view_desc views[2] = {{.position = {-3, 0, 0}, .projection = {.yfov = 0.6}},
-                              {.position = {3, 0, 0}, .projection = {.yfov = 0.6}}};
-    mvr_view_set *vs = NULL;
-    mvr_view_set_desc vd = {2, views, false, {0, 0, 0}};
-    CHECK(t, mvr_view_set_create(&vd, &vs, NULL) == MVR_OK);
+    mvr_view_set *vs = side_by_side_views(t);
     uint8_t *img[2] = {malloc((size_t)W * H * 8), malloc((size_t)W * H * 8)};
     bool have_mv = mvr_context_caps(ctx)->ext.ovr_multiview2;
     mvr_view_path paths[2] = {have_mv ? MVR_VIEW_PATH_MULTIVIEW : MVR_VIEW_PATH_LOOP, MVR_VIEW_PATH_LOOP};
@@ -565,11 +573,7 @@ static void blend_pass_only_where_needed(mvr_test_state *t)
     mvr_node_desc nd = {.mesh = solid_mesh, .translation = {0, 0, 50}};
     mvr_node_id node;
     CHECK(t, mvr_scene_add_node(scene, &nd, &node) == MVR_OK);
-    mvr_view_desc views[2] = {{.position = {-3, 0, 0}, .projection = {.yfov = 0.6}},
-                              {.position = {3, 0, 0}, .projection = {.yfov = 0.6}}};
-    mvr_view_set *vs = NULL;
-    mvr_view_set_desc vd = {2, views, false, {0, 0, 0}};
-    CHECK(t, mvr_view_set_create(&vd, &vs, NULL) == MVR_OK);
+    mvr_view_set *vs = side_by_side_views(t);
     mvr_node_desc gd = {.mesh = clear_mesh, .translation = {0, 0, 50}}; /* behind both views */
     mvr_node_id glass_node;
     CHECK(t, mvr_scene_add_node(scene, &gd, &glass_node) == MVR_OK);
