@@ -198,6 +198,7 @@ void mvr_renderer_destroy(mvr_renderer *r)
     mvr_frame_free(&r->frame);
     mvr_visibility_free(&r->vis);
     free(r->program_cache_dir);
+    free(r->compact_scratch);
     free(r);
 }
 

@@ -142,6 +142,10 @@ struct mvr_renderer {
      * cannot change its pixels (tests: skipping changes cost, not pixels) */
     bool force_inert_features;
     uint64_t upload_bytes, view_upload_bytes;
+    /* per-pass compaction: the visible draws' blocks of each culled pass,
+     * consecutive, so culling does not cut instanced runs apart */
+    uint8_t *compact_scratch;
+    size_t compact_scratch_cap;
 };
 
 mvr_result mvr_renderer_fail(mvr_renderer *r, mvr_result result, const char *fmt, ...) MVR_PRINTF(3, 4);

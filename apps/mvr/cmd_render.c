@@ -364,6 +364,7 @@ static void write_stats_json(FILE *f, const mvr_renderer *r, const mvr_frame_sta
     json_int(&jw, "ubo_range_binds", s->ubo_range_binds);
     json_int(&jw, "upload_bytes", (long long)s->upload_bytes);
     json_int(&jw, "view_upload_bytes", (long long)s->view_upload_bytes);
+    json_int(&jw, "compacted_bytes", (long long)s->compacted_bytes);
     json_int(&jw, "programs_compiled", s->programs_compiled);
     json_int(&jw, "program_cache_hits", s->program_cache_hits);
     json_int(&jw, "program_binary_loads", s->program_binary_loads);

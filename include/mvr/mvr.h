@@ -575,6 +575,8 @@ typedef struct mvr_frame_stats {
     uint32_t ubo_range_binds;
     uint64_t upload_bytes;       /* view-independent: geometry, textures, materials, per-draw data */
     uint64_t view_upload_bytes;  /* per-view matrices */
+    uint64_t compacted_bytes;    /* per-pass copies of the visible draws' blocks, where culling
+                                    would otherwise split instanced runs */
     uint32_t programs_compiled;  /* variants compiled from source in this render */
     uint32_t program_cache_hits; /* variant lookups served by a program already built */
     uint32_t program_binary_loads;   /* variants linked from the binary cache */

@@ -635,7 +635,8 @@ static void instancing_changes_calls_not_pixels(mvr_test_state *t)
     const uint32_t view_counts[2] = {2, 10};
     for (uint32_t d = 0; mvr_demo_name(d); ++d)
         for (int vc = 0; vc < 2; ++vc)
-            for (int pi = 0; pi < 2; ++pi)
+            for (int pi = 0; pi < 2; ++pi) {
+                uint32_t calls_without_culling = 0;
                 for (int cull = 0; cull < 2; ++cull) {
                     const char *demo = mvr_demo_name(d);
                     uint32_t n = view_counts[vc];
@@ -656,6 +657,20 @@ static void instancing_changes_calls_not_pixels(mvr_test_state *t)
                         CHECK_EQ_INT(t, off.second.draw_calls, off.second.draws);
                         CHECK_EQ_INT(t, off.second.instanced_draw_calls, 0);
                         CHECK(t, on.second.draw_calls <= off.second.draw_calls);
+                        /* culled passes copy their visible blocks together, so
+                         * culling never splits a run: at most as many calls as
+                         * without culling (same passes, subsets of its runs) */
+                        CHECK_EQ_INT(t, off.second.compacted_bytes, 0);
+                        if (!cull) {
+                            calls_without_culling = on.second.draw_calls;
+                            CHECK_EQ_INT(t, on.second.compacted_bytes, 0);
+                        } else {
+                            CHECK_MSG(t, on.second.draw_calls <= calls_without_culling,
+                                      "%s x%u %s: %u calls with culling, %u without", demo, n,
+                                      mvr_view_path_name(path), on.second.draw_calls, calls_without_culling);
+                            if (on.second.culled > 0 && on.second.instanced_draw_calls > 0)
+                                CHECK(t, on.second.compacted_bytes > 0);
+                        }
                         if (strcmp(demo, "city") == 0) {
                             CHECK(t, on.second.instanced_draw_calls > 0);
                             /* without culling: one call per box mesh per pass, (4097 draws, 73 meshes) */
@@ -672,6 +687,7 @@ static void instancing_changes_calls_not_pixels(mvr_test_state *t)
                     free(on.pixels);
                     free(off.pixels);
                 }
+            }
     mvr_context_destroy(ctx);
 }
 
