@@ -210,6 +210,36 @@ mvr_result mvr_scene_add_material(mvr_scene *s, const mvr_material_desc *d, mvr_
     m->desc = *d;
     m->desc.name = NULL;
     mvr_str_copy(m->name, sizeof m->name, name);
+    /* Factors: NaN or infinite becomes glTF's default, a denormal 0 (some
+     * GPUs flush them, others take slow paths), and each is clamped to its
+     * glTF range; each change is counted and logged. */
+    mvr_material_desc defaults = mvr_material_defaults();
+    struct { float *v; float fallback, lo, hi; } factors[] = {
+        {&m->desc.base_color_factor[0], 1, 0, 1}, {&m->desc.base_color_factor[1], 1, 0, 1},
+        {&m->desc.base_color_factor[2], 1, 0, 1}, {&m->desc.base_color_factor[3], 1, 0, 1},
+        {&m->desc.metallic_factor, defaults.metallic_factor, 0, 1},
+        {&m->desc.roughness_factor, defaults.roughness_factor, 0, 1},
+        {&m->desc.emissive_factor[0], 0, 0, 1}, {&m->desc.emissive_factor[1], 0, 0, 1},
+        {&m->desc.emissive_factor[2], 0, 0, 1}, {&m->desc.emissive_strength, 0, 0, 1e30f},
+        {&m->desc.normal_scale, 0, -1e30f, 1e30f}, {&m->desc.occlusion_strength, 0, 0, 1},
+        {&m->desc.alpha_cutoff, 0, 0, 1e30f}};
+    uint32_t repaired = 0;
+    for (size_t i = 0; i < MVR_ARRAY_COUNT(factors); ++i) {
+        float v = *factors[i].v;
+        if (!isfinite(v))
+            v = factors[i].fallback;
+        else if (fpclassify(v) == FP_SUBNORMAL)
+            v = 0.0f;
+        v = v < factors[i].lo ? factors[i].lo : v > factors[i].hi ? factors[i].hi : v;
+        repaired += v != *factors[i].v || isnan(*factors[i].v);
+        *factors[i].v = v;
+    }
+    if (repaired) {
+        s->sanitized += repaired;
+        mvr_log(&s->logger, MVR_LOG_WARNING, MVR_LOG_ID_GENERAL,
+                "mvr_scene_add_material(%s): %u factors were NaN, infinite, denormal or out of range (repaired)",
+                name, repaired);
+    }
     /* Zero means default for these (a factor of 0 would be meaningless). */
     if (m->desc.emissive_strength == 0.0f)
         m->desc.emissive_strength = 1.0f;
@@ -232,6 +262,59 @@ const mvr_material_desc *mvr_scene_material(const mvr_scene *s, uint32_t index)
         MVR_ALPHA_OPAQUE, false, false, {{0}, {0}, 0, {0}}, {{0}, {0}, 0, {0}},
         {{0}, {0}, 0, {0}}, {{0}, {0}, 0, {0}}, {{0}, {0}, 0, {0}}, NULL};
     return index < s->material_count ? &s->materials[index].desc : &fallback;
+}
+
+/* Degenerate vertex data is repaired, never refused (only NaN or infinite
+ * positions are): a NaN or zero-length normal becomes (0, 0, 0), which the
+ * fragment shader replaces by the face normal from position derivatives;
+ * a bad tangent becomes (0, 0, 0, 1), which drops the normal map's tangent
+ * plane for that vertex (shading keeps the interpolated normal); a NaN or
+ * infinite UV becomes 0 and a NaN color 1 (COLOR_0's neutral value), and
+ * colors are clamped to [0, 1] as glTF requires. Returns the number of
+ * vertex attributes changed. */
+static uint32_t sanitize_vertices(scene_primitive *p)
+{
+    uint32_t changed = 0;
+    for (uint32_t i = 0; i < p->vertex_count; ++i) {
+        if (p->normals) {
+            float *n = p->normals + (size_t)i * 3;
+            float len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+            if (!(len2 > 1e-24f) || !isfinite(len2)) { /* !(x > e) is also true for NaN */
+                n[0] = n[1] = n[2] = 0.0f;
+                changed++;
+            }
+        }
+        if (p->tangents) {
+            float *t = p->tangents + (size_t)i * 4;
+            float len2 = t[0] * t[0] + t[1] * t[1] + t[2] * t[2];
+            bool bad = !(len2 > 1e-24f) || !isfinite(len2);
+            if (bad)
+                t[0] = t[1] = t[2] = 0.0f;
+            if (t[3] != 1.0f && t[3] != -1.0f) { /* the bitangent sign is +-1 */
+                t[3] = t[3] < 0.0f ? -1.0f : 1.0f;
+                bad = true;
+            }
+            changed += bad;
+        }
+        float *uvs[2] = {p->uv0 ? p->uv0 + (size_t)i * 2 : NULL, p->uv1 ? p->uv1 + (size_t)i * 2 : NULL};
+        for (int u = 0; u < 2; ++u)
+            if (uvs[u] && (!isfinite(uvs[u][0]) || !isfinite(uvs[u][1]))) {
+                uvs[u][0] = isfinite(uvs[u][0]) ? uvs[u][0] : 0.0f;
+                uvs[u][1] = isfinite(uvs[u][1]) ? uvs[u][1] : 0.0f;
+                changed++;
+            }
+        if (p->colors) {
+            float *c = p->colors + (size_t)i * 4;
+            bool bad = false;
+            for (int j = 0; j < 4; ++j) {
+                float v = isnan(c[j]) ? 1.0f : c[j] < 0.0f ? 0.0f : c[j] > 1.0f ? 1.0f : c[j];
+                bad |= v != c[j];
+                c[j] = v;
+            }
+            changed += bad;
+        }
+    }
+    return changed;
 }
 
 static mvr_result add_primitive(mvr_scene *s, const mvr_primitive_desc *d, const char *mesh, uint32_t k)
@@ -294,6 +377,14 @@ static mvr_result add_primitive(mvr_scene *s, const mvr_primitive_desc *d, const
     if (oom) {
         free_primitive(p);
         return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_mesh(%s): out of memory", mesh);
+    }
+    uint32_t repaired = sanitize_vertices(p);
+    if (repaired) {
+        s->sanitized += repaired;
+        mvr_log(&s->logger, MVR_LOG_WARNING, MVR_LOG_ID_GENERAL,
+                "mvr_scene_add_mesh(%s): primitive %u: %u vertex attributes were NaN, infinite or zero-length "
+                "(repaired: normals from the face, tangents dropped, UVs 0, colors clamped)",
+                mesh, k, repaired);
     }
     p->index_count = d->index_count;
     p->mode = d->mode;
@@ -400,13 +491,23 @@ static bool finite_doubles(const double *v, int n)
     return true;
 }
 
-static void set_trs(scene_node *n, const double t[3], const double r[4], const double sc[3])
+/* Sets a node's TRS. A rotation that is not a unit quaternion (glTF
+ * requires one) is normalized, counted and logged; all zero is the API's
+ * "identity" default and no repair. */
+static void set_trs(mvr_scene *s, scene_node *n, const char *where, const double t[3], const double r[4],
+                    const double sc[3])
 {
     n->translation = mvr_dvec3_make(t[0], t[1], t[2]);
     mvr_dquat q = {r[0], r[1], r[2], r[3]};
     if (all_zero(r, 4))
         q.w = 1.0;
-    n->rotation = mvr_dquat_normalize(q); /* glTF requires unit quaternions; be lenient */
+    double len2 = q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w;
+    if (fabs(len2 - 1.0) > 1e-6) {
+        s->sanitized++;
+        mvr_log(&s->logger, MVR_LOG_WARNING, MVR_LOG_ID_GENERAL,
+                "%s: rotation (%g, %g, %g, %g) is not a unit quaternion (normalized)", where, q.x, q.y, q.z, q.w);
+    }
+    n->rotation = mvr_dquat_normalize(q);
     n->scale = all_zero(sc, 3) ? mvr_dvec3_make(1, 1, 1) : mvr_dvec3_make(sc[0], sc[1], sc[2]);
 }
 
@@ -437,7 +538,7 @@ mvr_result mvr_scene_add_node(mvr_scene *s, const mvr_node_desc *d, mvr_node_id 
     if (d->use_matrix)
         memcpy(n->matrix.m, d->matrix, sizeof n->matrix.m);
     else
-        set_trs(n, d->translation, d->rotation, d->scale);
+        set_trs(s, n, "mvr_scene_add_node", d->translation, d->rotation, d->scale);
     n->mesh = d->mesh.id ? d->mesh.id - 1 : MVR_NO_INDEX;
     n->light = d->light.id ? d->light.id - 1 : MVR_NO_INDEX;
     n->camera = d->camera.id ? d->camera.id - 1 : MVR_NO_INDEX;
@@ -461,7 +562,7 @@ mvr_result mvr_scene_set_node_transform(mvr_scene *s, mvr_node_id node, const do
         return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_set_node_transform: not finite");
     scene_node *n = &s->nodes[node.id - 1];
     n->use_matrix = false;
-    set_trs(n, t, r, sc);
+    set_trs(s, n, "mvr_scene_set_node_transform", t, r, sc);
     s->transform_version++;
     return MVR_OK;
 }
@@ -520,6 +621,11 @@ void mvr_scene_get_info(const mvr_scene *s, mvr_scene_info *out)
     }
     out->bounds_min[0] = lo.x; out->bounds_min[1] = lo.y; out->bounds_min[2] = lo.z;
     out->bounds_max[0] = hi.x; out->bounds_max[1] = hi.y; out->bounds_max[2] = hi.z;
+}
+
+uint32_t mvr_scene_sanitized_count(const mvr_scene *s)
+{
+    return s ? s->sanitized : 0;
 }
 
 uint32_t mvr_scene_camera_node_count(const mvr_scene *s)

@@ -71,6 +71,7 @@ struct mvr_scene {
     /* Tells scenes apart for a renderer's cache even when a new scene is
      * allocated where a destroyed one was. */
     uint64_t serial;
+    uint32_t sanitized;          /* degenerate values repaired on the way in (logged) */
 };
 
 uint64_t mvr_scene_serial(const mvr_scene *scene);

@@ -28,6 +28,16 @@ const char *mvr_material_path_name(mvr_material_path path)
     return NULL;
 }
 
+const char *mvr_depth_mode_name(mvr_depth_mode mode)
+{
+    switch (mode) {
+    case MVR_DEPTH_MODE_AUTO: return "auto";
+    case MVR_DEPTH_MODE_REVERSED_Z: return "reversed_z";
+    case MVR_DEPTH_MODE_STANDARD: return "standard";
+    }
+    return NULL;
+}
+
 /* MVR_MATERIAL_PATH=arrays|per_material|per_draw|auto overrides the descriptor. */
 static mvr_material_path env_material_path(mvr_material_path from_desc, const mvr_logger *logger)
 {
@@ -121,6 +131,18 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
         return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
                              "mvr_renderer_create: view_path %d is not an mvr_view_path",
                              (int)desc->view_path);
+    if (!mvr_depth_mode_name(desc->depth_mode))
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
+                             "mvr_renderer_create: depth_mode %d is not an mvr_depth_mode", (int)desc->depth_mode);
+    mvr_depth_mode depth_mode = desc->depth_mode;
+    if (env_is("MVR_DEPTH", "standard"))
+        depth_mode = MVR_DEPTH_MODE_STANDARD;
+    else if (env_is("MVR_DEPTH", "reversed_z"))
+        depth_mode = MVR_DEPTH_MODE_REVERSED_Z;
+    bool clip_control = desc->context->caps.ext.ext_clip_control && desc->context->gl.ClipControl;
+    if (depth_mode == MVR_DEPTH_MODE_REVERSED_Z && !clip_control)
+        return mvr_error_set(error, MVR_ERROR_UNSUPPORTED,
+                             "mvr_renderer_create: depth_mode reversed_z needs GL_EXT_clip_control (or GL 4.5)");
     if (!mvr_material_path_name(desc->material_path))
         return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
                              "mvr_renderer_create: material_path %d is not an mvr_material_path",
@@ -136,7 +158,7 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
     r->force_inert_features = env_is("MVR_FORCE_FEATURES", "inert");
     r->culling = !desc->disable_culling && !env_is("MVR_CULLING", "off");
     const mvr_caps *c = &r->ctx->caps;
-    r->reversed_z = c->ext.ext_clip_control;
+    r->reversed_z = depth_mode == MVR_DEPTH_MODE_AUTO ? clip_control : depth_mode == MVR_DEPTH_MODE_REVERSED_Z;
     r->ubo_alignment = (uint32_t)(c->limits.uniform_buffer_offset_alignment > 0
                                       ? c->limits.uniform_buffer_offset_alignment : 256);
     uint32_t cap = (uint32_t)c->limits.max_uniform_block_size / MVR_MATERIAL_BLOCK_SIZE;
@@ -448,7 +470,8 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
     st->program_cache_hits = r->cache_hits_this_frame;
     st->program_binary_loads = r->binary_loads_this_frame;
     st->program_binary_rejects = r->binary_rejects_this_frame;
-    st->reversed_z = r->reversed_z;
+    st->sanitized = mvr_scene_sanitized_count(scene);
+    st->depth_mode = r->reversed_z ? MVR_DEPTH_MODE_REVERSED_Z : MVR_DEPTH_MODE_STANDARD;
     st->material_path = r->material_path;
     st->texture_groups = r->gpu.arrays ? r->gpu.plan.group_count : 0;
     st->cpu_ms = thread_cpu_ms() - cpu_start;

@@ -26,6 +26,7 @@ typedef struct render_options {
     const char *stats_file;
     mvr_view_path view_path;
     mvr_material_path material_path;
+    mvr_depth_mode depth_mode;
     mvr_color_format format;
     bool format_set;
     bool exr;                    /* output EXR (linear float) instead of PNG */
@@ -56,6 +57,8 @@ static void render_usage(FILE *out)
             "  --view-path P       auto | multiview | loop (default: auto; env MVR_VIEW_PATH)\n"
             "  --material-path P   auto | arrays | per_material | per_draw (default: auto = arrays;\n"
             "                      env MVR_MATERIAL_PATH)\n"
+            "  --depth D           auto | reversed_z | standard (default: auto = reversed_z\n"
+            "                      where GL_EXT_clip_control exists; env MVR_DEPTH)\n"
             "  --format F          png (8-bit sRGB) | exr (half float, linear) (default: png)\n"
             "  --target-format F   srgb8 | rgba8 | rgba16f (default: srgb8; rgba16f for exr)\n"
             "  --exposure X        linear exposure multiplier (default: 1)\n"
@@ -201,6 +204,18 @@ static int parse(int argc, char **argv, render_options *o)
                 }
             if (!found) {
                 fprintf(stderr, "mvr render: --material-path takes auto, arrays, per_material or per_draw\n");
+                return MVR_EXIT_USAGE;
+            }
+            ++i;
+        } else if (strcmp(a, "--depth") == 0) {
+            bool found = false;
+            for (int k = MVR_DEPTH_MODE_AUTO; k <= MVR_DEPTH_MODE_STANDARD; ++k)
+                if (strcmp(v, mvr_depth_mode_name((mvr_depth_mode)k)) == 0) {
+                    o->depth_mode = (mvr_depth_mode)k;
+                    found = true;
+                }
+            if (!found) {
+                fprintf(stderr, "mvr render: --depth takes auto, reversed_z or standard\n");
                 return MVR_EXIT_USAGE;
             }
             ++i;
@@ -365,6 +380,7 @@ static void write_stats_json(FILE *f, const mvr_renderer *r, const mvr_frame_sta
     json_int(&jw, "upload_bytes", (long long)s->upload_bytes);
     json_int(&jw, "view_upload_bytes", (long long)s->view_upload_bytes);
     json_int(&jw, "compacted_bytes", (long long)s->compacted_bytes);
+    json_int(&jw, "sanitized", (long long)s->sanitized);
     json_int(&jw, "programs_compiled", s->programs_compiled);
     json_int(&jw, "program_cache_hits", s->program_cache_hits);
     json_int(&jw, "program_binary_loads", s->program_binary_loads);
@@ -384,7 +400,7 @@ static void write_stats_json(FILE *f, const mvr_renderer *r, const mvr_frame_sta
         json_end_object(&jw);
     }
     json_end_array(&jw);
-    json_string(&jw, "depth_mode", s->reversed_z ? "reversed_z" : "standard");
+    json_string(&jw, "depth_mode", mvr_depth_mode_name(s->depth_mode));
     json_double(&jw, "cpu_ms", s->cpu_ms);
     if (s->gpu_ms >= 0)
         json_double(&jw, "gpu_ms", s->gpu_ms);
@@ -540,7 +556,7 @@ int mvr_cmd_render(int argc, char **argv)
     }
     char cache_buf[4096];
     mvr_renderer_desc rd = {.context = ctx, .view_path = o.view_path, .logger = o.context.logger,
-                            .material_path = o.material_path,
+                            .material_path = o.material_path, .depth_mode = o.depth_mode,
                             .program_cache_dir = program_cache_dir(&o, cache_buf, sizeof cache_buf)};
     if (mvr_renderer_create(&rd, &renderer, &err) != MVR_OK) {
         fprintf(stderr, "mvr render: %s\n", err.message);
@@ -612,7 +628,7 @@ int mvr_cmd_render(int argc, char **argv)
         printf("  view path   %s: %u pass%s for %u view%s (GL_MAX_VIEWS_OVR %d)\n",
                mvr_view_path_name(st.view_path), st.passes, st.passes == 1 ? "" : "es", st.views,
                st.views == 1 ? "" : "s", c->limits.max_views_ovr);
-        printf("  depth       %s\n", st.reversed_z ? "reversed-Z (clip control, float depth)" : "standard");
+        printf("  depth       %s\n", st.depth_mode == MVR_DEPTH_MODE_REVERSED_Z ? "reversed-Z (clip control, float depth)" : "standard");
         printf("  materials   %s: %u texture arrays\n", mvr_material_path_name(st.material_path), st.texture_groups);
         uint32_t loaded = 0, count = mvr_renderer_program_count(renderer);
         mvr_program_info pi;

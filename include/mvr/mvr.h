@@ -417,6 +417,11 @@ void mvr_scene_get_info(const mvr_scene *scene, mvr_scene_info *out);
 
 /* Nodes that carry a camera, in node order. */
 uint32_t mvr_scene_camera_node_count(const mvr_scene *scene);
+/* Degenerate values repaired on the way in, each logged as a warning: NaN,
+ * infinite or zero-length normals and tangents, NaN UVs and colors, NaN,
+ * denormal or out-of-range material factors, zero quaternions. (NaN or
+ * infinite positions and transforms are refused.) */
+uint32_t mvr_scene_sanitized_count(const mvr_scene *scene);
 mvr_node_id mvr_scene_camera_node(const mvr_scene *scene, uint32_t index); /* {0} past the end */
 
 /* The world pose of a camera node, with its camera's projection, as a view. */
@@ -482,6 +487,17 @@ typedef enum mvr_material_path {
 } mvr_material_path;
 const char *mvr_material_path_name(mvr_material_path path);
 
+/* Depth: reversed-Z (GL_EXT_clip_control zero-to-one, 32-bit float depth,
+ * GL_GREATER, clear to 0, infinite far plane allowed) keeps about constant
+ * relative precision with distance; standard depth (-1..1, GL_LESS, a finite
+ * far plane) is what remains where clip control is missing. */
+typedef enum mvr_depth_mode {
+    MVR_DEPTH_MODE_AUTO = 0,     /* reversed-Z where clip control exists, else standard */
+    MVR_DEPTH_MODE_REVERSED_Z,   /* refused (MVR_ERROR_UNSUPPORTED) without clip control */
+    MVR_DEPTH_MODE_STANDARD
+} mvr_depth_mode;
+const char *mvr_depth_mode_name(mvr_depth_mode mode);
+
 typedef enum mvr_tone_map {
     MVR_TONE_MAP_NONE = 0,       /* clamp */
     MVR_TONE_MAP_ACES,           /* the fitted ACES curve of the Khronos glTF Sample Renderer */
@@ -507,6 +523,7 @@ typedef struct mvr_renderer_desc {
      * the same program, textures and material page become one instanced
      * draw (same pixels). true turns it off; so does env MVR_INSTANCING=off. */
     bool disable_instancing;
+    mvr_depth_mode depth_mode;   /* env MVR_DEPTH=reversed_z|standard overrides */
 } mvr_renderer_desc;
 
 mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out, mvr_error *out_error);
@@ -581,10 +598,11 @@ typedef struct mvr_frame_stats {
     uint32_t program_cache_hits; /* variant lookups served by a program already built */
     uint32_t program_binary_loads;   /* variants linked from the binary cache */
     uint32_t program_binary_rejects; /* cache entries found corrupt, stale or refused (rebuilt) */
-    bool reversed_z;             /* depth mode: reversed-Z (clip control) or standard */
+    mvr_depth_mode depth_mode;   /* the depth mode that ran (never AUTO) */
     mvr_material_path material_path; /* the material path that ran */
     uint32_t texture_groups;     /* texture arrays of the scene's batch plan (array path) */
     uint32_t culled;             /* summed over views: draws outside a view's frustum */
+    uint32_t sanitized;          /* the scene's repaired degenerate values (mvr_scene_sanitized_count) */
     /* Sub-passes drawn, summed over passes: [0] opaque, [1] alpha-masked,
      * [2] blended (transparent). A pass skips a list with nothing to draw in
      * it, state changes included: a scene without transparency runs no

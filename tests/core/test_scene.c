@@ -181,5 +181,54 @@ static void features_follow_attributes_and_material(mvr_test_state *t)
     CHECK(t, mvr_draw_features(&p, &m) & MVR_FEATURE_TANGENTS);
 }
 
-MVR_TEST_MAIN(TEST(bad_meshes_are_refused), TEST(references_are_checked),
+
+/* Degenerate values are repaired (and counted), never passed on: the GPU
+ * sees no NaN from a normal, tangent, UV, color or factor. */
+static void degenerate_values_are_repaired(mvr_test_state *t)
+{
+    mvr_scene *s = new_scene();
+    const float nan = NAN, inf = INFINITY;
+    float normals[9] = {nan, 0, 1, 0, 0, 0, 0, 0, 2};            /* NaN, zero, fine (unnormalized) */
+    float tangents[12] = {1, 0, 0, 1, inf, 0, 0, 1, 1, 0, 0, 0.5f}; /* fine, infinite, bad sign */
+    float uv[6] = {0, 0, nan, 1, 1, 1};                          /* one NaN */
+    float colors[12] = {1, 1, 1, 1, 2, 0, 0, 1, nan, 0, 0, 1};   /* fine, > 1, NaN */
+    mvr_primitive_desc p = {.vertex_count = 3, .positions = tri, .normals = normals, .tangents = tangents,
+                            .texcoords0 = uv, .colors = colors};
+    mvr_mesh_desc md = {&p, 1, "bad"};
+    mvr_mesh_id mesh;
+    CHECK(t, mvr_scene_add_mesh(s, &md, &mesh) == MVR_OK);
+    CHECK_EQ_INT(t, mvr_scene_sanitized_count(s), 2 + 2 + 1 + 2);
+    const scene_primitive *sp = &s->primitives[0];
+    for (int i = 0; i < 9; ++i)
+        CHECK(t, isfinite(sp->normals[i]) && isfinite(sp->tangents[i]));
+    CHECK(t, sp->normals[0] == 0 && sp->normals[1] == 0 && sp->normals[2] == 0);
+    CHECK(t, sp->normals[8] == 2.0f); /* a valid normal is left alone (the shader normalizes) */
+    CHECK(t, sp->tangents[4] == 0 && sp->tangents[11] == 1.0f);
+    CHECK(t, sp->uv0[2] == 0.0f && sp->uv0[3] == 1.0f);
+    CHECK(t, sp->colors[4] == 1.0f && sp->colors[8] == 1.0f);
+
+    mvr_material_desc m = mvr_material_defaults();
+    m.metallic_factor = nan;                 /* -> glTF default 1 */
+    m.roughness_factor = 1e-40f;             /* denormal -> 0 */
+    m.base_color_factor[0] = 1.5f;           /* -> 1 */
+    m.emissive_factor[1] = -inf;             /* -> 0 */
+    mvr_material_id mat;
+    CHECK(t, mvr_scene_add_material(s, &m, &mat) == MVR_OK);
+    CHECK_EQ_INT(t, mvr_scene_sanitized_count(s), 7 + 4);
+    const mvr_material_desc *got = mvr_scene_material(s, 0);
+    CHECK(t, got->metallic_factor == 1.0f && got->roughness_factor == 0.0f && got->base_color_factor[0] == 1.0f &&
+             got->emissive_factor[1] == 0.0f);
+
+    /* a quaternion of length 2 is normalized and counted; all zero is the default */
+    mvr_node_desc nd = {.mesh = mesh, .rotation = {0, 0, 0, 2}};
+    mvr_node_id node;
+    CHECK(t, mvr_scene_add_node(s, &nd, &node) == MVR_OK);
+    mvr_node_desc nd0 = {.mesh = mesh};
+    CHECK(t, mvr_scene_add_node(s, &nd0, &node) == MVR_OK);
+    CHECK_EQ_INT(t, mvr_scene_sanitized_count(s), 12);
+    CHECK(t, s->nodes[0].rotation.w == 1.0);
+    mvr_scene_destroy(s);
+}
+
+MVR_TEST_MAIN(TEST(degenerate_values_are_repaired), TEST(bad_meshes_are_refused), TEST(references_are_checked),
               TEST(frame_packs_draws_relative_to_origin), TEST(features_follow_attributes_and_material))
