@@ -30,10 +30,11 @@ static mvr_image_id checker_image(mvr_test_state *t, mvr_scene *s)
     return id;
 }
 
-/* The textured, lit 1 m cube at `offset` seen from 5 m away; origin_at_zero
- * puts the view set's origin at the world origin instead of the views'
- * centroid (what a renderer without camera-relative transforms does). */
-static uint8_t *render_offset_cube(mvr_test_state *t, mvr_context *ctx, double offset, bool origin_at_zero)
+/* The textured, lit 1 m cube at `offset` seen from 5 m away. The view
+ * set's origin is the view's position (its default: the views' centroid),
+ * or `origin` when given: the world origin is what a renderer without
+ * camera-relative transforms does. */
+static uint8_t *render_offset_cube(mvr_test_state *t, mvr_context *ctx, double offset, const double *origin)
 {
     mvr_scene *s = stress_scene();
     mvr_material_desc m = mvr_material_defaults();
@@ -56,8 +57,7 @@ static uint8_t *render_offset_cube(mvr_test_state *t, mvr_context *ctx, double o
     double eye[3] = {offset + 3 * k, offset + 2 * k, offset + 4 * k}, target[3] = {offset, offset, offset};
     mvr_projection proj = {.yfov = 0.5, .znear = 0.1};
     mvr_view_desc v = stress_view(eye, target, proj);
-    const double zero[3] = {0, 0, 0};
-    mvr_view_set *vs = stress_view_set(t, &v, 1, origin_at_zero ? zero : NULL);
+    mvr_view_set *vs = stress_view_set(t, &v, 1, origin);
     stress_options o = {.width = OFFSET_SIZE, .height = OFFSET_SIZE, .clear = {0, 0, 0, 1}};
     uint8_t *px = vs ? stress_render(t, ctx, s, vs, &o, NULL) : NULL;
     mvr_view_set_destroy(vs);
@@ -74,12 +74,12 @@ static void large_offsets(mvr_test_state *t)
     if (!ctx)
         return;
     const size_t bytes = (size_t)OFFSET_SIZE * OFFSET_SIZE * 4;
-    uint8_t *ref = render_offset_cube(t, ctx, 0.0, false);
+    uint8_t *ref = render_offset_cube(t, ctx, 0.0, NULL);
     const double offsets[4] = {1e4, 1e5, 1e6, 1e7};
     unsigned worst = 0;
     char measured[256] = "";
     for (int i = 0; ref && i < 4; ++i) {
-        uint8_t *img = render_offset_cube(t, ctx, offsets[i], false);
+        uint8_t *img = render_offset_cube(t, ctx, offsets[i], NULL);
         if (!img)
             continue;
         unsigned d = max_abs_diff8(ref, img, bytes);
@@ -89,11 +89,23 @@ static void large_offsets(mvr_test_state *t)
         free(img);
     }
     /* for the record: the same cube without a camera-relative origin */
-    uint8_t *naive = ref ? render_offset_cube(t, ctx, 1e5, true) : NULL;
+    const double zero[3] = {0, 0, 0};
+    uint8_t *naive = ref ? render_offset_cube(t, ctx, 1e5, zero) : NULL;
     unsigned naive_d = naive ? max_abs_diff8(ref, naive, bytes) : 0;
+    /* and with the origin where a ring of cameras 1 km across would put it:
+     * its centre, 500 m from this camera (docs/guide.md, "The origin") */
+    unsigned ring_d[2] = {0, 0};
+    for (int i = 0; i < 2 && ref; ++i) {
+        double far_origin[3] = {1e5 + 500.0, 1e5, 1e5}, near_origin[3] = {1e5 + 50.0, 1e5, 1e5};
+        uint8_t *img = render_offset_cube(t, ctx, 1e5, i ? near_origin : far_origin);
+        ring_d[i] = img ? max_abs_diff8(ref, img, bytes) : 0;
+        free(img);
+    }
     /* that naive render really is broken at 1e5, so this test can fail */
     CHECK_MSG(t, naive_d > 1, "without a camera-relative origin the cube at 1e5 still matches (%u)", naive_d);
-    snprintf(measured, sizeof measured, "%u/255 (origin at world 0 instead: %u/255 at 1e5)", worst, naive_d);
+    snprintf(measured, sizeof measured,
+             "%u/255 (origin 500 m / 50 m from the camera: %u/255 / %u/255; at world 0: %u/255 at 1e5)", worst,
+             ring_d[0], ring_d[1], naive_d);
     stress_record("large offsets: 1 m cube at 1e4..1e7, max difference to the cube at 0", "<= 1/255", measured,
                   "one 8-bit step: the output encoding's own rounding");
     free(naive);
