@@ -268,7 +268,52 @@ typedef struct pass_context {
     uint32_t first_view, views;  /* the pass's views: a draw visible in any is drawn */
     GLintptr compact;            /* the pass's compacted blocks, or -1 */
     uint32_t compact_next;       /* next compacted block to draw */
+    const mvr_view_set *view_set;
 } pass_context;
+
+typedef struct blend_key {
+    double distance;
+    uint32_t position;           /* in the blend list */
+} blend_key;
+
+/* back to front; equal distances keep the shared order */
+static int compare_blend_keys(const void *pa, const void *pb)
+{
+    const blend_key *a = pa, *b = pb;
+    if (a->distance != b->distance)
+        return a->distance > b->distance ? -1 : 1;
+    return a->position < b->position ? -1 : (a->position > b->position);
+}
+
+/* Per-view transparency order: the blend list sorted by distance from the
+ * pass's one view (relative to the origin, in double, as the shared order
+ * is from the origin). Returns NULL when the shared order applies. */
+static const blend_key *per_view_blend_order(mvr_renderer *r, const pass_context *pc)
+{
+    const mvr_frame *f = &r->frame;
+    uint32_t n = f->pass_count[MVR_PASS_BLEND];
+    if (!r->per_view_blend_order || pc->views != 1 || n < 2)
+        return NULL;
+    if (n > r->blend_order_cap) {
+        void *p = realloc(r->blend_order, (size_t)n * sizeof(blend_key));
+        if (!p)
+            return NULL; /* out of memory: the shared order still draws */
+        r->blend_order = p;
+        r->blend_order_cap = n;
+    }
+    blend_key *keys = r->blend_order;
+    const mvr_view_desc *v = &pc->view_set->views[pc->first_view];
+    mvr_dvec3 eye = mvr_dvec3_sub(mvr_dvec3_make(v->position[0], v->position[1], v->position[2]),
+                                  pc->view_set->origin);
+    for (uint32_t i = 0; i < n; ++i) {
+        const mvr_draw *d = &f->draws[f->pass_first[MVR_PASS_BLEND] + i];
+        mvr_dvec3 c = mvr_dvec3_make(d->center[0], d->center[1], d->center[2]);
+        keys[i].distance = mvr_dvec3_length(mvr_dvec3_sub(c, eye));
+        keys[i].position = i;
+    }
+    qsort(keys, n, sizeof *keys, compare_blend_keys);
+    return keys;
+}
 
 static bool visible_in_pass(const mvr_renderer *r, const pass_context *pc, uint32_t draw)
 {
@@ -406,9 +451,11 @@ static mvr_result draw_list(pass_context *pc, mvr_pass_kind kind)
     }
     /* the draw block's declared size: a bound range must cover it */
     GLsizeiptr draw_range = (GLsizeiptr)r->draw_capacity * MVR_DRAW_BLOCK_SIZE;
-    for (uint32_t i = first_visible; i < f->pass_count[kind]; ++i) {
-        const mvr_draw *d = &f->draws[f->pass_first[kind] + i];
-        if (!visible_in_pass(r, pc, f->pass_first[kind] + i))
+    const blend_key *order = kind == MVR_PASS_BLEND ? per_view_blend_order(r, pc) : NULL;
+    for (uint32_t i = order ? 0 : first_visible; i < f->pass_count[kind]; ++i) {
+        uint32_t pos = f->pass_first[kind] + (order ? order[i].position : i);
+        const mvr_draw *d = &f->draws[pos];
+        if (!visible_in_pass(r, pc, pos))
             continue;
         uint32_t instances;
         uint32_t span = instance_run(pc, kind, i, &instances);
@@ -519,6 +566,11 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
             if (!views->views[v].disabled)
                 r->stats.culled += r->vis.culled[v];
     }
+    /* per-view transparency order needs a pass per view where there is
+     * something to order */
+    if (r->per_view_blend_order && r->frame.pass_count[MVR_PASS_BLEND] > 0)
+        path = MVR_VIEW_PATH_LOOP;
+    r->path_ran = path;
     bool multiview = path == MVR_VIEW_PATH_MULTIVIEW;
     uint32_t max_views = (uint32_t)r->ctx->caps.limits.max_views_ovr;
     if (max_views > VIEWS_PER_BLOCK)
@@ -550,6 +602,7 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
     pc.lay = &lay;
     pc.desc = desc;
     pc.groups_used = groups_used;
+    pc.view_set = views;
     st_rebind_setup(r);
     if (t->internal_format == GL_RGBA8)
         pc.output_features |= MVR_FEATURE_SRGB_OUTPUT;

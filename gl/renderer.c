@@ -28,6 +28,16 @@ const char *mvr_material_path_name(mvr_material_path path)
     return NULL;
 }
 
+const char *mvr_transparency_order_name(mvr_transparency_order order)
+{
+    switch (order) {
+    case MVR_TRANSPARENCY_ORDER_AUTO: return "auto";
+    case MVR_TRANSPARENCY_ORDER_SHARED: return "shared";
+    case MVR_TRANSPARENCY_ORDER_PER_VIEW: return "per_view";
+    }
+    return NULL;
+}
+
 const char *mvr_depth_mode_name(mvr_depth_mode mode)
 {
     switch (mode) {
@@ -131,6 +141,10 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
         return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
                              "mvr_renderer_create: view_path %d is not an mvr_view_path",
                              (int)desc->view_path);
+    if (!mvr_transparency_order_name(desc->transparency_order))
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
+                             "mvr_renderer_create: transparency_order %d is not an mvr_transparency_order",
+                             (int)desc->transparency_order);
     if (!mvr_depth_mode_name(desc->depth_mode))
         return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
                              "mvr_renderer_create: depth_mode %d is not an mvr_depth_mode", (int)desc->depth_mode);
@@ -157,6 +171,7 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
     r->material_path = env_material_path(desc->material_path, &r->logger);
     r->force_inert_features = env_is("MVR_FORCE_FEATURES", "inert");
     r->culling = !desc->disable_culling && !env_is("MVR_CULLING", "off");
+    r->per_view_blend_order = desc->transparency_order == MVR_TRANSPARENCY_ORDER_PER_VIEW;
     const mvr_caps *c = &r->ctx->caps;
     r->reversed_z = depth_mode == MVR_DEPTH_MODE_AUTO ? clip_control : depth_mode == MVR_DEPTH_MODE_REVERSED_Z;
     r->ubo_alignment = (uint32_t)(c->limits.uniform_buffer_offset_alignment > 0
@@ -221,6 +236,7 @@ void mvr_renderer_destroy(mvr_renderer *r)
     mvr_visibility_free(&r->vis);
     free(r->program_cache_dir);
     free(r->compact_scratch);
+    free(r->blend_order);
     free(r);
 }
 
@@ -439,6 +455,7 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
     r->upload_bytes = r->view_upload_bytes = 0;
     r->frame_serial++;
     memset(&r->stats, 0, sizeof r->stats);
+    r->path_ran = MVR_VIEW_PATH_AUTO;
     r->stats.gpu_ms = -1.0;
     r->pass_stats_count = 0;
 
@@ -460,7 +477,9 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
         mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
 
     mvr_frame_stats *st = &r->stats;
-    st->view_path = path;
+    st->view_path = r->path_ran ? r->path_ran : path;
+    st->transparency_order =
+        r->per_view_blend_order ? MVR_TRANSPARENCY_ORDER_PER_VIEW : MVR_TRANSPARENCY_ORDER_SHARED;
     st->program_binds = r->state.counters.program_binds;
     st->texture_binds = r->state.counters.texture_binds;
     st->ubo_range_binds = r->state.counters.ubo_range_binds;

@@ -27,6 +27,9 @@ typedef struct render_options {
     mvr_view_path view_path;
     mvr_material_path material_path;
     mvr_depth_mode depth_mode;
+    mvr_transparency_order transparency;
+    uint32_t supersample;        /* samples per pixel side; 1 = none */
+    bool reference;
     mvr_color_format format;
     bool format_set;
     bool exr;                    /* output EXR (linear float) instead of PNG */
@@ -59,6 +62,13 @@ static void render_usage(FILE *out)
             "                      env MVR_MATERIAL_PATH)\n"
             "  --depth D           auto | reversed_z | standard (default: auto = reversed_z\n"
             "                      where GL_EXT_clip_control exists; env MVR_DEPTH)\n"
+            "  --transparency T    auto | shared | per_view: blended draws sorted once for all\n"
+            "                      views (from their centroid) or by each view's own eye\n"
+            "                      (a pass per view) (default: auto = shared)\n"
+            "  --supersample N     render N x N samples per pixel into a float target and\n"
+            "                      average them (1..4; default: 1)\n"
+            "  --reference         ground truth, slow: --view-path loop --transparency per_view\n"
+            "                      --supersample 4\n"
             "  --format F          png (8-bit sRGB) | exr (half float, linear) (default: png)\n"
             "  --target-format F   srgb8 | rgba8 | rgba16f (default: srgb8; rgba16f for exr)\n"
             "  --exposure X        linear exposure multiplier (default: 1)\n"
@@ -207,6 +217,26 @@ static int parse(int argc, char **argv, render_options *o)
                 return MVR_EXIT_USAGE;
             }
             ++i;
+        } else if (strcmp(a, "--reference") == 0) {
+            o->reference = true;
+        } else if (strcmp(a, "--supersample") == 0) {
+            if (!parse_u32(v, 1, 4, &o->supersample)) {
+                fprintf(stderr, "mvr render: --supersample takes 1 to 4\n");
+                return MVR_EXIT_USAGE;
+            }
+            ++i;
+        } else if (strcmp(a, "--transparency") == 0) {
+            bool found = false;
+            for (int k = MVR_TRANSPARENCY_ORDER_AUTO; k <= MVR_TRANSPARENCY_ORDER_PER_VIEW; ++k)
+                if (strcmp(v, mvr_transparency_order_name((mvr_transparency_order)k)) == 0) {
+                    o->transparency = (mvr_transparency_order)k;
+                    found = true;
+                }
+            if (!found) {
+                fprintf(stderr, "mvr render: --transparency takes auto, shared or per_view\n");
+                return MVR_EXIT_USAGE;
+            }
+            ++i;
         } else if (strcmp(a, "--depth") == 0) {
             bool found = false;
             for (int k = MVR_DEPTH_MODE_AUTO; k <= MVR_DEPTH_MODE_STANDARD; ++k)
@@ -291,6 +321,22 @@ static int parse(int argc, char **argv, render_options *o)
         return MVR_EXIT_USAGE;
     if (o->exr && !o->format_set)
         o->format = MVR_COLOR_FORMAT_RGBA16F; /* linear HDR values for EXR */
+    if (o->reference) {
+        o->view_path = MVR_VIEW_PATH_LOOP;
+        o->transparency = MVR_TRANSPARENCY_ORDER_PER_VIEW;
+        o->supersample = 4;
+    }
+    if (o->supersample == 0)
+        o->supersample = 1;
+    if (o->supersample > 1) {
+        /* samples are averaged in linear float before any encoding */
+        o->format = MVR_COLOR_FORMAT_RGBA32F;
+        if ((uint64_t)o->width * o->supersample > 16384 || (uint64_t)o->height * o->supersample > 16384) {
+            fprintf(stderr, "mvr render: --supersample %u makes a %ux%u target; the limit here is 16384\n",
+                    o->supersample, o->width * o->supersample, o->height * o->supersample);
+            return MVR_EXIT_USAGE;
+        }
+    }
     return MVR_EXIT_OK;
 }
 
@@ -348,13 +394,15 @@ static const char *program_cache_dir(const render_options *o, char *buf, size_t 
 }
 
 static void write_stats_json(FILE *f, const mvr_renderer *r, const mvr_frame_stats *s, const char *demo, uint32_t w,
-                             uint32_t h)
+                             uint32_t h, uint32_t supersample)
 {
     json_writer jw = {f, 0, {false}, {0}};
     json_begin_object(&jw, NULL);
     json_string(&jw, "scene", demo);
     json_int(&jw, "width", w);
     json_int(&jw, "height", h);
+    json_int(&jw, "supersample", supersample);
+    json_string(&jw, "transparency_order", mvr_transparency_order_name(s->transparency_order));
     json_string(&jw, "view_path", mvr_view_path_name(s->view_path));
     json_int(&jw, "views", s->views);
     json_int(&jw, "passes", s->passes);
@@ -557,13 +605,15 @@ int mvr_cmd_render(int argc, char **argv)
     char cache_buf[4096];
     mvr_renderer_desc rd = {.context = ctx, .view_path = o.view_path, .logger = o.context.logger,
                             .material_path = o.material_path, .depth_mode = o.depth_mode,
+                            .transparency_order = o.transparency,
                             .program_cache_dir = program_cache_dir(&o, cache_buf, sizeof cache_buf)};
     if (mvr_renderer_create(&rd, &renderer, &err) != MVR_OK) {
         fprintf(stderr, "mvr render: %s\n", err.message);
         goto done;
     }
     uint32_t n = mvr_view_set_count(views);
-    mvr_target_desc td = {o.width, o.height, n, o.format, 0, 0, 0};
+    uint32_t ss = o.supersample;
+    mvr_target_desc td = {o.width * ss, o.height * ss, n, o.format, 0, 0, 0};
     if (mvr_target_create(renderer, &td, &target) != MVR_OK) {
         fprintf(stderr, "mvr render: %s\n", mvr_renderer_last_error(renderer));
         goto done;
@@ -577,22 +627,40 @@ int mvr_cmd_render(int argc, char **argv)
     layers = calloc(n, sizeof *layers);
     if (!layers)
         goto done;
-    size_t pixels = (size_t)o.width * o.height;
-    float *floats = o.exr ? malloc(pixels * 4 * sizeof *floats) : NULL;
-    if (o.exr && !floats)
+    size_t pixels = (size_t)o.width * o.height, samples = pixels * ss * ss;
+    float *floats = o.exr || ss > 1 ? malloc(pixels * 4 * sizeof *floats) : NULL;
+    float *sampled = ss > 1 ? malloc(samples * 4 * sizeof *sampled) : NULL;
+    if ((o.exr || ss > 1) && !floats) {
+        free(sampled);
         goto done;
+    }
+    if (ss > 1 && !sampled) {
+        free(floats);
+        goto done;
+    }
     for (uint32_t k = 0; k < n; ++k) {
         layers[k] = malloc(pixels * 4);
-        if (!layers[k] ||
-            mvr_renderer_read_layer(renderer, target, k, MVR_READBACK_RGBA8, layers[k], pixels * 4) != MVR_OK ||
-            (o.exr && mvr_renderer_read_layer(renderer, target, k, MVR_READBACK_RGBA32F, floats,
-                                              pixels * 4 * sizeof *floats) != MVR_OK)) {
+        bool ok = layers[k] != NULL;
+        if (ok && ss > 1) {
+            /* the resolve: a box over each pixel's ss x ss samples, in linear float */
+            ok = mvr_renderer_read_layer(renderer, target, k, MVR_READBACK_RGBA32F, sampled,
+                                         samples * 4 * sizeof *sampled) == MVR_OK &&
+                 mvr_downsample_rgba32f(sampled, o.width * ss, o.height * ss, ss, floats) == MVR_OK;
+            if (ok)
+                encode_srgb_bytes(floats, layers[k], pixels);
+        } else if (ok) {
+            ok = mvr_renderer_read_layer(renderer, target, k, MVR_READBACK_RGBA8, layers[k], pixels * 4) == MVR_OK &&
+                 (!o.exr || mvr_renderer_read_layer(renderer, target, k, MVR_READBACK_RGBA32F, floats,
+                                                    pixels * 4 * sizeof *floats) == MVR_OK);
+            if (ok && o.exr && o.format == MVR_COLOR_FORMAT_RGBA16F)
+                encode_srgb_bytes(floats, layers[k], pixels); /* the sheet shows display values */
+        }
+        if (!ok) {
             fprintf(stderr, "mvr render: reading layer %u: %s\n", k, mvr_renderer_last_error(renderer));
             free(floats);
+            free(sampled);
             goto done;
         }
-        if (o.exr && o.format == MVR_COLOR_FORMAT_RGBA16F)
-            encode_srgb_bytes(floats, layers[k], pixels); /* the sheet shows display values */
         char path[4096];
         snprintf(path, sizeof path, "%s/view_%02u.%s", o.out_dir, k, o.exr ? "exr" : "png");
         mvr_image_view view = {o.width, o.height, o.exr ? MVR_PIXEL_F32 : MVR_PIXEL_U8, true,
@@ -600,10 +668,12 @@ int mvr_cmd_render(int argc, char **argv)
         if (mvr_image_write(path, &view, &err) != MVR_OK) {
             fprintf(stderr, "mvr render: %s\n", err.message);
             free(floats);
+            free(sampled);
             goto done;
         }
     }
     free(floats);
+    free(sampled);
     char sheet[4096];
     snprintf(sheet, sizeof sheet, "%s/contact_sheet.png", o.out_dir);
     if (!write_contact_sheet(sheet, layers, n, o.width, o.height)) {
@@ -618,7 +688,7 @@ int mvr_cmd_render(int argc, char **argv)
             fprintf(stderr, "mvr render: cannot write %s: %s\n", o.stats_file, strerror(errno));
             goto done;
         }
-        write_stats_json(f, renderer, &st, o.scene_file ? o.scene_file : o.demo, o.width, o.height);
+        write_stats_json(f, renderer, &st, o.scene_file ? o.scene_file : o.demo, o.width, o.height, ss);
         fclose(f);
     }
     if (!o.quiet) {

@@ -498,6 +498,21 @@ typedef enum mvr_depth_mode {
 } mvr_depth_mode;
 const char *mvr_depth_mode_name(mvr_depth_mode mode);
 
+/* Order of blended (transparent) draws, back to front. */
+typedef enum mvr_transparency_order {
+    MVR_TRANSPARENCY_ORDER_AUTO = 0,  /* shared */
+    /* Sorted once per frame by distance from the view set's origin (the
+     * views' centroid): one order for every view, as a multiview pass needs.
+     * Views far from the centroid may see nearby transparent objects in a
+     * different order than their own distances give. */
+    MVR_TRANSPARENCY_ORDER_SHARED,
+    /* Each view sorts by distance from its own eye: exact per view (for
+     * sorting by object centre), at the price of one pass per view for any
+     * frame with blended draws (the loop path then runs whatever was asked). */
+    MVR_TRANSPARENCY_ORDER_PER_VIEW
+} mvr_transparency_order;
+const char *mvr_transparency_order_name(mvr_transparency_order order);
+
 typedef enum mvr_tone_map {
     MVR_TONE_MAP_NONE = 0,       /* clamp */
     MVR_TONE_MAP_ACES,           /* the fitted ACES curve of the Khronos glTF Sample Renderer */
@@ -524,6 +539,7 @@ typedef struct mvr_renderer_desc {
      * draw (same pixels). true turns it off; so does env MVR_INSTANCING=off. */
     bool disable_instancing;
     mvr_depth_mode depth_mode;   /* env MVR_DEPTH=reversed_z|standard overrides */
+    mvr_transparency_order transparency_order;
 } mvr_renderer_desc;
 
 mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out, mvr_error *out_error);
@@ -599,6 +615,7 @@ typedef struct mvr_frame_stats {
     uint32_t program_binary_loads;   /* variants linked from the binary cache */
     uint32_t program_binary_rejects; /* cache entries found corrupt, stale or refused (rebuilt) */
     mvr_depth_mode depth_mode;   /* the depth mode that ran (never AUTO) */
+    mvr_transparency_order transparency_order; /* the order that ran (never AUTO) */
     mvr_material_path material_path; /* the material path that ran */
     uint32_t texture_groups;     /* texture arrays of the scene's batch plan (array path) */
     uint32_t culled;             /* summed over views: draws outside a view's frustum */
@@ -611,6 +628,13 @@ typedef struct mvr_frame_stats {
     double cpu_ms;               /* submitting thread, render call */
     double gpu_ms;               /* timer queries; < 0 when not available */
 } mvr_frame_stats;
+
+/* The supersampling resolve: box-filters linear RGBA float pixels (width x
+ * height, rows bottom-up or top-down alike) by an integer factor into dst
+ * (width / factor x height / factor), each output the mean of its
+ * factor x factor samples. Width and height must be multiples of factor.
+ * Average linear values only: sRGB-encoded ones would darken edges. */
+mvr_result mvr_downsample_rgba32f(const float *src, uint32_t width, uint32_t height, uint32_t factor, float *dst);
 
 /* Stats of the last render (waits for its GPU timer result where there is one). */
 void mvr_renderer_get_stats(mvr_renderer *renderer, mvr_frame_stats *out);

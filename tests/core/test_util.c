@@ -100,6 +100,26 @@ static void size_arithmetic_detects_overflow(mvr_test_state *t)
     CHECK(t, mvr_size_mul(0, SIZE_MAX, &out) == 1 && out == 0);
 }
 
-MVR_TEST_MAIN(TEST(result_names_are_distinct), TEST(error_set_truncates_and_tolerates_null),
+
+/* The supersampling resolve: each output is the mean of its box. */
+static void downsample_averages_boxes(mvr_test_state *t)
+{
+    float src[4 * 2 * 4]; /* 4 x 2 pixels */
+    for (int i = 0; i < 8; ++i)
+        for (int c = 0; c < 4; ++c)
+            src[i * 4 + c] = (float)(i * 4 + c);
+    float dst[2 * 1 * 4];
+    CHECK(t, mvr_downsample_rgba32f(src, 4, 2, 2, dst) == MVR_OK);
+    /* box 0: pixels 0, 1, 4, 5; box 1: 2, 3, 6, 7 */
+    for (int c = 0; c < 4; ++c) {
+        CHECK(t, dst[c] == (float)((0 + 1 + 4 + 5) * 4 + 4 * c) / 4.0f);
+        CHECK(t, dst[4 + c] == (float)((2 + 3 + 6 + 7) * 4 + 4 * c) / 4.0f);
+    }
+    CHECK(t, mvr_downsample_rgba32f(src, 4, 2, 3, dst) == MVR_ERROR_INVALID_ARGUMENT); /* 4 % 3 */
+    CHECK(t, mvr_downsample_rgba32f(src, 4, 2, 0, dst) == MVR_ERROR_INVALID_ARGUMENT);
+    CHECK(t, mvr_downsample_rgba32f(NULL, 4, 2, 2, dst) == MVR_ERROR_INVALID_ARGUMENT);
+}
+
+MVR_TEST_MAIN(TEST(downsample_averages_boxes), TEST(result_names_are_distinct), TEST(error_set_truncates_and_tolerates_null),
               TEST(logger_respects_threshold), TEST(string_builder_grows),
               TEST(str_copy_truncates), TEST(size_arithmetic_detects_overflow))
