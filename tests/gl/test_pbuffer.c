@@ -1,6 +1,9 @@
+#define _POSIX_C_SOURCE 200809L
 /* gl: the pbuffer provider on a real display (ctest runs this under
  * xvfb-run), and the default provider's order is unaffected by a display. */
+#include <stdio.h>
 #include <stdlib.h>
+#include <time.h>
 
 #include "gl_test_util.h"
 
@@ -8,7 +11,24 @@ static void pbuffer_on_display(mvr_test_state *t)
 {
     if (!getenv("DISPLAY"))
         SKIP(t, "no DISPLAY: run under xvfb-run (ctest does)");
-    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_PBUFFER, MVR_GL_API_DEFAULT, NULL);
+    /* Under parallel load Mesa's X11 EGL platform now and then fails its
+     * xcb_connect to a fresh Xvfb that accepts every other client (about 1
+     * run in 15 with 12 servers at once, EGL_LOG_LEVEL=debug shows
+     * "xcb_connect failed"): a transient of the test machine, so a failed
+     * create is tried again before it counts. */
+    mvr_context_desc desc = {0};
+    desc.provider = MVR_CONTEXT_PROVIDER_PBUFFER;
+    mvr_context *ctx = NULL;
+    mvr_error err;
+    for (int attempt = 0; attempt < 3 && !ctx; ++attempt) {
+        if (mvr_context_create(&desc, &ctx, &err) != MVR_OK) {
+            ctx = NULL;
+            printf("  pbuffer attempt %d: %s\n", attempt + 1, err.message);
+            struct timespec pause = {0, 200 * 1000 * 1000};
+            nanosleep(&pause, NULL);
+        }
+    }
+    CHECK_MSG(t, ctx != NULL, "pbuffer provider: %s", err.message);
     if (!ctx)
         return;
     const mvr_caps *c = mvr_context_caps(ctx);
