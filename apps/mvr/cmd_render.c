@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 
 #include "cli_common.h"
+#include "cli_scene.h"
 #include "commands.h"
 #include "json.h"
 #include "mvr/mvr_gltf.h"
@@ -473,16 +474,6 @@ static void write_stats_json(FILE *f, const mvr_renderer *r, const mvr_frame_sta
 }
 
 /* Linear floats to sRGB-encoded bytes (exact piecewise encode). */
-static void encode_srgb_bytes(const float *in, uint8_t *out, size_t pixels)
-{
-    for (size_t i = 0; i < pixels * 4; ++i) {
-        float c = in[i] < 0.0f ? 0.0f : in[i] > 1.0f ? 1.0f : in[i];
-        if (i % 4 != 3)
-            c = c <= 0.0031308f ? c * 12.92f : 1.055f * powf(c, 1.0f / 2.4f) - 0.055f;
-        out[i] = (uint8_t)(c * 255.0f + 0.5f);
-    }
-}
-
 /* Lays the views out in a grid (side by side up to 4, then ~square). */
 static bool write_contact_sheet(const char *path, uint8_t *const *layers, uint32_t n, uint32_t w, uint32_t h)
 {
@@ -513,63 +504,6 @@ static bool write_contact_sheet(const char *path, uint8_t *const *layers, uint32
     return ok;
 }
 
-/* Views from a camera node of the file: N eyes ipd apart along its right axis. */
-static mvr_result camera_views(const mvr_scene *scene, uint32_t k, uint32_t n, double ipd, mvr_view_set **out,
-                               mvr_error *err)
-{
-    mvr_node_id node = mvr_scene_camera_node(scene, k);
-    mvr_view_desc base;
-    if (!node.id || mvr_scene_camera_view(scene, node, &base) != MVR_OK) {
-        err->result = MVR_ERROR_INVALID_ARGUMENT;
-        snprintf(err->message, sizeof err->message, "the file has %u camera nodes; --camera %u is not one",
-                 mvr_scene_camera_node_count(scene), k);
-        return err->result;
-    }
-    mvr_view_desc *v = calloc(n, sizeof *v);
-    if (!v)
-        return MVR_ERROR_OUT_OF_MEMORY;
-    /* the camera's right axis: its orientation applied to +X */
-    double x = base.orientation[0], y = base.orientation[1], z = base.orientation[2], w = base.orientation[3];
-    double right[3] = {1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y)};
-    for (uint32_t i = 0; i < n; ++i) {
-        double offset = ((double)i - (double)(n - 1) * 0.5) * ipd;
-        v[i] = base;
-        for (int c = 0; c < 3; ++c)
-            v[i].position[c] += right[c] * offset;
-    }
-    mvr_view_set_desc vd = {n, v, false, {0, 0, 0}};
-    mvr_result r = mvr_view_set_create(&vd, out, err);
-    free(v);
-    return r;
-}
-
-static int load_scene_file(const render_options *o, mvr_scene **scene, mvr_view_set **views)
-{
-    mvr_gltf_options go;
-    memset(&go, 0, sizeof go);
-    go.scene = o->gltf_scene;
-    go.logger = o->context.logger;
-    mvr_gltf_info info;
-    mvr_error err;
-    if (mvr_gltf_load_file(o->scene_file, &go, scene, &info, &err) != MVR_OK) {
-        fprintf(stderr, "mvr render: %s (%s)\n", err.message, mvr_result_name(err.result));
-        return MVR_EXIT_FAILURE;
-    }
-    double ipd = o->ipd > 0 ? o->ipd : 0.064;
-    mvr_result r;
-    if (o->camera >= 0) {
-        r = camera_views(*scene, (uint32_t)o->camera, o->views ? o->views : 2, ipd, views, &err);
-    } else {
-        mvr_framing_desc fd = {o->layout, o->views, ipd, (double)o->width / (double)o->height};
-        r = mvr_view_set_frame_scene(*scene, &fd, views, &err);
-    }
-    if (r != MVR_OK) {
-        fprintf(stderr, "mvr render: %s: %s\n", o->scene_file, err.message);
-        return MVR_EXIT_FAILURE;
-    }
-    return MVR_EXIT_OK;
-}
-
 int mvr_cmd_render(int argc, char **argv)
 {
     render_options o;
@@ -591,17 +525,12 @@ int mvr_cmd_render(int argc, char **argv)
         fprintf(stderr, "mvr render: %s\n", err.message);
         goto done;
     }
-    if (o.scene_file) {
-        if (load_scene_file(&o, &scene, &views) != MVR_EXIT_OK)
-            goto done;
-    } else {
-        mvr_demo_desc dd = {o.views, o.width, o.height, o.context.logger};
-        if (mvr_demo_create(o.demo, &dd, &scene, &views, &err) != MVR_OK) {
-            fprintf(stderr, "mvr render: %s\n", err.message);
-            rc = err.result == MVR_ERROR_INVALID_ARGUMENT ? MVR_EXIT_USAGE : MVR_EXIT_FAILURE;
-            goto done;
-        }
-    }
+    cli_scene_options so = {o.demo, o.scene_file, o.camera, o.layout, o.ipd, o.gltf_scene,
+                            o.views, o.width, o.height, o.context.logger};
+    rc = cli_load_scene("mvr render", &so, &scene, &views);
+    if (rc != MVR_EXIT_OK)
+        goto done;
+    rc = MVR_EXIT_FAILURE;
     char cache_buf[4096];
     mvr_renderer_desc rd = {.context = ctx, .view_path = o.view_path, .logger = o.context.logger,
                             .material_path = o.material_path, .depth_mode = o.depth_mode,
@@ -627,40 +556,20 @@ int mvr_cmd_render(int argc, char **argv)
     layers = calloc(n, sizeof *layers);
     if (!layers)
         goto done;
-    size_t pixels = (size_t)o.width * o.height, samples = pixels * ss * ss;
-    float *floats = o.exr || ss > 1 ? malloc(pixels * 4 * sizeof *floats) : NULL;
-    float *sampled = ss > 1 ? malloc(samples * 4 * sizeof *sampled) : NULL;
-    if ((o.exr || ss > 1) && !floats) {
-        free(sampled);
+    size_t pixels = (size_t)o.width * o.height;
+    float *floats = o.exr ? malloc(pixels * 4 * sizeof *floats) : NULL;
+    if (o.exr && !floats)
         goto done;
-    }
-    if (ss > 1 && !sampled) {
-        free(floats);
-        goto done;
-    }
     for (uint32_t k = 0; k < n; ++k) {
         layers[k] = malloc(pixels * 4);
-        bool ok = layers[k] != NULL;
-        if (ok && ss > 1) {
-            /* the resolve: a box over each pixel's ss x ss samples, in linear float */
-            ok = mvr_renderer_read_layer(renderer, target, k, MVR_READBACK_RGBA32F, sampled,
-                                         samples * 4 * sizeof *sampled) == MVR_OK &&
-                 mvr_downsample_rgba32f(sampled, o.width * ss, o.height * ss, ss, floats) == MVR_OK;
-            if (ok)
-                encode_srgb_bytes(floats, layers[k], pixels);
-        } else if (ok) {
-            ok = mvr_renderer_read_layer(renderer, target, k, MVR_READBACK_RGBA8, layers[k], pixels * 4) == MVR_OK &&
-                 (!o.exr || mvr_renderer_read_layer(renderer, target, k, MVR_READBACK_RGBA32F, floats,
-                                                    pixels * 4 * sizeof *floats) == MVR_OK);
-            if (ok && o.exr && o.format == MVR_COLOR_FORMAT_RGBA16F)
-                encode_srgb_bytes(floats, layers[k], pixels); /* the sheet shows display values */
-        }
+        bool ok = layers[k] && cli_read_display_layer(renderer, target, k, o.width, o.height, ss, layers[k], floats);
         if (!ok) {
             fprintf(stderr, "mvr render: reading layer %u: %s\n", k, mvr_renderer_last_error(renderer));
             free(floats);
-            free(sampled);
             goto done;
         }
+        if (o.exr && ss <= 1 && o.format == MVR_COLOR_FORMAT_RGBA16F)
+            cli_encode_srgb(floats, layers[k], pixels); /* the sheet shows display values */
         char path[4096];
         snprintf(path, sizeof path, "%s/view_%02u.%s", o.out_dir, k, o.exr ? "exr" : "png");
         mvr_image_view view = {o.width, o.height, o.exr ? MVR_PIXEL_F32 : MVR_PIXEL_U8, true,
@@ -668,12 +577,10 @@ int mvr_cmd_render(int argc, char **argv)
         if (mvr_image_write(path, &view, &err) != MVR_OK) {
             fprintf(stderr, "mvr render: %s\n", err.message);
             free(floats);
-            free(sampled);
             goto done;
         }
     }
     free(floats);
-    free(sampled);
     char sheet[4096];
     snprintf(sheet, sizeof sheet, "%s/contact_sheet.png", o.out_dir);
     if (!write_contact_sheet(sheet, layers, n, o.width, o.height)) {

@@ -1,0 +1,115 @@
+/* Scenes and images shared by the commands: a demo or a glTF file with its
+ * views, and layers read back as display bytes (supersampled ones resolved). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli_scene.h"
+#include "commands.h"
+#include "mvr/mvr_gltf.h"
+
+/* Views from a camera node of the file: N eyes ipd apart along its right axis. */
+static mvr_result camera_views(const mvr_scene *scene, uint32_t k, uint32_t n, double ipd, mvr_view_set **out,
+                               mvr_error *err)
+{
+    mvr_node_id node = mvr_scene_camera_node(scene, k);
+    mvr_view_desc base;
+    if (!node.id || mvr_scene_camera_view(scene, node, &base) != MVR_OK) {
+        err->result = MVR_ERROR_INVALID_ARGUMENT;
+        snprintf(err->message, sizeof err->message, "the file has %u camera nodes; --camera %u is not one",
+                 mvr_scene_camera_node_count(scene), k);
+        return err->result;
+    }
+    mvr_view_desc *v = calloc(n, sizeof *v);
+    if (!v)
+        return MVR_ERROR_OUT_OF_MEMORY;
+    /* the camera's right axis: its orientation applied to +X */
+    double x = base.orientation[0], y = base.orientation[1], z = base.orientation[2], w = base.orientation[3];
+    double right[3] = {1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y)};
+    for (uint32_t i = 0; i < n; ++i) {
+        double offset = ((double)i - (double)(n - 1) * 0.5) * ipd;
+        v[i] = base;
+        for (int c = 0; c < 3; ++c)
+            v[i].position[c] += right[c] * offset;
+    }
+    mvr_view_set_desc vd = {n, v, false, {0, 0, 0}};
+    mvr_result r = mvr_view_set_create(&vd, out, err);
+    free(v);
+    return r;
+}
+
+static int load_scene_file(const char *command, const cli_scene_options *o, mvr_scene **scene, mvr_view_set **views)
+{
+    mvr_gltf_options go;
+    memset(&go, 0, sizeof go);
+    go.scene = o->gltf_scene;
+    go.logger = o->logger;
+    mvr_gltf_info info;
+    mvr_error err;
+    if (mvr_gltf_load_file(o->scene_file, &go, scene, &info, &err) != MVR_OK) {
+        fprintf(stderr, "%s: %s (%s)\n", command, err.message, mvr_result_name(err.result));
+        return MVR_EXIT_FAILURE;
+    }
+    double ipd = o->ipd > 0 ? o->ipd : 0.064;
+    mvr_result r;
+    if (o->camera >= 0) {
+        r = camera_views(*scene, (uint32_t)o->camera, o->views ? o->views : 2, ipd, views, &err);
+    } else {
+        mvr_framing_desc fd = {o->layout, o->views, ipd, (double)o->width / (double)o->height};
+        r = mvr_view_set_frame_scene(*scene, &fd, views, &err);
+    }
+    if (r != MVR_OK) {
+        fprintf(stderr, "%s: %s: %s\n", command, o->scene_file, err.message);
+        return MVR_EXIT_FAILURE;
+    }
+    return MVR_EXIT_OK;
+}
+
+int cli_load_scene(const char *command, const cli_scene_options *o, mvr_scene **scene, mvr_view_set **views)
+{
+    if (o->scene_file)
+        return load_scene_file(command, o, scene, views);
+    mvr_error err;
+    mvr_demo_desc dd = {o->views, o->width, o->height, o->logger};
+    if (mvr_demo_create(o->demo, &dd, scene, views, &err) != MVR_OK) {
+        fprintf(stderr, "%s: %s\n", command, err.message);
+        return err.result == MVR_ERROR_INVALID_ARGUMENT ? MVR_EXIT_USAGE : MVR_EXIT_FAILURE;
+    }
+    return MVR_EXIT_OK;
+}
+
+/* Exact sRGB encode (IEC 61966-2-1) of linear floats into display bytes. */
+void cli_encode_srgb(const float *in, uint8_t *out, size_t pixels)
+{
+    for (size_t i = 0; i < pixels * 4; ++i) {
+        float c = in[i] < 0.0f ? 0.0f : in[i] > 1.0f ? 1.0f : in[i];
+        if (i % 4 != 3)
+            c = c <= 0.0031308f ? c * 12.92f : 1.055f * powf(c, 1.0f / 2.4f) - 0.055f;
+        out[i] = (uint8_t)(c * 255.0f + 0.5f);
+    }
+}
+
+bool cli_read_display_layer(mvr_renderer *r, mvr_target *t, uint32_t layer, uint32_t w, uint32_t h, uint32_t ss,
+                            uint8_t *out, float *linear)
+{
+    size_t pixels = (size_t)w * h;
+    if (ss <= 1)
+        return mvr_renderer_read_layer(r, t, layer, MVR_READBACK_RGBA8, out, pixels * 4) == MVR_OK &&
+               (!linear || mvr_renderer_read_layer(r, t, layer, MVR_READBACK_RGBA32F, linear,
+                                                   pixels * 4 * sizeof *linear) == MVR_OK);
+    size_t samples = pixels * ss * ss;
+    float *sampled = malloc(samples * 4 * sizeof *sampled);
+    float *resolved = linear ? linear : malloc(pixels * 4 * sizeof *resolved);
+    /* the resolve: a box over each pixel's ss x ss samples, in linear float */
+    bool ok = sampled && resolved &&
+              mvr_renderer_read_layer(r, t, layer, MVR_READBACK_RGBA32F, sampled, samples * 4 * sizeof *sampled) ==
+                  MVR_OK &&
+              mvr_downsample_rgba32f(sampled, w * ss, h * ss, ss, resolved) == MVR_OK;
+    if (ok)
+        cli_encode_srgb(resolved, out, pixels);
+    free(sampled);
+    if (resolved != linear)
+        free(resolved);
+    return ok;
+}

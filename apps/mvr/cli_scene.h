@@ -1,0 +1,35 @@
+/* Scenes and images shared by the commands. */
+#ifndef MVR_CLI_SCENE_H
+#define MVR_CLI_SCENE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "mvr/mvr.h"
+
+typedef struct cli_scene_options {
+    const char *demo;            /* used when scene_file is NULL */
+    const char *scene_file;      /* .gltf / .glb */
+    int camera;                  /* file: view from this camera node; -1 = frame with layout */
+    mvr_view_layout layout;
+    double ipd;                  /* 0 = 0.064 */
+    uint32_t gltf_scene;         /* 1-based; 0 = the file's default */
+    uint32_t views, width, height;
+    mvr_logger logger;
+} cli_scene_options;
+
+/* A demo or a glTF file and its views; prints what failed (prefixed with
+ * command) and returns an MVR_EXIT_ code. */
+int cli_load_scene(const char *command, const cli_scene_options *o, mvr_scene **scene, mvr_view_set **views);
+
+/* Exact sRGB encode of linear RGBA floats (alpha kept linear) into bytes. */
+void cli_encode_srgb(const float *in, uint8_t *out, size_t pixels);
+
+/* Reads a layer as display bytes (w x h RGBA8, sRGB-encoded). A target of
+ * ss x ss samples per pixel (RGBA32F, ss > 1) is resolved with a box filter
+ * in linear light first. linear (optional, w x h x 4 floats) receives the
+ * linear values. */
+bool cli_read_display_layer(mvr_renderer *r, mvr_target *t, uint32_t layer, uint32_t w, uint32_t h, uint32_t ss,
+                            uint8_t *out, float *linear);
+
+#endif
