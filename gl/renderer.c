@@ -558,6 +558,14 @@ bool mvr_renderer_get_pass_stats(const mvr_renderer *r, uint32_t index, mvr_pass
     return true;
 }
 
+mvr_result mvr_renderer_finish(mvr_renderer *r)
+{
+    if (!r)
+        return MVR_ERROR_INVALID_ARGUMENT;
+    r->gl->Finish();
+    return mvr_gl_check(r->ctx, "mvr_renderer_finish", false);
+}
+
 mvr_result mvr_renderer_read_layer(mvr_renderer *r, mvr_target *t, uint32_t layer,
                                    mvr_readback_format format, void *dst, size_t size)
 {

@@ -11,5 +11,6 @@ enum {
 
 int mvr_cmd_info(int argc, char **argv);
 int mvr_cmd_render(int argc, char **argv);
+int mvr_cmd_bench(int argc, char **argv);
 
 #endif

@@ -1,4 +1,5 @@
 #include "json.h"
+#include <math.h>
 
 static void write_escaped(FILE *out, const char *s)
 {
@@ -97,7 +98,10 @@ void json_int(json_writer *w, const char *key, long long value)
 void json_double(json_writer *w, const char *key, double value)
 {
     key_prefix(w, key);
-    fprintf(w->out, "%.9g", value);
+    if (isfinite(value))
+        fprintf(w->out, "%.9g", value);
+    else
+        fputs("null", w->out); /* JSON has no NaN or infinity */
 }
 
 void json_bool(json_writer *w, const char *key, bool value)

@@ -12,6 +12,7 @@ static void usage(FILE *out)
             "\n"
             "commands:\n"
             "  render   render a scene into N views headless; one PNG per view\n"
+            "  bench    time against error of the configurations, side by side, with a plot\n"
             "  info     print the GL capabilities mvr sees through a context provider\n"
             "\n"
             "  mvr <command> --help   options of a command\n"
@@ -37,6 +38,8 @@ int main(int argc, char **argv)
         return mvr_cmd_info(argc - 1, argv + 1);
     if (strcmp(cmd, "render") == 0)
         return mvr_cmd_render(argc - 1, argv + 1);
+    if (strcmp(cmd, "bench") == 0)
+        return mvr_cmd_bench(argc - 1, argv + 1);
     fprintf(stderr, "mvr: unknown command '%s'\n\n", cmd);
     usage(stderr);
     return MVR_EXIT_USAGE;

@@ -636,6 +636,10 @@ typedef struct mvr_frame_stats {
  * Average linear values only: sRGB-encoded ones would darken edges. */
 mvr_result mvr_downsample_rgba32f(const float *src, uint32_t width, uint32_t height, uint32_t factor, float *dst);
 
+/* Waits until the GPU has finished everything submitted so far (glFinish):
+ * a frame's wall time ends here. */
+mvr_result mvr_renderer_finish(mvr_renderer *renderer);
+
 /* Stats of the last render (waits for its GPU timer result where there is one). */
 void mvr_renderer_get_stats(mvr_renderer *renderer, mvr_frame_stats *out);
 

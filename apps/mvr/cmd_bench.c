@@ -1,0 +1,549 @@
+/* mvr bench: one scene under a matrix of configurations (view path,
+ * material path, anti-aliasing, transparency order, and the reference),
+ * each timed over F frames and compared with the reference render. */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "bench.h"
+#include "cli_common.h"
+#include "cli_scene.h"
+#include "commands.h"
+
+#if defined(__has_include)
+#if __has_include(<valgrind/callgrind.h>)
+#include <valgrind/callgrind.h>
+#endif
+#endif
+#ifndef CALLGRIND_START_INSTRUMENTATION
+#define CALLGRIND_START_INSTRUMENTATION
+#define CALLGRIND_STOP_INSTRUMENTATION
+#define CALLGRIND_TOGGLE_COLLECT
+#endif
+
+typedef struct bench_options {
+    mvr_context_desc context;
+    cli_scene_options scene;
+    uint32_t frames, warmup;
+    bool full;
+    const char *out_dir;
+    bool callgrind;
+    int only;                    /* internal: run one configuration (the callgrind child) */
+    bool quiet;
+} bench_options;
+
+static void bench_usage(FILE *out)
+{
+    fprintf(out,
+            "usage: mvr bench [--demo NAME | SCENE.gltf | SCENE.glb] [options]\n"
+            "\n"
+            "Renders the scene under a matrix of configurations and reports, for each,\n"
+            "frame time (wall, median/min/max), CPU time of the submitting thread, GPU\n"
+            "time where timer queries exist, and the error against the reference render\n"
+            "(loop path, per-view transparency order, 4x4 supersampling): RMSE, PSNR, max\n"
+            "abs, %% of pixels over 2/255. Writes results.csv, results.json, plot.png and\n"
+            "plot.svg (time against error, Pareto front marked), reference.png and\n"
+            "worst_diff.png into --out.\n"
+            "\n"
+            "options:\n"
+            "  --demo NAME         stereo | cube | city | ring (default: city)\n"
+            "  --views N           views (default: the demo's own)\n"
+            "  --size WxH          layer size (default: 256x256)\n"
+            "  --frames F          measured frames per configuration (default: 10)\n"
+            "  --warmup W          frames before measuring (default: 2)\n"
+            "  --matrix M          quick | full (default: quick)\n"
+            "  --out DIR           output directory (default: bench-out)\n"
+            "  --callgrind         also count the submitting thread's instructions per frame\n"
+            "                      under valgrind --tool=callgrind (repeatable to < 1%% on a\n"
+            "                      shared machine, unlike wall time; slow)\n"
+            "  --quiet             no progress bar\n" CLI_CONTEXT_HELP
+            "  -h, --help          this text\n");
+}
+
+static bool parse_u32(const char *s, uint32_t lo, uint32_t hi, uint32_t *out)
+{
+    char *end = NULL;
+    errno = 0;
+    unsigned long v = strtoul(s, &end, 10);
+    if (errno || !end || *end || v < lo || v > hi)
+        return false;
+    *out = (uint32_t)v;
+    return true;
+}
+
+static int parse(int argc, char **argv, bench_options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->scene.demo = "city";
+    o->scene.camera = -1;
+    o->scene.width = o->scene.height = 256;
+    o->frames = 10;
+    o->warmup = 2;
+    o->out_dir = "bench-out";
+    o->only = -1;
+    bool verbose = false;
+    for (int i = 1; i < argc; ++i) {
+        const char *a = argv[i];
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        int c = cli_context_option("mvr bench", argc, argv, &i, &o->context);
+        if (c < 0)
+            return MVR_EXIT_USAGE;
+        if (c > 0)
+            continue;
+        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+            bench_usage(stdout);
+            return -1;
+        }
+        if (strcmp(a, "--quiet") == 0) {
+            o->quiet = true;
+            continue;
+        }
+        if (strcmp(a, "--verbose") == 0) {
+            verbose = true;
+            continue;
+        }
+        if (strcmp(a, "--callgrind") == 0) {
+            o->callgrind = true;
+            continue;
+        }
+        if (a[0] != '-') {
+            o->scene.scene_file = a;
+            continue;
+        }
+        if (!v) {
+            fprintf(stderr, "mvr bench: %s needs a value\n", a);
+            return MVR_EXIT_USAGE;
+        }
+        bool ok = true;
+        if (strcmp(a, "--demo") == 0)
+            o->scene.demo = v;
+        else if (strcmp(a, "--views") == 0)
+            ok = parse_u32(v, 1, 64, &o->scene.views);
+        else if (strcmp(a, "--frames") == 0)
+            ok = parse_u32(v, 1, 1000, &o->frames);
+        else if (strcmp(a, "--warmup") == 0)
+            ok = parse_u32(v, 0, 1000, &o->warmup);
+        else if (strcmp(a, "--out") == 0)
+            o->out_dir = v;
+        else if (strcmp(a, "--only") == 0) {
+            uint32_t k = 0;
+            ok = parse_u32(v, 0, 1000, &k);
+            o->only = (int)k;
+        } else if (strcmp(a, "--matrix") == 0) {
+            ok = strcmp(v, "quick") == 0 || strcmp(v, "full") == 0;
+            o->full = strcmp(v, "full") == 0;
+        } else if (strcmp(a, "--size") == 0) {
+            unsigned w = 0, h = 0;
+            char tail = 0;
+            ok = sscanf(v, "%ux%u%c", &w, &h, &tail) == 2 && w >= 1 && h >= 1 && w <= 4096 && h <= 4096;
+            o->scene.width = w;
+            o->scene.height = h;
+        } else {
+            fprintf(stderr, "mvr bench: unknown option %s (see mvr bench --help)\n", a);
+            return MVR_EXIT_USAGE;
+        }
+        if (!ok) {
+            fprintf(stderr, "mvr bench: bad value '%s' for %s\n", v, a);
+            return MVR_EXIT_USAGE;
+        }
+        ++i;
+    }
+    if (!cli_context_check("mvr bench", &o->context))
+        return MVR_EXIT_USAGE;
+    cli_logger(&o->context.logger, "mvr bench", verbose);
+    o->scene.logger = o->context.logger;
+    return MVR_EXIT_OK;
+}
+
+static void add_config(bench_config *list, uint32_t *n, mvr_view_path vp, mvr_material_path mp, uint32_t ss,
+                       mvr_transparency_order order, bool reference)
+{
+    bench_config *c = &list[(*n)++];
+    memset(c, 0, sizeof *c);
+    c->view_path = vp;
+    c->material_path = mp;
+    c->supersample = ss;
+    c->order = order;
+    c->reference = reference;
+    if (reference) {
+        snprintf(c->name, sizeof c->name, "reference");
+        snprintf(c->group, sizeof c->group, "reference");
+        return;
+    }
+    const char *aa = ss > 1 ? (ss == 2 ? "ss2x2" : "ss4x4") : "noaa";
+    const char *ord = order == MVR_TRANSPARENCY_ORDER_PER_VIEW ? "per_view" : "shared";
+    snprintf(c->name, sizeof c->name, "%s/%s/%s%s%s", mvr_view_path_name(vp), mvr_material_path_name(mp), aa,
+             order == MVR_TRANSPARENCY_ORDER_PER_VIEW ? "/" : "", order == MVR_TRANSPARENCY_ORDER_PER_VIEW ? ord : "");
+    snprintf(c->group, sizeof c->group, "%s/%s", aa, ord);
+}
+
+/* quick: both view paths and auto on the array path, both explicit paths on
+ * the per-material path, 2x2 supersampling, per-view transparency order,
+ * the reference. full: every view path x material path x anti-aliasing x
+ * transparency order. The reference comes first (everything is compared
+ * with it). */
+static uint32_t make_matrix(bool full, bench_config *out)
+{
+    uint32_t n = 0;
+    add_config(out, &n, MVR_VIEW_PATH_LOOP, MVR_MATERIAL_PATH_ARRAYS, 4, MVR_TRANSPARENCY_ORDER_PER_VIEW, true);
+    const mvr_view_path vps[3] = {MVR_VIEW_PATH_MULTIVIEW, MVR_VIEW_PATH_LOOP, MVR_VIEW_PATH_AUTO};
+    const mvr_material_path mps[2] = {MVR_MATERIAL_PATH_ARRAYS, MVR_MATERIAL_PATH_PER_MATERIAL};
+    if (!full) {
+        for (int v = 0; v < 3; ++v)
+            add_config(out, &n, vps[v], mps[0], 1, MVR_TRANSPARENCY_ORDER_SHARED, false);
+        for (int v = 0; v < 2; ++v)
+            add_config(out, &n, vps[v], mps[1], 1, MVR_TRANSPARENCY_ORDER_SHARED, false);
+        add_config(out, &n, MVR_VIEW_PATH_AUTO, mps[0], 2, MVR_TRANSPARENCY_ORDER_SHARED, false);
+        add_config(out, &n, MVR_VIEW_PATH_AUTO, mps[0], 1, MVR_TRANSPARENCY_ORDER_PER_VIEW, false);
+        return n;
+    }
+    const uint32_t aas[2] = {1, 2};
+    const mvr_transparency_order orders[2] = {MVR_TRANSPARENCY_ORDER_SHARED, MVR_TRANSPARENCY_ORDER_PER_VIEW};
+    for (int o = 0; o < 2; ++o)
+        for (int a = 0; a < 2; ++a)
+            for (int m = 0; m < 2; ++m)
+                for (int v = 0; v < 3; ++v)
+                    add_config(out, &n, vps[v], mps[m], aas[a], orders[o], false);
+    return n;
+}
+
+static double now_ms(clockid_t clock)
+{
+    struct timespec ts;
+    clock_gettime(clock, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
+
+static int compare_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(double *v, uint32_t n)
+{
+    qsort(v, n, sizeof *v, compare_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/* The frames callgrind counts (collection is toggled around them). */
+__attribute__((noinline)) static bool measured_frames(mvr_renderer *r, mvr_scene *s, mvr_view_set *vs,
+                                                      mvr_target *t, uint32_t frames, double *wall, double *cpu,
+                                                      double *gpu)
+{
+    bool ok = true;
+    CALLGRIND_START_INSTRUMENTATION;
+    CALLGRIND_TOGGLE_COLLECT;
+    for (uint32_t f = 0; f < frames && ok; ++f) {
+        double w0 = now_ms(CLOCK_MONOTONIC), c0 = now_ms(CLOCK_THREAD_CPUTIME_ID);
+        ok = mvr_renderer_render(r, s, vs, t, NULL) == MVR_OK && mvr_renderer_finish(r) == MVR_OK;
+        wall[f] = now_ms(CLOCK_MONOTONIC) - w0;
+        cpu[f] = now_ms(CLOCK_THREAD_CPUTIME_ID) - c0;
+        mvr_frame_stats st;
+        mvr_renderer_get_stats(r, &st);
+        gpu[f] = st.gpu_ms;
+    }
+    CALLGRIND_TOGGLE_COLLECT;
+    CALLGRIND_STOP_INSTRUMENTATION;
+    return ok;
+}
+
+/* Runs one configuration: warm-up, F measured frames, read-back. */
+static bool run_config(const bench_options *o, mvr_context *ctx, mvr_scene *scene, mvr_view_set *vs,
+                       const bench_config *c, bench_result *res)
+{
+    const mvr_caps *caps = mvr_context_caps(ctx);
+    if (c->view_path == MVR_VIEW_PATH_MULTIVIEW && !caps->ext.ovr_multiview2) {
+        snprintf(res->skipped, sizeof res->skipped, "no GL_OVR_multiview2");
+        return true;
+    }
+    uint32_t n = mvr_view_set_count(vs), w = o->scene.width, h = o->scene.height, ss = c->supersample;
+    mvr_renderer_desc rd = {.context = ctx, .view_path = c->view_path, .material_path = c->material_path,
+                            .transparency_order = c->order, .logger = o->context.logger};
+    mvr_renderer *r = NULL;
+    mvr_target *t = NULL;
+    mvr_error err;
+    bool ok = mvr_renderer_create(&rd, &r, &err) == MVR_OK;
+    if (!ok) {
+        fprintf(stderr, "mvr bench: %s: %s\n", c->name, err.message);
+        return false;
+    }
+    mvr_target_desc td = {w * ss, h * ss, n, ss > 1 ? MVR_COLOR_FORMAT_RGBA32F : MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0};
+    double *times = calloc((size_t)o->frames * 3, sizeof *times);
+    ok = times && mvr_target_create(r, &td, &t) == MVR_OK;
+    for (uint32_t f = 0; ok && f < o->warmup; ++f)
+        ok = mvr_renderer_render(r, scene, vs, t, NULL) == MVR_OK;
+    ok = ok && measured_frames(r, scene, vs, t, o->frames, times, times + o->frames, times + 2 * o->frames);
+    if (ok) {
+        mvr_frame_stats st;
+        mvr_renderer_get_stats(r, &st);
+        res->view_path_ran = mvr_view_path_name(st.view_path);
+        res->material_path_ran = mvr_material_path_name(st.material_path);
+        res->draws = st.draws;
+        res->draw_calls = st.draw_calls;
+        res->passes = st.passes;
+        res->program_binds = st.program_binds;
+        res->texture_binds = st.texture_binds;
+        res->ubo_range_binds = st.ubo_range_binds;
+        double *wall = times, *cpu = times + o->frames, *gpu = times + 2 * o->frames;
+        res->wall_min = res->wall_max = wall[0];
+        for (uint32_t f = 1; f < o->frames; ++f) {
+            res->wall_min = fmin(res->wall_min, wall[f]);
+            res->wall_max = fmax(res->wall_max, wall[f]);
+        }
+        res->wall_median = median(wall, o->frames);
+        res->cpu_median = median(cpu, o->frames);
+        res->gpu_median = gpu[0] < 0 ? -1.0 : median(gpu, o->frames);
+        size_t layer = (size_t)w * h * 4;
+        res->display = malloc(layer * n);
+        ok = res->display != NULL;
+        for (uint32_t k = 0; ok && k < n; ++k)
+            ok = cli_read_display_layer(r, t, k, w, h, ss, res->display + layer * k, NULL);
+        res->ran = ok;
+    }
+    if (!ok)
+        fprintf(stderr, "mvr bench: %s: %s\n", c->name, mvr_renderer_last_error(r));
+    free(times);
+    mvr_target_destroy(t);
+    mvr_renderer_destroy(r);
+    return ok;
+}
+
+/* Error of a display image against the reference: RGB channels. */
+static void compare(const uint8_t *ref, const uint8_t *img, size_t pixels, bench_result *res)
+{
+    double sum2 = 0;
+    unsigned max = 0;
+    size_t over = 0;
+    for (size_t i = 0; i < pixels; ++i) {
+        bool off = false;
+        for (size_t c = 0; c < 3; ++c) {
+            int d = abs((int)img[i * 4 + c] - (int)ref[i * 4 + c]);
+            sum2 += (double)d * d;
+            max = (unsigned)d > max ? (unsigned)d : max;
+            off |= d > 2;
+        }
+        over += off;
+    }
+    double mse = sum2 / (3.0 * (double)pixels) / (255.0 * 255.0);
+    res->rmse = sqrt(mse);
+    res->psnr_db = mse > 0 ? 10.0 * log10(1.0 / mse) : INFINITY;
+    res->max_abs = max;
+    res->over_2 = 100.0 * (double)over / (double)pixels;
+}
+
+static int max_byte_diff(const uint8_t *a, const uint8_t *b, size_t bytes)
+{
+    int m = 0;
+    for (size_t i = 0; i < bytes; ++i) {
+        int d = abs((int)a[i] - (int)b[i]);
+        m = d > m ? d : m;
+    }
+    return m;
+}
+
+/* --callgrind: each configuration again in a child under callgrind, which
+ * counts only the measured frames (collection toggled around them). */
+static bool count_instructions(int argc, char **argv, const bench_options *o, uint32_t k, uint64_t *per_frame)
+{
+    char out[4096];
+    snprintf(out, sizeof out, "%s/callgrind.%u", o->out_dir, k);
+    char only[16];
+    snprintf(only, sizeof only, "%u", k);
+    char file_arg[4200];
+    snprintf(file_arg, sizeof file_arg, "--callgrind-out-file=%s", out);
+    char **args = calloc((size_t)argc + 12, sizeof *args);
+    if (!args)
+        return false;
+    int n = 0;
+    args[n++] = "valgrind";
+    args[n++] = "--tool=callgrind";
+    args[n++] = "--instr-atstart=no";
+    args[n++] = "--collect-atstart=no";
+    args[n++] = "--separate-threads=yes";
+    args[n++] = file_arg;
+    args[n++] = "/proc/self/exe";
+    for (int i = 0; i < argc; ++i)
+        if (strcmp(argv[i], "--callgrind") != 0)
+            args[n++] = argv[i];
+    args[n++] = "--only";
+    args[n++] = only;
+    args[n++] = "--quiet";
+    args[n] = NULL;
+    char self[4096];
+    ssize_t len = readlink("/proc/self/exe", self, sizeof self - 1);
+    if (len > 0) {
+        self[len] = 0;
+        args[6] = self;
+    }
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid == 0) {
+        freopen("/dev/null", "w", stdout);
+        freopen("/dev/null", "w", stderr);
+        execvp("valgrind", args);
+        _exit(127);
+    }
+    free(args);
+    int status = 0;
+    if (pid < 0 || waitpid(pid, &status, 0) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+        fprintf(stderr, "mvr bench: callgrind run of configuration %u failed (is valgrind installed?)\n", k);
+        return false;
+    }
+    /* thread 1 (the submitting thread): its "totals:" line */
+    char thread1[4200];
+    snprintf(thread1, sizeof thread1, "%s-01", out);
+    FILE *f = fopen(thread1, "r");
+    unsigned long long total = 0;
+    char line[512];
+    while (f && fgets(line, sizeof line, f))
+        if (sscanf(line, "totals: %llu", &total) == 1)
+            break;
+    if (f)
+        fclose(f);
+    /* callgrind writes one file per thread: keep none */
+    for (int th = 0; th <= 64; ++th) {
+        char p[4300];
+        snprintf(p, sizeof p, th ? "%s-%02d" : "%s", out, th);
+        remove(p);
+    }
+    *per_frame = total / o->frames;
+    return total > 0;
+}
+
+static void progress(const bench_options *o, uint32_t done, uint32_t total, const char *what)
+{
+    if (o->quiet)
+        return;
+    if (isatty(STDERR_FILENO)) {
+        char bar[31];
+        uint32_t fill = total ? 30 * done / total : 30;
+        for (uint32_t i = 0; i < 30; ++i)
+            bar[i] = i < fill ? '#' : '.';
+        bar[30] = 0;
+        fprintf(stderr, "\r[%s] %u/%u %-40s", bar, done, total, what);
+        if (done == total)
+            fprintf(stderr, "\n");
+    } else {
+        fprintf(stderr, "mvr bench: %u/%u %s\n", done, total, what);
+    }
+}
+
+int mvr_cmd_bench(int argc, char **argv)
+{
+    bench_options o;
+    int rc = parse(argc, argv, &o);
+    if (rc != MVR_EXIT_OK)
+        return rc < 0 ? MVR_EXIT_OK : rc;
+    if (mkdir(o.out_dir, 0777) != 0 && errno != EEXIST) {
+        fprintf(stderr, "mvr bench: cannot create %s: %s\n", o.out_dir, strerror(errno));
+        return MVR_EXIT_FAILURE;
+    }
+    mvr_error err;
+    mvr_context *ctx = NULL;
+    mvr_scene *scene = NULL;
+    mvr_view_set *vs = NULL;
+    bench_config configs[32];
+    bench_result results[32];
+    memset(results, 0, sizeof results);
+    uint32_t count = make_matrix(o.full, configs);
+    rc = MVR_EXIT_FAILURE;
+    if (mvr_context_create(&o.context, &ctx, &err) != MVR_OK) {
+        fprintf(stderr, "mvr bench: %s\n", err.message);
+        goto done;
+    }
+    rc = cli_load_scene("mvr bench", &o.scene, &scene, &vs);
+    if (rc != MVR_EXIT_OK)
+        goto done;
+    rc = MVR_EXIT_FAILURE;
+    if (o.only >= 0) { /* the callgrind child: one configuration's frames */
+        if ((uint32_t)o.only >= count)
+            goto done;
+        rc = run_config(&o, ctx, scene, vs, &configs[o.only], &results[0]) ? MVR_EXIT_OK : MVR_EXIT_FAILURE;
+        free(results[0].display);
+        goto done;
+    }
+    uint32_t n_views = mvr_view_set_count(vs);
+    size_t pixels = (size_t)n_views * o.scene.width * o.scene.height;
+    bool has_blend = true;
+    for (uint32_t k = 0; k < count; ++k) {
+        const bench_config *c = &configs[k];
+        bench_result *res = &results[k];
+        res->group_diff = -1;
+        progress(&o, k, count, c->name);
+        if (c->order == MVR_TRANSPARENCY_ORDER_PER_VIEW && !c->reference && !has_blend) {
+            snprintf(res->skipped, sizeof res->skipped, "no blended draws: per-view order changes nothing");
+            continue;
+        }
+        if (!run_config(&o, ctx, scene, vs, c, res))
+            goto done;
+        if (c->reference) {
+            /* does the scene draw anything blended? (the reference's sub-passes tell) */
+            mvr_renderer_desc rd = {.context = ctx};
+            mvr_renderer *r = NULL;
+            mvr_target *t = NULL;
+            mvr_target_desc td = {16, 16, n_views, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0};
+            mvr_frame_stats st;
+            memset(&st, 0, sizeof st);
+            if (mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &t) == MVR_OK &&
+                mvr_renderer_render(r, scene, vs, t, NULL) == MVR_OK)
+                mvr_renderer_get_stats(r, &st);
+            has_blend = st.sub_passes[2] > 0; /* [2]: blended sub-passes */
+            mvr_target_destroy(t);
+            mvr_renderer_destroy(r);
+        }
+        if (res->ran) {
+            compare(results[0].display, res->display, pixels, res);
+            for (uint32_t j = 0; j < k; ++j)
+                if (results[j].ran && strcmp(configs[j].group, c->group) == 0) {
+                    res->group_diff = max_byte_diff(results[j].display, res->display, pixels * 4);
+                    break;
+                }
+        }
+        if (o.callgrind && res->ran && !count_instructions(argc, argv, &o, k, &res->instructions))
+            goto done;
+    }
+    progress(&o, count, count, "done");
+    /* Pareto front over (median wall time, RMSE) */
+    for (uint32_t k = 0; k < count; ++k) {
+        if (!results[k].ran)
+            continue;
+        bool dominated = false;
+        for (uint32_t j = 0; j < count && !dominated; ++j)
+            dominated = j != k && results[j].ran && results[j].wall_median <= results[k].wall_median &&
+                        results[j].rmse <= results[k].rmse &&
+                        (results[j].wall_median < results[k].wall_median || results[j].rmse < results[k].rmse);
+        results[k].pareto = !dominated;
+    }
+    char cmdline[1024] = "mvr";
+    for (int i = 0; i < argc; ++i) {
+        size_t l = strlen(cmdline);
+        snprintf(cmdline + l, sizeof cmdline - l, " %s", argv[i]);
+    }
+    bench_run run = {o.scene.scene_file ? o.scene.scene_file : o.scene.demo, o.out_dir, cmdline,
+                     mvr_context_caps(ctx)->renderer, n_views, o.scene.width, o.scene.height, o.frames, count,
+                     configs, results, 0};
+    bench_print_table(&run, stdout);
+    char path[4096];
+    snprintf(path, sizeof path, "%s/results.csv", o.out_dir);
+    bool ok = bench_write_csv(&run, path);
+    snprintf(path, sizeof path, "%s/results.json", o.out_dir);
+    ok = bench_write_json(&run, path) && ok;
+    ok = bench_write_images(&run) && ok;
+    ok = bench_plot(&run) && ok;
+    rc = ok ? MVR_EXIT_OK : MVR_EXIT_FAILURE;
+done:
+    for (uint32_t k = 0; k < count; ++k)
+        free(results[k].display);
+    mvr_view_set_destroy(vs);
+    mvr_scene_destroy(scene);
+    mvr_context_destroy(ctx);
+    return rc;
+}
