@@ -1,6 +1,8 @@
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "cli_common.h"
 
@@ -72,3 +74,28 @@ bool cli_context_check(const char *command, const mvr_context_desc *desc)
     }
     return true;
 }
+
+/* mkdir -p */
+bool cli_make_dirs(const char *command, const char *path)
+{
+    char buf[4096];
+    size_t n = strlen(path);
+    if (n == 0 || n >= sizeof buf) {
+        fprintf(stderr, "%s: bad directory '%s'\n", command, path);
+        return false;
+    }
+    memcpy(buf, path, n + 1);
+    for (size_t i = 1; i <= n; ++i) {
+        if (buf[i] != '/' && buf[i] != '\0')
+            continue;
+        char saved = buf[i];
+        buf[i] = '\0';
+        if (mkdir(buf, 0777) != 0 && errno != EEXIST) {
+            fprintf(stderr, "%s: cannot create %s: %s\n", command, buf, strerror(errno));
+            return false;
+        }
+        buf[i] = saved;
+    }
+    return true;
+}
+

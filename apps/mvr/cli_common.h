@@ -18,6 +18,9 @@ int cli_context_option(const char *command, int argc, char **argv, int *i, mvr_c
 /* Checks the combination; prints and returns false when it is not valid. */
 bool cli_context_check(const char *command, const mvr_context_desc *desc);
 
+/* Creates path and its parents (mkdir -p); prints what failed. */
+bool cli_make_dirs(const char *command, const char *path);
+
 #define CLI_CONTEXT_HELP \
     "  --context NAME      default | surfaceless | device | pbuffer | osmesa\n" \
     "                      (default: surfaceless, then device, then pbuffer)\n" \

@@ -7,7 +7,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -442,10 +441,8 @@ int mvr_cmd_bench(int argc, char **argv)
     int rc = parse(argc, argv, &o);
     if (rc != MVR_EXIT_OK)
         return rc < 0 ? MVR_EXIT_OK : rc;
-    if (mkdir(o.out_dir, 0777) != 0 && errno != EEXIST) {
-        fprintf(stderr, "mvr bench: cannot create %s: %s\n", o.out_dir, strerror(errno));
+    if (!cli_make_dirs("mvr bench", o.out_dir))
         return MVR_EXIT_FAILURE;
-    }
     mvr_error err;
     mvr_context *ctx = NULL;
     mvr_scene *scene = NULL;
@@ -467,7 +464,6 @@ int mvr_cmd_bench(int argc, char **argv)
         if ((uint32_t)o.only >= count)
             goto done;
         rc = run_config(&o, ctx, scene, vs, &configs[o.only], &results[0]) ? MVR_EXIT_OK : MVR_EXIT_FAILURE;
-        free(results[0].display);
         goto done;
     }
     uint32_t n_views = mvr_view_set_count(vs);

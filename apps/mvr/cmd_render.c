@@ -342,29 +342,6 @@ static int parse(int argc, char **argv, render_options *o)
 }
 
 /* mkdir -p: creates the directory and any missing parents. */
-static bool make_dir(const char *path)
-{
-    char buf[4096];
-    size_t n = strlen(path);
-    if (n == 0 || n >= sizeof buf) {
-        fprintf(stderr, "mvr render: bad directory '%s'\n", path);
-        return false;
-    }
-    memcpy(buf, path, n + 1);
-    for (size_t i = 1; i <= n; ++i) {
-        if (buf[i] != '/' && buf[i] != '\0')
-            continue;
-        char saved = buf[i];
-        buf[i] = '\0';
-        if (mkdir(buf, 0777) != 0 && errno != EEXIST) {
-            fprintf(stderr, "mvr render: cannot create %s: %s\n", buf, strerror(errno));
-            return false;
-        }
-        buf[i] = saved;
-    }
-    return true;
-}
-
 /* The program binary cache directory: --program-cache, else the XDG cache
  * directory; created if missing. NULL (with a warning when the directory
  * cannot be made) means no cache: the run compiles as usual. */
@@ -387,7 +364,7 @@ static const char *program_cache_dir(const render_options *o, char *buf, size_t 
         if (n <= 0 || (size_t)n >= size)
             return NULL;
     }
-    if (!make_dir(buf)) {
+    if (!cli_make_dirs("mvr render", buf)) {
         fprintf(stderr, "mvr render: warning: no program cache (cannot create %s)\n", buf);
         return NULL;
     }
@@ -510,7 +487,7 @@ int mvr_cmd_render(int argc, char **argv)
     int rc = parse(argc, argv, &o);
     if (rc != MVR_EXIT_OK)
         return rc < 0 ? MVR_EXIT_OK : rc;
-    if (!make_dir(o.out_dir))
+    if (!cli_make_dirs("mvr render", o.out_dir))
         return MVR_EXIT_FAILURE;
 
     mvr_error err;
