@@ -49,6 +49,7 @@ typedef struct bench_run {
     bench_config *configs;
     bench_result *results;
     uint32_t reference;          /* index of the reference */
+    const char *omitted;         /* configurations left out, and why ("" = none) */
 } bench_run;
 
 /* bench_report.c: the terminal table, results.csv / results.json, the

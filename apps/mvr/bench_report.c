@@ -54,6 +54,8 @@ void bench_print_table(const bench_run *run, FILE *out)
                 fmt_gpu(r->gpu_median, gpu, sizeof gpu), minstr, r->rmse, psnr, r->max_abs, r->over_2, same, r->draws,
                 r->draw_calls, r->program_binds, r->texture_binds, r->ubo_range_binds);
     }
+    if (run->omitted[0])
+        fprintf(out, "(%s)\n", run->omitted);
     fprintf(out, "* Pareto front (nothing else is both faster and closer to the reference). RMSE, PSNR, max\n"
                  "  (in 1/255 steps) and >2/255 are against the reference; \"same\" is the largest byte\n"
                  "  difference to the first configuration with the same anti-aliasing and transparency\n"
@@ -120,6 +122,7 @@ bool bench_write_json(const bench_run *run, const char *path)
     json_int(&jw, "width", run->width);
     json_int(&jw, "height", run->height);
     json_int(&jw, "frames", run->frames);
+    json_string(&jw, "omitted", run->omitted);
     json_begin_array(&jw, "configurations");
     for (uint32_t k = 0; k < run->count; ++k) {
         const bench_config *c = &run->configs[k];

@@ -460,41 +460,51 @@ int mvr_cmd_bench(int argc, char **argv)
     if (rc != MVR_EXIT_OK)
         goto done;
     rc = MVR_EXIT_FAILURE;
-    if (o.only >= 0) { /* the callgrind child: one configuration's frames */
+    uint32_t n_views = mvr_view_set_count(vs);
+    size_t pixels = (size_t)n_views * o.scene.width * o.scene.height;
+    /* Does the scene draw anything blended? (a small frame's sub-passes
+     * tell). Without, the per-view transparency order changes nothing: those
+     * configurations are left out rather than listed without results. */
+    bool has_blend = false;
+    {
+        mvr_renderer_desc rd = {.context = ctx};
+        mvr_renderer *r = NULL;
+        mvr_target *t = NULL;
+        mvr_target_desc td = {16, 16, n_views, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0};
+        mvr_frame_stats st;
+        memset(&st, 0, sizeof st);
+        if (mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &t) == MVR_OK &&
+            mvr_renderer_render(r, scene, vs, t, NULL) == MVR_OK)
+            mvr_renderer_get_stats(r, &st);
+        has_blend = st.sub_passes[2] > 0; /* [2]: blended sub-passes */
+        mvr_target_destroy(t);
+        mvr_renderer_destroy(r);
+    }
+    char omitted[256] = "";
+    if (!has_blend) {
+        uint32_t kept = 0;
+        for (uint32_t k = 0; k < count; ++k)
+            if (configs[k].reference || configs[k].order != MVR_TRANSPARENCY_ORDER_PER_VIEW)
+                configs[kept++] = configs[k];
+        if (kept < count)
+            snprintf(omitted, sizeof omitted,
+                     "%u configurations with per-view transparency order left out: the scene draws nothing blended",
+                     count - kept);
+        count = kept;
+    }
+    if (o.only >= 0) { /* the callgrind child: one configuration's frames (of the same, filtered list) */
         if ((uint32_t)o.only >= count)
             goto done;
         rc = run_config(&o, ctx, scene, vs, &configs[o.only], &results[0]) ? MVR_EXIT_OK : MVR_EXIT_FAILURE;
         goto done;
     }
-    uint32_t n_views = mvr_view_set_count(vs);
-    size_t pixels = (size_t)n_views * o.scene.width * o.scene.height;
-    bool has_blend = true;
     for (uint32_t k = 0; k < count; ++k) {
         const bench_config *c = &configs[k];
         bench_result *res = &results[k];
         res->group_diff = -1;
         progress(&o, k, count, c->name);
-        if (c->order == MVR_TRANSPARENCY_ORDER_PER_VIEW && !c->reference && !has_blend) {
-            snprintf(res->skipped, sizeof res->skipped, "no blended draws: per-view order changes nothing");
-            continue;
-        }
         if (!run_config(&o, ctx, scene, vs, c, res))
             goto done;
-        if (c->reference) {
-            /* does the scene draw anything blended? (the reference's sub-passes tell) */
-            mvr_renderer_desc rd = {.context = ctx};
-            mvr_renderer *r = NULL;
-            mvr_target *t = NULL;
-            mvr_target_desc td = {16, 16, n_views, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0};
-            mvr_frame_stats st;
-            memset(&st, 0, sizeof st);
-            if (mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &t) == MVR_OK &&
-                mvr_renderer_render(r, scene, vs, t, NULL) == MVR_OK)
-                mvr_renderer_get_stats(r, &st);
-            has_blend = st.sub_passes[2] > 0; /* [2]: blended sub-passes */
-            mvr_target_destroy(t);
-            mvr_renderer_destroy(r);
-        }
         if (res->ran) {
             compare(results[0].display, res->display, pixels, res);
             for (uint32_t j = 0; j < k; ++j)
@@ -525,7 +535,7 @@ int mvr_cmd_bench(int argc, char **argv)
     }
     bench_run run = {o.scene.scene_file ? o.scene.scene_file : o.scene.demo, o.out_dir, cmdline,
                      mvr_context_caps(ctx)->renderer, n_views, o.scene.width, o.scene.height, o.frames, count,
-                     configs, results, 0};
+                     configs, results, 0, omitted};
     bench_print_table(&run, stdout);
     char path[4096];
     snprintf(path, sizeof path, "%s/results.csv", o.out_dir);
