@@ -570,6 +570,10 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
      * something to order */
     if (r->per_view_blend_order && r->frame.pass_count[MVR_PASS_BLEND] > 0)
         path = MVR_VIEW_PATH_LOOP;
+    /* multisampling resolves one view at a time */
+    bool msaa = t->desc.samples > 1;
+    if (msaa)
+        path = MVR_VIEW_PATH_LOOP;
     r->path_ran = path;
     bool multiview = path == MVR_VIEW_PATH_MULTIVIEW;
     uint32_t max_views = (uint32_t)r->ctx->caps.limits.max_views_ovr;
@@ -638,7 +642,7 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
         res = mvr_target_framebuffer(t, ch->base, mv_pass ? ch->count : 0, &fbo);
         if (res != MVR_OK)
             break;
-        mvr_state_draw_framebuffer(st, fbo);
+        mvr_state_draw_framebuffer(st, msaa ? t->msaa_fbo : fbo);
         mvr_state_viewport(st, ch->viewport.x, ch->viewport.y, (GLsizei)ch->viewport.width,
                            (GLsizei)ch->viewport.height);
         /* clear only the view's viewport: other views may share the layer */
@@ -678,6 +682,16 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
         pc.last_program = NULL;
         for (int k = 0; k < MVR_PASS_KIND_COUNT && res == MVR_OK; ++k)
             res = draw_list(&pc, (mvr_pass_kind)k);
+        if (msaa) {
+            /* resolve the view's samples into its layer (same rectangle) */
+            const mvr_viewport *vp = &ch->viewport;
+            GLint x1 = vp->x + (GLint)vp->width, y1 = vp->y + (GLint)vp->height;
+            mvr_state_read_framebuffer(st, t->msaa_fbo);
+            mvr_state_draw_framebuffer(st, fbo);
+            mvr_state_scissor_test(st, false);
+            r->gl->BlitFramebuffer(vp->x, vp->y, x1, y1, vp->x, vp->y, x1, y1, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+            r->stats.resolves++;
+        }
         r->stats.passes++;
         r->stats.multiview_passes += mv_pass;
         r->stats.views += ch->count;

@@ -490,6 +490,7 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
     st->program_binary_loads = r->binary_loads_this_frame;
     st->program_binary_rejects = r->binary_rejects_this_frame;
     st->sanitized = mvr_scene_sanitized_count(scene);
+    st->samples = target->desc.samples > 1 ? target->desc.samples : 1;
     st->depth_mode = r->reversed_z ? MVR_DEPTH_MODE_REVERSED_Z : MVR_DEPTH_MODE_STANDARD;
     st->material_path = r->material_path;
     st->texture_groups = r->gpu.arrays ? r->gpu.plan.group_count : 0;

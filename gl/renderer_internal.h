@@ -94,6 +94,9 @@ struct mvr_target {
     bool owns_color;
     mvr_fbo_entry *fbos;
     uint32_t fbo_count, fbo_cap;
+    /* multisampling (desc.samples > 1): one view's color and depth, resolved
+     * into its layer after its pass */
+    GLuint msaa_fbo, msaa_color, msaa_depth;
 };
 
 typedef struct mvr_timer {

@@ -17,6 +17,39 @@ static GLenum gl_color_format(mvr_color_format f)
     return GL_SRGB8_ALPHA8;
 }
 
+/* The multisampled renderbuffers a view is drawn into before its resolve. */
+static mvr_result make_msaa(mvr_target *t)
+{
+    mvr_renderer *r = t->renderer;
+    const mvr_gl_api_table *gl = r->gl;
+    GLint max = 0;
+    /* the format's own limit (float formats may allow fewer than GL_MAX_SAMPLES) */
+    gl->GetInternalformativ(GL_RENDERBUFFER, t->internal_format, GL_SAMPLES, 1, &max);
+    if ((GLint)t->desc.samples > max)
+        return mvr_renderer_fail(r, MVR_ERROR_UNSUPPORTED,
+                                 "mvr_target_create: %u samples asked, %s allows at most %d on %s", t->desc.samples,
+                                 mvr_color_format_name(t->desc.color_format), max, r->ctx->caps.renderer);
+    GLsizei w = (GLsizei)t->desc.width, h = (GLsizei)t->desc.height, n = (GLsizei)t->desc.samples;
+    gl->GenRenderbuffers(1, &t->msaa_color);
+    gl->BindRenderbuffer(GL_RENDERBUFFER, t->msaa_color);
+    gl->RenderbufferStorageMultisample(GL_RENDERBUFFER, n, t->internal_format, w, h);
+    gl->GenRenderbuffers(1, &t->msaa_depth);
+    gl->BindRenderbuffer(GL_RENDERBUFFER, t->msaa_depth);
+    gl->RenderbufferStorageMultisample(GL_RENDERBUFFER, n, GL_DEPTH_COMPONENT32F, w, h);
+    gl->BindRenderbuffer(GL_RENDERBUFFER, 0);
+    gl->GenFramebuffers(1, &t->msaa_fbo);
+    mvr_state_draw_framebuffer(&r->state, t->msaa_fbo);
+    gl->FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t->msaa_color);
+    gl->FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t->msaa_depth);
+    mvr_result res = mvr_gl_check(r->ctx, "multisampled framebuffer", true);
+    if (res == MVR_OK)
+        res = mvr_gl_check_framebuffer(r->ctx, GL_DRAW_FRAMEBUFFER, "multisampled framebuffer");
+    if (res != MVR_OK)
+        return mvr_renderer_fail(r, res, "mvr_target_create: %u samples: %s", t->desc.samples,
+                                 mvr_context_last_error(r->ctx));
+    return MVR_OK;
+}
+
 mvr_result mvr_target_create(mvr_renderer *r, const mvr_target_desc *d, mvr_target **out)
 {
     if (!r)
@@ -45,6 +78,9 @@ mvr_result mvr_target_create(mvr_renderer *r, const mvr_target_desc *d, mvr_targ
         (desc.color_format == MVR_COLOR_FORMAT_RGBA32F && !c->ext.ext_color_buffer_float))
         return mvr_renderer_fail(r, MVR_ERROR_UNSUPPORTED, "mvr_target_create: %s is not renderable on %s",
                                  mvr_color_format_name(desc.color_format), c->renderer);
+    if (desc.samples > 1 && desc.samples > (uint32_t)c->limits.max_samples)
+        return mvr_renderer_fail(r, MVR_ERROR_UNSUPPORTED, "mvr_target_create: %u samples; GL_MAX_SAMPLES is %d",
+                                 desc.samples, c->limits.max_samples);
     if (!desc.external_color_texture && (desc.external_level || desc.external_base_layer))
         return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT,
                                  "mvr_target_create: external_level / external_base_layer need an external texture");
@@ -82,6 +118,8 @@ mvr_result mvr_target_create(mvr_renderer *r, const mvr_target_desc *d, mvr_targ
     /* an application texture of the wrong kind shows up as an incomplete FBO */
     GLuint fbo = 0;
     mvr_result res = mvr_target_framebuffer(t, 0, 0, &fbo);
+    if (res == MVR_OK && desc.samples > 1)
+        res = make_msaa(t);
     if (res != MVR_OK) {
         mvr_target_destroy(t);
         return res;
@@ -107,6 +145,12 @@ void mvr_target_destroy(mvr_target *t)
     }
     mvr_state_forget_texture(&r->state, t->depth);
     gl->DeleteTextures(1, &t->depth);
+    if (t->msaa_fbo) {
+        mvr_state_forget_framebuffer(&r->state, t->msaa_fbo);
+        gl->DeleteFramebuffers(1, &t->msaa_fbo);
+    }
+    gl->DeleteRenderbuffers(1, &t->msaa_color);
+    gl->DeleteRenderbuffers(1, &t->msaa_depth);
     free(t);
 }
 

@@ -12,6 +12,7 @@ typedef struct bench_config {
     mvr_view_path view_path;
     mvr_material_path material_path;
     uint32_t supersample;        /* samples per pixel side (1 = none) */
+    uint32_t msaa;               /* multisamples per pixel (0 = none) */
     mvr_transparency_order order;
     bool reference;
     /* Configurations of one group must give the same pixels (they differ

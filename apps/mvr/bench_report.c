@@ -65,7 +65,7 @@ void bench_print_table(const bench_run *run, FILE *out)
 }
 
 static const char *csv_header =
-    "config,view_path,material_path,supersample,transparency_order,reference,ran,skipped,view_path_ran,"
+    "config,view_path,material_path,supersample,msaa,transparency_order,reference,ran,skipped,view_path_ran,"
     "wall_ms_median,wall_ms_min,wall_ms_max,cpu_ms_median,gpu_ms_median,instructions_per_frame,"
     "rmse,psnr_db,max_abs_255,pct_over_2_255,group,same_as_group_max_diff,draws,draw_calls,passes,"
     "program_binds,texture_binds,ubo_range_binds,pareto\n";
@@ -81,8 +81,8 @@ bool bench_write_csv(const bench_run *run, const char *path)
     for (uint32_t k = 0; k < run->count; ++k) {
         const bench_config *c = &run->configs[k];
         const bench_result *r = &run->results[k];
-        fprintf(f, "%s,%s,%s,%u,%s,%d,%d,\"%s\",", c->name, mvr_view_path_name(c->view_path),
-                mvr_material_path_name(c->material_path), c->supersample, mvr_transparency_order_name(c->order),
+        fprintf(f, "%s,%s,%s,%u,%u,%s,%d,%d,\"%s\",", c->name, mvr_view_path_name(c->view_path),
+                mvr_material_path_name(c->material_path), c->supersample, c->msaa, mvr_transparency_order_name(c->order),
                 c->reference, r->ran, r->skipped);
         if (!r->ran) {
             fprintf(f, ",,,,,,,,,,,%s,,,,,,,,0\n", c->group);
@@ -132,6 +132,7 @@ bool bench_write_json(const bench_run *run, const char *path)
         json_string(&jw, "view_path", mvr_view_path_name(c->view_path));
         json_string(&jw, "material_path", mvr_material_path_name(c->material_path));
         json_int(&jw, "supersample", c->supersample);
+        json_int(&jw, "msaa", c->msaa);
         json_string(&jw, "transparency_order", mvr_transparency_order_name(c->order));
         json_bool(&jw, "reference", c->reference);
         json_string(&jw, "group", c->group);
@@ -241,7 +242,7 @@ bool bench_plot(const bench_run *run)
         fprintf(stderr, "mvr bench: cannot write %s: %s\n", path, strerror(errno));
         return false;
     }
-    /* columns of results.csv: 1 config, 7 ran, 10 wall ms median, 16 rmse, 28 pareto */
+    /* columns of results.csv: 1 config, 8 ran, 11 wall ms median, 17 rmse */
     fprintf(f,
             "# mvr bench: median frame time against RMSE to the reference (from results.csv;\n"
             "# pareto.dat holds the front, sorted by time)\n"
@@ -256,8 +257,8 @@ bool bench_plot(const bench_run *run)
             "set offsets 0, graph 0.2, graph 0.1, 0\n"
             "set style line 1 pt 7 ps 1.2 lc rgb '#3060c0'\n"
             "set style line 2 pt 6 ps 2.2 lw 2 lc rgb '#d04020'\n"
-            "ran(c) = (column(7) == 1 ? c : 1/0)\n"
-            "plot_it = \"plot 'results.csv' skip 1 using (ran($10)):(ran($16)) with points ls 1 title 'configuration', "
+            "ran(c) = (column(8) == 1 ? c : 1/0)\n"
+            "plot_it = \"plot 'results.csv' skip 1 using (ran($11)):(ran($17)) with points ls 1 title 'configuration', "
             "'pareto.dat' using 2:3 with linespoints ls 2 title 'Pareto front', "
             "'pareto.dat' using 2:3:1 with labels offset 1,0.8 left font ',9' notitle\"\n"
             "set terminal png size 1000,700\n"

@@ -161,6 +161,7 @@ static int parse(int argc, char **argv, bench_options *o)
     return MVR_EXIT_OK;
 }
 
+/* ss: supersampling per side; ss 0 = 4x MSAA instead */
 static void add_config(bench_config *list, uint32_t *n, mvr_view_path vp, mvr_material_path mp, uint32_t ss,
                        mvr_transparency_order order, bool reference)
 {
@@ -168,7 +169,8 @@ static void add_config(bench_config *list, uint32_t *n, mvr_view_path vp, mvr_ma
     memset(c, 0, sizeof *c);
     c->view_path = vp;
     c->material_path = mp;
-    c->supersample = ss;
+    c->supersample = ss ? ss : 1;
+    c->msaa = ss ? 0 : 4;
     c->order = order;
     c->reference = reference;
     if (reference) {
@@ -176,7 +178,7 @@ static void add_config(bench_config *list, uint32_t *n, mvr_view_path vp, mvr_ma
         snprintf(c->group, sizeof c->group, "reference");
         return;
     }
-    const char *aa = ss > 1 ? (ss == 2 ? "ss2x2" : "ss4x4") : "noaa";
+    const char *aa = ss == 0 ? "msaa4x" : ss > 1 ? (ss == 2 ? "ss2x2" : "ss4x4") : "noaa";
     const char *ord = order == MVR_TRANSPARENCY_ORDER_PER_VIEW ? "per_view" : "shared";
     snprintf(c->name, sizeof c->name, "%s/%s/%s%s%s", mvr_view_path_name(vp), mvr_material_path_name(mp), aa,
              order == MVR_TRANSPARENCY_ORDER_PER_VIEW ? "/" : "", order == MVR_TRANSPARENCY_ORDER_PER_VIEW ? ord : "");
@@ -184,10 +186,11 @@ static void add_config(bench_config *list, uint32_t *n, mvr_view_path vp, mvr_ma
 }
 
 /* quick: both view paths and auto on the array path, both explicit paths on
- * the per-material path, 2x2 supersampling, per-view transparency order,
- * the reference. full: every view path x material path x anti-aliasing x
- * transparency order. The reference comes first (everything is compared
- * with it). */
+ * the per-material path, 4x MSAA, 2x2 supersampling, per-view transparency
+ * order, the reference. full: every view path x material path x
+ * anti-aliasing x transparency order (MSAA resolves view by view, so not
+ * with multiview). The reference comes first (everything is compared with
+ * it). */
 static uint32_t make_matrix(bool full, bench_config *out)
 {
     uint32_t n = 0;
@@ -199,17 +202,19 @@ static uint32_t make_matrix(bool full, bench_config *out)
             add_config(out, &n, vps[v], mps[0], 1, MVR_TRANSPARENCY_ORDER_SHARED, false);
         for (int v = 0; v < 2; ++v)
             add_config(out, &n, vps[v], mps[1], 1, MVR_TRANSPARENCY_ORDER_SHARED, false);
+        add_config(out, &n, MVR_VIEW_PATH_AUTO, mps[0], 0, MVR_TRANSPARENCY_ORDER_SHARED, false);
         add_config(out, &n, MVR_VIEW_PATH_AUTO, mps[0], 2, MVR_TRANSPARENCY_ORDER_SHARED, false);
         add_config(out, &n, MVR_VIEW_PATH_AUTO, mps[0], 1, MVR_TRANSPARENCY_ORDER_PER_VIEW, false);
         return n;
     }
-    const uint32_t aas[2] = {1, 2};
+    const uint32_t aas[3] = {1, 0, 2};
     const mvr_transparency_order orders[2] = {MVR_TRANSPARENCY_ORDER_SHARED, MVR_TRANSPARENCY_ORDER_PER_VIEW};
     for (int o = 0; o < 2; ++o)
-        for (int a = 0; a < 2; ++a)
+        for (int a = 0; a < 3; ++a)
             for (int m = 0; m < 2; ++m)
                 for (int v = 0; v < 3; ++v)
-                    add_config(out, &n, vps[v], mps[m], aas[a], orders[o], false);
+                    if (aas[a] != 0 || vps[v] != MVR_VIEW_PATH_MULTIVIEW)
+                        add_config(out, &n, vps[v], mps[m], aas[a], orders[o], false);
     return n;
 }
 
@@ -274,7 +279,8 @@ static bool run_config(const bench_options *o, mvr_context *ctx, mvr_scene *scen
         fprintf(stderr, "mvr bench: %s: %s\n", c->name, err.message);
         return false;
     }
-    mvr_target_desc td = {w * ss, h * ss, n, ss > 1 ? MVR_COLOR_FORMAT_RGBA32F : MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0};
+    mvr_target_desc td = {w * ss, h * ss, n, ss > 1 ? MVR_COLOR_FORMAT_RGBA32F : MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0,
+                          c->msaa};
     double *times = calloc((size_t)o->frames * 3, sizeof *times);
     ok = times && mvr_target_create(r, &td, &t) == MVR_OK;
     for (uint32_t f = 0; ok && f < o->warmup; ++f)
@@ -447,8 +453,8 @@ int mvr_cmd_bench(int argc, char **argv)
     mvr_context *ctx = NULL;
     mvr_scene *scene = NULL;
     mvr_view_set *vs = NULL;
-    bench_config configs[32];
-    bench_result results[32];
+    bench_config configs[48];
+    bench_result results[48];
     memset(results, 0, sizeof results);
     uint32_t count = make_matrix(o.full, configs);
     rc = MVR_EXIT_FAILURE;
@@ -470,7 +476,7 @@ int mvr_cmd_bench(int argc, char **argv)
         mvr_renderer_desc rd = {.context = ctx};
         mvr_renderer *r = NULL;
         mvr_target *t = NULL;
-        mvr_target_desc td = {16, 16, n_views, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0};
+        mvr_target_desc td = {16, 16, n_views, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0};
         mvr_frame_stats st;
         memset(&st, 0, sizeof st);
         if (mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &t) == MVR_OK &&
@@ -481,13 +487,23 @@ int mvr_cmd_bench(int argc, char **argv)
         mvr_renderer_destroy(r);
     }
     char omitted[256] = "";
+    int max_samples = mvr_context_caps(ctx)->limits.max_samples;
+    if (max_samples < 4) {
+        uint32_t kept = 0;
+        for (uint32_t k = 0; k < count; ++k)
+            if (configs[k].msaa == 0)
+                configs[kept++] = configs[k];
+        snprintf(omitted, sizeof omitted, "4x MSAA left out: GL_MAX_SAMPLES is %d; ", max_samples);
+        count = kept;
+    }
     if (!has_blend) {
         uint32_t kept = 0;
         for (uint32_t k = 0; k < count; ++k)
             if (configs[k].reference || configs[k].order != MVR_TRANSPARENCY_ORDER_PER_VIEW)
                 configs[kept++] = configs[k];
+        size_t l = strlen(omitted);
         if (kept < count)
-            snprintf(omitted, sizeof omitted,
+            snprintf(omitted + l, sizeof omitted - l,
                      "%u configurations with per-view transparency order left out: the scene draws nothing blended",
                      count - kept);
         count = kept;

@@ -565,6 +565,12 @@ typedef struct mvr_target_desc {
     uint32_t external_color_texture;
     uint32_t external_level;
     uint32_t external_base_layer;
+    /* Multisampling: samples per pixel (0 or 1 = none). Each view is drawn
+     * into a multisampled renderbuffer and resolved into its layer with
+     * glBlitFramebuffer, one view at a time (the loop path: no GL here
+     * attaches a multisampled array to a multiview framebuffer). Refused
+     * above GL_MAX_SAMPLES or where the color format cannot be multisampled. */
+    uint32_t samples;
 } mvr_target_desc;
 
 mvr_result mvr_target_create(mvr_renderer *renderer, const mvr_target_desc *desc, mvr_target **out);
@@ -620,6 +626,8 @@ typedef struct mvr_frame_stats {
     uint32_t texture_groups;     /* texture arrays of the scene's batch plan (array path) */
     uint32_t culled;             /* summed over views: draws outside a view's frustum */
     uint32_t sanitized;          /* the scene's repaired degenerate values (mvr_scene_sanitized_count) */
+    uint32_t samples;            /* the target's samples per pixel (1 = no multisampling) */
+    uint32_t resolves;           /* multisample resolves (one per view) */
     /* Sub-passes drawn, summed over passes: [0] opaque, [1] alpha-masked,
      * [2] blended (transparent). A pass skips a list with nothing to draw in
      * it, state changes included: a scene without transparency runs no

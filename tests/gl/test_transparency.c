@@ -57,7 +57,7 @@ static void per_view_order_is_each_views_own(mvr_test_state *t)
             rd.view_path = path;
         mvr_renderer *r = NULL;
         mvr_target *target = NULL;
-        mvr_target_desc td = {32, 32, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0};
+        mvr_target_desc td = {32, 32, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0};
         mvr_render_desc desc = {{0, 0, 0, 1}, 1.0f, MVR_TONE_MAP_NONE};
         bool ok = mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK &&
                   mvr_renderer_render(r, s, both, target, &desc) == MVR_OK;
