@@ -623,6 +623,11 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
     else if (r->gl->ClipControl && r->ctx->caps.ext.ext_clip_control)
         mvr_state_clip_control(st, GL_LOWER_LEFT_EXT, GL_NEGATIVE_ONE_TO_ONE_EXT);
     mvr_state_scissor_test(st, false);
+    /* desktop GL encodes writes to sRGB formats only when asked (GLES always
+     * does): without it an sRGB target stores linear values, darker, and
+     * blends them unconverted */
+    if (r->ctx->caps.api == MVR_GL_API_DESKTOP)
+        mvr_state_framebuffer_srgb(st, true);
     float clear[4];
     memcpy(clear, desc->clear_color, sizeof clear);
     if (t->internal_format == GL_RGBA8)

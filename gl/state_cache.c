@@ -220,6 +220,15 @@ void mvr_state_scissor_test(mvr_state_cache *s, bool enabled)
     enable(s, GL_SCISSOR_TEST, &s->scissor_test, enabled);
 }
 
+#ifndef GL_FRAMEBUFFER_SRGB
+#define GL_FRAMEBUFFER_SRGB 0x8DB9 /* desktop GL 3.0 / ARB_framebuffer_sRGB */
+#endif
+
+void mvr_state_framebuffer_srgb(mvr_state_cache *s, bool enabled)
+{
+    enable(s, GL_FRAMEBUFFER_SRGB, &s->framebuffer_srgb, enabled);
+}
+
 void mvr_state_clip_control(mvr_state_cache *s, GLenum origin, GLenum depth)
 {
     if (s->clip_origin == origin && s->clip_depth == depth)

@@ -38,6 +38,7 @@ typedef struct mvr_state_cache {
     GLuint samplers[MVR_STATE_TEXTURE_UNITS];
     GLint viewport[4];
     bool depth_test, cull_face, blend, scissor_test;
+    bool framebuffer_srgb;       /* desktop GL only (GLES always encodes into sRGB formats) */
     GLenum depth_func, cull_mode, front_face;
     GLboolean depth_mask;
     GLboolean color_mask[4];
@@ -72,6 +73,9 @@ void mvr_state_blend(mvr_state_cache *s, bool enabled, GLenum src_rgb, GLenum ds
                      GLenum src_a, GLenum dst_a);
 void mvr_state_color_mask(mvr_state_cache *s, bool all);
 void mvr_state_scissor_test(mvr_state_cache *s, bool enabled);
+/* Desktop GL: sRGB encoding (and linear blending) for writes to sRGB
+ * formats, which GLES always does; off by default there. Never call on GLES. */
+void mvr_state_framebuffer_srgb(mvr_state_cache *s, bool enabled);
 /* Needs a ClipControl entry point; callers check the caps first. */
 void mvr_state_clip_control(mvr_state_cache *s, GLenum origin, GLenum depth);
 

@@ -691,5 +691,43 @@ static void instancing_changes_calls_not_pixels(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
-MVR_TEST_MAIN(TEST(instancing_changes_calls_not_pixels), TEST(blend_pass_only_where_needed), TEST(dirty_tracking_sends_only_changes), TEST(culling_changes_cost_not_pixels), TEST(color_formats_agree), TEST(stereo_paths_agree), TEST(cube_paths_agree), TEST(city_paths_agree), TEST(ring_paths_agree),
+
+/* Desktop GL (OSMesa) and GLES give the same image: desktop GL writes sRGB
+ * targets encoded only with GL_FRAMEBUFFER_SRGB enabled (a stored linear
+ * value is 70 steps darker in mid-tones), and blends in linear light only
+ * then. Same Mesa, same shader source: at most one rounding apart. */
+static void desktop_and_gles_agree(mvr_test_state *t)
+{
+    mvr_context_desc dd = {0};
+    dd.provider = MVR_CONTEXT_PROVIDER_OSMESA;
+    mvr_context *desktop = NULL;
+    if (mvr_context_create(&dd, &desktop, NULL) != MVR_OK) {
+        CHECK_MSG(t, !mvr_test_in_ci(), "CI builds the OSMesa provider");
+        SKIP(t, "no OSMesa provider");
+    }
+    mvr_context *gles = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    rendered a, b;
+    memset(&a, 0, sizeof a);
+    memset(&b, 0, sizeof b);
+    /* the stereo demo has blended glass: both conversions show */
+    /* a renderer draws with the context current on the thread */
+    bool ok = gles && mvr_context_make_current(desktop) == MVR_OK &&
+              render_demo(t, desktop, "stereo", 2, MVR_VIEW_PATH_LOOP, NULL, &a) &&
+              mvr_context_make_current(gles) == MVR_OK && render_demo(t, gles, "stereo", 2, MVR_VIEW_PATH_LOOP, NULL, &b);
+    CHECK_EQ_INT(t, mvr_context_caps(desktop)->api, MVR_GL_API_DESKTOP);
+    if (ok) {
+        unsigned worst = 0;
+        for (size_t i = 0; i < (size_t)W * H * 2 * 4; ++i) {
+            unsigned d = (unsigned)abs((int)a.pixels[i] - (int)b.pixels[i]);
+            worst = d > worst ? d : worst;
+        }
+        CHECK_MSG(t, worst <= 1, "desktop GL and GLES differ by %u/255", worst);
+    }
+    free(a.pixels);
+    free(b.pixels);
+    mvr_context_destroy(gles);
+    mvr_context_destroy(desktop);
+}
+
+MVR_TEST_MAIN(TEST(desktop_and_gles_agree), TEST(instancing_changes_calls_not_pixels), TEST(blend_pass_only_where_needed), TEST(dirty_tracking_sends_only_changes), TEST(culling_changes_cost_not_pixels), TEST(color_formats_agree), TEST(stereo_paths_agree), TEST(cube_paths_agree), TEST(city_paths_agree), TEST(ring_paths_agree),
               TEST(application_texture_array), TEST(bad_targets_are_refused), TEST(disabled_views_are_skipped))
