@@ -66,7 +66,7 @@ typedef struct viewer {
     mvr_scene *scene;
     mvr_view_set *views;
     GLuint program, vao;
-    GLint loc_layers, loc_origin, loc_height, loc_mode;
+    GLint loc_layers, loc_origin, loc_mode;
     /* camera: orbit around a target */
     double center[3], distance, yaw, pitch, radius;
     double ipd;
@@ -300,7 +300,7 @@ static const char *composite_fs =
     "uniform sampler2DArray layers_tex;\n"
     "uniform ivec2 layers;   /* x: the layer; anaglyph: x left, y right */\n"
     "uniform ivec2 origin;   /* the rectangle's lower-left corner in the window */\n"
-    "uniform int height;     /* of the layers */\n"
+
     "uniform int mode;\n"
     "out vec4 o_color;\n"
     "vec3 encode(vec3 c) {\n"
@@ -308,8 +308,7 @@ static const char *composite_fs =
     "    return mix(1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, c * 12.92, vec3(lessThanEqual(c, vec3(0.0031308))));\n"
     "}\n"
     "void main() {\n"
-    "    ivec2 p = ivec2(gl_FragCoord.xy) - origin;\n"
-    "    p.y = height - 1 - p.y; /* layers keep their top row first */\n"
+    "    ivec2 p = ivec2(gl_FragCoord.xy) - origin; /* both bottom-up, as GL stores them */\n"
     "    vec3 a = texelFetch(layers_tex, ivec3(p, layers.x), 0).rgb;\n"
     "    if (mode == 1)\n"
     "        a = vec3(a.r, texelFetch(layers_tex, ivec3(p, layers.y), 0).gb);\n"
@@ -352,7 +351,6 @@ static bool make_composite(viewer *v, bool gles)
     }
     v->loc_layers = gl->GetUniformLocation(v->program, "layers");
     v->loc_origin = gl->GetUniformLocation(v->program, "origin");
-    v->loc_height = gl->GetUniformLocation(v->program, "height");
     v->loc_mode = gl->GetUniformLocation(v->program, "mode");
     gl->GenVertexArrays(1, &v->vao);
     return true;
@@ -376,7 +374,6 @@ static void composite(viewer *v)
     gl->BindVertexArray(v->vao);
     gl->ActiveTexture(GL_TEXTURE0);
     gl->BindTexture(GL_TEXTURE_2D_ARRAY, mvr_target_color_texture(v->target));
-    gl->Uniform1i(v->loc_height, (GLint)v->layer_h);
     GLint w = (GLint)v->layer_w, h = (GLint)v->layer_h;
     uint32_t cols = 1;
     while (cols * cols < v->view_count)
@@ -416,29 +413,22 @@ static void composite(viewer *v)
     gl->UseProgram(0);
 }
 
-/* Window contents (the back buffer before the swap) as a PNG, top row first. */
+/* Window contents (the back buffer before the swap) as a PNG. */
 static bool screenshot(viewer *v, const char *path)
 {
     const viewer_gl *gl = &v->gl;
-    size_t row = (size_t)v->fb_width * 4;
-    uint8_t *px = malloc(row * (size_t)v->fb_height), *flipped = malloc(row * (size_t)v->fb_height);
-    if (!px || !flipped) {
-        free(px);
-        free(flipped);
+    uint8_t *px = malloc((size_t)v->fb_width * (size_t)v->fb_height * 4);
+    if (!px)
         return false;
-    }
     gl->BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
     gl->PixelStorei(GL_PACK_ALIGNMENT, 1);
     gl->ReadPixels(0, 0, v->fb_width, v->fb_height, GL_RGBA, GL_UNSIGNED_BYTE, px);
-    for (int y = 0; y < v->fb_height; ++y)
-        memcpy(flipped + row * (size_t)y, px + row * (size_t)(v->fb_height - 1 - y), row);
-    mvr_image_view img = {(uint32_t)v->fb_width, (uint32_t)v->fb_height, MVR_PIXEL_U8, true, flipped};
+    mvr_image_view img = {(uint32_t)v->fb_width, (uint32_t)v->fb_height, MVR_PIXEL_U8, true /* GL's row order */, px};
     mvr_error err;
     bool ok = mvr_image_write(path, &img, &err) == MVR_OK;
     if (!ok)
         fprintf(stderr, "mvr-viewer: %s\n", err.message);
     free(px);
-    free(flipped);
     return ok;
 }
 

@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# ctest: mvr embedded in an application that owns the GL.
+#  1. embed (its own EGL context and 2-layer texture array) renders the stereo
+#     demo into the same bytes as `mvr render`, and its own code-built scene;
+#  2. pure C: mvr_core and mvr_gl need nothing of C++ (no mangled or C++
+#     runtime symbol undefined in them, no libstdc++ in embed, a C link line);
+#  3. the installed package: `cmake --install`, then a project outside the
+#     tree builds embed with find_package(mvr) (static and shared) and with
+#     pkg-config (mvr-static), and each renders the same bytes.
+# usage: test_embed.sh BUILD_DIR SOURCE_DIR OUT
+set -u
+build=$1 src=$2 out=$3
+rm -rf "$out"; mkdir -p "$out"
+fail=0
+ok() { echo "ok: $*"; }
+bad() { echo "FAIL: $*"; fail=1; }
+cmp_layers() { # prefix label
+    for k in 0 1; do
+        if "$build/tests/compare_images" "${1}_$k.ppm" "$out/render/view_0$k.png" --max 0 > /dev/null; then
+            ok "$2: layer $k equals mvr render's"
+        else
+            bad "$2: layer $k differs from mvr render's"; "$build/tests/compare_images" "${1}_$k.ppm" "$out/render/view_0$k.png"
+        fi
+    done
+}
+"$build/mvr" render --demo stereo --views 2 --size 320x240 --out "$out/render" --quiet || bad "mvr render"
+"$build/embed" --demo stereo --out "$out/embed" > /dev/null && cmp_layers "$out/embed" embed || bad "embed --demo stereo"
+"$build/embed" --out "$out/own" > /dev/null && [ -s "$out/own_0.ppm" ] && ok "embed renders its own scene" || bad "embed's own scene"
+
+# 2. pure C
+cxx=$(nm -u "$build/libmvr_core.a" "$build/libmvr_gl.a" 2>/dev/null | grep -E ' U (_Z|__cxa_|__gxx_|_Unwind_Resume)' || true)
+[ -z "$cxx" ] && ok "mvr_core and mvr_gl need no C++ symbol" || bad "C++ symbols needed: $cxx"
+readelf -d "$build/embed" | grep -q 'libstdc++' && bad "embed needs libstdc++" || ok "embed does not need libstdc++"
+link="$build/CMakeFiles/embed.dir/link.txt"
+if [ -f "$link" ]; then
+    first=$(awk '{print $1; exit}' "$link")
+    grep -qE -- '-lstdc\+\+|c\+\+|g\+\+' "$link" && bad "embed's link line is C++: $(cat "$link")" || ok "embed links with the C compiler ($first)"
+fi
+
+# 3. installed package
+prefix="$out/prefix"
+cmake --install "$build" --prefix "$prefix" > "$out/install.log" 2>&1 || { bad "cmake --install"; cat "$out/install.log"; }
+if cmake -S "$src/tests/embed/consumer" -B "$out/consumer" -DCMAKE_PREFIX_PATH="$prefix" \
+        -DEMBED_SOURCE="$src/apps/examples/embed.c" > "$out/consumer.log" 2>&1 &&
+   cmake --build "$out/consumer" >> "$out/consumer.log" 2>&1; then
+    ok "find_package(mvr) builds embed (static and shared)"
+    "$out/consumer/embed_static" --demo stereo --out "$out/static" > /dev/null && cmp_layers "$out/static" "installed static" || bad "installed static embed"
+    LD_LIBRARY_PATH="$prefix/lib" "$out/consumer/embed_shared" --demo stereo --out "$out/shared" > /dev/null &&
+        cmp_layers "$out/shared" "installed libmvr.so" || bad "installed shared embed"
+    readelf -d "$out/consumer/embed_shared" | grep -q 'libmvr.so' && ok "embed_shared needs libmvr.so" || bad "embed_shared does not use libmvr.so"
+else
+    bad "the consumer project does not build"; tail -30 "$out/consumer.log"
+fi
+gles=$(dirname "$(find /usr/include -name gl3.h -path '*GLES3*' | head -1)")/..
+if cc -std=c11 "$src/apps/examples/embed.c" -I"$gles" $(PKG_CONFIG_PATH="$prefix/lib/pkgconfig" pkg-config --cflags --libs mvr-static) \
+        -o "$out/embed_pc" 2> "$out/pc.log"; then
+    "$out/embed_pc" --demo stereo --out "$out/pc" > /dev/null && cmp_layers "$out/pc" "pkg-config mvr-static" || bad "pkg-config embed"
+else
+    bad "cc with pkg-config mvr-static"; cat "$out/pc.log"
+fi
+exit $fail
