@@ -30,6 +30,12 @@ cmp_layers() { # prefix label
 # 2. pure C
 cxx=$(nm -u "$build/libmvr_core.a" "$build/libmvr_gl.a" 2>/dev/null | grep -E ' U (_Z|__cxa_|__gxx_|_Unwind_Resume)' || true)
 [ -z "$cxx" ] && ok "mvr_core and mvr_gl need no C++ symbol" || bad "C++ symbols needed: $cxx"
+# no global state (no symbol in writable .data or .bss: tables are const),
+# no exit, no printing to stdout / stderr (messages go through the logger)
+globals=$(objdump -t "$build/libmvr_core.a" "$build/libmvr_gl.a" | awk '$0 ~ / \.(bss|data)[ .]/ && $0 !~ /data\.rel\.ro/')
+[ -z "$globals" ] && ok "no writable globals in mvr_core / mvr_gl" || bad "writable globals: $globals"
+calls=$(nm -u "$build/libmvr_core.a" "$build/libmvr_gl.a" | grep -E ' U (exit|_exit|abort|printf|vprintf|puts|putchar|perror|stdout|stderr)$' || true)
+[ -z "$calls" ] && ok "no exit, printf, puts, perror, stdout or stderr in mvr_core / mvr_gl" || bad "the libraries call: $calls"
 readelf -d "$build/embed" | grep -q 'libstdc++' && bad "embed needs libstdc++" || ok "embed does not need libstdc++"
 link="$build/CMakeFiles/embed.dir/link.txt"
 if [ -f "$link" ]; then
