@@ -271,6 +271,11 @@ typedef struct pass_context {
     const mvr_view_set *view_set;
 } pass_context;
 
+static bool visible_in_pass(const mvr_renderer *r, const pass_context *pc, uint32_t draw)
+{
+    return visible_in_views(r, pc->first_view, pc->views, draw);
+}
+
 typedef struct blend_key {
     double distance;
     uint32_t position;           /* in the blend list */
@@ -285,14 +290,49 @@ static int compare_blend_keys(const void *pa, const void *pb)
     return a->position < b->position ? -1 : (a->position > b->position);
 }
 
+/* A view's eye relative to the view set's origin. */
+static mvr_dvec3 view_eye(const mvr_view_set *vs, uint32_t view)
+{
+    const mvr_view_desc *v = &vs->views[view];
+    return mvr_dvec3_sub(mvr_dvec3_make(v->position[0], v->position[1], v->position[2]), vs->origin);
+}
+
+static double blend_distance(const mvr_draw *d, mvr_dvec3 eye)
+{
+    return mvr_dvec3_length(mvr_dvec3_sub(mvr_dvec3_make(d->center[0], d->center[1], d->center[2]), eye));
+}
+
+/* Whether any view of the pass needs another order than the centroid
+ * order: some pair of consecutive blended draws (both drawn in the pass)
+ * that the view sees front to back. The centroid order is then not sorted
+ * by that view's distances, so its exact order differs. */
+static bool blend_orders_diverge(const mvr_renderer *r, const pass_context *pc)
+{
+    const mvr_frame *f = &r->frame;
+    for (uint32_t v = pc->first_view; v < pc->first_view + pc->views; ++v) {
+        mvr_dvec3 eye = view_eye(pc->view_set, v);
+        double prev = INFINITY;
+        for (uint32_t i = 0; i < f->pass_count[MVR_PASS_BLEND]; ++i) {
+            uint32_t pos = f->pass_first[MVR_PASS_BLEND] + i;
+            if (!visible_in_pass(r, pc, pos))
+                continue;
+            double d = blend_distance(&f->draws[pos], eye);
+            if (d > prev)
+                return true;
+            prev = d;
+        }
+    }
+    return false;
+}
+
 /* Per-view transparency order: the blend list sorted by distance from the
- * pass's one view (relative to the origin, in double, as the shared order
- * is from the origin). Returns NULL when the shared order applies. */
+ * pass's one view (relative to the origin, in double, as the centroid
+ * order is from the origin). Returns NULL when the centroid order applies. */
 static const blend_key *per_view_blend_order(mvr_renderer *r, const pass_context *pc)
 {
     const mvr_frame *f = &r->frame;
     uint32_t n = f->pass_count[MVR_PASS_BLEND];
-    if (!r->per_view_blend_order || pc->views != 1 || n < 2)
+    if (r->blend_policy == MVR_TRANSPARENCY_ORDER_CENTROID || pc->views != 1 || n < 2)
         return NULL;
     if (n > r->blend_order_cap) {
         void *p = realloc(r->blend_order, (size_t)n * sizeof(blend_key));
@@ -302,23 +342,15 @@ static const blend_key *per_view_blend_order(mvr_renderer *r, const pass_context
         r->blend_order_cap = n;
     }
     blend_key *keys = r->blend_order;
-    const mvr_view_desc *v = &pc->view_set->views[pc->first_view];
-    mvr_dvec3 eye = mvr_dvec3_sub(mvr_dvec3_make(v->position[0], v->position[1], v->position[2]),
-                                  pc->view_set->origin);
+    mvr_dvec3 eye = view_eye(pc->view_set, pc->first_view);
     for (uint32_t i = 0; i < n; ++i) {
-        const mvr_draw *d = &f->draws[f->pass_first[MVR_PASS_BLEND] + i];
-        mvr_dvec3 c = mvr_dvec3_make(d->center[0], d->center[1], d->center[2]);
-        keys[i].distance = mvr_dvec3_length(mvr_dvec3_sub(c, eye));
+        keys[i].distance = blend_distance(&f->draws[f->pass_first[MVR_PASS_BLEND] + i], eye);
         keys[i].position = i;
     }
     qsort(keys, n, sizeof *keys, compare_blend_keys);
     return keys;
 }
 
-static bool visible_in_pass(const mvr_renderer *r, const pass_context *pc, uint32_t draw)
-{
-    return visible_in_views(r, pc->first_view, pc->views, draw);
-}
 
 /* The features MVR_FORCE_FEATURES=inert adds to a draw's key: each compiles
  * code in that cannot change this draw's pixels. A disabled texture
@@ -566,10 +598,6 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
             if (!views->views[v].disabled)
                 r->stats.culled += r->vis.culled[v];
     }
-    /* per-view transparency order needs a pass per view where there is
-     * something to order */
-    if (r->per_view_blend_order && r->frame.pass_count[MVR_PASS_BLEND] > 0)
-        path = MVR_VIEW_PATH_LOOP;
     /* multisampling resolves one view at a time */
     bool msaa = t->desc.samples > 1;
     if (msaa)
@@ -685,8 +713,34 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
         pc.compact = lay.compact[c];
         pc.compact_next = 0;
         pc.last_program = NULL;
+        /* blended draws: the centroid order serves every view of a
+         * multiview pass unless they disagree (auto) or per_view asks */
+        bool split_blend = mv_pass && r->frame.pass_count[MVR_PASS_BLEND] > 0 &&
+                           r->blend_policy != MVR_TRANSPARENCY_ORDER_CENTROID;
+        if (split_blend) {
+            bool diverged = blend_orders_diverge(r, &pc);
+            r->stats.blend_diverged_chunks += diverged;
+            split_blend = diverged || r->blend_policy == MVR_TRANSPARENCY_ORDER_PER_VIEW;
+        }
         for (int k = 0; k < MVR_PASS_KIND_COUNT && res == MVR_OK; ++k)
-            res = draw_list(&pc, (mvr_pass_kind)k);
+            if (!(split_blend && k == MVR_PASS_BLEND))
+                res = draw_list(&pc, (mvr_pass_kind)k);
+        /* the views' own blend passes, into their layers and depth: after the
+         * multiview pass, as a loop pass would draw them */
+        for (uint32_t v = ch->base; split_blend && res == MVR_OK && v < ch->base + ch->count; ++v) {
+            GLuint layer_fbo = 0;
+            res = mvr_target_framebuffer(t, v, 0, &layer_fbo);
+            if (res != MVR_OK)
+                break;
+            mvr_state_draw_framebuffer(st, layer_fbo);
+            pc.num_views = 0;
+            pc.first_view = v;
+            pc.views = 1;
+            pc.view_base = (int32_t)(v - block * VIEWS_PER_BLOCK);
+            pc.last_program = NULL; /* the loop variant of each program */
+            res = draw_list(&pc, MVR_PASS_BLEND);
+            r->stats.blend_fallback_passes++;
+        }
         if (msaa) {
             /* resolve the view's samples into its layer (same rectangle) */
             const mvr_viewport *vp = &ch->viewport;

@@ -32,7 +32,7 @@ const char *mvr_transparency_order_name(mvr_transparency_order order)
 {
     switch (order) {
     case MVR_TRANSPARENCY_ORDER_AUTO: return "auto";
-    case MVR_TRANSPARENCY_ORDER_SHARED: return "shared";
+    case MVR_TRANSPARENCY_ORDER_CENTROID: return "centroid";
     case MVR_TRANSPARENCY_ORDER_PER_VIEW: return "per_view";
     }
     return NULL;
@@ -171,7 +171,7 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
     r->material_path = env_material_path(desc->material_path, &r->logger);
     r->force_inert_features = env_is("MVR_FORCE_FEATURES", "inert");
     r->culling = !desc->disable_culling && !env_is("MVR_CULLING", "off");
-    r->per_view_blend_order = desc->transparency_order == MVR_TRANSPARENCY_ORDER_PER_VIEW;
+    r->blend_policy = desc->transparency_order;
     const mvr_caps *c = &r->ctx->caps;
     r->reversed_z = depth_mode == MVR_DEPTH_MODE_AUTO ? clip_control : depth_mode == MVR_DEPTH_MODE_REVERSED_Z;
     r->ubo_alignment = (uint32_t)(c->limits.uniform_buffer_offset_alignment > 0
@@ -478,8 +478,7 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
 
     mvr_frame_stats *st = &r->stats;
     st->view_path = r->path_ran ? r->path_ran : path;
-    st->transparency_order =
-        r->per_view_blend_order ? MVR_TRANSPARENCY_ORDER_PER_VIEW : MVR_TRANSPARENCY_ORDER_SHARED;
+    st->transparency_order = r->blend_policy;
     st->program_binds = r->state.counters.program_binds;
     st->texture_binds = r->state.counters.texture_binds;
     st->ubo_range_binds = r->state.counters.ubo_range_binds;

@@ -122,7 +122,7 @@ struct mvr_renderer {
     mvr_gpu_scene gpu;
     mvr_frame frame;
     bool culling;
-    bool per_view_blend_order;   /* transparency_order PER_VIEW: loop passes, each its own order */
+    mvr_transparency_order blend_policy;
     mvr_view_path path_ran;      /* set by the frame: the path it took (0 before) */
     void *blend_order;           /* per-view order of the blend list (scratch) */
     size_t blend_order_cap;

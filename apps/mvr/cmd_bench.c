@@ -179,9 +179,9 @@ static void add_config(bench_config *list, uint32_t *n, mvr_view_path vp, mvr_ma
         return;
     }
     const char *aa = ss == 0 ? "msaa4x" : ss > 1 ? (ss == 2 ? "ss2x2" : "ss4x4") : "noaa";
-    const char *ord = order == MVR_TRANSPARENCY_ORDER_PER_VIEW ? "per_view" : "shared";
+    const char *ord = mvr_transparency_order_name(order);
     snprintf(c->name, sizeof c->name, "%s/%s/%s%s%s", mvr_view_path_name(vp), mvr_material_path_name(mp), aa,
-             order == MVR_TRANSPARENCY_ORDER_PER_VIEW ? "/" : "", order == MVR_TRANSPARENCY_ORDER_PER_VIEW ? ord : "");
+             order != MVR_TRANSPARENCY_ORDER_AUTO ? "/" : "", order != MVR_TRANSPARENCY_ORDER_AUTO ? ord : "");
     snprintf(c->group, sizeof c->group, "%s/%s", aa, ord);
 }
 
@@ -199,17 +199,19 @@ static uint32_t make_matrix(bool full, bench_config *out)
     const mvr_material_path mps[2] = {MVR_MATERIAL_PATH_ARRAYS, MVR_MATERIAL_PATH_PER_MATERIAL};
     if (!full) {
         for (int v = 0; v < 3; ++v)
-            add_config(out, &n, vps[v], mps[0], 1, MVR_TRANSPARENCY_ORDER_SHARED, false);
+            add_config(out, &n, vps[v], mps[0], 1, MVR_TRANSPARENCY_ORDER_AUTO, false);
         for (int v = 0; v < 2; ++v)
-            add_config(out, &n, vps[v], mps[1], 1, MVR_TRANSPARENCY_ORDER_SHARED, false);
-        add_config(out, &n, MVR_VIEW_PATH_AUTO, mps[0], 0, MVR_TRANSPARENCY_ORDER_SHARED, false);
-        add_config(out, &n, MVR_VIEW_PATH_AUTO, mps[0], 2, MVR_TRANSPARENCY_ORDER_SHARED, false);
-        add_config(out, &n, MVR_VIEW_PATH_AUTO, mps[0], 1, MVR_TRANSPARENCY_ORDER_PER_VIEW, false);
+            add_config(out, &n, vps[v], mps[1], 1, MVR_TRANSPARENCY_ORDER_AUTO, false);
+        add_config(out, &n, MVR_VIEW_PATH_AUTO, mps[0], 0, MVR_TRANSPARENCY_ORDER_AUTO, false);
+        add_config(out, &n, MVR_VIEW_PATH_AUTO, mps[0], 2, MVR_TRANSPARENCY_ORDER_AUTO, false);
+        add_config(out, &n, MVR_VIEW_PATH_MULTIVIEW, mps[0], 1, MVR_TRANSPARENCY_ORDER_CENTROID, false);
+        add_config(out, &n, MVR_VIEW_PATH_MULTIVIEW, mps[0], 1, MVR_TRANSPARENCY_ORDER_PER_VIEW, false);
         return n;
     }
     const uint32_t aas[3] = {1, 0, 2};
-    const mvr_transparency_order orders[2] = {MVR_TRANSPARENCY_ORDER_SHARED, MVR_TRANSPARENCY_ORDER_PER_VIEW};
-    for (int o = 0; o < 2; ++o)
+    const mvr_transparency_order orders[3] = {MVR_TRANSPARENCY_ORDER_AUTO, MVR_TRANSPARENCY_ORDER_CENTROID,
+                                              MVR_TRANSPARENCY_ORDER_PER_VIEW};
+    for (int o = 0; o < 3; ++o)
         for (int a = 0; a < 3; ++a)
             for (int m = 0; m < 2; ++m)
                 for (int v = 0; v < 3; ++v)
@@ -453,8 +455,8 @@ int mvr_cmd_bench(int argc, char **argv)
     mvr_context *ctx = NULL;
     mvr_scene *scene = NULL;
     mvr_view_set *vs = NULL;
-    bench_config configs[48];
-    bench_result results[48];
+    bench_config configs[64];
+    bench_result results[64];
     memset(results, 0, sizeof results);
     uint32_t count = make_matrix(o.full, configs);
     rc = MVR_EXIT_FAILURE;
@@ -499,12 +501,12 @@ int mvr_cmd_bench(int argc, char **argv)
     if (!has_blend) {
         uint32_t kept = 0;
         for (uint32_t k = 0; k < count; ++k)
-            if (configs[k].reference || configs[k].order != MVR_TRANSPARENCY_ORDER_PER_VIEW)
+            if (configs[k].reference || configs[k].order == MVR_TRANSPARENCY_ORDER_AUTO)
                 configs[kept++] = configs[k];
         size_t l = strlen(omitted);
         if (kept < count)
             snprintf(omitted + l, sizeof omitted - l,
-                     "%u configurations with per-view transparency order left out: the scene draws nothing blended",
+                     "%u configurations with another transparency order left out: the scene draws nothing blended",
                      count - kept);
         count = kept;
     }

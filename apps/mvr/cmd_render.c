@@ -64,9 +64,10 @@ static void render_usage(FILE *out)
             "                      env MVR_MATERIAL_PATH)\n"
             "  --depth D           auto | reversed_z | standard (default: auto = reversed_z\n"
             "                      where GL_EXT_clip_control exists; env MVR_DEPTH)\n"
-            "  --transparency T    auto | shared | per_view: blended draws sorted once for all\n"
-            "                      views (from their centroid) or by each view's own eye\n"
-            "                      (a pass per view) (default: auto = shared)\n"
+            "  --transparency T    auto | centroid | per_view: blended draws in one order for\n"
+            "                      all views of a multiview pass (from their centroid), or each\n"
+            "                      view's own (its blend pass apart); auto: own order only where\n"
+            "                      the views disagree (default: auto)\n"
             "  --supersample N     render N x N samples per pixel into a float target and\n"
             "                      average them (1..4; default: 1)\n"
             "  --msaa N            N samples per pixel (multisampling; resolves view by view,\n"
@@ -243,7 +244,7 @@ static int parse(int argc, char **argv, render_options *o)
                     found = true;
                 }
             if (!found) {
-                fprintf(stderr, "mvr render: --transparency takes auto, shared or per_view\n");
+                fprintf(stderr, "mvr render: --transparency takes auto, centroid or per_view\n");
                 return MVR_EXIT_USAGE;
             }
             ++i;

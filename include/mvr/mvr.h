@@ -498,17 +498,23 @@ typedef enum mvr_depth_mode {
 } mvr_depth_mode;
 const char *mvr_depth_mode_name(mvr_depth_mode mode);
 
-/* Order of blended (transparent) draws, back to front. */
+/* Order of blended (transparent) draws, back to front by object centre. A
+ * multiview pass draws one order for all its views: the centroid order,
+ * by distance from the view set's origin (the views' centroid unless set).
+ * Where a view needs another order, its blended draws go in a pass of its
+ * own after the multiview pass has drawn the opaque ones (same depth
+ * buffer). A loop pass has one view, so its exact order costs nothing. */
 typedef enum mvr_transparency_order {
-    MVR_TRANSPARENCY_ORDER_AUTO = 0,  /* shared */
-    /* Sorted once per frame by distance from the view set's origin (the
-     * views' centroid): one order for every view, as a multiview pass needs.
-     * Views far from the centroid may see nearby transparent objects in a
-     * different order than their own distances give. */
-    MVR_TRANSPARENCY_ORDER_SHARED,
-    /* Each view sorts by distance from its own eye: exact per view (for
-     * sorting by object centre), at the price of one pass per view for any
-     * frame with blended draws (the loop path then runs whatever was asked). */
+    /* exact per view, falling back to per-view blend passes only in the
+     * multiview chunks whose views disagree on the order (detected from the
+     * sort keys: a pair of blended draws whose order flips between views) */
+    MVR_TRANSPARENCY_ORDER_AUTO = 0,
+    /* the centroid order everywhere, loop passes included: never an extra
+     * pass; views far from the centroid may see nearby transparent objects
+     * in the wrong order */
+    MVR_TRANSPARENCY_ORDER_CENTROID,
+    /* every view its own order: per-view blend passes in every multiview
+     * chunk that draws blended objects */
     MVR_TRANSPARENCY_ORDER_PER_VIEW
 } mvr_transparency_order;
 const char *mvr_transparency_order_name(mvr_transparency_order order);
@@ -621,7 +627,9 @@ typedef struct mvr_frame_stats {
     uint32_t program_binary_loads;   /* variants linked from the binary cache */
     uint32_t program_binary_rejects; /* cache entries found corrupt, stale or refused (rebuilt) */
     mvr_depth_mode depth_mode;   /* the depth mode that ran (never AUTO) */
-    mvr_transparency_order transparency_order; /* the order that ran (never AUTO) */
+    mvr_transparency_order transparency_order; /* the policy that ran */
+    uint32_t blend_diverged_chunks; /* multiview chunks whose views disagree on the blend order */
+    uint32_t blend_fallback_passes; /* per-view blend passes after a multiview pass */
     mvr_material_path material_path; /* the material path that ran */
     uint32_t texture_groups;     /* texture arrays of the scene's batch plan (array path) */
     uint32_t culled;             /* summed over views: draws outside a view's frustum */
