@@ -35,6 +35,7 @@ static const feature_define mesh_defines[] = {
 
 static const feature_define composite_defines[] = {
     {MVR_FEATURE_SRGB_ENCODE, "MVR_SRGB_ENCODE"},
+    {MVR_FEATURE_DOWNSAMPLE, "MVR_DOWNSAMPLE"},
 };
 
 typedef struct program_files {

@@ -56,6 +56,7 @@ typedef enum mvr_mesh_feature {
 /* Feature bits of the composite program. */
 typedef enum mvr_composite_feature {
     MVR_FEATURE_SRGB_ENCODE = 1u << 0,      /* exact piecewise sRGB encode on output */
+    MVR_FEATURE_DOWNSAMPLE = 1u << 1,       /* box-filter factor x factor texels (supersampling resolve) */
     MVR_COMPOSITE_FEATURE_ALL_ = (1u << 1) - 1u
 } mvr_composite_feature;
 

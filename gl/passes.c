@@ -554,6 +554,58 @@ static mvr_result draw_list(pass_context *pc, mvr_pass_kind kind)
     return MVR_OK;
 }
 
+/* The supersampling resolve: per chunk of views, one pass (multiview over
+ * the chunk's layers, or one per layer on the loop path) drawing each
+ * layer's pixels as the mean of their factor x factor samples, with the
+ * output's sRGB encode (by the GL for sRGB arrays, by the shader for UNORM
+ * ones). Same shader code per layer on either path: the same bytes. */
+static mvr_result resolve_supersampled(mvr_renderer *r, mvr_target *t, const view_chunk *chunks,
+                                       uint32_t chunk_count, bool multiview)
+{
+    const mvr_gl_api_table *gl = r->gl;
+    mvr_state_cache *st = &r->state;
+    if (!r->empty_vao)
+        gl->GenVertexArrays(1, &r->empty_vao); /* attributeless draws still need one (core GL) */
+    mvr_state_depth(st, false, GL_ALWAYS, GL_FALSE);
+    mvr_state_blend(st, false, GL_ONE, GL_ZERO, GL_ONE, GL_ZERO);
+    mvr_state_cull(st, false, GL_CCW);
+    mvr_state_color_mask(st, true);
+    mvr_state_scissor_test(st, false);
+    mvr_state_vao(st, r->empty_vao);
+    mvr_state_texture(st, MVR_UNIT_COMPOSITE_SOURCE, GL_TEXTURE_2D_ARRAY, t->ss_color);
+    mvr_state_sampler(st, MVR_UNIT_COMPOSITE_SOURCE, 0);
+    for (uint32_t c = 0; c < chunk_count; ++c) {
+        const view_chunk *ch = &chunks[c];
+        bool mv_pass = multiview && ch->count > 1;
+        /* the loop path: one pass per layer (a chunk there is one view) */
+        for (uint32_t k = 0; k < (mv_pass ? 1u : ch->count); ++k) {
+            uint32_t base = ch->base + k;
+            GLuint fbo = 0;
+            mvr_result res = mvr_target_output_framebuffer(t, base, mv_pass ? ch->count : 0, &fbo);
+            if (res != MVR_OK)
+                return res;
+            mvr_shader_variant v;
+            memset(&v, 0, sizeof v);
+            v.program = MVR_PROGRAM_COMPOSITE;
+            v.features = MVR_FEATURE_DOWNSAMPLE | (t->internal_format == GL_RGBA8 ? MVR_FEATURE_SRGB_ENCODE : 0u);
+            v.num_views = mv_pass ? ch->count : 0;
+            mvr_program_entry *e = NULL;
+            res = mvr_renderer_program(r, &v, &e);
+            if (res != MVR_OK)
+                return res;
+            mvr_state_program(st, e->program);
+            gl->Uniform1i(gl->GetUniformLocation(e->program, "mvr_layer_base"), (GLint)base);
+            gl->Uniform1i(gl->GetUniformLocation(e->program, "mvr_factor"), (GLint)t->desc.supersample);
+            mvr_state_draw_framebuffer(st, fbo);
+            mvr_state_viewport(st, ch->viewport.x, ch->viewport.y, (GLsizei)ch->viewport.width,
+                               (GLsizei)ch->viewport.height);
+            gl->DrawArrays(GL_TRIANGLES, 0, 3);
+            r->stats.resolves++;
+        }
+    }
+    return MVR_OK;
+}
+
 /* The per-draw baseline re-binds textures and uniform ranges every draw. */
 static void st_rebind_setup(mvr_renderer *r)
 {
@@ -636,7 +688,10 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
     pc.groups_used = groups_used;
     pc.view_set = views;
     st_rebind_setup(r);
-    if (t->internal_format == GL_RGBA8)
+    /* a supersampled target draws linear floats; its resolve encodes */
+    uint32_t factor = mvr_target_factor(t);
+    bool encode_in_mesh = t->internal_format == GL_RGBA8 && factor == 1;
+    if (encode_in_mesh)
         pc.output_features |= MVR_FEATURE_SRGB_OUTPUT;
     if (desc->tone_map == MVR_TONE_MAP_ACES)
         pc.output_features |= MVR_FEATURE_TONEMAP_ACES;
@@ -658,7 +713,7 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
         mvr_state_framebuffer_srgb(st, true);
     float clear[4];
     memcpy(clear, desc->clear_color, sizeof clear);
-    if (t->internal_format == GL_RGBA8)
+    if (encode_in_mesh)
         for (int c = 0; c < 3; ++c)
             clear[c] = srgb_encode(clear[c]);
     float clear_depth = r->reversed_z ? 0.0f : 1.0f;
@@ -676,15 +731,16 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
         if (res != MVR_OK)
             break;
         mvr_state_draw_framebuffer(st, msaa ? t->msaa_fbo : fbo);
-        mvr_state_viewport(st, ch->viewport.x, ch->viewport.y, (GLsizei)ch->viewport.width,
-                           (GLsizei)ch->viewport.height);
+        /* views are drawn factor times the layer size on supersampled targets */
+        GLint vx = ch->viewport.x * (GLint)factor, vy = ch->viewport.y * (GLint)factor;
+        GLsizei vw = (GLsizei)(ch->viewport.width * factor), vh = (GLsizei)(ch->viewport.height * factor);
+        mvr_state_viewport(st, vx, vy, vw, vh);
         /* clear only the view's viewport: other views may share the layer */
         bool partial = ch->viewport.x != 0 || ch->viewport.y != 0 || ch->viewport.width != t->desc.width ||
                        ch->viewport.height != t->desc.height;
         if (partial) {
             mvr_state_scissor_test(st, true);
-            r->gl->Scissor(ch->viewport.x, ch->viewport.y, (GLsizei)ch->viewport.width,
-                           (GLsizei)ch->viewport.height);
+            r->gl->Scissor(vx, vy, vw, vh);
         }
         mvr_state_color_mask(st, true);
         mvr_state_depth(st, true, r->reversed_z ? GL_GREATER : GL_LESS, GL_TRUE);
@@ -766,6 +822,8 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
             ps->texture_groups = pc.groups_used_count;
         }
     }
+    if (res == MVR_OK && factor > 1)
+        res = resolve_supersampled(r, t, chunks, chunk_count, multiview);
     st->rebind_always = false;
     free(chunks);
     free(compact);

@@ -236,6 +236,8 @@ void mvr_renderer_destroy(mvr_renderer *r)
     mvr_visibility_free(&r->vis);
     free(r->program_cache_dir);
     free(r->compact_scratch);
+    if (r->empty_vao)
+        r->gl->DeleteVertexArrays(1, &r->empty_vao);
     free(r->blend_order);
     free(r);
 }
@@ -490,6 +492,7 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
     st->program_binary_rejects = r->binary_rejects_this_frame;
     st->sanitized = mvr_scene_sanitized_count(scene);
     st->samples = target->desc.samples > 1 ? target->desc.samples : 1;
+    st->supersample = mvr_target_factor(target);
     st->depth_mode = r->reversed_z ? MVR_DEPTH_MODE_REVERSED_Z : MVR_DEPTH_MODE_STANDARD;
     st->material_path = r->material_path;
     st->texture_groups = r->gpu.arrays ? r->gpu.plan.group_count : 0;
@@ -586,7 +589,7 @@ mvr_result mvr_renderer_read_layer(mvr_renderer *r, mvr_target *t, uint32_t laye
     mvr_state_invalidate(&r->state);
     /* One layer attached alone: reading from a multiview framebuffer is an error. */
     GLuint fbo = 0;
-    mvr_result res = mvr_target_framebuffer(t, layer, 0, &fbo);
+    mvr_result res = mvr_target_output_framebuffer(t, layer, 0, &fbo);
     if (res != MVR_OK)
         return res;
     const mvr_gl_api_table *gl = r->gl;

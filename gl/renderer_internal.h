@@ -83,6 +83,7 @@ typedef struct mvr_ring {
 
 typedef struct mvr_fbo_entry {
     uint32_t base, count;        /* layers; count 0 = a single-layer (non-multiview) FBO */
+    bool output;                 /* the color array alone (supersampled targets: the resolve's) */
     GLuint fbo;
 } mvr_fbo_entry;
 
@@ -97,6 +98,10 @@ struct mvr_target {
     /* multisampling (desc.samples > 1): one view's color and depth, resolved
      * into its layer after its pass */
     GLuint msaa_fbo, msaa_color, msaa_depth;
+    /* supersampling (desc.supersample > 1): views are drawn into these (N
+     * times the size, linear float) and resolved into the color array */
+    GLuint ss_color;
+    GLenum ss_format;
 };
 
 typedef struct mvr_timer {
@@ -153,6 +158,7 @@ struct mvr_renderer {
      * consecutive, so culling does not cut instanced runs apart */
     uint8_t *compact_scratch;
     size_t compact_scratch_cap;
+    GLuint empty_vao;            /* for attributeless full-screen passes */
 };
 
 mvr_result mvr_renderer_fail(mvr_renderer *r, mvr_result result, const char *fmt, ...) MVR_PRINTF(3, 4);
@@ -165,8 +171,14 @@ mvr_result mvr_gpu_scene_sync(mvr_renderer *r, const mvr_scene *scene);
 void mvr_gpu_scene_release(mvr_renderer *r);
 
 /* targets.c: a framebuffer for layers [base, base + count) (multiview when
- * count > 0) or one layer (count = 0), created on first use. */
+ * count > 0) or one layer (count = 0), created on first use: the one views
+ * are drawn into (color and depth; a supersampled target's own arrays), or
+ * with output the color array alone (what is read back, and what a
+ * supersample resolve writes). */
 mvr_result mvr_target_framebuffer(mvr_target *t, uint32_t base, uint32_t count, GLuint *out);
+mvr_result mvr_target_output_framebuffer(mvr_target *t, uint32_t base, uint32_t count, GLuint *out);
+/* The size views are drawn at: the layer size times the supersample factor. */
+uint32_t mvr_target_factor(const mvr_target *t);
 
 /* passes.c */
 mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, const mvr_view_set *views,

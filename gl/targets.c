@@ -78,6 +78,20 @@ mvr_result mvr_target_create(mvr_renderer *r, const mvr_target_desc *d, mvr_targ
         (desc.color_format == MVR_COLOR_FORMAT_RGBA32F && !c->ext.ext_color_buffer_float))
         return mvr_renderer_fail(r, MVR_ERROR_UNSUPPORTED, "mvr_target_create: %s is not renderable on %s",
                                  mvr_color_format_name(desc.color_format), c->renderer);
+    if (desc.supersample > 4 || (desc.supersample > 1 && desc.samples > 1))
+        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT,
+                                 "mvr_target_create: supersample %u (1..4, and not with samples)", desc.supersample);
+    uint32_t factor = desc.supersample > 1 ? desc.supersample : 1;
+    if ((uint64_t)desc.width * factor > (uint64_t)c->limits.max_texture_size ||
+        (uint64_t)desc.height * factor > (uint64_t)c->limits.max_texture_size)
+        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT,
+                                 "mvr_target_create: %ux%u supersampled %u times exceeds GL_MAX_TEXTURE_SIZE %d",
+                                 desc.width, desc.height, factor, c->limits.max_texture_size);
+    GLenum ss_format = desc.color_format == MVR_COLOR_FORMAT_RGBA32F || !c->ext.ext_color_buffer_half_float
+                           ? GL_RGBA32F : GL_RGBA16F;
+    if (factor > 1 && ss_format == GL_RGBA32F && !c->ext.ext_color_buffer_float)
+        return mvr_renderer_fail(r, MVR_ERROR_UNSUPPORTED,
+                                 "mvr_target_create: supersampling needs a renderable float format on %s", c->renderer);
     if (desc.samples > 1 && desc.samples > (uint32_t)c->limits.max_samples)
         return mvr_renderer_fail(r, MVR_ERROR_UNSUPPORTED, "mvr_target_create: %u samples; GL_MAX_SAMPLES is %d",
                                  desc.samples, c->limits.max_samples);
@@ -101,11 +115,19 @@ mvr_result mvr_target_create(mvr_renderer *r, const mvr_target_desc *d, mvr_targ
                          (GLsizei)desc.height, (GLsizei)desc.layers);
         t->owns_color = true;
     }
+    if (factor > 1) {
+        /* linear float samples: the resolve averages light, then encodes */
+        t->ss_format = ss_format;
+        gl->GenTextures(1, &t->ss_color);
+        mvr_state_texture(&r->state, 0, GL_TEXTURE_2D_ARRAY, t->ss_color);
+        gl->TexStorage3D(GL_TEXTURE_2D_ARRAY, 1, ss_format, (GLsizei)(desc.width * factor),
+                         (GLsizei)(desc.height * factor), (GLsizei)desc.layers);
+    }
     /* depth: 32-bit float (reversed-Z keeps its precision with distance) */
     gl->GenTextures(1, &t->depth);
     mvr_state_texture(&r->state, 0, GL_TEXTURE_2D_ARRAY, t->depth);
-    gl->TexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_DEPTH_COMPONENT32F, (GLsizei)desc.width,
-                     (GLsizei)desc.height, (GLsizei)desc.layers);
+    gl->TexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_DEPTH_COMPONENT32F, (GLsizei)(desc.width * factor),
+                     (GLsizei)(desc.height * factor), (GLsizei)desc.layers);
     if (mvr_gl_check(r->ctx, "mvr_target_create", true) != MVR_OK) {
         mvr_result res = mvr_renderer_fail(r, MVR_ERROR_GL, "%s (external texture %u: a %s 2D array of at "
                                            "least %ux%u and %llu layers?)",
@@ -145,6 +167,10 @@ void mvr_target_destroy(mvr_target *t)
     }
     mvr_state_forget_texture(&r->state, t->depth);
     gl->DeleteTextures(1, &t->depth);
+    if (t->ss_color) {
+        mvr_state_forget_texture(&r->state, t->ss_color);
+        gl->DeleteTextures(1, &t->ss_color);
+    }
     if (t->msaa_fbo) {
         mvr_state_forget_framebuffer(&r->state, t->msaa_fbo);
         gl->DeleteFramebuffers(1, &t->msaa_fbo);
@@ -159,10 +185,28 @@ uint32_t mvr_target_color_texture(const mvr_target *t)
     return t ? t->color : 0;
 }
 
+uint32_t mvr_target_factor(const mvr_target *t)
+{
+    return t->ss_color ? t->desc.supersample : 1;
+}
+
+static mvr_result target_framebuffer(mvr_target *t, uint32_t base, uint32_t count, bool output, GLuint *out);
+
 mvr_result mvr_target_framebuffer(mvr_target *t, uint32_t base, uint32_t count, GLuint *out)
 {
+    return target_framebuffer(t, base, count, false, out);
+}
+
+mvr_result mvr_target_output_framebuffer(mvr_target *t, uint32_t base, uint32_t count, GLuint *out)
+{
+    /* without supersampling the color array views are drawn into is the output */
+    return target_framebuffer(t, base, count, t->ss_color != 0, out);
+}
+
+static mvr_result target_framebuffer(mvr_target *t, uint32_t base, uint32_t count, bool output, GLuint *out)
+{
     for (uint32_t i = 0; i < t->fbo_count; ++i) {
-        if (t->fbos[i].base == base && t->fbos[i].count == count) {
+        if (t->fbos[i].base == base && t->fbos[i].count == count && t->fbos[i].output == output) {
             *out = t->fbos[i].fbo;
             return MVR_OK;
         }
@@ -180,20 +224,26 @@ mvr_result mvr_target_framebuffer(mvr_target *t, uint32_t base, uint32_t count, 
     GLuint fbo = 0;
     gl->GenFramebuffers(1, &fbo);
     mvr_state_draw_framebuffer(&r->state, fbo);
-    GLint level = (GLint)t->desc.external_level;
-    GLint layer = (GLint)(t->desc.external_base_layer + base);
+    /* the real level and base layer: the application's array may be a level
+     * or a slice of a larger texture; a supersampled target draws views into
+     * its own array and writes the application's only in the resolve */
+    bool into_color = output || !t->ss_color;
+    GLuint color = into_color ? t->color : t->ss_color;
+    GLint level = into_color ? (GLint)t->desc.external_level : 0;
+    GLint layer = (GLint)((into_color ? t->desc.external_base_layer : 0) + base);
     if (count > 0) {
-        /* the real level and base layer: the application's array may be a
-         * level or a slice of a larger texture */
-        gl->FramebufferTextureMultiviewOVR(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, t->color, level,
-                                           layer, (GLsizei)count);
-        gl->FramebufferTextureMultiviewOVR(GL_DRAW_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, t->depth, 0,
-                                           (GLint)base, (GLsizei)count);
+        gl->FramebufferTextureMultiviewOVR(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, color, level, layer,
+                                           (GLsizei)count);
+        if (!output)
+            gl->FramebufferTextureMultiviewOVR(GL_DRAW_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, t->depth, 0,
+                                               (GLint)base, (GLsizei)count);
     } else {
-        gl->FramebufferTextureLayer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, t->color, level, layer);
-        gl->FramebufferTextureLayer(GL_DRAW_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, t->depth, 0, (GLint)base);
+        gl->FramebufferTextureLayer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, color, level, layer);
+        if (!output)
+            gl->FramebufferTextureLayer(GL_DRAW_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, t->depth, 0, (GLint)base);
     }
     t->fbos[t->fbo_count].base = base;
+    t->fbos[t->fbo_count].output = output;
     t->fbos[t->fbo_count].count = count;
     t->fbos[t->fbo_count++].fbo = fbo;
     char where[96];

@@ -530,7 +530,7 @@ int mvr_cmd_render(int argc, char **argv)
     }
     uint32_t n = mvr_view_set_count(views);
     uint32_t ss = o.supersample;
-    mvr_target_desc td = {o.width * ss, o.height * ss, n, o.format, 0, 0, 0, o.msaa};
+    mvr_target_desc td = {o.width * ss, o.height * ss, n, o.format, 0, 0, 0, o.msaa, 0};
     if (mvr_target_create(renderer, &td, &target) != MVR_OK) {
         fprintf(stderr, "mvr render: %s\n", mvr_renderer_last_error(renderer));
         goto done;

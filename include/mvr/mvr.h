@@ -577,6 +577,12 @@ typedef struct mvr_target_desc {
      * attaches a multisampled array to a multiview framebuffer). Refused
      * above GL_MAX_SAMPLES or where the color format cannot be multisampled. */
     uint32_t samples;
+    /* Supersampling: N x N samples per pixel (0 or 1 = none, at most 4).
+     * Views are drawn into a linear float array N times the size (every
+     * view path, multiview included) and resolved into the layers by a
+     * box filter pass (one multiview pass per chunk of views). Not with
+     * samples > 1. */
+    uint32_t supersample;
 } mvr_target_desc;
 
 mvr_result mvr_target_create(mvr_renderer *renderer, const mvr_target_desc *desc, mvr_target **out);
@@ -635,7 +641,9 @@ typedef struct mvr_frame_stats {
     uint32_t culled;             /* summed over views: draws outside a view's frustum */
     uint32_t sanitized;          /* the scene's repaired degenerate values (mvr_scene_sanitized_count) */
     uint32_t samples;            /* the target's samples per pixel (1 = no multisampling) */
-    uint32_t resolves;           /* multisample resolves (one per view) */
+    uint32_t resolves;           /* multisample resolves (one per view) and supersample resolve
+                                    passes (one per chunk of views) */
+    uint32_t supersample;        /* the target's samples per pixel side (1 = none) */
     /* Sub-passes drawn, summed over passes: [0] opaque, [1] alpha-masked,
      * [2] blended (transparent). A pass skips a list with nothing to draw in
      * it, state changes included: a scene without transparency runs no

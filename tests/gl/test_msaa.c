@@ -1,7 +1,9 @@
-/* gl: multisampled targets. Each view is drawn into a multisampled
- * renderbuffer and resolved into its layer; the result is closer to a 4x4
- * supersampled reference than the plain render, pixels inside surfaces do
- * not change, and every requested view path gives the same bytes. */
+/* gl: anti-aliased targets. Multisampled: each view drawn into a
+ * multisampled renderbuffer and resolved into its layer; closer to a 4x4
+ * supersampled reference than the plain render, pixels inside surfaces
+ * unchanged, every requested view path the same bytes. Supersampled: views
+ * drawn into a float array N times the size and resolved by a box-filter
+ * pass, one multiview pass per chunk; multiview and loop the same bytes. */
 #include "stress/stress_util.h"
 
 #define MW 96u
@@ -22,7 +24,7 @@ static uint8_t *render_stereo(mvr_test_state *t, mvr_context *ctx, mvr_view_path
     mvr_target *target = NULL;
     uint32_t w = MW * supersample, h = MH * supersample;
     mvr_target_desc td = {w, h, 2, supersample > 1 ? MVR_COLOR_FORMAT_RGBA32F : MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0,
-                          samples};
+                          samples, 0};
     bool ok = mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK &&
               mvr_renderer_render(r, s, vs, target, NULL) == MVR_OK;
     CHECK_MSG(t, ok, "%s", r ? mvr_renderer_last_error(r) : "renderer");
@@ -116,11 +118,114 @@ static void msaa_is_closer_to_the_reference(mvr_test_state *t)
     mvr_renderer *r = NULL;
     mvr_target *target = NULL;
     CHECK(t, mvr_renderer_create(&rd, &r, NULL) == MVR_OK);
-    mvr_target_desc td = {16, 16, 1, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, (uint32_t)caps->limits.max_samples * 2};
+    mvr_target_desc td = {16, 16, 1, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, (uint32_t)caps->limits.max_samples * 2, 0};
     CHECK(t, mvr_target_create(r, &td, &target) == MVR_ERROR_UNSUPPORTED && target == NULL);
     CHECK_MSG(t, strstr(mvr_renderer_last_error(r), "GL_MAX_SAMPLES") != NULL, "%s", mvr_renderer_last_error(r));
     mvr_renderer_destroy(r);
     mvr_context_destroy(ctx);
 }
 
-MVR_TEST_MAIN(TEST(msaa_is_closer_to_the_reference))
+
+static uint8_t *render_demo_target(mvr_test_state *t, mvr_context *ctx, const char *demo, uint32_t views,
+                                   mvr_view_path path, const mvr_target_desc *td, mvr_frame_stats *st)
+{
+    mvr_scene *s = NULL;
+    mvr_view_set *vs = NULL;
+    mvr_demo_desc dd = {views, td->width, td->height, {0}};
+    if (mvr_demo_create(demo, &dd, &s, &vs, NULL) != MVR_OK) {
+        CHECK(t, 0);
+        return NULL;
+    }
+    mvr_renderer_desc rd = {.context = ctx, .view_path = path};
+    mvr_renderer *r = NULL;
+    mvr_target *target = NULL;
+    bool ok = mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, td, &target) == MVR_OK &&
+              mvr_renderer_render(r, s, vs, target, NULL) == MVR_OK;
+    CHECK_MSG(t, ok, "%s: %s", demo, r ? mvr_renderer_last_error(r) : "renderer");
+    size_t layer = (size_t)td->width * td->height * 4;
+    uint8_t *out = ok ? malloc(layer * views) : NULL;
+    for (uint32_t k = 0; ok && k < views; ++k)
+        ok = mvr_renderer_read_layer(r, target, k, MVR_READBACK_RGBA8, out + layer * k, layer) == MVR_OK;
+    if (ok && st)
+        mvr_renderer_get_stats(r, st);
+    if (!ok) {
+        free(out);
+        out = NULL;
+    }
+    mvr_target_destroy(target);
+    mvr_renderer_destroy(r);
+    mvr_view_set_destroy(vs);
+    mvr_scene_destroy(s);
+    return out;
+}
+
+static void supersampling_on_every_path(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    bool mv = mvr_context_caps(ctx)->ext.ovr_multiview2;
+    uint32_t max_views = (uint32_t)mvr_context_caps(ctx)->limits.max_views_ovr;
+    const char *demos[2] = {"stereo", "city"};
+    const uint32_t counts[2] = {2, 8};
+    for (int d = 0; d < 2; ++d)
+        for (int c = 0; c < 2; ++c) {
+            mvr_target_desc td = {MW, MH, counts[c], MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 2};
+            mvr_frame_stats sm, sl;
+            uint8_t *loop = render_demo_target(t, ctx, demos[d], counts[c], MVR_VIEW_PATH_LOOP, &td, &sl);
+            uint8_t *multi = mv ? render_demo_target(t, ctx, demos[d], counts[c], MVR_VIEW_PATH_MULTIVIEW, &td, &sm)
+                                : NULL;
+            size_t bytes = (size_t)MW * MH * 4 * counts[c];
+            if (loop) {
+                CHECK_EQ_INT(t, sl.supersample, 2);
+                CHECK_EQ_INT(t, sl.resolves, counts[c]); /* one pass per layer */
+            }
+            if (loop && multi) {
+                CHECK_MSG(t, memcmp(loop, multi, bytes) == 0, "%s x%u: supersampled multiview and loop differ",
+                          demos[d], counts[c]);
+                CHECK_EQ_INT(t, sm.view_path, MVR_VIEW_PATH_MULTIVIEW);
+                /* one resolve pass per multiview chunk, whatever the views */
+                CHECK_EQ_INT(t, sm.resolves, (counts[c] + max_views - 1) / max_views);
+            }
+            free(loop);
+            free(multi);
+        }
+    /* closer to the 4x4 reference than plain; an RGBA8 target (the resolve
+     * encodes) within one step of the sRGB one (the GL encodes) */
+    const size_t pixels = (size_t)MW * MH * 2;
+    mvr_target_desc plain_td = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0};
+    mvr_target_desc ss_td = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 2};
+    mvr_target_desc ss8_td = {MW, MH, 2, MVR_COLOR_FORMAT_RGBA8, 0, 0, 0, 0, 2};
+    uint8_t *plain = render_demo_target(t, ctx, "stereo", 2, MVR_VIEW_PATH_AUTO, &plain_td, NULL);
+    uint8_t *ss = render_demo_target(t, ctx, "stereo", 2, MVR_VIEW_PATH_AUTO, &ss_td, NULL);
+    uint8_t *ss8 = render_demo_target(t, ctx, "stereo", 2, MVR_VIEW_PATH_AUTO, &ss8_td, NULL);
+    uint8_t *ref = render_stereo(t, ctx, MVR_VIEW_PATH_LOOP, 0, 4, NULL);
+    if (plain && ss && ss8 && ref) {
+        double e_plain = rmse(plain, ref, pixels), e_ss = rmse(ss, ref, pixels);
+        printf("  RMSE to the 4x4 reference: plain %.5f, 2x2 supersampled %.5f\n", e_plain, e_ss);
+        CHECK_MSG(t, e_ss < 0.7 * e_plain, "2x2 %.5f is not closer to the reference than plain %.5f", e_ss, e_plain);
+        int worst = 0;
+        for (size_t i = 0; i < pixels * 4; ++i) {
+            int dlt = abs((int)ss[i] - (int)ss8[i]);
+            worst = dlt > worst ? dlt : worst;
+        }
+        CHECK_MSG(t, worst <= 1, "RGBA8 and sRGB supersampled targets differ by %d", worst);
+    }
+    free(plain);
+    free(ss);
+    free(ss8);
+    free(ref);
+    /* refused: more than 4, or with multisampling */
+    mvr_renderer_desc rd = {.context = ctx};
+    mvr_renderer *r = NULL;
+    mvr_target *target = NULL;
+    CHECK(t, mvr_renderer_create(&rd, &r, NULL) == MVR_OK);
+    mvr_target_desc bad1 = {16, 16, 1, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 5};
+    mvr_target_desc bad2 = {16, 16, 1, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 4, 2};
+    CHECK(t, mvr_target_create(r, &bad1, &target) == MVR_ERROR_INVALID_ARGUMENT && !target);
+    CHECK(t, mvr_target_create(r, &bad2, &target) == MVR_ERROR_INVALID_ARGUMENT && !target);
+    mvr_renderer_destroy(r);
+    mvr_context_destroy(ctx);
+}
+
+MVR_TEST_MAIN(TEST(msaa_is_closer_to_the_reference), TEST(supersampling_on_every_path))

@@ -154,7 +154,7 @@ static inline void *stress_render(mvr_test_state *t, mvr_context *ctx, mvr_scene
         CHECK_MSG(t, 0, "renderer: %s", err.message);
         return NULL;
     }
-    mvr_target_desc td = {o->width, o->height, n, o->format, 0, 0, 0, 0};
+    mvr_target_desc td = {o->width, o->height, n, o->format, 0, 0, 0, 0, 0};
     mvr_render_desc desc = {{o->clear[0], o->clear[1], o->clear[2], o->clear[3]}, 1.0f, MVR_TONE_MAP_NONE};
     bool ok = mvr_target_create(r, &td, &target) == MVR_OK && mvr_renderer_render(r, scene, vs, target, &desc) == MVR_OK;
     CHECK_MSG(t, ok, "render: %s", mvr_renderer_last_error(r));
