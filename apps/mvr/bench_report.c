@@ -261,10 +261,10 @@ bool bench_plot(const bench_run *run)
             "plot_it = \"plot 'results.csv' skip 1 using (ran($11)):(ran($17)) with points ls 1 title 'configuration', "
             "'pareto.dat' using 2:3 with linespoints ls 2 title 'Pareto front', "
             "'pareto.dat' using 2:3:1 with labels offset 1,0.8 left font ',9' notitle\"\n"
-            "set terminal png size 1000,700\n"
+            "set terminal png size 1000,700 noenhanced\n" /* underscores in names are not subscripts */
             "set output 'plot.png'\n"
             "eval plot_it\n"
-            "set terminal svg size 1000,700\n"
+            "set terminal svg size 1000,700 noenhanced\n"
             "set output 'plot.svg'\n"
             "eval plot_it\n",
             run->scene_name, run->views, run->width, run->height, run->renderer);
