@@ -178,6 +178,12 @@ bool mvr_shader_variant_valid(const mvr_shader_variant *v, char *why, size_t why
                        (unsigned)v->material_capacity, MVR_SHADER_MAX_MATERIAL_CAPACITY);
         return false;
     }
+    if (v->draw_stride && (v->draw_stride < 144 || v->draw_stride % 16 || v->draw_stride > 4096 ||
+                           v->program != MVR_PROGRAM_MESH)) {
+        mvr_str_format(why, why_size, "draw stride %u invalid (mesh only, a multiple of 16 from 144 to 4096)",
+                       (unsigned)v->draw_stride);
+        return false;
+    }
     if (v->draw_capacity > MVR_SHADER_MAX_DRAW_CAPACITY || (v->draw_capacity && v->program != MVR_PROGRAM_MESH)) {
         mvr_str_format(why, why_size, "draw capacity %u invalid (mesh only, at most %d)",
                        (unsigned)v->draw_capacity, MVR_SHADER_MAX_DRAW_CAPACITY);
@@ -228,6 +234,9 @@ bool mvr_shader_source(const mvr_shader_variant *v, mvr_shader_stage stage, mvr_
                        v->material_capacity ? (unsigned)v->material_capacity
                                             : (unsigned)MVR_SHADER_DEFAULT_MATERIAL_CAPACITY);
         mvr_sb_appendf(out, "#define MVR_DRAW_CAPACITY %u\n", v->draw_capacity ? (unsigned)v->draw_capacity : 1u);
+        /* vec4s of padding after the 144-byte block: its std140 array stride
+         * then equals the ring's block stride */
+        mvr_sb_appendf(out, "#define MVR_DRAW_PAD %u\n", v->draw_stride > 144 ? (v->draw_stride - 144u) / 16u : 0u);
         mvr_sb_appendf(out,
                        "#define MVR_DIRECTIONAL_LIGHTS %u\n#define MVR_POINT_LIGHTS %u\n"
                        "#define MVR_SPOT_LIGHTS %u\n",
@@ -257,7 +266,7 @@ bool mvr_shader_source(const mvr_shader_variant *v, mvr_shader_stage stage, mvr_
 void mvr_shader_variant_name(const mvr_shader_variant *v, char *out, size_t size)
 {
     const char *program = mvr_program_kind_name(v->program);
-    char views[16], materials[16] = "", draws[16] = "";
+    char views[16], materials[16] = "", draws[16] = "", stride[16] = "";
     if (v->num_views > 0)
         mvr_str_format(views, sizeof views, "mv%u", (unsigned)v->num_views);
     else
@@ -266,9 +275,11 @@ void mvr_shader_variant_name(const mvr_shader_variant *v, char *out, size_t size
         mvr_str_format(materials, sizeof materials, "-m%u", (unsigned)v->material_capacity);
     if (v->draw_capacity > 1)
         mvr_str_format(draws, sizeof draws, "-i%u", (unsigned)v->draw_capacity);
-    mvr_str_format(out, size, "%s-%s-f%05x-l%u.%u.%u%s%s", program ? program : "invalid", views,
+    if (v->draw_stride > 144)
+        mvr_str_format(stride, sizeof stride, "-s%u", (unsigned)v->draw_stride);
+    mvr_str_format(out, size, "%s-%s-f%05x-l%u.%u.%u%s%s%s", program ? program : "invalid", views,
                    (unsigned)v->features, v->directional_lights, v->point_lights, v->spot_lights,
-                   materials, draws);
+                   materials, draws, stride);
 }
 
 /* All bits of a program except those that exclude each other. */

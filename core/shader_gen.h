@@ -70,6 +70,9 @@ typedef struct mvr_shader_variant {
     uint16_t material_capacity; /* materials per table block (mesh); 0 = 64 */
     uint16_t draw_capacity;     /* per-draw blocks in the draw block, indexed by gl_InstanceID
                                    (instancing; mesh); 0 = 1 */
+    uint16_t draw_stride;       /* bytes between per-draw blocks: 144 (std140 size of the block),
+                                   or more where the GL's uniform offset alignment asks (padding
+                                   makes the array's stride match); 0 = 144 */
 } mvr_shader_variant;
 
 #define MVR_SHADER_DEFAULT_MATERIAL_CAPACITY 64

@@ -205,8 +205,8 @@ static mvr_result upload_frame(mvr_renderer *r, const mvr_view_set *views, const
         lay->compact[c] = n ? 0 : -1;
         compact_bytes += n;
     }
-    if (compact_bytes)
-        total = rel_compact + compact_bytes;
+    if (compact_bytes) /* and a tail: an instanced draw's range covers a whole block array */
+        total = rel_compact + compact_bytes + (GLsizeiptr)r->draw_capacity * r->draw_stride;
     if (!static_current)
         upload_static(r);
     bool reallocated = false;
@@ -388,6 +388,7 @@ static mvr_result bind_program(pass_context *pc, uint32_t features)
         v.spot_lights = (uint8_t)f->light_counts[2];
         v.material_capacity = (uint16_t)r->material_capacity;
         v.draw_capacity = (uint16_t)r->draw_capacity;
+        v.draw_stride = r->draw_capacity > 1 && r->draw_stride > MVR_DRAW_BLOCK_SIZE ? (uint16_t)r->draw_stride : 0;
         mvr_result res = mvr_renderer_program(r, &v, &e);
         if (res != MVR_OK)
             return res;
@@ -482,7 +483,8 @@ static mvr_result draw_list(pass_context *pc, mvr_pass_kind kind)
         mvr_state_blend(st, false, GL_ONE, GL_ZERO, GL_ONE, GL_ZERO);
     }
     /* the draw block's declared size: a bound range must cover it */
-    GLsizeiptr draw_range = (GLsizeiptr)r->draw_capacity * MVR_DRAW_BLOCK_SIZE;
+    GLsizeiptr draw_range = r->draw_capacity > 1 ? (GLsizeiptr)r->draw_capacity * r->draw_stride
+                                                 : (GLsizeiptr)MVR_DRAW_BLOCK_SIZE;
     const blend_key *order = kind == MVR_PASS_BLEND ? per_view_blend_order(r, pc) : NULL;
     for (uint32_t i = order ? 0 : first_visible; i < f->pass_count[kind]; ++i) {
         uint32_t pos = f->pass_first[kind] + (order ? order[i].position : i);

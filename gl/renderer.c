@@ -176,6 +176,15 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
     r->reversed_z = depth_mode == MVR_DEPTH_MODE_AUTO ? clip_control : depth_mode == MVR_DEPTH_MODE_REVERSED_Z;
     r->ubo_alignment = (uint32_t)(c->limits.uniform_buffer_offset_alignment > 0
                                       ? c->limits.uniform_buffer_offset_alignment : 256);
+    /* MVR_UBO_ALIGNMENT=N (a power of two above the GL's): lays uniform data
+     * out as a GL with that alignment needs (tests of the padded layouts
+     * desktop GPUs use, on a GL that needs less) */
+    const char *align_env = getenv("MVR_UBO_ALIGNMENT");
+    if (align_env) {
+        unsigned long a = strtoul(align_env, NULL, 10);
+        if (a > r->ubo_alignment && a <= 4096 && (a & (a - 1)) == 0)
+            r->ubo_alignment = (uint32_t)a;
+    }
     uint32_t cap = (uint32_t)c->limits.max_uniform_block_size / MVR_MATERIAL_BLOCK_SIZE;
     r->material_capacity = cap > MVR_SHADER_MAX_MATERIAL_CAPACITY ? MVR_SHADER_MAX_MATERIAL_CAPACITY : cap;
     if (r->material_capacity == 0) {
@@ -193,13 +202,15 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
         }
         memcpy(r->program_cache_dir, desc->program_cache_dir, n + 1);
     }
-    /* instancing: the draw block becomes an array indexed by gl_InstanceID,
-     * whose std140 stride (144) must be the ring's block stride, and whose
+    /* instancing: the draw block becomes an array indexed by gl_InstanceID
+     * whose std140 stride is the ring's block stride (144 bytes, padded up
+     * to the uniform offset alignment: 256 on many desktop GPUs), and whose
      * size fits the GL's uniform block limit */
+    r->draw_stride = (uint32_t)((MVR_DRAW_BLOCK_SIZE + r->ubo_alignment - 1) / r->ubo_alignment * r->ubo_alignment);
     bool instancing = !desc->disable_instancing && !env_is("MVR_INSTANCING", "off") &&
-                      r->material_path != MVR_MATERIAL_PATH_PER_DRAW &&
-                      MVR_DRAW_BLOCK_SIZE % r->ubo_alignment == 0;
-    uint32_t draw_cap = (uint32_t)c->limits.max_uniform_block_size / MVR_DRAW_BLOCK_SIZE;
+                      r->material_path != MVR_MATERIAL_PATH_PER_DRAW && r->draw_stride % 16 == 0 &&
+                      r->draw_stride <= 4096;
+    uint32_t draw_cap = (uint32_t)c->limits.max_uniform_block_size / r->draw_stride;
     if (draw_cap > MVR_SHADER_MAX_DRAW_CAPACITY)
         draw_cap = MVR_SHADER_MAX_DRAW_CAPACITY;
     r->draw_capacity = instancing && draw_cap > 1 ? draw_cap : 1;
@@ -246,7 +257,8 @@ static bool same_variant(const mvr_shader_variant *a, const mvr_shader_variant *
 {
     return a->program == b->program && a->features == b->features && a->num_views == b->num_views &&
            a->directional_lights == b->directional_lights && a->point_lights == b->point_lights &&
-           a->spot_lights == b->spot_lights && a->material_capacity == b->material_capacity;
+           a->spot_lights == b->spot_lights && a->material_capacity == b->material_capacity &&
+           a->draw_capacity == b->draw_capacity && a->draw_stride == b->draw_stride;
 }
 
 mvr_result mvr_renderer_program(mvr_renderer *r, const mvr_shader_variant *v, mvr_program_entry **out)

@@ -121,6 +121,7 @@ struct mvr_renderer {
     uint32_t ubo_alignment;
     uint32_t material_capacity;
     uint32_t draw_capacity;      /* per-draw blocks one instanced draw can read; 1 = no instancing */
+    uint32_t draw_stride;        /* bytes between per-draw blocks (144 aligned up) */
     mvr_state_cache state;
     mvr_program_entry *programs;
     uint32_t program_count, program_cap;

@@ -4,11 +4,16 @@
 
 // One block per draw; an instanced draw reads consecutive blocks by
 // gl_InstanceID (a plain draw has gl_InstanceID 0). std140 gives the struct
-// a 144-byte array stride, the size of one block.
+// a 144-byte array stride, the size of one block, plus MVR_DRAW_PAD vec4s
+// where the GL's uniform offset alignment spaces blocks further apart
+// (256 bytes on many desktop GPUs).
 struct mvr_draw_data {
     mat4 model;              // relative to the view origin
     mat4 normal_matrix;      // inverse-transpose of the model's upper 3x3
     ivec4 info;              // x: material index
+#if MVR_DRAW_PAD > 0
+    vec4 pad[MVR_DRAW_PAD];
+#endif
 };
 layout(std140) uniform mvr_draw {
     mvr_draw_data mvr_draws[MVR_DRAW_CAPACITY];

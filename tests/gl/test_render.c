@@ -729,5 +729,39 @@ static void desktop_and_gles_agree(mvr_test_state *t)
     mvr_context_destroy(desktop);
 }
 
-MVR_TEST_MAIN(TEST(desktop_and_gles_agree), TEST(instancing_changes_calls_not_pixels), TEST(blend_pass_only_where_needed), TEST(dirty_tracking_sends_only_changes), TEST(culling_changes_cost_not_pixels), TEST(color_formats_agree), TEST(stereo_paths_agree), TEST(cube_paths_agree), TEST(city_paths_agree), TEST(ring_paths_agree),
+
+/* Desktop GPUs align uniform buffer offsets to 256 bytes: per-draw blocks
+ * are then 256 apart, and the instanced draw block pads each element to
+ * match (MVR_DRAW_PAD). Emulated here with MVR_UBO_ALIGNMENT=256: the same
+ * pixels and the same instanced runs as with llvmpipe's 16. */
+static void instancing_with_padded_blocks(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    bool have_mv = mvr_context_caps(ctx)->ext.ovr_multiview2;
+    const char *demos[2] = {"city", "stereo"};
+    for (int d = 0; d < 2; ++d)
+        for (int pi = 0; pi < 2; ++pi) {
+            mvr_view_path path = pi == 0 && have_mv ? MVR_VIEW_PATH_MULTIVIEW : MVR_VIEW_PATH_LOOP;
+            rendered native, padded;
+            bool ok = render_demo(t, ctx, demos[d], 2, path, NULL, &native);
+            setenv("MVR_UBO_ALIGNMENT", "256", 1);
+            ok = render_demo(t, ctx, demos[d], 2, path, NULL, &padded) && ok;
+            unsetenv("MVR_UBO_ALIGNMENT");
+            if (ok) {
+                CHECK_MSG(t, count_diff(native.pixels, padded.pixels, (size_t)W * H * 2) == 0,
+                          "%s %s: 256-byte blocks changed pixels", demos[d], mvr_view_path_name(path));
+                CHECK_EQ_INT(t, padded.second.draw_calls, native.second.draw_calls);
+                CHECK_EQ_INT(t, padded.second.instanced_draw_calls, native.second.instanced_draw_calls);
+                if (d == 0)
+                    CHECK(t, padded.second.instanced_draw_calls > 0);
+            }
+            free(native.pixels);
+            free(padded.pixels);
+        }
+    mvr_context_destroy(ctx);
+}
+
+MVR_TEST_MAIN(TEST(instancing_with_padded_blocks), TEST(desktop_and_gles_agree), TEST(instancing_changes_calls_not_pixels), TEST(blend_pass_only_where_needed), TEST(dirty_tracking_sends_only_changes), TEST(culling_changes_cost_not_pixels), TEST(color_formats_agree), TEST(stereo_paths_agree), TEST(cube_paths_agree), TEST(city_paths_agree), TEST(ring_paths_agree),
               TEST(application_texture_array), TEST(bad_targets_are_refused), TEST(disabled_views_are_skipped))
