@@ -596,8 +596,8 @@ static mvr_result resolve_supersampled(mvr_renderer *r, mvr_target *t, const vie
             if (res != MVR_OK)
                 return res;
             mvr_state_program(st, e->program);
-            gl->Uniform1i(gl->GetUniformLocation(e->program, "mvr_layer_base"), (GLint)base);
-            gl->Uniform1i(gl->GetUniformLocation(e->program, "mvr_factor"), (GLint)t->desc.supersample);
+            gl->Uniform1i(e->loc_layer_base, (GLint)base);
+            gl->Uniform1i(e->loc_factor, (GLint)t->desc.supersample);
             mvr_state_draw_framebuffer(st, fbo);
             mvr_state_viewport(st, ch->viewport.x, ch->viewport.y, (GLsizei)ch->viewport.width,
                                (GLsizei)ch->viewport.height);

@@ -291,6 +291,8 @@ mvr_result mvr_renderer_program(mvr_renderer *r, const mvr_shader_variant *v, mv
     e->loc_view_base = r->gl->GetUniformLocation(program, "mvr_view_base");
     e->loc_ambient = r->gl->GetUniformLocation(program, "mvr_ambient");
     e->loc_exposure = r->gl->GetUniformLocation(program, "mvr_exposure");
+    e->loc_layer_base = r->gl->GetUniformLocation(program, "mvr_layer_base");
+    e->loc_factor = r->gl->GetUniformLocation(program, "mvr_factor");
     e->view_base = INT32_MIN;
     e->from_binary = info.from_binary;
     if (info.from_binary)

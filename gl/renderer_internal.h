@@ -15,6 +15,7 @@ typedef struct mvr_program_entry {
     mvr_shader_variant variant;
     GLuint program;
     GLint loc_view_base, loc_ambient, loc_exposure;
+    GLint loc_layer_base, loc_factor;  /* composite programs */
     int32_t view_base;           /* last value set (INT32_MIN = unknown) */
     uint64_t frame_serial;       /* frame whose per-frame uniforms are set */
     bool from_binary;            /* linked from the binary cache */

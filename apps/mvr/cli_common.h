@@ -3,6 +3,7 @@
 #define MVR_CLI_COMMON_H
 
 #include <stdbool.h>
+#include <stdint.h>
 
 #include "mvr/mvr.h"
 
@@ -17,6 +18,9 @@ int cli_context_option(const char *command, int argc, char **argv, int *i, mvr_c
 
 /* Checks the combination; prints and returns false when it is not valid. */
 bool cli_context_check(const char *command, const mvr_context_desc *desc);
+
+/* A decimal number in [lo, hi], the whole string; false otherwise. */
+bool cli_parse_u32(const char *s, uint32_t lo, uint32_t hi, uint32_t *out);
 
 /* Creates path and its parents (mkdir -p); prints what failed. */
 bool cli_make_dirs(const char *command, const char *path);

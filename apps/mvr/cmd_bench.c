@@ -2,7 +2,6 @@
  * material path, anti-aliasing, transparency order, and the reference),
  * each timed over F frames and compared with the reference render. */
 #define _POSIX_C_SOURCE 200809L
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -66,17 +65,6 @@ static void bench_usage(FILE *out)
             "  -h, --help          this text\n");
 }
 
-static bool parse_u32(const char *s, uint32_t lo, uint32_t hi, uint32_t *out)
-{
-    char *end = NULL;
-    errno = 0;
-    unsigned long v = strtoul(s, &end, 10);
-    if (errno || !end || *end || v < lo || v > hi)
-        return false;
-    *out = (uint32_t)v;
-    return true;
-}
-
 static int parse(int argc, char **argv, bench_options *o)
 {
     memset(o, 0, sizeof *o);
@@ -124,16 +112,16 @@ static int parse(int argc, char **argv, bench_options *o)
         if (strcmp(a, "--demo") == 0)
             o->scene.demo = v;
         else if (strcmp(a, "--views") == 0)
-            ok = parse_u32(v, 1, 64, &o->scene.views);
+            ok = cli_parse_u32(v, 1, 64, &o->scene.views);
         else if (strcmp(a, "--frames") == 0)
-            ok = parse_u32(v, 1, 1000, &o->frames);
+            ok = cli_parse_u32(v, 1, 1000, &o->frames);
         else if (strcmp(a, "--warmup") == 0)
-            ok = parse_u32(v, 0, 1000, &o->warmup);
+            ok = cli_parse_u32(v, 0, 1000, &o->warmup);
         else if (strcmp(a, "--out") == 0)
             o->out_dir = v;
         else if (strcmp(a, "--only") == 0) {
             uint32_t k = 0;
-            ok = parse_u32(v, 0, 1000, &k);
+            ok = cli_parse_u32(v, 0, 1000, &k);
             o->only = (int)k;
         } else if (strcmp(a, "--matrix") == 0) {
             ok = strcmp(v, "quick") == 0 || strcmp(v, "full") == 0;

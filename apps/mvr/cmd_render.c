@@ -88,17 +88,6 @@ static void render_usage(FILE *out)
             "  -h, --help          this text\n");
 }
 
-static bool parse_u32(const char *s, uint32_t lo, uint32_t hi, uint32_t *out)
-{
-    char *end = NULL;
-    errno = 0;
-    unsigned long v = strtoul(s, &end, 10);
-    if (errno || !end || *end || v < lo || v > hi)
-        return false;
-    *out = (uint32_t)v;
-    return true;
-}
-
 static int parse(int argc, char **argv, render_options *o)
 {
     memset(o, 0, sizeof *o);
@@ -131,14 +120,14 @@ static int parse(int argc, char **argv, render_options *o)
         } else if (strcmp(a, "--demo") == 0) {
             o->demo = v, ++i;
         } else if (strcmp(a, "--views") == 0) {
-            if (!parse_u32(v, 1, 1024, &o->views)) {
+            if (!cli_parse_u32(v, 1, 1024, &o->views)) {
                 fprintf(stderr, "mvr render: --views takes 1..1024\n");
                 return MVR_EXIT_USAGE;
             }
             ++i;
         } else if (strcmp(a, "--camera") == 0) {
             uint32_t k = 0;
-            if (!parse_u32(v, 0, 1u << 20, &k)) {
+            if (!cli_parse_u32(v, 0, 1u << 20, &k)) {
                 fprintf(stderr, "mvr render: --camera takes a camera node index from 0\n");
                 return MVR_EXIT_USAGE;
             }
@@ -146,7 +135,7 @@ static int parse(int argc, char **argv, render_options *o)
             ++i;
         } else if (strcmp(a, "--scene") == 0) {
             uint32_t k = 0;
-            if (!parse_u32(v, 0, 1u << 20, &k)) {
+            if (!cli_parse_u32(v, 0, 1u << 20, &k)) {
                 fprintf(stderr, "mvr render: --scene takes a scene index from 0\n");
                 return MVR_EXIT_USAGE;
             }
@@ -173,7 +162,7 @@ static int parse(int argc, char **argv, render_options *o)
             }
             ++i;
         } else if (strcmp(a, "--frames") == 0) {
-            if (!parse_u32(v, 1, 100000, &o->frames)) {
+            if (!cli_parse_u32(v, 1, 100000, &o->frames)) {
                 fprintf(stderr, "mvr render: --frames takes 1..100000\n");
                 return MVR_EXIT_USAGE;
             }
@@ -187,7 +176,7 @@ static int parse(int argc, char **argv, render_options *o)
             }
             memcpy(w, v, (size_t)(x - v));
             strcpy(h, x + 1);
-            if (!parse_u32(w, 1, 16384, &o->width) || !parse_u32(h, 1, 16384, &o->height)) {
+            if (!cli_parse_u32(w, 1, 16384, &o->width) || !cli_parse_u32(h, 1, 16384, &o->height)) {
                 fprintf(stderr, "mvr render: --size takes WxH with 1..16384 each\n");
                 return MVR_EXIT_USAGE;
             }
@@ -225,13 +214,13 @@ static int parse(int argc, char **argv, render_options *o)
         } else if (strcmp(a, "--reference") == 0) {
             o->reference = true;
         } else if (strcmp(a, "--msaa") == 0) {
-            if (!parse_u32(v, 0, 64, &o->msaa)) {
+            if (!cli_parse_u32(v, 0, 64, &o->msaa)) {
                 fprintf(stderr, "mvr render: --msaa takes a sample count\n");
                 return MVR_EXIT_USAGE;
             }
             ++i;
         } else if (strcmp(a, "--supersample") == 0) {
-            if (!parse_u32(v, 1, 4, &o->supersample)) {
+            if (!cli_parse_u32(v, 1, 4, &o->supersample)) {
                 fprintf(stderr, "mvr render: --supersample takes 1 to 4\n");
                 return MVR_EXIT_USAGE;
             }
