@@ -214,11 +214,11 @@ static void build_room(builder *b)
          0.3, 1, 1, 1);
 
     /* lights: a dim sun through the (implied) window, a ceiling bulb, a spot on the spheres */
-    mvr_light_desc sun = {MVR_LIGHT_DIRECTIONAL, {1.0f, 0.95f, 0.85f}, 1.5f, 0, 0, 0};
+    mvr_light_desc sun = {MVR_LIGHT_DIRECTIONAL, {1.0f, 0.95f, 0.85f}, 1.5f, 0, 0, 0, false, 0};
     light(b, &sun, 0, 3, 0, 0.4, -1.0, -0.5);
-    mvr_light_desc bulb = {MVR_LIGHT_POINT, {1.0f, 0.9f, 0.75f}, 6.0f, 12.0f, 0, 0};
+    mvr_light_desc bulb = {MVR_LIGHT_POINT, {1.0f, 0.9f, 0.75f}, 6.0f, 12.0f, 0, 0, false, 0};
     light(b, &bulb, 0.3, 2.6, -0.5, 0, -1, 0);
-    mvr_light_desc spot = {MVR_LIGHT_SPOT, {0.8f, 0.9f, 1.0f}, 25.0f, 0, 0.25f, 0.45f};
+    mvr_light_desc spot = {MVR_LIGHT_SPOT, {0.8f, 0.9f, 1.0f}, 25.0f, 0, 0.25f, 0.45f, false, 0};
     light(b, &spot, -1.5, 2.8, 1.5, 0.6, -1.2, -1.1);
     float ambient[3] = {0.04f, 0.04f, 0.05f};
     mvr_scene_set_ambient(b->scene, ambient);
@@ -279,7 +279,7 @@ static void build_city(builder *b)
             double px = ((double)x - (GRID - 1) * 0.5) * spacing, pz = ((double)z - (GRID - 1) * 0.5) * spacing;
             node(b, boxes[h % (TEXTURED + PLAIN)], px, 0, pz, AXIS_Y, 0, 2.0, height, 2.0);
         }
-    mvr_light_desc sun = {MVR_LIGHT_DIRECTIONAL, {1.0f, 0.96f, 0.9f}, 3.0f, 0, 0, 0};
+    mvr_light_desc sun = {MVR_LIGHT_DIRECTIONAL, {1.0f, 0.96f, 0.9f}, 3.0f, 0, 0, 0, false, 0};
     light(b, &sun, 0, 50, 0, -0.5, -1.0, -0.3);
     float ambient[3] = {0.12f, 0.14f, 0.18f};
     mvr_scene_set_ambient(b->scene, ambient);
@@ -312,9 +312,9 @@ static void build_ring_object(builder *b)
     chrome.base_color_factor[0] = chrome.base_color_factor[1] = chrome.base_color_factor[2] = 0.95f;
     chrome.roughness_factor = 0.15f;
     node(b, mesh(b, SHAPE_SPHERE, 0.25f, 0, 0, material(b, &chrome), false, "chrome"), 0, 1.35, 0, AXIS_Y, 0, 1, 1, 1);
-    mvr_light_desc key = {MVR_LIGHT_DIRECTIONAL, {1.0f, 0.97f, 0.92f}, 2.5f, 0, 0, 0};
+    mvr_light_desc key = {MVR_LIGHT_DIRECTIONAL, {1.0f, 0.97f, 0.92f}, 2.5f, 0, 0, 0, false, 0};
     light(b, &key, 0, 5, 0, -0.4, -1.0, -0.6);
-    mvr_light_desc fill = {MVR_LIGHT_POINT, {0.6f, 0.7f, 1.0f}, 20.0f, 0, 0, 0};
+    mvr_light_desc fill = {MVR_LIGHT_POINT, {0.6f, 0.7f, 1.0f}, 20.0f, 0, 0, 0, false, 0};
     light(b, &fill, 2.5, 3.0, 2.5, 0, -1, 0);
     float ambient[3] = {0.08f, 0.08f, 0.1f};
     mvr_scene_set_ambient(b->scene, ambient);

@@ -161,6 +161,7 @@ static void pack_lights(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin)
     memset(f->light_counts, 0, sizeof f->light_counts);
     f->lights_dropped = 0;
     float blocks[3][MVR_SHADER_MAX_LIGHTS_PER_TYPE][16];
+    mvr_frame_light info[3][MVR_SHADER_MAX_LIGHTS_PER_TYPE];
     for (uint32_t i = 0; i < s->node_count; ++i) {
         const scene_node *n = &s->nodes[i];
         if (n->light == MVR_NO_INDEX)
@@ -176,6 +177,14 @@ static void pack_lights(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin)
         mvr_dvec3 p = mvr_dvec3_sub(mvr_dmat4_transform_point(&f->world[i], mvr_dvec3_make(0, 0, 0)), origin);
         mvr_dvec3 d = mvr_dvec3_normalize(mvr_dmat4_transform_dir(&f->world[i], mvr_dvec3_make(0, 0, -1)),
                                           mvr_dvec3_make(0, 0, -1));
+        mvr_frame_light *li = &info[type][f->light_counts[type] - 1];
+        li->type = l->type;
+        li->position = p;
+        li->direction = d;
+        li->range = l->range;
+        li->outer_cone_angle = l->outer_cone_angle;
+        li->cast_shadows = l->cast_shadows;
+        li->layers = l->layers ? l->layers : 0xffffffffu;
         b[0] = (float)p.x;
         b[1] = (float)p.y;
         b[2] = (float)p.z;
@@ -195,9 +204,10 @@ static void pack_lights(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin)
         }
     }
     uint8_t *dst = f->light_blocks;
+    mvr_frame_light *out = f->lights;
     for (int t = 0; t < 3; ++t)
         for (uint32_t k = 0; k < f->light_counts[t]; ++k, dst += MVR_LIGHT_BLOCK_SIZE)
-            memcpy(dst, blocks[t][k], MVR_LIGHT_BLOCK_SIZE);
+            memcpy(dst, blocks[t][k], MVR_LIGHT_BLOCK_SIZE), *out++ = info[t][k];
 }
 
 mvr_result mvr_frame_build(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin, uint32_t stride,

@@ -43,6 +43,18 @@ typedef struct mvr_draw {
     double radius;
 } mvr_draw;
 
+/* What shadows and light masks need of a light, in the order of the light
+ * blocks (directional, point, spot). */
+typedef struct mvr_frame_light {
+    mvr_light_type type;
+    mvr_dvec3 position;          /* relative to the origin */
+    mvr_dvec3 direction;         /* unit, the way the light points */
+    double range;                /* 0 = infinite */
+    double outer_cone_angle;     /* spot */
+    bool cast_shadows;
+    uint32_t layers;             /* render layers (never 0: 0 means all) */
+} mvr_frame_light;
+
 typedef struct mvr_frame {
     mvr_draw *draws;
     uint32_t draw_count, draw_cap;
@@ -53,6 +65,7 @@ typedef struct mvr_frame {
     uint8_t light_blocks[3 * MVR_SHADER_MAX_LIGHTS_PER_TYPE * MVR_LIGHT_BLOCK_SIZE];
     uint32_t light_counts[3];    /* directional, point, spot (blocks in that order) */
     uint32_t lights_dropped;     /* beyond MVR_SHADER_MAX_LIGHTS_PER_TYPE of a type */
+    mvr_frame_light lights[3 * MVR_SHADER_MAX_LIGHTS_PER_TYPE];
     mvr_dmat4 *world;
     uint32_t world_cap;
 } mvr_frame;

@@ -31,6 +31,9 @@ static const feature_define mesh_defines[] = {
     {MVR_FEATURE_SRGB_OUTPUT, "MVR_SRGB_OUTPUT"},
     {MVR_FEATURE_TONEMAP_ACES, "MVR_TONEMAP_ACES"},
     {MVR_FEATURE_TONEMAP_PBR_NEUTRAL, "MVR_TONEMAP_PBR_NEUTRAL"},
+    {MVR_FEATURE_SHADOWS, "MVR_SHADOWS"},
+    {MVR_FEATURE_LIGHT_MASKS, "MVR_LIGHT_MASKS"},
+    {MVR_FEATURE_SHADOW_CASTER, "MVR_SHADOW_CASTER"},
 };
 
 static const feature_define composite_defines[] = {
@@ -66,7 +69,7 @@ static bool program_files_of(mvr_program_kind program, program_files *out)
     out->shared[0] = "common.glsl";
     switch (program) {
     case MVR_PROGRAM_MESH:
-        out->vertex_shared = "views.glsl";
+        out->shared[1] = "views.glsl";
         out->stage[MVR_SHADER_STAGE_VERTEX] = "mesh.vert.glsl";
         out->stage[MVR_SHADER_STAGE_FRAGMENT] = "mesh.frag.glsl";
         return true;
@@ -237,6 +240,8 @@ bool mvr_shader_source(const mvr_shader_variant *v, mvr_shader_stage stage, mvr_
         /* vec4s of padding after the 144-byte block: its std140 array stride
          * then equals the ring's block stride */
         mvr_sb_appendf(out, "#define MVR_DRAW_PAD %u\n", v->draw_stride > 144 ? (v->draw_stride - 144u) / 16u : 0u);
+        mvr_sb_appendf(out, "#define MVR_MAX_SHADOW_LAYERS %u\n#define MVR_MAX_LIGHTS %u\n",
+                       (unsigned)MVR_SHADER_MAX_SHADOW_LAYERS, 3u * MVR_SHADER_MAX_LIGHTS_PER_TYPE);
         mvr_sb_appendf(out,
                        "#define MVR_DIRECTIONAL_LIGHTS %u\n#define MVR_POINT_LIGHTS %u\n"
                        "#define MVR_SPOT_LIGHTS %u\n",
@@ -287,7 +292,8 @@ static uint32_t all_compatible_features(mvr_program_kind program)
 {
     uint32_t mask = mvr_shader_feature_mask(program);
     if (program == MVR_PROGRAM_MESH)
-        mask &= ~(uint32_t)(MVR_FEATURE_ALPHA_BLEND | MVR_FEATURE_TONEMAP_PBR_NEUTRAL);
+        mask &= ~(uint32_t)(MVR_FEATURE_ALPHA_BLEND | MVR_FEATURE_TONEMAP_PBR_NEUTRAL |
+                            MVR_FEATURE_SHADOW_CASTER);
     return mask;
 }
 

@@ -46,7 +46,10 @@ typedef enum mvr_mesh_feature {
     MVR_FEATURE_SRGB_OUTPUT = 1u << 16,     /* shader encodes sRGB (UNORM targets) */
     MVR_FEATURE_TONEMAP_ACES = 1u << 17,
     MVR_FEATURE_TONEMAP_PBR_NEUTRAL = 1u << 18,
-    MVR_MESH_FEATURE_ALL_ = (1u << 19) - 1u
+    MVR_FEATURE_SHADOWS = 1u << 19,         /* lights read shadow map layers (PCF) */
+    MVR_FEATURE_LIGHT_MASKS = 1u << 20,     /* per-view light masks (render layers) */
+    MVR_FEATURE_SHADOW_CASTER = 1u << 21,   /* depth only: the shadow map pass (alpha test at most) */
+    MVR_MESH_FEATURE_ALL_ = (1u << 22) - 1u
 } mvr_mesh_feature;
 
 #define MVR_TEXTURE_FEATURES                                                                        \
@@ -61,6 +64,7 @@ typedef enum mvr_composite_feature {
 } mvr_composite_feature;
 
 #define MVR_SHADER_MAX_LIGHTS_PER_TYPE 8
+#define MVR_SHADER_MAX_SHADOW_LAYERS 16
 
 typedef struct mvr_shader_variant {
     mvr_program_kind program;

@@ -12,7 +12,8 @@
 
 /* Views per uniform block (MVR_MAX_VIEWS of shaders/views.glsl). */
 #define VIEWS_PER_BLOCK 64u
-#define VIEW_BLOCK_SIZE (VIEWS_PER_BLOCK * (MVR_VIEW_MATRIX_SIZE + MVR_VIEW_EYE_SIZE))
+#define VIEW_INFO_SIZE 16u /* one ivec4 of mvr_view_info: the view's light mask */
+#define VIEW_BLOCK_SIZE (VIEWS_PER_BLOCK * (MVR_VIEW_MATRIX_SIZE + MVR_VIEW_EYE_SIZE + VIEW_INFO_SIZE))
 
 typedef struct view_chunk {
     uint32_t base;               /* first view (= layer) */
@@ -73,6 +74,8 @@ typedef struct frame_layout {
     GLintptr draw_materials;         /* per-draw baseline: a material block per draw */
     GLsizeiptr draw_material_stride;
     GLintptr *compact;               /* per chunk: its compacted blocks in this segment, or -1 */
+    GLintptr shadow_views;           /* the shadow pass's view block: caster matrices */
+    GLintptr shadow_block;           /* the receivers' mvr_shadows block */
 } frame_layout;
 
 /* Whether a draw (by position in the frame's list) is visible in any of the
@@ -207,6 +210,11 @@ static mvr_result upload_frame(mvr_renderer *r, const mvr_view_set *views, const
     }
     if (compact_bytes) /* and a tail: an instanced draw's range covers a whole block array */
         total = rel_compact + compact_bytes + (GLsizeiptr)r->draw_capacity * r->draw_stride;
+    const mvr_shadow_plan *plan = &r->shadows.plan;
+    GLsizeiptr rel_shadow_views = align_up(total, align);
+    GLsizeiptr rel_shadow_block = align_up(rel_shadow_views + (GLsizeiptr)VIEW_BLOCK_SIZE, align);
+    if (plan->layer_count)
+        total = rel_shadow_block + (GLsizeiptr)MVR_SHADOW_BLOCK_SIZE;
     if (!static_current)
         upload_static(r);
     bool reallocated = false;
@@ -219,6 +227,22 @@ static mvr_result upload_frame(mvr_renderer *r, const mvr_view_set *views, const
     GLintptr seg = r->ring.static_size + (GLintptr)r->ring.current * r->ring.segment_size;
     lay->views = seg;
     lay->draw_materials = seg + rel_materials;
+    lay->shadow_views = seg + rel_shadow_views;
+    lay->shadow_block = seg + rel_shadow_block;
+    if (plan->layer_count) {
+        /* the casters' matrices, as views of the shadow pass; the receivers' block */
+        float casters[MVR_SHADOW_MAX_LAYERS][16];
+        for (uint32_t k = 0; k < plan->layer_count; ++k) {
+            mvr_mat4f m = mvr_dmat4_to_float(&plan->layers[k].view_proj);
+            memcpy(casters[k], m.m, sizeof casters[k]);
+        }
+        gl->BufferSubData(GL_UNIFORM_BUFFER, lay->shadow_views, (GLsizeiptr)plan->layer_count * MVR_VIEW_MATRIX_SIZE,
+                          casters);
+        uint8_t block[MVR_SHADOW_BLOCK_SIZE];
+        mvr_shadow_block_pack(plan, &r->shadows.settings, r->reversed_z, block);
+        gl->BufferSubData(GL_UNIFORM_BUFFER, lay->shadow_block, (GLsizeiptr)sizeof block, block);
+        r->upload_bytes += (uint64_t)plan->layer_count * MVR_VIEW_MATRIX_SIZE + sizeof block;
+    }
     if (per_draw && f->draw_count) {
         uint8_t *mats = calloc((size_t)lay->draw_material_stride, f->draw_count);
         if (!mats)
@@ -236,6 +260,7 @@ static mvr_result upload_frame(mvr_renderer *r, const mvr_view_set *views, const
     /* per view: its matrix and eye position, relative to the set's origin */
     float matrices[VIEWS_PER_BLOCK][16];
     float eyes[VIEWS_PER_BLOCK][4];
+    int32_t infos[VIEWS_PER_BLOCK][4];
     for (uint32_t b = 0; b < lay->view_blocks; ++b) {
         uint32_t first = b * VIEWS_PER_BLOCK;
         uint32_t n = views->count - first < VIEWS_PER_BLOCK ? views->count - first : VIEWS_PER_BLOCK;
@@ -243,12 +268,17 @@ static mvr_result upload_frame(mvr_renderer *r, const mvr_view_set *views, const
             const mvr_view_desc *v = &views->views[first + k];
             mvr_viewport vp = mvr_view_viewport(v, t->desc.width, t->desc.height);
             mvr_view_gpu_matrices(v, views->origin, vp, r->reversed_z, matrices[k], eyes[k]);
+            uint32_t mask = mvr_view_light_mask(f, v);
+            memset(infos[k], 0, sizeof infos[k]);
+            memcpy(&infos[k][0], &mask, sizeof mask);
         }
         GLintptr at = lay->views + (GLintptr)b * view_block_stride;
         gl->BufferSubData(GL_UNIFORM_BUFFER, at, (GLsizeiptr)n * MVR_VIEW_MATRIX_SIZE, matrices);
         gl->BufferSubData(GL_UNIFORM_BUFFER, at + (GLintptr)VIEWS_PER_BLOCK * MVR_VIEW_MATRIX_SIZE,
                           (GLsizeiptr)n * MVR_VIEW_EYE_SIZE, eyes);
-        r->view_upload_bytes += (uint64_t)n * (MVR_VIEW_MATRIX_SIZE + MVR_VIEW_EYE_SIZE);
+        gl->BufferSubData(GL_UNIFORM_BUFFER, at + (GLintptr)VIEWS_PER_BLOCK * (MVR_VIEW_MATRIX_SIZE + MVR_VIEW_EYE_SIZE),
+                          (GLsizeiptr)n * VIEW_INFO_SIZE, infos);
+        r->view_upload_bytes += (uint64_t)n * (MVR_VIEW_MATRIX_SIZE + MVR_VIEW_EYE_SIZE + VIEW_INFO_SIZE);
     }
     return upload_compacted(r, chunks, chunk_count, lay, seg + rel_compact, compact_bytes);
 }
@@ -652,6 +682,7 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
             if (!views->views[v].disabled)
                 r->stats.culled += r->vis.culled[v];
     }
+    mvr_shadows_plan(r, views, t, desc);
     /* multisampling resolves one view at a time */
     bool msaa = t->desc.samples > 1;
     if (msaa)
@@ -699,6 +730,10 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
         pc.output_features |= MVR_FEATURE_TONEMAP_ACES;
     else if (desc->tone_map == MVR_TONE_MAP_KHR_PBR_NEUTRAL)
         pc.output_features |= MVR_FEATURE_TONEMAP_PBR_NEUTRAL;
+    if (r->shadows.plan.layer_count)
+        pc.output_features |= MVR_FEATURE_SHADOWS;
+    if (r->shadows.plan.masked)
+        pc.output_features |= MVR_FEATURE_LIGHT_MASKS;
 
     mvr_state_cache *st = &r->state;
     if (r->force_inert_features) /* what a forced COLOR_0 reads where a primitive has none */
@@ -721,6 +756,8 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
     float clear_depth = r->reversed_z ? 0.0f : 1.0f;
     GLsizeiptr view_block_stride = align_up(VIEW_BLOCK_SIZE, (GLsizeiptr)r->ubo_alignment);
     uint32_t light_total = r->frame.light_counts[0] + r->frame.light_counts[1] + r->frame.light_counts[2];
+    /* view-independent: the shadow maps, once, before any view */
+    res = mvr_shadows_draw(r, lay.shadow_views, lay.draws);
 
     for (uint32_t c = 0; c < chunk_count && res == MVR_OK; ++c) {
         const view_chunk *ch = &chunks[c];
@@ -764,6 +801,7 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
                             lay.views + (GLintptr)block * view_block_stride, VIEW_BLOCK_SIZE);
         if (light_total)
             mvr_state_ubo_range(st, MVR_BLOCK_LIGHTS, r->ring.buffer, lay.lights, lay.lights_size);
+        mvr_shadows_bind(r, lay.shadow_block);
         pc.num_views = mv_pass ? ch->count : 0;
         pc.first_view = ch->base;
         pc.views = ch->count;

@@ -200,6 +200,7 @@ mvr_result mvr_gl_program_build_cached(mvr_context *ctx, const mvr_shader_varian
     bind_block(gl, program, "mvr_draw", MVR_BLOCK_DRAW);
     bind_block(gl, program, "mvr_materials", MVR_BLOCK_MATERIALS);
     bind_block(gl, program, "mvr_lights", MVR_BLOCK_LIGHTS);
+    bind_block(gl, program, "mvr_shadows", MVR_BLOCK_SHADOWS);
     /* ES 3.0 sets sampler units only on the current program; it stays current
      * (restoring the previous one by name is wrong when that one was deleted) */
     gl->UseProgram(program);
@@ -208,6 +209,7 @@ mvr_result mvr_gl_program_build_cached(mvr_context *ctx, const mvr_shader_varian
     bind_sampler(gl, program, "mvr_normal_tex", MVR_UNIT_NORMAL);
     bind_sampler(gl, program, "mvr_occlusion_tex", MVR_UNIT_OCCLUSION);
     bind_sampler(gl, program, "mvr_emissive_tex", MVR_UNIT_EMISSIVE);
+    bind_sampler(gl, program, "mvr_shadow_map", MVR_UNIT_SHADOW_MAP);
     bind_sampler(gl, program, "mvr_source", MVR_UNIT_COMPOSITE_SOURCE);
     r = mvr_gl_check(ctx, "mvr_gl_program_build", false);
     if (r != MVR_OK) {

@@ -10,7 +10,8 @@ enum {
     MVR_BLOCK_VIEWS = 0,
     MVR_BLOCK_DRAW = 1,
     MVR_BLOCK_MATERIALS = 2,
-    MVR_BLOCK_LIGHTS = 3
+    MVR_BLOCK_LIGHTS = 3,
+    MVR_BLOCK_SHADOWS = 4
 };
 
 /* Texture units of the material roles and of the composite source. */
@@ -20,6 +21,7 @@ enum {
     MVR_UNIT_NORMAL = 2,
     MVR_UNIT_OCCLUSION = 3,
     MVR_UNIT_EMISSIVE = 4,
+    MVR_UNIT_SHADOW_MAP = 5,
     MVR_UNIT_COMPOSITE_SOURCE = 0
 };
 

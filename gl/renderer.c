@@ -231,6 +231,7 @@ void mvr_renderer_destroy(mvr_renderer *r)
     if (!r)
         return;
     const mvr_gl_api_table *gl = r->gl;
+    mvr_shadows_release(r);
     mvr_gpu_scene_release(r);
     for (uint32_t i = 0; i < r->program_count; ++i)
         gl->DeleteProgram(r->programs[i].program);
@@ -444,6 +445,14 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
                                  (int)d.tone_map);
     if (d.exposure == 0.0f)
         d.exposure = 1.0f;
+    const mvr_shadow_desc *sd = &d.shadows;
+    if ((unsigned)sd->mode > MVR_SHADOWS_OFF || sd->cascades > MVR_SHADOW_MAX_CASCADES ||
+        sd->map_size > 16384 || !(sd->distance >= 0.0) || !(sd->slope_bias >= 0.0f) ||
+        !(sd->constant_bias >= 0.0f) || !(sd->normal_bias >= 0.0f))
+        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT,
+                                 "mvr_renderer_render: shadows: mode %d, cascades %u (at most %d), map size %u "
+                                 "(at most 16384), distance and biases >= 0 and finite",
+                                 (int)sd->mode, sd->cascades, MVR_SHADOW_MAX_CASCADES, sd->map_size);
 
     /* multiview where it works for this target: a mip level other than 0
      * cannot be attached with multiview on some drivers (bugs struct) */

@@ -7,6 +7,7 @@
 #include "context_internal.h"
 #include "frame.h"
 #include "program.h"
+#include "shadow_plan.h"
 #include "state_cache.h"
 #include "view_set.h"
 
@@ -111,6 +112,21 @@ typedef struct mvr_timer {
     bool timestamps;             /* GL_TIMESTAMP counters usable */
 } mvr_timer;
 
+/* Shadow maps: one depth array shared by every view, drawn once per frame
+ * (gl/shadows.c), with the plan of the frame that drew it. */
+#define MVR_SHADOW_FBOS 32
+typedef struct mvr_shadow_maps {
+    GLuint depth;                /* GL_TEXTURE_2D_ARRAY, DEPTH_COMPONENT32F */
+    GLuint color;                /* R8 array: multiview passes keep a color attachment (masked) */
+    uint32_t size, layers;       /* allocated */
+    GLuint sampler;              /* linear, comparison (GEQUAL reversed-Z, LEQUAL standard) */
+    GLenum compare;
+    struct { uint32_t base, count; GLuint fbo; } fbos[MVR_SHADOW_FBOS];
+    uint32_t fbo_count;
+    mvr_shadow_desc settings;    /* resolved, this frame */
+    mvr_shadow_plan plan;        /* this frame's */
+} mvr_shadow_maps;
+
 struct mvr_renderer {
     mvr_context *ctx;
     const mvr_gl_api_table *gl;
@@ -161,6 +177,7 @@ struct mvr_renderer {
     uint8_t *compact_scratch;
     size_t compact_scratch_cap;
     GLuint empty_vao;            /* for attributeless full-screen passes */
+    mvr_shadow_maps shadows;
 };
 
 mvr_result mvr_renderer_fail(mvr_renderer *r, mvr_result result, const char *fmt, ...) MVR_PRINTF(3, 4);
@@ -181,6 +198,15 @@ mvr_result mvr_target_framebuffer(mvr_target *t, uint32_t base, uint32_t count, 
 mvr_result mvr_target_output_framebuffer(mvr_target *t, uint32_t base, uint32_t count, GLuint *out);
 /* The size views are drawn at: the layer size times the supersample factor. */
 uint32_t mvr_target_factor(const mvr_target *t);
+
+/* shadows.c: plans this frame's shadow layers (r->shadows.plan) */
+void mvr_shadows_plan(mvr_renderer *r, const mvr_view_set *views, const mvr_target *t, const mvr_render_desc *desc);
+/* Draws the planned layers: caster matrices in a view block at views_at,
+ * per-draw blocks from draws_at (the ring's static region). */
+mvr_result mvr_shadows_draw(mvr_renderer *r, GLintptr views_at, GLintptr draws_at);
+/* Binds the maps and the receiver block (at block_at) for the view passes. */
+void mvr_shadows_bind(mvr_renderer *r, GLintptr block_at);
+void mvr_shadows_release(mvr_renderer *r);
 
 /* passes.c */
 mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, const mvr_view_set *views,

@@ -279,3 +279,14 @@ void mvr_state_forget_vao(mvr_state_cache *s, GLuint vao)
     if (s->vao == vao)
         s->vao = 0;
 }
+
+void mvr_state_polygon_offset(mvr_state_cache *s, bool enabled, GLfloat factor, GLfloat units)
+{
+    enable(s, GL_POLYGON_OFFSET_FILL, &s->polygon_offset_fill, enabled);
+    /* an invalidated float is NaN: never equal, so the first call sends */
+    if (!enabled || (s->polygon_offset_factor == factor && s->polygon_offset_units == units))
+        return;
+    s->gl->PolygonOffset(factor, units);
+    s->polygon_offset_factor = factor;
+    s->polygon_offset_units = units;
+}

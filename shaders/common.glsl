@@ -8,6 +8,7 @@ precision highp float;
 precision highp int;
 precision highp sampler2D;
 precision highp sampler2DArray;
+precision highp sampler2DArrayShadow;
 
 const float MVR_PI = 3.14159265358979323846;
 

@@ -31,6 +31,16 @@ layout(std140) uniform mvr_lights {
     mvr_light mvr_light_list[MVR_LIGHT_COUNT]; // directional, then point, then spot
 };
 #endif
+#ifdef MVR_SHADOWS
+uniform sampler2DArrayShadow mvr_shadow_map; // compare mode: GEQUAL (reversed-Z) or LEQUAL
+layout(std140) uniform mvr_shadows {
+    mat4 mvr_shadow_matrix[MVR_MAX_SHADOW_LAYERS]; // world (relative to the origin) -> (u, v, depth)
+    vec4 mvr_shadow_params[MVR_MAX_SHADOW_LAYERS]; // x: texel size (world; perspective: per unit of
+                                                   // distance), y: 1 = perspective, z: normal bias
+                                                   // in texels, w: 1 / map size
+    ivec4 mvr_light_shadow[MVR_MAX_LIGHTS];        // x: first layer, y: layers (0 = no shadow)
+};
+#endif
 uniform vec3 mvr_ambient;    // rgb radiance of a uniform environment
 uniform float mvr_exposure;  // multiplies the lit color before tone mapping
 
@@ -114,6 +124,9 @@ uniform MVR_SAMPLER mvr_emissive_tex;
 in vec3 v_position;
 in vec3 v_to_eye;
 flat in int v_material;
+#ifdef MVR_LIGHT_MASKS
+flat in int v_view;
+#endif
 #ifdef MVR_NORMALS
 in vec3 v_normal;
 #endif
@@ -193,6 +206,58 @@ float mvr_range_attenuation(float range, float dist)
     return r * r / d2;
 }
 
+#ifdef MVR_SHADOWS
+// Fraction of a light reaching p: the first of the light's layers whose map
+// holds p (cascades nest from near to far; outside all of them: lit), 3x3
+// taps of the GL's bilinear depth comparison (percentage-closer filtering,
+// Reeves, Salesin and Cook, SIGGRAPH 1987). The receiver moves along its
+// normal by normal-bias texels first (normal offset), so a lit surface does
+// not shadow itself; the casters' slope-scaled polygon offset does the rest.
+float mvr_shadow(int light, vec3 p, vec3 n_offset, float dist)
+{
+    ivec4 info = mvr_light_shadow[light];
+    for (int k = 0; k < info.y; ++k) {
+        int layer = info.x + k;
+        vec4 prm = mvr_shadow_params[layer];
+        float texel = prm.x * (prm.y > 0.0 ? dist : 1.0);
+        vec4 c = mvr_shadow_matrix[layer] * vec4(p + n_offset * (texel * prm.z), 1.0);
+        if (!(c.w > 0.0))
+            continue;
+        vec3 s = c.xyz / c.w;
+        float edge = 2.0 * prm.w;
+        if (any(lessThan(s.xy, vec2(edge))) || any(greaterThan(s.xy, vec2(1.0 - edge))) ||
+            s.z < 0.0 || s.z > 1.0)
+            continue;
+        float sum = 0.0;
+        for (int y = -1; y <= 1; ++y)
+            for (int x = -1; x <= 1; ++x)
+                sum += texture(mvr_shadow_map, vec4(s.xy + vec2(float(x), float(y)) * prm.w, float(layer), s.z));
+        return sum / 9.0;
+    }
+    return 1.0;
+}
+#endif
+
+#ifdef MVR_SHADOW_CASTER
+// The shadow map pass: depth only (the color attachment is masked), with the
+// material's alpha test for masked casters.
+void main()
+{
+#ifdef MVR_ALPHA_MASK
+    mvr_material m = mvr_material_table[v_material];
+    float alpha = m.base_color_factor.a;
+#ifdef MVR_COLOR0
+    alpha *= v_color0.a;
+#endif
+#ifdef MVR_BASE_COLOR_TEX
+    alpha *= MVR_SAMPLE(mvr_base_color_tex, mvr_uv(0, m), m.layers.x).a;
+#endif
+    if (alpha < m.emissive.a)
+        discard;
+#endif
+    o_color = vec4(0.0);
+}
+#else
 void main()
 {
     mvr_material m = mvr_material_table[v_material];
@@ -239,6 +304,7 @@ void main()
     if (!gl_FrontFacing)
         n = -n;
 #endif
+    vec3 n_offset = n;       // shadow receivers move along the surface normal, not the normal map's
 
 #ifdef MVR_NORMAL_TEX
     vec2 nuv = mvr_uv(2, m);
@@ -271,15 +337,23 @@ void main()
     vec3 v = mvr_safe_normalize(v_to_eye, n);
     vec3 color = vec3(0.0);
 #if MVR_LIGHT_COUNT > 0
+#ifdef MVR_LIGHT_MASKS
+    int light_mask = mvr_view_info[v_view].x;
+#endif
     for (int i = 0; i < MVR_LIGHT_COUNT; ++i) {
+#ifdef MVR_LIGHT_MASKS
+        if (((light_mask >> i) & 1) == 0)
+            continue; // masked out of this view: contributes nothing
+#endif
         mvr_light light = mvr_light_list[i];
         vec3 l;
         float attenuation = 1.0;
+        float dist = 0.0;
         if (i < MVR_DIRECTIONAL_LIGHTS) {
             l = -light.direction.xyz;
         } else {
             vec3 to_light = light.position_range.xyz - v_position;
-            float dist = length(to_light);
+            dist = length(to_light);
             l = mvr_safe_normalize(to_light, n);
             attenuation = mvr_range_attenuation(light.position_range.w, dist);
             if (i >= MVR_DIRECTIONAL_LIGHTS + MVR_POINT_LIGHTS) {
@@ -288,6 +362,10 @@ void main()
                 attenuation *= s * s;
             }
         }
+#ifdef MVR_SHADOWS
+        if (attenuation > 0.0)
+            attenuation *= mvr_shadow(i, v_position, n_offset, dist);
+#endif
         color += light.color.rgb * attenuation * mvr_brdf(n, v, l, base.rgb, metallic, alpha);
     }
 #endif
@@ -303,3 +381,4 @@ void main()
     o_color = mvr_output(vec4(color + emissive, base.a));
 #endif
 }
+#endif // MVR_SHADOW_CASTER

@@ -39,6 +39,9 @@ layout(location = 5) in vec4 a_color0;
 out vec3 v_position;         // world, relative to the view origin
 out vec3 v_to_eye;           // eye - position: linear, so interpolation is exact
 flat out int v_material;
+#ifdef MVR_LIGHT_MASKS
+flat out int v_view;         // within the view block
+#endif
 #ifdef MVR_NORMALS
 out vec3 v_normal;
 #endif
@@ -63,6 +66,9 @@ void main()
     v_position = world.xyz;
     v_to_eye = mvr_eye_position[view].xyz - world.xyz;
     v_material = mvr_draws[gl_InstanceID].info.x;
+#ifdef MVR_LIGHT_MASKS
+    v_view = view;
+#endif
 #ifdef MVR_NORMALS
     v_normal = mat3(mvr_draws[gl_InstanceID].normal_matrix) * a_normal;
 #endif

@@ -76,6 +76,10 @@ static void render_usage(FILE *out)
             "                      --supersample 4\n"
             "  --format F          png (8-bit sRGB) | exr (half float, linear) (default: png)\n"
             "  --target-format F   srgb8 | rgba8 | rgba16f (default: srgb8; rgba16f for exr)\n"
+            "  --shadows S         default | all | off: shadow maps for the lights that ask\n"
+            "                      (glTF has no such flag, so none), for every directional\n"
+            "                      and spot light, or none (default: default)\n"
+            "  --shadow-size N     shadow map texels per side (default: 1024)\n"
             "  --exposure X        linear exposure multiplier (default: 1)\n"
             "  --clear R,G,B[,A]   linear clear color (default: a dark opaque sky)\n"
             "  --tone-map T        none | aces | pbr-neutral (default: none)\n"
@@ -222,6 +226,24 @@ static int parse(int argc, char **argv, render_options *o)
         } else if (strcmp(a, "--supersample") == 0) {
             if (!cli_parse_u32(v, 1, 4, &o->supersample)) {
                 fprintf(stderr, "mvr render: --supersample takes 1 to 4\n");
+                return MVR_EXIT_USAGE;
+            }
+            ++i;
+        } else if (strcmp(a, "--shadows") == 0) {
+            bool found = false;
+            for (int k = MVR_SHADOWS_DEFAULT; k <= MVR_SHADOWS_OFF; ++k)
+                if (v && strcmp(v, mvr_shadow_mode_name((mvr_shadow_mode)k)) == 0) {
+                    o->render.shadows.mode = (mvr_shadow_mode)k;
+                    found = true;
+                }
+            if (!found) {
+                fprintf(stderr, "mvr render: --shadows takes default, all or off\n");
+                return MVR_EXIT_USAGE;
+            }
+            ++i;
+        } else if (strcmp(a, "--shadow-size") == 0) {
+            if (!cli_parse_u32(v, 16, 16384, &o->render.shadows.map_size)) {
+                fprintf(stderr, "mvr render: --shadow-size takes 16..16384\n");
                 return MVR_EXIT_USAGE;
             }
             ++i;
@@ -396,6 +418,9 @@ static void write_stats_json(FILE *f, const mvr_renderer *r, const mvr_frame_sta
     json_int(&jw, "mask", s->sub_passes[1]);
     json_int(&jw, "blend", s->sub_passes[2]);
     json_end_object(&jw);
+    json_int(&jw, "shadow_passes", s->shadow_passes);
+    json_int(&jw, "shadow_layers", s->shadow_layers);
+    json_int(&jw, "shadow_draws", s->shadow_draws);
     json_int(&jw, "draws", s->draws);
     json_int(&jw, "draw_calls", s->draw_calls);
     json_int(&jw, "instanced_draw_calls", s->instanced_draw_calls);
@@ -583,6 +608,10 @@ int mvr_cmd_render(int argc, char **argv)
                mvr_view_path_name(st.view_path), st.passes, st.passes == 1 ? "" : "es", st.views,
                st.views == 1 ? "" : "s", c->limits.max_views_ovr);
         printf("  depth       %s\n", st.depth_mode == MVR_DEPTH_MODE_REVERSED_Z ? "reversed-Z (clip control, float depth)" : "standard");
+        if (st.shadow_layers)
+            printf("  shadows     %u layer%s in %u pass%s, %u caster draws\n", st.shadow_layers,
+                   st.shadow_layers == 1 ? "" : "s", st.shadow_passes, st.shadow_passes == 1 ? "" : "es",
+                   st.shadow_draws);
         printf("  materials   %s: %u texture arrays\n", mvr_material_path_name(st.material_path), st.texture_groups);
         uint32_t loaded = 0, count = mvr_renderer_program_count(renderer);
         mvr_program_info pi;

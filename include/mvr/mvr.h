@@ -364,6 +364,14 @@ typedef struct mvr_light_desc {
     float range;                 /* 0 = infinite */
     float inner_cone_angle;      /* spot, radians */
     float outer_cone_angle;      /* spot, radians; 0 = pi/4 */
+    /* Shadows (directional and spot lights; point lights cast none): drawn
+     * when the render's shadow mode is MVR_SHADOWS_DEFAULT and this is true,
+     * or the mode is MVR_SHADOWS_ALL. glTF has no such flag: false. */
+    bool cast_shadows;
+    /* Render layers: the light shines in the views whose light_layers share
+     * a bit with these (mvr_view_desc.light_layers). 0 = every layer. A
+     * light in no enabled view takes no shadow layer. */
+    uint32_t layers;
 } mvr_light_desc;
 mvr_result mvr_scene_add_light(mvr_scene *scene, const mvr_light_desc *desc, mvr_light_id *out);
 
@@ -442,6 +450,10 @@ typedef struct mvr_view_desc {
     mvr_projection projection;
     mvr_viewport viewport;
     bool disabled;               /* not rendered (its layer is left as it was) */
+    /* Lights this view sees: those whose layers share a bit with these
+     * (mvr_light_desc.layers); a masked-out light contributes nothing here.
+     * 0 = every layer. */
+    uint32_t light_layers;
 } mvr_view_desc;
 
 /* Pose helper: a view at eye looking at target with up. */
@@ -590,10 +602,36 @@ void mvr_target_destroy(mvr_target *target);
 /* The GL name of the color array (the application's, or mvr's). */
 uint32_t mvr_target_color_texture(const mvr_target *target);
 
+typedef enum mvr_shadow_mode {
+    MVR_SHADOWS_DEFAULT = 0,     /* lights whose cast_shadows is set */
+    MVR_SHADOWS_ALL,             /* every directional and spot light */
+    MVR_SHADOWS_OFF
+} mvr_shadow_mode;
+const char *mvr_shadow_mode_name(mvr_shadow_mode mode);
+
+/* Shadow maps: one depth texture array shared by every view, drawn once
+ * per frame before the views (one multiview pass over its layers where the
+ * GL has multiview and the view path is not forced to loop; one pass per
+ * layer otherwise). Directional lights take one layer per cascade, fitted
+ * to the union of the frustums of the views they shine in; spot lights one
+ * layer. Filtering: 3x3 bilinear PCF taps. Bias: slope-scaled polygon
+ * offset on the casters plus a normal offset on the receivers. Opaque and
+ * alpha-masked draws cast; blended ones do not. */
+typedef struct mvr_shadow_desc {
+    mvr_shadow_mode mode;
+    uint32_t map_size;           /* texels per side; 0 = 1024 */
+    uint32_t cascades;           /* per directional light, 1..4; 0 = 3 */
+    double distance;             /* view depth the cascades cover; 0 = to the scene's far side */
+    float slope_bias;            /* glPolygonOffset factor; 0 = 2 */
+    float constant_bias;         /* glPolygonOffset units; 0 = 2 */
+    float normal_bias;           /* receiver offset along its normal, in shadow texels; 0 = 1.5 */
+} mvr_shadow_desc;
+
 typedef struct mvr_render_desc {
     float clear_color[4];        /* linear RGBA */
     float exposure;              /* multiplies the lit color; 0 = 1 */
     mvr_tone_map tone_map;
+    mvr_shadow_desc shadows;
 } mvr_render_desc;
 
 /* Renders every enabled view of the set into its layer of the target
@@ -649,6 +687,10 @@ typedef struct mvr_frame_stats {
      * it, state changes included: a scene without transparency runs no
      * blend sub-pass. */
     uint32_t sub_passes[3];
+    uint32_t shadow_passes;      /* shadow map passes: 1 per frame (multiview, <= GL_MAX_VIEWS_OVR
+                                    layers) whatever the view count; one per layer without multiview */
+    uint32_t shadow_layers;      /* layers of the shadow map array in use (cascades + spot maps) */
+    uint32_t shadow_draws;       /* caster objects drawn into the shadow maps */
     double cpu_ms;               /* submitting thread, render call */
     double gpu_ms;               /* timer queries; < 0 when not available */
 } mvr_frame_stats;

@@ -81,7 +81,7 @@ static void references_are_checked(mvr_test_state *t)
     md.normal.texcoord = 2;
     md.normal.image.id = 0;
     CHECK(t, mvr_scene_add_material(s, &md, &mid) == MVR_ERROR_INVALID_ARGUMENT);
-    mvr_light_desc l = {MVR_LIGHT_POINT, {1, 1, 1}, -1.0f, 0, 0, 0};
+    mvr_light_desc l = {MVR_LIGHT_POINT, {1, 1, 1}, -1.0f, 0, 0, 0, false, 0};
     mvr_light_id lid;
     CHECK(t, mvr_scene_add_light(s, &l, &lid) == MVR_ERROR_INVALID_ARGUMENT);
     mvr_image_desc img = {0, 4, NULL, "empty"};

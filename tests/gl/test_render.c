@@ -47,7 +47,7 @@ static bool render_demo(mvr_test_state *t, mvr_context *ctx, const char *demo, u
         td = *external;
     bool ok = r && mvr_target_create(r, &td, &target) == MVR_OK;
     CHECK_MSG(t, ok, "target: %s", r ? mvr_renderer_last_error(r) : "no renderer");
-    mvr_render_desc rdesc = {{0.1f, 0.2f, 0.3f, 1.0f}, 1.0f, MVR_TONE_MAP_NONE};
+    mvr_render_desc rdesc = {.clear_color = {0.1f, 0.2f, 0.3f, 1.0f}, .exposure = 1.0f, .tone_map = MVR_TONE_MAP_NONE};
     for (int frame = 0; ok && frame < 2; ++frame) {
         ok = mvr_renderer_render(r, scene, vs, target, &rdesc) == MVR_OK;
         CHECK_MSG(t, ok, "%s x%u %s: %s", demo, views, mvr_view_path_name(path), mvr_renderer_last_error(r));
@@ -153,7 +153,7 @@ static void paths_agree(mvr_test_state *t, const char *demo)
                       (unsigned long long)steady_upload);
             CHECK(t, mv.first.upload_bytes > mv.second.upload_bytes); /* geometry and textures once */
             CHECK_EQ_INT(t, mv.second.upload_bytes, 0); /* nothing changed: only views are sent */
-            CHECK_EQ_INT(t, mv.second.view_upload_bytes, (uint64_t)n * 80u);
+            CHECK_EQ_INT(t, mv.second.view_upload_bytes, (uint64_t)n * 96u); /* matrix, eye, light mask */
             CHECK_EQ_INT(t, mv.second.programs_compiled, 0); /* cached after the first frame */
         }
         free(mv.pixels);
@@ -335,7 +335,7 @@ static float *render_format(mvr_test_state *t, mvr_context *ctx, mvr_color_forma
     mvr_renderer *r = make_renderer(t, ctx, MVR_VIEW_PATH_AUTO);
     mvr_target *target = NULL;
     mvr_target_desc td = {W, H, 1, format, 0, 0, 0, 0, 0};
-    mvr_render_desc rd = {{0.2f, 0.1f, 0.05f, 1.0f}, 1.0f, tone};
+    mvr_render_desc rd = {.clear_color = {0.2f, 0.1f, 0.05f, 1.0f}, .exposure = 1.0f, .tone_map = tone};
     float *px = malloc((size_t)W * H * 4 * sizeof *px);
     bool ok = mvr_target_create(r, &td, &target) == MVR_OK && mvr_renderer_render(r, scene, vs, target, &rd) == MVR_OK &&
               mvr_renderer_read_layer(r, target, 0, MVR_READBACK_RGBA32F, px, (size_t)W * H * 4 * sizeof *px) == MVR_OK;
@@ -450,7 +450,7 @@ static void culling_changes_cost_not_pixels(mvr_test_state *t)
             mvr_renderer *r = NULL;
             mvr_target *target = NULL;
             mvr_target_desc td = {W, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0};
-            mvr_render_desc desc = {{0.1f, 0.1f, 0.1f, 1.0f}, 1.0f, MVR_TONE_MAP_NONE};
+            mvr_render_desc desc = {.clear_color = {0.1f, 0.1f, 0.1f, 1.0f}, .exposure = 1.0f, .tone_map = MVR_TONE_MAP_NONE};
             bool ok = mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK &&
                       mvr_renderer_render(r, scene, vs, target, &desc) == MVR_OK;
             CHECK(t, ok);
@@ -528,7 +528,7 @@ static void dirty_tracking_sends_only_changes(mvr_test_state *t)
         mvr_frame_stats st;
         mvr_renderer_get_stats(r, &st);
         up[f] = st.upload_bytes;
-        CHECK_EQ_INT(t, st.view_upload_bytes, 2 * 80);
+        CHECK_EQ_INT(t, st.view_upload_bytes, 2 * 96); /* per view: matrix, eye, light mask */
         if (f == 1)
             mvr_renderer_read_layer(r, target, 1, MVR_READBACK_RGBA8, before, sizeof before);
         if (f == 3)

@@ -55,7 +55,7 @@ static void per_view_order_is_each_views_own(mvr_test_state *t)
             mvr_renderer *cr = NULL;
             mvr_target *ct = NULL;
             mvr_target_desc ctd = {32, 32, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0};
-            mvr_render_desc cdesc = {{0, 0, 0, 1}, 1.0f, MVR_TONE_MAP_NONE};
+            mvr_render_desc cdesc = {.clear_color = {0, 0, 0, 1}, .exposure = 1.0f, .tone_map = MVR_TONE_MAP_NONE};
             bool cok = mvr_renderer_create(&cd, &cr, NULL) == MVR_OK && mvr_target_create(cr, &ctd, &ct) == MVR_OK &&
                        mvr_renderer_render(cr, s, both, ct, &cdesc) == MVR_OK;
             CHECK(t, cok);
@@ -76,7 +76,7 @@ static void per_view_order_is_each_views_own(mvr_test_state *t)
         mvr_renderer *r = NULL;
         mvr_target *target = NULL;
         mvr_target_desc td = {32, 32, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0};
-        mvr_render_desc desc = {{0, 0, 0, 1}, 1.0f, MVR_TONE_MAP_NONE};
+        mvr_render_desc desc = {.clear_color = {0, 0, 0, 1}, .exposure = 1.0f, .tone_map = MVR_TONE_MAP_NONE};
         bool ok = mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK &&
                   mvr_renderer_render(r, s, both, target, &desc) == MVR_OK;
         CHECK(t, ok);

@@ -135,6 +135,7 @@ typedef struct stress_options {
     mvr_readback_format readback; /* RGBA8: 4 bytes a pixel; RGBA32F: 16 */
     uint32_t width, height;
     float clear[4];
+    mvr_shadow_desc shadows;
 } stress_options;
 
 /* Renders every view of vs into its layer and reads them all back, layer
@@ -155,7 +156,10 @@ static inline void *stress_render(mvr_test_state *t, mvr_context *ctx, mvr_scene
         return NULL;
     }
     mvr_target_desc td = {o->width, o->height, n, o->format, 0, 0, 0, 0, 0};
-    mvr_render_desc desc = {{o->clear[0], o->clear[1], o->clear[2], o->clear[3]}, 1.0f, MVR_TONE_MAP_NONE};
+    mvr_render_desc desc = {.clear_color = {o->clear[0], o->clear[1], o->clear[2], o->clear[3]},
+                            .exposure = 1.0f,
+                            .tone_map = MVR_TONE_MAP_NONE,
+                            .shadows = o->shadows};
     bool ok = mvr_target_create(r, &td, &target) == MVR_OK && mvr_renderer_render(r, scene, vs, target, &desc) == MVR_OK;
     CHECK_MSG(t, ok, "render: %s", mvr_renderer_last_error(r));
     if (ok) {
