@@ -683,10 +683,14 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
                 r->stats.culled += r->vis.culled[v];
     }
     mvr_shadows_plan(r, views, t, desc);
-    /* multisampling resolves one view at a time */
+    /* multisampling: in the multiview passes where the GL has multisampled
+     * multiview, else one view at a time (the loop path) */
     bool msaa = t->desc.samples > 1;
-    if (msaa)
+    bool msaa_mv = msaa && t->msaa_multiview != MVR_MSAA_MV_NONE && path == MVR_VIEW_PATH_MULTIVIEW;
+    if (msaa && !msaa_mv)
         path = MVR_VIEW_PATH_LOOP;
+    r->stats.anti_aliasing = t->anti_aliasing;
+    r->stats.msaa_multiview = msaa_mv;
     r->path_ran = path;
     bool multiview = path == MVR_VIEW_PATH_MULTIVIEW;
     uint32_t max_views = (uint32_t)r->ctx->caps.limits.max_views_ovr;
@@ -765,11 +769,16 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
          * multiview pass costs about 50% more CPU than a plain one (measured
          * with tests/bench/bench_views): a plain single-layer pass instead */
         bool mv_pass = multiview && ch->count > 1;
-        GLuint fbo = 0;
+        GLuint fbo = 0, draw_fbo = 0;
         res = mvr_target_framebuffer(t, ch->base, mv_pass ? ch->count : 0, &fbo);
+        /* multisampled: the multiview chunk's own framebuffer, or one view's renderbuffers */
+        bool mv_msaa = msaa && mv_pass;
+        draw_fbo = msaa ? t->msaa_fbo : fbo;
+        if (res == MVR_OK && mv_msaa)
+            res = mvr_target_msaa_framebuffer(t, ch->base, ch->count, &draw_fbo);
         if (res != MVR_OK)
             break;
-        mvr_state_draw_framebuffer(st, msaa ? t->msaa_fbo : fbo);
+        mvr_state_draw_framebuffer(st, draw_fbo);
         /* views are drawn factor times the layer size on supersampled targets */
         GLint vx = ch->viewport.x * (GLint)factor, vy = ch->viewport.y * (GLint)factor;
         GLsizei vw = (GLsizei)(ch->viewport.width * factor), vh = (GLsizei)(ch->viewport.height * factor);
@@ -825,6 +834,11 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
          * multiview pass, as a loop pass would draw them */
         for (uint32_t v = ch->base; split_blend && res == MVR_OK && v < ch->base + ch->count; ++v) {
             GLuint layer_fbo = 0;
+            if (mv_msaa) {
+                /* a layer of multisampled multiview storage cannot be drawn
+                 * alone here: blend in the shared order instead */
+                break;
+            }
             res = mvr_target_framebuffer(t, v, 0, &layer_fbo);
             if (res != MVR_OK)
                 break;
@@ -837,15 +851,27 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
             res = draw_list(&pc, MVR_PASS_BLEND);
             r->stats.blend_fallback_passes++;
         }
-        if (msaa) {
-            /* resolve the view's samples into its layer (same rectangle) */
+        if (msaa && !(mv_msaa && t->msaa_multiview == MVR_MSAA_MV_RENDER_TO_TEXTURE)) {
+            /* resolve each view's samples into its layer (same rectangle):
+             * from the view's renderbuffers, or layer by layer from the
+             * multisampled array (never read from a multiview framebuffer) */
             const mvr_viewport *vp = &ch->viewport;
             GLint x1 = vp->x + (GLint)vp->width, y1 = vp->y + (GLint)vp->height;
-            mvr_state_read_framebuffer(st, t->msaa_fbo);
-            mvr_state_draw_framebuffer(st, fbo);
             mvr_state_scissor_test(st, false);
-            r->gl->BlitFramebuffer(vp->x, vp->y, x1, y1, vp->x, vp->y, x1, y1, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-            r->stats.resolves++;
+            for (uint32_t k = 0; k < (mv_msaa ? ch->count : 1u) && res == MVR_OK; ++k) {
+                GLuint read_fbo = t->msaa_fbo, out_fbo = fbo;
+                if (mv_msaa) {
+                    res = mvr_target_msaa_framebuffer(t, ch->base + k, 0, &read_fbo);
+                    if (res == MVR_OK)
+                        res = mvr_target_framebuffer(t, ch->base + k, 0, &out_fbo);
+                    if (res != MVR_OK)
+                        break;
+                }
+                mvr_state_read_framebuffer(st, read_fbo);
+                mvr_state_draw_framebuffer(st, out_fbo);
+                r->gl->BlitFramebuffer(vp->x, vp->y, x1, y1, vp->x, vp->y, x1, y1, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+                r->stats.resolves++;
+            }
         }
         r->stats.passes++;
         r->stats.multiview_passes += mv_pass;

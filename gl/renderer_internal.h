@@ -86,6 +86,7 @@ typedef struct mvr_ring {
 typedef struct mvr_fbo_entry {
     uint32_t base, count;        /* layers; count 0 = a single-layer (non-multiview) FBO */
     bool output;                 /* the color array alone (supersampled targets: the resolve's) */
+    bool msaa;                   /* multisampled multiview (count > 0), or one multisampled layer to read */
     GLuint fbo;
 } mvr_fbo_entry;
 
@@ -100,6 +101,11 @@ struct mvr_target {
     /* multisampling (desc.samples > 1): one view's color and depth, resolved
      * into its layer after its pass */
     GLuint msaa_fbo, msaa_color, msaa_depth;
+    /* multisampled multiview, where the GL has it: the GL resolves
+     * (render to texture), or these arrays are resolved layer by layer */
+    enum { MVR_MSAA_MV_NONE = 0, MVR_MSAA_MV_ARRAY, MVR_MSAA_MV_RENDER_TO_TEXTURE } msaa_multiview;
+    GLuint msaa_array_color, msaa_array_depth;
+    mvr_anti_aliasing anti_aliasing; /* resolved: NONE, MSAA or SUPERSAMPLE */
     /* supersampling (desc.supersample > 1): views are drawn into these (N
      * times the size, linear float) and resolved into the color array */
     GLuint ss_color;
@@ -196,6 +202,10 @@ void mvr_gpu_scene_release(mvr_renderer *r);
  * supersample resolve writes). */
 mvr_result mvr_target_framebuffer(mvr_target *t, uint32_t base, uint32_t count, GLuint *out);
 mvr_result mvr_target_output_framebuffer(mvr_target *t, uint32_t base, uint32_t count, GLuint *out);
+/* Multisampled multiview (t->msaa_multiview): the framebuffer views
+ * [base, base + count) are drawn into (count > 1), or (count 0) one
+ * multisampled layer to resolve from (the array mode). */
+mvr_result mvr_target_msaa_framebuffer(mvr_target *t, uint32_t base, uint32_t count, GLuint *out);
 /* The size views are drawn at: the layer size times the supersample factor. */
 uint32_t mvr_target_factor(const mvr_target *t);
 

@@ -50,6 +50,89 @@ static mvr_result make_msaa(mvr_target *t)
     return MVR_OK;
 }
 
+const char *mvr_anti_aliasing_name(mvr_anti_aliasing aa)
+{
+    switch (aa) {
+    case MVR_ANTI_ALIASING_DEFAULT: return "default";
+    case MVR_ANTI_ALIASING_NONE: return "none";
+    case MVR_ANTI_ALIASING_MSAA: return "msaa";
+    case MVR_ANTI_ALIASING_SUPERSAMPLE: return "supersample";
+    case MVR_ANTI_ALIASING_AUTO: return "auto";
+    }
+    return NULL;
+}
+
+/* The samples or supersample factor an anti-aliasing choice asks. */
+static bool resolve_anti_aliasing(mvr_renderer *r, mvr_target_desc *d)
+{
+    const mvr_caps *c = &r->ctx->caps;
+    switch (d->anti_aliasing) {
+    case MVR_ANTI_ALIASING_DEFAULT:
+        return true;
+    case MVR_ANTI_ALIASING_NONE:
+        d->samples = d->supersample = 0;
+        return true;
+    case MVR_ANTI_ALIASING_MSAA:
+        d->supersample = 0;
+        if (d->samples <= 1)
+            d->samples = 4;
+        return true;
+    case MVR_ANTI_ALIASING_SUPERSAMPLE:
+        d->samples = 0;
+        if (d->supersample <= 1)
+            d->supersample = 2;
+        return true;
+    case MVR_ANTI_ALIASING_AUTO: {
+        /* 4x MSAA where the format takes it (multiview or per view: the
+         * render picks), else 2x2 supersampling where a float target renders */
+        GLint max = 0;
+        r->gl->GetInternalformativ(GL_RENDERBUFFER, gl_color_format(d->color_format), GL_SAMPLES, 1, &max);
+        d->samples = d->supersample = 0;
+        if (max >= 4)
+            d->samples = 4;
+        else if (c->ext.ext_color_buffer_half_float || c->ext.ext_color_buffer_float)
+            d->supersample = 2;
+        return true;
+    }
+    }
+    return false;
+}
+
+/* Multisampled multiview where the GL has it (and MVR_MSAA_MULTIVIEW is not off). */
+static mvr_result make_msaa_multiview(mvr_target *t)
+{
+    mvr_renderer *r = t->renderer;
+    const mvr_gl_api_table *gl = r->gl;
+    const mvr_caps *c = &r->ctx->caps;
+    const char *env = getenv("MVR_MSAA_MULTIVIEW");
+    if ((env && strcmp(env, "off") == 0) || !c->ext.ovr_multiview2 || t->desc.external_level != 0)
+        return MVR_OK;
+    if (c->ext.ovr_multiview_multisampled_render_to_texture && gl->FramebufferTextureMultisampleMultiviewOVR) {
+        t->msaa_multiview = MVR_MSAA_MV_RENDER_TO_TEXTURE;
+        return MVR_OK;
+    }
+    if (!c->ext.multiview_msaa_array)
+        return MVR_OK;
+    GLsizei w = (GLsizei)t->desc.width, h = (GLsizei)t->desc.height, n = (GLsizei)t->desc.samples;
+    GLsizei layers = (GLsizei)t->desc.layers;
+    gl->GenTextures(1, &t->msaa_array_color);
+    mvr_state_texture(&r->state, 0, GL_TEXTURE_2D_MULTISAMPLE_ARRAY, t->msaa_array_color);
+    gl->TexStorage3DMultisample(GL_TEXTURE_2D_MULTISAMPLE_ARRAY, n, t->internal_format, w, h, layers, GL_TRUE);
+    gl->GenTextures(1, &t->msaa_array_depth);
+    mvr_state_texture(&r->state, 0, GL_TEXTURE_2D_MULTISAMPLE_ARRAY, t->msaa_array_depth);
+    gl->TexStorage3DMultisample(GL_TEXTURE_2D_MULTISAMPLE_ARRAY, n, GL_DEPTH_COMPONENT32F, w, h, layers, GL_TRUE);
+    mvr_result res = mvr_gl_check(r->ctx, "multisampled arrays", true);
+    if (res != MVR_OK) {
+        /* the probe passed for RGBA8; this format may not: per view instead */
+        mvr_log(&r->logger, MVR_LOG_INFO, MVR_LOG_ID_GENERAL,
+                "mvr: no multisampled %s array here (%s): MSAA resolves view by view",
+                mvr_color_format_name(t->desc.color_format), mvr_context_last_error(r->ctx));
+        return MVR_OK;
+    }
+    t->msaa_multiview = MVR_MSAA_MV_ARRAY;
+    return MVR_OK;
+}
+
 mvr_result mvr_target_create(mvr_renderer *r, const mvr_target_desc *d, mvr_target **out)
 {
     if (!r)
@@ -61,6 +144,9 @@ mvr_result mvr_target_create(mvr_renderer *r, const mvr_target_desc *d, mvr_targ
     mvr_target_desc desc = *d;
     if (desc.layers == 0)
         desc.layers = 1;
+    if (!mvr_anti_aliasing_name(desc.anti_aliasing))
+        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "mvr_target_create: unknown anti-aliasing %d",
+                                 (int)desc.anti_aliasing);
     if (!mvr_color_format_name(desc.color_format))
         return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "mvr_target_create: unknown color format %d",
                                  (int)desc.color_format);
@@ -78,6 +164,8 @@ mvr_result mvr_target_create(mvr_renderer *r, const mvr_target_desc *d, mvr_targ
         (desc.color_format == MVR_COLOR_FORMAT_RGBA32F && !c->ext.ext_color_buffer_float))
         return mvr_renderer_fail(r, MVR_ERROR_UNSUPPORTED, "mvr_target_create: %s is not renderable on %s",
                                  mvr_color_format_name(desc.color_format), c->renderer);
+    if (!mvr_color_format_name(desc.color_format) || !resolve_anti_aliasing(r, &desc))
+        return mvr_renderer_fail(r, MVR_ERROR_INTERNAL, "mvr_target_create: anti-aliasing");
     if (desc.supersample > 4 || (desc.supersample > 1 && desc.samples > 1))
         return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT,
                                  "mvr_target_create: supersample %u (1..4, and not with samples)", desc.supersample);
@@ -142,6 +230,11 @@ mvr_result mvr_target_create(mvr_renderer *r, const mvr_target_desc *d, mvr_targ
     mvr_result res = mvr_target_framebuffer(t, 0, 0, &fbo);
     if (res == MVR_OK && desc.samples > 1)
         res = make_msaa(t);
+    if (res == MVR_OK && desc.samples > 1)
+        res = make_msaa_multiview(t);
+    t->anti_aliasing = desc.samples > 1       ? MVR_ANTI_ALIASING_MSAA
+                       : desc.supersample > 1 ? MVR_ANTI_ALIASING_SUPERSAMPLE
+                                              : MVR_ANTI_ALIASING_NONE;
     if (res != MVR_OK) {
         mvr_target_destroy(t);
         return res;
@@ -177,6 +270,12 @@ void mvr_target_destroy(mvr_target *t)
     }
     gl->DeleteRenderbuffers(1, &t->msaa_color);
     gl->DeleteRenderbuffers(1, &t->msaa_depth);
+    GLuint arrays[2] = {t->msaa_array_color, t->msaa_array_depth};
+    for (int i = 0; i < 2; ++i)
+        if (arrays[i]) {
+            mvr_state_forget_texture(&r->state, arrays[i]);
+            gl->DeleteTextures(1, &arrays[i]);
+        }
     free(t);
 }
 
@@ -206,7 +305,8 @@ mvr_result mvr_target_output_framebuffer(mvr_target *t, uint32_t base, uint32_t 
 static mvr_result target_framebuffer(mvr_target *t, uint32_t base, uint32_t count, bool output, GLuint *out)
 {
     for (uint32_t i = 0; i < t->fbo_count; ++i) {
-        if (t->fbos[i].base == base && t->fbos[i].count == count && t->fbos[i].output == output) {
+        if (t->fbos[i].base == base && t->fbos[i].count == count && t->fbos[i].output == output &&
+            !t->fbos[i].msaa) {
             *out = t->fbos[i].fbo;
             return MVR_OK;
         }
@@ -243,12 +343,70 @@ static mvr_result target_framebuffer(mvr_target *t, uint32_t base, uint32_t coun
             gl->FramebufferTextureLayer(GL_DRAW_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, t->depth, 0, (GLint)base);
     }
     t->fbos[t->fbo_count].base = base;
+    t->fbos[t->fbo_count].msaa = false;
     t->fbos[t->fbo_count].output = output;
     t->fbos[t->fbo_count].count = count;
     t->fbos[t->fbo_count++].fbo = fbo;
     char where[96];
     mvr_str_format(where, sizeof where, "framebuffer for layers %u..%u%s", base, base + (count ? count : 1) - 1,
                    count ? " (multiview)" : "");
+    mvr_result res = mvr_gl_check(r->ctx, where, true);
+    if (res == MVR_OK)
+        res = mvr_gl_check_framebuffer(r->ctx, GL_DRAW_FRAMEBUFFER, where);
+    if (res != MVR_OK)
+        return mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
+    *out = fbo;
+    return MVR_OK;
+}
+
+mvr_result mvr_target_msaa_framebuffer(mvr_target *t, uint32_t base, uint32_t count, GLuint *out)
+{
+    for (uint32_t i = 0; i < t->fbo_count; ++i)
+        if (t->fbos[i].msaa && t->fbos[i].base == base && t->fbos[i].count == count) {
+            *out = t->fbos[i].fbo;
+            return MVR_OK;
+        }
+    mvr_renderer *r = t->renderer;
+    if (t->msaa_multiview == MVR_MSAA_MV_NONE)
+        return mvr_renderer_fail(r, MVR_ERROR_INTERNAL, "multisampled multiview framebuffer without the GL's support");
+    if (t->fbo_count == t->fbo_cap) {
+        uint32_t cap = t->fbo_cap ? t->fbo_cap * 2 : 8;
+        mvr_fbo_entry *p = realloc(t->fbos, cap * sizeof *p);
+        if (!p)
+            return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "framebuffers: out of memory");
+        t->fbos = p;
+        t->fbo_cap = cap;
+    }
+    const mvr_gl_api_table *gl = r->gl;
+    GLuint fbo = 0;
+    gl->GenFramebuffers(1, &fbo);
+    mvr_state_draw_framebuffer(&r->state, fbo);
+    GLsizei samples = (GLsizei)t->desc.samples;
+    GLint layer = (GLint)(t->desc.external_base_layer + base);
+    if (t->msaa_multiview == MVR_MSAA_MV_RENDER_TO_TEXTURE) {
+        /* implicit multisampled storage, resolved into the layers by the GL */
+        gl->FramebufferTextureMultisampleMultiviewOVR(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, t->color, 0, samples,
+                                                      layer, (GLsizei)count);
+        gl->FramebufferTextureMultisampleMultiviewOVR(GL_DRAW_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, t->depth, 0, samples,
+                                                      (GLint)base, (GLsizei)count);
+    } else if (count > 0) {
+        gl->FramebufferTextureMultiviewOVR(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, t->msaa_array_color, 0,
+                                           (GLint)base, (GLsizei)count);
+        gl->FramebufferTextureMultiviewOVR(GL_DRAW_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, t->msaa_array_depth, 0,
+                                           (GLint)base, (GLsizei)count);
+    } else {
+        /* one layer of the multisampled array, read by the resolve blit */
+        gl->FramebufferTextureLayer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, t->msaa_array_color, 0, (GLint)base);
+    }
+    mvr_fbo_entry *e = &t->fbos[t->fbo_count++];
+    e->base = base;
+    e->count = count;
+    e->output = false;
+    e->msaa = true;
+    e->fbo = fbo;
+    char where[96];
+    mvr_str_format(where, sizeof where, "multisampled framebuffer for layers %u..%u", base,
+                   base + (count ? count : 1) - 1);
     mvr_result res = mvr_gl_check(r->ctx, where, true);
     if (res == MVR_OK)
         res = mvr_gl_check_framebuffer(r->ctx, GL_DRAW_FRAMEBUFFER, where);

@@ -275,7 +275,7 @@ static bool run_config(const bench_options *o, mvr_context *ctx, mvr_scene *scen
      * renderer's own resolve pass, which works on the multiview path too */
     uint32_t cpu_ss = c->reference ? ss : 1;
     mvr_target_desc td = {w * cpu_ss, h * cpu_ss, n, cpu_ss > 1 ? MVR_COLOR_FORMAT_RGBA32F : MVR_COLOR_FORMAT_DEFAULT,
-                          0, 0, 0, c->msaa, c->reference ? 0 : (ss > 1 ? ss : 0)};
+                          0, 0, 0, c->msaa, c->reference ? 0 : (ss > 1 ? ss : 0), MVR_ANTI_ALIASING_DEFAULT};
     double *times = calloc((size_t)o->frames * 3, sizeof *times);
     ok = times && mvr_target_create(r, &td, &t) == MVR_OK;
     for (uint32_t f = 0; ok && f < o->warmup; ++f)
@@ -471,7 +471,7 @@ int mvr_cmd_bench(int argc, char **argv)
         mvr_renderer_desc rd = {.context = ctx};
         mvr_renderer *r = NULL;
         mvr_target *t = NULL;
-        mvr_target_desc td = {16, 16, n_views, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0};
+        mvr_target_desc td = {16, 16, n_views, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT};
         mvr_frame_stats st;
         memset(&st, 0, sizeof st);
         if (mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &t) == MVR_OK &&

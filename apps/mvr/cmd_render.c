@@ -31,6 +31,7 @@ typedef struct render_options {
     mvr_transparency_order transparency;
     uint32_t supersample;        /* samples per pixel side; 1 = none */
     uint32_t msaa;               /* multisample count; 0 = none */
+    mvr_anti_aliasing aa;        /* --aa: the library's anti-aliasing choice */
     bool reference;
     mvr_color_format format;
     bool format_set;
@@ -72,6 +73,9 @@ static void render_usage(FILE *out)
             "                      average them (1..4; default: 1)\n"
             "  --msaa N            N samples per pixel (multisampling; resolves view by view,\n"
             "                      so it takes the loop path) (default: none)\n"
+            "  --aa A              none | msaa | supersample | auto: the library's anti-aliasing\n"
+            "                      (msaa 4x, supersample 2x2 on the GPU; auto: 4x MSAA, in the\n"
+            "                      multiview passes where the GL has multisampled multiview)\n"
             "  --reference         ground truth, slow: --view-path loop --transparency per_view\n"
             "                      --supersample 4\n"
             "  --format F          png (8-bit sRGB) | exr (half float, linear) (default: png)\n"
@@ -220,6 +224,18 @@ static int parse(int argc, char **argv, render_options *o)
         } else if (strcmp(a, "--msaa") == 0) {
             if (!cli_parse_u32(v, 0, 64, &o->msaa)) {
                 fprintf(stderr, "mvr render: --msaa takes a sample count\n");
+                return MVR_EXIT_USAGE;
+            }
+            ++i;
+        } else if (strcmp(a, "--aa") == 0) {
+            bool found = false;
+            for (int k = MVR_ANTI_ALIASING_NONE; k <= MVR_ANTI_ALIASING_AUTO; ++k)
+                if (v && strcmp(v, mvr_anti_aliasing_name((mvr_anti_aliasing)k)) == 0) {
+                    o->aa = (mvr_anti_aliasing)k;
+                    found = true;
+                }
+            if (!found) {
+                fprintf(stderr, "mvr render: --aa takes none, msaa, supersample or auto\n");
                 return MVR_EXIT_USAGE;
             }
             ++i;
@@ -403,6 +419,8 @@ static void write_stats_json(FILE *f, const mvr_renderer *r, const mvr_frame_sta
     json_int(&jw, "supersample", supersample);
     json_string(&jw, "transparency_order", mvr_transparency_order_name(s->transparency_order));
     json_string(&jw, "view_path", mvr_view_path_name(s->view_path));
+    json_string(&jw, "anti_aliasing", mvr_anti_aliasing_name(s->anti_aliasing));
+    json_bool(&jw, "msaa_multiview", s->msaa_multiview);
     json_int(&jw, "views", s->views);
     json_int(&jw, "passes", s->passes);
     json_int(&jw, "multiview_passes", s->multiview_passes);
@@ -544,7 +562,7 @@ int mvr_cmd_render(int argc, char **argv)
     }
     uint32_t n = mvr_view_set_count(views);
     uint32_t ss = o.supersample;
-    mvr_target_desc td = {o.width * ss, o.height * ss, n, o.format, 0, 0, 0, o.msaa, 0};
+    mvr_target_desc td = {o.width * ss, o.height * ss, n, o.format, 0, 0, 0, o.msaa, 0, o.aa};
     if (mvr_target_create(renderer, &td, &target) != MVR_OK) {
         fprintf(stderr, "mvr render: %s\n", mvr_renderer_last_error(renderer));
         goto done;

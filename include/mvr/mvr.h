@@ -572,6 +572,22 @@ typedef enum mvr_color_format {
 } mvr_color_format;
 const char *mvr_color_format_name(mvr_color_format format);
 
+/* Anti-aliasing of a target. */
+typedef enum mvr_anti_aliasing {
+    MVR_ANTI_ALIASING_DEFAULT = 0, /* what samples and supersample ask (none when both are 0) */
+    MVR_ANTI_ALIASING_NONE,
+    MVR_ANTI_ALIASING_MSAA,        /* samples per pixel (0 = 4) */
+    MVR_ANTI_ALIASING_SUPERSAMPLE, /* supersample per side (0 = 2) */
+    /* 4x MSAA: in the multiview passes where the GL attaches multisampled
+     * arrays with multiview (or has OVR_multiview_multisampled_render_to_
+     * texture), else view by view on the loop path; 2x2 supersampling where
+     * the format cannot be multisampled 4 times. Measured by `mvr bench`
+     * (docs/benchmarks.md): per-view 4x MSAA costs 1.9-2.3x the frame time
+     * without AA, 2x2 supersampling 3.0-3.6x, on every demo. */
+    MVR_ANTI_ALIASING_AUTO
+} mvr_anti_aliasing;
+const char *mvr_anti_aliasing_name(mvr_anti_aliasing aa);
+
 typedef struct mvr_target_desc {
     uint32_t width, height;
     uint32_t layers;             /* one per view; 0 = 1 */
@@ -583,11 +599,15 @@ typedef struct mvr_target_desc {
     uint32_t external_color_texture;
     uint32_t external_level;
     uint32_t external_base_layer;
-    /* Multisampling: samples per pixel (0 or 1 = none). Each view is drawn
-     * into a multisampled renderbuffer and resolved into its layer with
-     * glBlitFramebuffer, one view at a time (the loop path: no GL here
-     * attaches a multisampled array to a multiview framebuffer). Refused
-     * above GL_MAX_SAMPLES or where the color format cannot be multisampled. */
+    /* Multisampling: samples per pixel (0 or 1 = none). Where the GL has
+     * multisampled multiview (OVR_multiview_multisampled_render_to_texture:
+     * resolved by the GL; or multisampled 2D arrays that attach with
+     * multiview: resolved layer by layer with glBlitFramebuffer), views
+     * keep their multiview passes. Elsewhere (llvmpipe) each view is drawn
+     * into a multisampled renderbuffer and resolved into its layer, one
+     * view at a time (the loop path). Env MVR_MSAA_MULTIVIEW=off forces the
+     * latter. Refused above GL_MAX_SAMPLES or where the color format cannot
+     * be multisampled. */
     uint32_t samples;
     /* Supersampling: N x N samples per pixel (0 or 1 = none, at most 4).
      * Views are drawn into a linear float array N times the size (every
@@ -595,6 +615,7 @@ typedef struct mvr_target_desc {
      * box filter pass (one multiview pass per chunk of views). Not with
      * samples > 1. */
     uint32_t supersample;
+    mvr_anti_aliasing anti_aliasing;
 } mvr_target_desc;
 
 mvr_result mvr_target_create(mvr_renderer *renderer, const mvr_target_desc *desc, mvr_target **out);
@@ -679,6 +700,8 @@ typedef struct mvr_frame_stats {
     uint32_t culled;             /* summed over views: draws outside a view's frustum */
     uint32_t sanitized;          /* the scene's repaired degenerate values (mvr_scene_sanitized_count) */
     uint32_t samples;            /* the target's samples per pixel (1 = no multisampling) */
+    mvr_anti_aliasing anti_aliasing; /* what ran: NONE, MSAA or SUPERSAMPLE */
+    bool msaa_multiview;         /* multisampled multiview passes (else MSAA went view by view) */
     uint32_t resolves;           /* multisample resolves (one per view) and supersample resolve
                                     passes (one per chunk of views) */
     uint32_t supersample;        /* the target's samples per pixel side (1 = none) */

@@ -24,7 +24,7 @@ static uint8_t *render_stereo(mvr_test_state *t, mvr_context *ctx, mvr_view_path
     mvr_target *target = NULL;
     uint32_t w = MW * supersample, h = MH * supersample;
     mvr_target_desc td = {w, h, 2, supersample > 1 ? MVR_COLOR_FORMAT_RGBA32F : MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0,
-                          samples, 0};
+                          samples, 0, MVR_ANTI_ALIASING_DEFAULT};
     bool ok = mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK &&
               mvr_renderer_render(r, s, vs, target, NULL) == MVR_OK;
     CHECK_MSG(t, ok, "%s", r ? mvr_renderer_last_error(r) : "renderer");
@@ -118,7 +118,7 @@ static void msaa_is_closer_to_the_reference(mvr_test_state *t)
     mvr_renderer *r = NULL;
     mvr_target *target = NULL;
     CHECK(t, mvr_renderer_create(&rd, &r, NULL) == MVR_OK);
-    mvr_target_desc td = {16, 16, 1, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, (uint32_t)caps->limits.max_samples * 2, 0};
+    mvr_target_desc td = {16, 16, 1, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, (uint32_t)caps->limits.max_samples * 2, 0, MVR_ANTI_ALIASING_DEFAULT};
     CHECK(t, mvr_target_create(r, &td, &target) == MVR_ERROR_UNSUPPORTED && target == NULL);
     CHECK_MSG(t, strstr(mvr_renderer_last_error(r), "GL_MAX_SAMPLES") != NULL, "%s", mvr_renderer_last_error(r));
     mvr_renderer_destroy(r);
@@ -170,7 +170,7 @@ static void supersampling_on_every_path(mvr_test_state *t)
     const uint32_t counts[2] = {2, 8};
     for (int d = 0; d < 2; ++d)
         for (int c = 0; c < 2; ++c) {
-            mvr_target_desc td = {MW, MH, counts[c], MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 2};
+            mvr_target_desc td = {MW, MH, counts[c], MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 2, MVR_ANTI_ALIASING_DEFAULT};
             mvr_frame_stats sm, sl;
             uint8_t *loop = render_demo_target(t, ctx, demos[d], counts[c], MVR_VIEW_PATH_LOOP, &td, &sl);
             uint8_t *multi = mv ? render_demo_target(t, ctx, demos[d], counts[c], MVR_VIEW_PATH_MULTIVIEW, &td, &sm)
@@ -193,9 +193,9 @@ static void supersampling_on_every_path(mvr_test_state *t)
     /* closer to the 4x4 reference than plain; an RGBA8 target (the resolve
      * encodes) within one step of the sRGB one (the GL encodes) */
     const size_t pixels = (size_t)MW * MH * 2;
-    mvr_target_desc plain_td = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0};
-    mvr_target_desc ss_td = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 2};
-    mvr_target_desc ss8_td = {MW, MH, 2, MVR_COLOR_FORMAT_RGBA8, 0, 0, 0, 0, 2};
+    mvr_target_desc plain_td = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT};
+    mvr_target_desc ss_td = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 2, MVR_ANTI_ALIASING_DEFAULT};
+    mvr_target_desc ss8_td = {MW, MH, 2, MVR_COLOR_FORMAT_RGBA8, 0, 0, 0, 0, 2, MVR_ANTI_ALIASING_DEFAULT};
     uint8_t *plain = render_demo_target(t, ctx, "stereo", 2, MVR_VIEW_PATH_AUTO, &plain_td, NULL);
     uint8_t *ss = render_demo_target(t, ctx, "stereo", 2, MVR_VIEW_PATH_AUTO, &ss_td, NULL);
     uint8_t *ss8 = render_demo_target(t, ctx, "stereo", 2, MVR_VIEW_PATH_AUTO, &ss8_td, NULL);
@@ -220,12 +220,77 @@ static void supersampling_on_every_path(mvr_test_state *t)
     mvr_renderer *r = NULL;
     mvr_target *target = NULL;
     CHECK(t, mvr_renderer_create(&rd, &r, NULL) == MVR_OK);
-    mvr_target_desc bad1 = {16, 16, 1, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 5};
-    mvr_target_desc bad2 = {16, 16, 1, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 4, 2};
+    mvr_target_desc bad1 = {16, 16, 1, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 5, MVR_ANTI_ALIASING_DEFAULT};
+    mvr_target_desc bad2 = {16, 16, 1, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 4, 2, MVR_ANTI_ALIASING_DEFAULT};
     CHECK(t, mvr_target_create(r, &bad1, &target) == MVR_ERROR_INVALID_ARGUMENT && !target);
     CHECK(t, mvr_target_create(r, &bad2, &target) == MVR_ERROR_INVALID_ARGUMENT && !target);
     mvr_renderer_destroy(r);
     mvr_context_destroy(ctx);
 }
 
-MVR_TEST_MAIN(TEST(msaa_is_closer_to_the_reference), TEST(supersampling_on_every_path))
+/* anti_aliasing picks samples or supersampling; auto is 4x MSAA where the
+ * format takes it: multiview passes where the GL has multisampled
+ * multiview, else view by view (llvmpipe) with the same bytes as asking
+ * for 4 samples; the stats say which ran. */
+static void anti_aliasing_choices(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    const mvr_caps *caps = mvr_context_caps(ctx);
+    const size_t bytes = (size_t)MW * MH * 4 * 2;
+    mvr_target_desc four = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 4, 0, MVR_ANTI_ALIASING_DEFAULT};
+    mvr_target_desc autod = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_AUTO};
+    mvr_target_desc ss = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_SUPERSAMPLE};
+    mvr_target_desc none = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 4, 2, MVR_ANTI_ALIASING_NONE};
+    mvr_target_desc plain = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT};
+    mvr_frame_stats st_four, st_auto, st_ss, st_none, st_plain;
+    uint8_t *a = render_demo_target(t, ctx, "stereo", 2, MVR_VIEW_PATH_MULTIVIEW, &four, &st_four);
+    uint8_t *b = render_demo_target(t, ctx, "stereo", 2, MVR_VIEW_PATH_MULTIVIEW, &autod, &st_auto);
+    uint8_t *c = render_demo_target(t, ctx, "stereo", 2, MVR_VIEW_PATH_MULTIVIEW, &ss, &st_ss);
+    uint8_t *d = render_demo_target(t, ctx, "stereo", 2, MVR_VIEW_PATH_MULTIVIEW, &none, &st_none);
+    uint8_t *e = render_demo_target(t, ctx, "stereo", 2, MVR_VIEW_PATH_MULTIVIEW, &plain, &st_plain);
+    if (a && b && c && d && e) {
+        CHECK_EQ_INT(t, st_auto.anti_aliasing, MVR_ANTI_ALIASING_MSAA);
+        CHECK_EQ_INT(t, st_auto.samples, 4);
+        CHECK_EQ_INT(t, st_four.anti_aliasing, MVR_ANTI_ALIASING_MSAA);
+        printf("  auto: %u samples, %s, %s path\n", st_auto.samples,
+               st_auto.msaa_multiview ? "multiview passes" : "view by view", mvr_view_path_name(st_auto.view_path));
+        /* multisampled multiview only where the GL attaches it */
+        bool mv_msaa = caps->ext.multiview_msaa_array || caps->ext.ovr_multiview_multisampled_render_to_texture;
+        CHECK_EQ_INT(t, st_auto.msaa_multiview, mv_msaa);
+        if (!mv_msaa) {
+            CHECK_EQ_INT(t, st_auto.view_path, MVR_VIEW_PATH_LOOP);
+            CHECK_EQ_INT(t, st_auto.resolves, 2);
+        } else {
+            CHECK_EQ_INT(t, st_auto.view_path, MVR_VIEW_PATH_MULTIVIEW);
+        }
+        CHECK_MSG(t, memcmp(a, b, bytes) == 0, "auto and 4 samples differ by %u", max_abs_diff8(a, b, bytes));
+        CHECK_EQ_INT(t, st_ss.anti_aliasing, MVR_ANTI_ALIASING_SUPERSAMPLE);
+        CHECK_EQ_INT(t, st_ss.supersample, 2);
+        CHECK_EQ_INT(t, st_ss.view_path, MVR_VIEW_PATH_MULTIVIEW);
+        CHECK_EQ_INT(t, st_none.anti_aliasing, MVR_ANTI_ALIASING_NONE);
+        CHECK_EQ_INT(t, st_none.samples, 1);
+        CHECK_MSG(t, memcmp(d, e, bytes) == 0, "none (samples ignored) and plain differ by %u", max_abs_diff8(d, e, bytes));
+        /* anti-aliasing changes edges */
+        CHECK(t, memcmp(a, e, bytes) != 0 && memcmp(c, e, bytes) != 0);
+    }
+    free(a);
+    free(b);
+    free(c);
+    free(d);
+    free(e);
+    /* an unknown choice is refused */
+    mvr_renderer_desc rd = {.context = ctx};
+    mvr_renderer *r = NULL;
+    mvr_target *target = NULL;
+    if (mvr_renderer_create(&rd, &r, NULL) == MVR_OK) {
+        mvr_target_desc bad = {16, 16, 1, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, (mvr_anti_aliasing)99};
+        CHECK(t, mvr_target_create(r, &bad, &target) == MVR_ERROR_INVALID_ARGUMENT && !target);
+        CHECK(t, strstr(mvr_renderer_last_error(r), "anti-aliasing") != NULL);
+    }
+    mvr_renderer_destroy(r);
+    mvr_context_destroy(ctx);
+}
+
+MVR_TEST_MAIN(TEST(msaa_is_closer_to_the_reference), TEST(supersampling_on_every_path), TEST(anti_aliasing_choices))
