@@ -596,6 +596,12 @@ void mvr_scene_get_info(const mvr_scene *s, mvr_scene_info *out)
     out->nodes = s->node_count;
     out->lights = s->light_count;
     out->cameras = s->camera_count;
+    for (uint32_t i = 0; i < s->light_count; ++i) {
+        const mvr_light_desc *l = &s->lights[i];
+        float c = fmaxf(l->color[0], fmaxf(l->color[1], l->color[2])) * l->intensity;
+        if (c > out->max_light_intensity[l->type])
+            out->max_light_intensity[l->type] = c;
+    }
     mvr_dvec3 lo = mvr_dvec3_make(INFINITY, INFINITY, INFINITY);
     mvr_dvec3 hi = mvr_dvec3_make(-INFINITY, -INFINITY, -INFINITY);
     mvr_dmat4 *world = s->node_count ? malloc(s->node_count * sizeof *world) : NULL;
@@ -642,4 +648,12 @@ mvr_node_id mvr_scene_camera_node(const mvr_scene *s, uint32_t index)
         if (s->nodes[i].camera != MVR_NO_INDEX && index-- == 0)
             return (mvr_node_id){i + 1};
     return (mvr_node_id){0};
+}
+
+bool mvr_scene_lights_physical(const mvr_scene *s)
+{
+    mvr_scene_info info;
+    mvr_scene_get_info(s, &info);
+    return info.max_light_intensity[MVR_LIGHT_DIRECTIONAL] > 20.0f ||
+           info.max_light_intensity[MVR_LIGHT_POINT] > 100.0f || info.max_light_intensity[MVR_LIGHT_SPOT] > 100.0f;
 }

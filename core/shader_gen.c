@@ -29,8 +29,6 @@ static const feature_define mesh_defines[] = {
     {MVR_FEATURE_UNLIT, "MVR_UNLIT"},
     {MVR_FEATURE_MATERIAL_ARRAYS, "MVR_MATERIAL_ARRAYS"},
     {MVR_FEATURE_SRGB_OUTPUT, "MVR_SRGB_OUTPUT"},
-    {MVR_FEATURE_TONEMAP_ACES, "MVR_TONEMAP_ACES"},
-    {MVR_FEATURE_TONEMAP_PBR_NEUTRAL, "MVR_TONEMAP_PBR_NEUTRAL"},
     {MVR_FEATURE_SHADOWS, "MVR_SHADOWS"},
     {MVR_FEATURE_LIGHT_MASKS, "MVR_LIGHT_MASKS"},
     {MVR_FEATURE_SHADOW_CASTER, "MVR_SHADOW_CASTER"},
@@ -39,6 +37,11 @@ static const feature_define mesh_defines[] = {
 static const feature_define composite_defines[] = {
     {MVR_FEATURE_SRGB_ENCODE, "MVR_SRGB_ENCODE"},
     {MVR_FEATURE_DOWNSAMPLE, "MVR_DOWNSAMPLE"},
+    {MVR_FEATURE_POST, "MVR_POST"},
+    {MVR_FEATURE_POST_ACES, "MVR_TONEMAP_ACES"},
+    {MVR_FEATURE_POST_PBR_NEUTRAL, "MVR_TONEMAP_PBR_NEUTRAL"},
+    {MVR_FEATURE_DITHER, "MVR_DITHER"},
+    {MVR_FEATURE_LOG_LUMINANCE, "MVR_LOG_LUMINANCE"},
 };
 
 typedef struct program_files {
@@ -170,8 +173,8 @@ bool mvr_shader_variant_valid(const mvr_shader_variant *v, char *why, size_t why
         mvr_str_copy(why, why_size, "alpha mask and alpha blend exclude each other");
         return false;
     }
-    if ((v->features & MVR_FEATURE_TONEMAP_ACES) && (v->features & MVR_FEATURE_TONEMAP_PBR_NEUTRAL) &&
-        v->program == MVR_PROGRAM_MESH) {
+    if ((v->features & MVR_FEATURE_POST_ACES) && (v->features & MVR_FEATURE_POST_PBR_NEUTRAL) &&
+        v->program == MVR_PROGRAM_COMPOSITE) {
         mvr_str_copy(why, why_size, "two tone mapping operators exclude each other");
         return false;
     }
@@ -292,8 +295,9 @@ static uint32_t all_compatible_features(mvr_program_kind program)
 {
     uint32_t mask = mvr_shader_feature_mask(program);
     if (program == MVR_PROGRAM_MESH)
-        mask &= ~(uint32_t)(MVR_FEATURE_ALPHA_BLEND | MVR_FEATURE_TONEMAP_PBR_NEUTRAL |
-                            MVR_FEATURE_SHADOW_CASTER);
+        mask &= ~(uint32_t)(MVR_FEATURE_ALPHA_BLEND | MVR_FEATURE_SHADOW_CASTER);
+    else
+        mask &= ~(uint32_t)MVR_FEATURE_POST_PBR_NEUTRAL;
     return mask;
 }
 
@@ -309,8 +313,7 @@ bool mvr_shader_variant_enumerate(unsigned index, uint32_t max_views, mvr_shader
         /* feature sets: none, each alone, and (where a program has more than
          * one feature) all compatible ones together, plus (mesh) all with blend
          * instead of mask */
-        unsigned feature_sets = 1u + (unsigned)define_count + (define_count > 1 ? 1u : 0u) +
-                                (program == MVR_PROGRAM_MESH ? 1u : 0u);
+        unsigned feature_sets = 1u + (unsigned)define_count + (define_count > 1 ? 1u : 0u) + 1u;
         unsigned light_sets = program == MVR_PROGRAM_MESH ? 2u : 1u;
         unsigned per_program = feature_sets * view_count * light_sets;
         if (index >= per_program) {
@@ -330,10 +333,13 @@ bool mvr_shader_variant_enumerate(unsigned index, uint32_t max_views, mvr_shader
         else if (fs == define_count + 1)
             out->features = all_compatible_features(program);
         else
-            /* the exclusive alternatives: blend instead of mask, neutral instead of ACES */
-            out->features = (all_compatible_features(program) &
-                             ~(uint32_t)(MVR_FEATURE_ALPHA_MASK | MVR_FEATURE_TONEMAP_ACES)) |
-                            MVR_FEATURE_ALPHA_BLEND | MVR_FEATURE_TONEMAP_PBR_NEUTRAL;
+            /* the exclusive alternatives: blend instead of mask (mesh),
+             * neutral instead of ACES (composite) */
+            out->features = program == MVR_PROGRAM_MESH
+                                ? (all_compatible_features(program) & ~(uint32_t)MVR_FEATURE_ALPHA_MASK) |
+                                      MVR_FEATURE_ALPHA_BLEND
+                                : (all_compatible_features(program) & ~(uint32_t)MVR_FEATURE_POST_ACES) |
+                                      MVR_FEATURE_POST_PBR_NEUTRAL;
         if (ls == 1) {
             out->directional_lights = 1;
             out->point_lights = 2;

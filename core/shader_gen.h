@@ -44,12 +44,10 @@ typedef enum mvr_mesh_feature {
     MVR_FEATURE_UNLIT = 1u << 14,
     MVR_FEATURE_MATERIAL_ARRAYS = 1u << 15, /* texture arrays + layer index (batcher path) */
     MVR_FEATURE_SRGB_OUTPUT = 1u << 16,     /* shader encodes sRGB (UNORM targets) */
-    MVR_FEATURE_TONEMAP_ACES = 1u << 17,
-    MVR_FEATURE_TONEMAP_PBR_NEUTRAL = 1u << 18,
-    MVR_FEATURE_SHADOWS = 1u << 19,         /* lights read shadow map layers (PCF) */
-    MVR_FEATURE_LIGHT_MASKS = 1u << 20,     /* per-view light masks (render layers) */
-    MVR_FEATURE_SHADOW_CASTER = 1u << 21,   /* depth only: the shadow map pass (alpha test at most) */
-    MVR_MESH_FEATURE_ALL_ = (1u << 22) - 1u
+    MVR_FEATURE_SHADOWS = 1u << 17,         /* lights read shadow map layers (PCF) */
+    MVR_FEATURE_LIGHT_MASKS = 1u << 18,     /* per-view light masks (render layers) */
+    MVR_FEATURE_SHADOW_CASTER = 1u << 19,   /* depth only: the shadow map pass (alpha test at most) */
+    MVR_MESH_FEATURE_ALL_ = (1u << 20) - 1u
 } mvr_mesh_feature;
 
 #define MVR_TEXTURE_FEATURES                                                                        \
@@ -60,7 +58,12 @@ typedef enum mvr_mesh_feature {
 typedef enum mvr_composite_feature {
     MVR_FEATURE_SRGB_ENCODE = 1u << 0,      /* exact piecewise sRGB encode on output */
     MVR_FEATURE_DOWNSAMPLE = 1u << 1,       /* box-filter factor x factor texels (supersampling resolve) */
-    MVR_COMPOSITE_FEATURE_ALL_ = (1u << 1) - 1u
+    MVR_FEATURE_POST = 1u << 2,             /* exposure and tone mapping of an HDR source */
+    MVR_FEATURE_POST_ACES = 1u << 3,        /* tone mapper: ACES (Hill's fit) */
+    MVR_FEATURE_POST_PBR_NEUTRAL = 1u << 4, /* tone mapper: Khronos PBR Neutral */
+    MVR_FEATURE_DITHER = 1u << 5,
+    MVR_FEATURE_LOG_LUMINANCE = 1u << 6,    /* log2 luminance (auto-exposure reduction) */
+    MVR_COMPOSITE_FEATURE_ALL_ = (1u << 7) - 1u
 } mvr_composite_feature;
 
 #define MVR_SHADER_MAX_LIGHTS_PER_TYPE 8

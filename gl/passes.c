@@ -5,6 +5,7 @@
  * (loop), each drawing the opaque, alpha-masked and blended draws in order.
  */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -296,6 +297,7 @@ typedef struct pass_context {
     uint8_t *groups_used;        /* array path: groups sampled in this pass */
     uint32_t groups_used_count;
     uint32_t first_view, views;  /* the pass's views: a draw visible in any is drawn */
+    float mesh_exposure;         /* the linear exposure, or an HDR frame's pre-exposure */
     GLintptr compact;            /* the pass's compacted blocks, or -1 */
     uint32_t compact_next;       /* next compacted block to draw */
     const mvr_view_set *view_set;
@@ -433,7 +435,7 @@ static mvr_result bind_program(pass_context *pc, uint32_t features)
     }
     if (e->frame_serial != r->frame_serial) {
         gl->Uniform3fv(e->loc_ambient, 1, pc->scene->ambient);
-        gl->Uniform1f(e->loc_exposure, pc->desc->exposure);
+        gl->Uniform1f(e->loc_exposure, pc->mesh_exposure);
         e->frame_serial = r->frame_serial;
     }
     return MVR_OK;
@@ -686,7 +688,20 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
     /* multisampling: in the multiview passes where the GL has multisampled
      * multiview, else one view at a time (the loop path) */
     bool msaa = t->desc.samples > 1;
-    bool msaa_mv = msaa && t->msaa_multiview != MVR_MSAA_MV_NONE && path == MVR_VIEW_PATH_MULTIVIEW;
+    /* an HDR frame (tone mapping, physical exposure, dithering): views draw
+     * into a half-float array, the post pass writes the layers */
+    bool post = mvr_post_needed(desc);
+    t->hdr_frame = post && !t->ss_color;
+    if (post) {
+        mvr_result hr = mvr_target_ensure_hdr(t);
+        if (hr != MVR_OK)
+            return hr;
+    }
+    double pre_exposure = post ? mvr_post_pre_exposure(r, t, desc) : (double)desc->exposure;
+    r->stats.exposure_mode = desc->exposure_mode;
+    r->stats.tone_mapper = desc->tone_map;
+    r->stats.exposure_ev100 = log2(1.0 / (1.2 * pre_exposure));
+    bool msaa_mv = msaa && !post && t->msaa_multiview != MVR_MSAA_MV_NONE && path == MVR_VIEW_PATH_MULTIVIEW;
     if (msaa && !msaa_mv)
         path = MVR_VIEW_PATH_LOOP;
     r->stats.anti_aliasing = t->anti_aliasing;
@@ -727,13 +742,10 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
     st_rebind_setup(r);
     /* a supersampled target draws linear floats; its resolve encodes */
     uint32_t factor = mvr_target_factor(t);
-    bool encode_in_mesh = t->internal_format == GL_RGBA8 && factor == 1;
+    bool encode_in_mesh = t->internal_format == GL_RGBA8 && factor == 1 && !post;
     if (encode_in_mesh)
         pc.output_features |= MVR_FEATURE_SRGB_OUTPUT;
-    if (desc->tone_map == MVR_TONE_MAP_ACES)
-        pc.output_features |= MVR_FEATURE_TONEMAP_ACES;
-    else if (desc->tone_map == MVR_TONE_MAP_KHR_PBR_NEUTRAL)
-        pc.output_features |= MVR_FEATURE_TONEMAP_PBR_NEUTRAL;
+    pc.mesh_exposure = (float)pre_exposure;
     if (r->shadows.plan.layer_count)
         pc.output_features |= MVR_FEATURE_SHADOWS;
     if (r->shadows.plan.masked)
@@ -757,6 +769,9 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
     if (encode_in_mesh)
         for (int c = 0; c < 3; ++c)
             clear[c] = srgb_encode(clear[c]);
+    if (post) /* scene-referred in an HDR frame: exposed and tone mapped as the rest */
+        for (int c = 0; c < 3; ++c)
+            clear[c] = (float)(clear[c] * pre_exposure);
     float clear_depth = r->reversed_z ? 0.0f : 1.0f;
     GLsizeiptr view_block_stride = align_up(VIEW_BLOCK_SIZE, (GLsizeiptr)r->ubo_alignment);
     uint32_t light_total = r->frame.light_counts[0] + r->frame.light_counts[1] + r->frame.light_counts[2];
@@ -773,7 +788,8 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
         res = mvr_target_framebuffer(t, ch->base, mv_pass ? ch->count : 0, &fbo);
         /* multisampled: the multiview chunk's own framebuffer, or one view's renderbuffers */
         bool mv_msaa = msaa && mv_pass;
-        draw_fbo = msaa ? t->msaa_fbo : fbo;
+        GLuint msaa_fbo = t->hdr_frame ? t->msaa_hdr_fbo : t->msaa_fbo;
+        draw_fbo = msaa ? msaa_fbo : fbo;
         if (res == MVR_OK && mv_msaa)
             res = mvr_target_msaa_framebuffer(t, ch->base, ch->count, &draw_fbo);
         if (res != MVR_OK)
@@ -859,7 +875,7 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
             GLint x1 = vp->x + (GLint)vp->width, y1 = vp->y + (GLint)vp->height;
             mvr_state_scissor_test(st, false);
             for (uint32_t k = 0; k < (mv_msaa ? ch->count : 1u) && res == MVR_OK; ++k) {
-                GLuint read_fbo = t->msaa_fbo, out_fbo = fbo;
+                GLuint read_fbo = msaa_fbo, out_fbo = fbo;
                 if (mv_msaa) {
                     res = mvr_target_msaa_framebuffer(t, ch->base + k, 0, &read_fbo);
                     if (res == MVR_OK)
@@ -888,8 +904,21 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
             ps->texture_groups = pc.groups_used_count;
         }
     }
-    if (res == MVR_OK && factor > 1)
+    if (res == MVR_OK && post) {
+        mvr_post_chunk *pcs = (mvr_post_chunk *)malloc((chunk_count ? chunk_count : 1) * sizeof *pcs);
+        if (!pcs)
+            res = mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "post pass: out of memory");
+        for (uint32_t c = 0; pcs && c < chunk_count; ++c) {
+            pcs[c].base = chunks[c].base;
+            pcs[c].count = chunks[c].count;
+            pcs[c].viewport = chunks[c].viewport;
+        }
+        if (pcs)
+            res = mvr_post_run(r, t, views, desc, pcs, chunk_count, multiview, pre_exposure);
+        free(pcs);
+    } else if (res == MVR_OK && factor > 1) {
         res = resolve_supersampled(r, t, chunks, chunk_count, multiview);
+    }
     st->rebind_always = false;
     free(chunks);
     free(compact);

@@ -1,6 +1,7 @@
 /* mvr_renderer: create/destroy, programs, the uniform ring, timers, stats,
  * readback. Drawing is in passes.c, scene uploads in gpu_scene.c. */
 #define _POSIX_C_SOURCE 200809L
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -294,6 +295,7 @@ mvr_result mvr_renderer_program(mvr_renderer *r, const mvr_shader_variant *v, mv
     e->loc_exposure = r->gl->GetUniformLocation(program, "mvr_exposure");
     e->loc_layer_base = r->gl->GetUniformLocation(program, "mvr_layer_base");
     e->loc_factor = r->gl->GetUniformLocation(program, "mvr_factor");
+    e->loc_post_exposure = r->gl->GetUniformLocation(program, "mvr_post_exposure");
     e->view_base = INT32_MIN;
     e->from_binary = info.from_binary;
     if (info.from_binary)
@@ -445,6 +447,15 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
                                  (int)d.tone_map);
     if (d.exposure == 0.0f)
         d.exposure = 1.0f;
+    if (!mvr_exposure_mode_name(d.exposure_mode) || !(d.exposure > 0.0f) || !isfinite(d.exposure) ||
+        !isfinite(d.ev100) || !(d.aperture >= 0.0) || !(d.shutter >= 0.0) || !(d.iso >= 0.0) ||
+        !isfinite(d.exposure_compensation) || !(d.exposure_key >= 0.0f) || !isfinite(d.ev100_min) ||
+        !isfinite(d.ev100_max) || d.ev100_min > d.ev100_max)
+        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT,
+                                 "mvr_renderer_render: exposure: mode %d, exposure %g, ev100 %g, camera f/%g %gs ISO %g, "
+                                 "key %g, clamps %g..%g (finite, >= 0, min <= max)",
+                                 (int)d.exposure_mode, (double)d.exposure, d.ev100, d.aperture, d.shutter, d.iso,
+                                 (double)d.exposure_key, (double)d.ev100_min, (double)d.ev100_max);
     const mvr_shadow_desc *sd = &d.shadows;
     if ((unsigned)sd->mode > MVR_SHADOWS_OFF || sd->cascades > MVR_SHADOW_MAX_CASCADES ||
         sd->map_size > 16384 || !(sd->distance >= 0.0) || !(sd->slope_bias >= 0.0f) ||

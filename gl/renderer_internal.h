@@ -16,7 +16,7 @@ typedef struct mvr_program_entry {
     mvr_shader_variant variant;
     GLuint program;
     GLint loc_view_base, loc_ambient, loc_exposure;
-    GLint loc_layer_base, loc_factor;  /* composite programs */
+    GLint loc_layer_base, loc_factor, loc_post_exposure;  /* composite programs */
     int32_t view_base;           /* last value set (INT32_MIN = unknown) */
     uint64_t frame_serial;       /* frame whose per-frame uniforms are set */
     bool from_binary;            /* linked from the binary cache */
@@ -87,6 +87,7 @@ typedef struct mvr_fbo_entry {
     uint32_t base, count;        /* layers; count 0 = a single-layer (non-multiview) FBO */
     bool output;                 /* the color array alone (supersampled targets: the resolve's) */
     bool msaa;                   /* multisampled multiview (count > 0), or one multisampled layer to read */
+    uint8_t aux;                 /* 0, or MVR_FBO_HDR / MVR_FBO_LUMINANCE / MVR_FBO_LUMINANCE_TOP */
     GLuint fbo;
 } mvr_fbo_entry;
 
@@ -106,6 +107,15 @@ struct mvr_target {
     enum { MVR_MSAA_MV_NONE = 0, MVR_MSAA_MV_ARRAY, MVR_MSAA_MV_RENDER_TO_TEXTURE } msaa_multiview;
     GLuint msaa_array_color, msaa_array_depth;
     mvr_anti_aliasing anti_aliasing; /* resolved: NONE, MSAA or SUPERSAMPLE */
+    /* HDR frames (a post pass): views draw into hdr_color (RGBA16F, or the
+     * supersampled array, already float); auto-exposure reduces log2
+     * luminance through lum's mip levels. Made on first use. */
+    bool hdr_frame;
+    GLuint hdr_color;
+    GLuint msaa_hdr_color, msaa_hdr_fbo; /* multisampled HDR frames */
+    GLuint lum;
+    uint32_t lum_levels;
+    double last_auto_exposure;   /* pre-exposure of the next auto-exposed frame (0 = none yet) */
     /* supersampling (desc.supersample > 1): views are drawn into these (N
      * times the size, linear float) and resolved into the color array */
     GLuint ss_color;
@@ -202,6 +212,14 @@ void mvr_gpu_scene_release(mvr_renderer *r);
  * supersample resolve writes). */
 mvr_result mvr_target_framebuffer(mvr_target *t, uint32_t base, uint32_t count, GLuint *out);
 mvr_result mvr_target_output_framebuffer(mvr_target *t, uint32_t base, uint32_t count, GLuint *out);
+enum { MVR_FBO_HDR = 1, MVR_FBO_LUMINANCE = 2, MVR_FBO_LUMINANCE_TOP = 3 };
+/* HDR frames: makes hdr_color (and the multisampled HDR renderbuffer). */
+mvr_result mvr_target_ensure_hdr(mvr_target *t);
+/* Auto-exposure: the log-luminance array; framebuffers of its level 0
+ * (layers [base, base + count), multiview when count > 0) or of one layer's
+ * last level (MVR_FBO_LUMINANCE_TOP, count 0). */
+mvr_result mvr_target_luminance_framebuffer(mvr_target *t, int kind, uint32_t base, uint32_t count, GLuint *out);
+
 /* Multisampled multiview (t->msaa_multiview): the framebuffer views
  * [base, base + count) are drawn into (count > 1), or (count 0) one
  * multisampled layer to resolve from (the array mode). */
@@ -217,6 +235,18 @@ mvr_result mvr_shadows_draw(mvr_renderer *r, GLintptr views_at, GLintptr draws_a
 /* Binds the maps and the receiver block (at block_at) for the view passes. */
 void mvr_shadows_bind(mvr_renderer *r, GLintptr block_at);
 void mvr_shadows_release(mvr_renderer *r);
+
+/* post.c: the HDR frame's final passes (exposure, tone map, encode), with
+ * auto-exposure's luminance reduction first. chunks: as the views' passes. */
+typedef struct mvr_post_chunk {
+    uint32_t base, count;
+    mvr_viewport viewport;
+} mvr_post_chunk;
+bool mvr_post_needed(const mvr_render_desc *desc);
+/* The pre-exposure the lighting pass multiplies by (keeps half floats in range). */
+double mvr_post_pre_exposure(mvr_renderer *r, const mvr_target *t, const mvr_render_desc *desc);
+mvr_result mvr_post_run(mvr_renderer *r, mvr_target *t, const mvr_view_set *views, const mvr_render_desc *desc,
+                        const mvr_post_chunk *chunks, uint32_t chunk_count, bool multiview, double pre_exposure);
 
 /* passes.c */
 mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, const mvr_view_set *views,

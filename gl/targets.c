@@ -270,8 +270,13 @@ void mvr_target_destroy(mvr_target *t)
     }
     gl->DeleteRenderbuffers(1, &t->msaa_color);
     gl->DeleteRenderbuffers(1, &t->msaa_depth);
-    GLuint arrays[2] = {t->msaa_array_color, t->msaa_array_depth};
-    for (int i = 0; i < 2; ++i)
+    if (t->msaa_hdr_fbo) {
+        mvr_state_forget_framebuffer(&r->state, t->msaa_hdr_fbo);
+        gl->DeleteFramebuffers(1, &t->msaa_hdr_fbo);
+    }
+    gl->DeleteRenderbuffers(1, &t->msaa_hdr_color);
+    GLuint arrays[4] = {t->msaa_array_color, t->msaa_array_depth, t->hdr_color, t->lum};
+    for (int i = 0; i < 4; ++i)
         if (arrays[i]) {
             mvr_state_forget_texture(&r->state, arrays[i]);
             gl->DeleteTextures(1, &arrays[i]);
@@ -298,15 +303,18 @@ mvr_result mvr_target_framebuffer(mvr_target *t, uint32_t base, uint32_t count, 
 
 mvr_result mvr_target_output_framebuffer(mvr_target *t, uint32_t base, uint32_t count, GLuint *out)
 {
-    /* without supersampling the color array views are drawn into is the output */
-    return target_framebuffer(t, base, count, t->ss_color != 0, out);
+    /* without supersampling or an HDR frame the color array views are drawn into is the output */
+    return target_framebuffer(t, base, count, t->ss_color != 0 || t->hdr_frame, out);
 }
 
 static mvr_result target_framebuffer(mvr_target *t, uint32_t base, uint32_t count, bool output, GLuint *out)
 {
+    /* an HDR frame draws views into the half-float array (a supersampled
+     * target's own array is float already) */
+    uint8_t aux = !output && t->hdr_frame && !t->ss_color ? (uint8_t)MVR_FBO_HDR : 0;
     for (uint32_t i = 0; i < t->fbo_count; ++i) {
         if (t->fbos[i].base == base && t->fbos[i].count == count && t->fbos[i].output == output &&
-            !t->fbos[i].msaa) {
+            !t->fbos[i].msaa && t->fbos[i].aux == aux) {
             *out = t->fbos[i].fbo;
             return MVR_OK;
         }
@@ -327,8 +335,8 @@ static mvr_result target_framebuffer(mvr_target *t, uint32_t base, uint32_t coun
     /* the real level and base layer: the application's array may be a level
      * or a slice of a larger texture; a supersampled target draws views into
      * its own array and writes the application's only in the resolve */
-    bool into_color = output || !t->ss_color;
-    GLuint color = into_color ? t->color : t->ss_color;
+    bool into_color = output || (!t->ss_color && !aux);
+    GLuint color = into_color ? t->color : aux ? t->hdr_color : t->ss_color;
     GLint level = into_color ? (GLint)t->desc.external_level : 0;
     GLint layer = (GLint)((into_color ? t->desc.external_base_layer : 0) + base);
     if (count > 0) {
@@ -344,6 +352,7 @@ static mvr_result target_framebuffer(mvr_target *t, uint32_t base, uint32_t coun
     }
     t->fbos[t->fbo_count].base = base;
     t->fbos[t->fbo_count].msaa = false;
+    t->fbos[t->fbo_count].aux = aux;
     t->fbos[t->fbo_count].output = output;
     t->fbos[t->fbo_count].count = count;
     t->fbos[t->fbo_count++].fbo = fbo;
@@ -403,6 +412,7 @@ mvr_result mvr_target_msaa_framebuffer(mvr_target *t, uint32_t base, uint32_t co
     e->count = count;
     e->output = false;
     e->msaa = true;
+    e->aux = 0;
     e->fbo = fbo;
     char where[96];
     mvr_str_format(where, sizeof where, "multisampled framebuffer for layers %u..%u", base,
@@ -410,6 +420,96 @@ mvr_result mvr_target_msaa_framebuffer(mvr_target *t, uint32_t base, uint32_t co
     mvr_result res = mvr_gl_check(r->ctx, where, true);
     if (res == MVR_OK)
         res = mvr_gl_check_framebuffer(r->ctx, GL_DRAW_FRAMEBUFFER, where);
+    if (res != MVR_OK)
+        return mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
+    *out = fbo;
+    return MVR_OK;
+}
+
+mvr_result mvr_target_ensure_hdr(mvr_target *t)
+{
+    mvr_renderer *r = t->renderer;
+    const mvr_gl_api_table *gl = r->gl;
+    if (t->ss_color)
+        return MVR_OK; /* float already */
+    GLsizei w = (GLsizei)t->desc.width, h = (GLsizei)t->desc.height;
+    if (!t->hdr_color) {
+        if (!r->ctx->caps.ext.ext_color_buffer_half_float && !r->ctx->caps.ext.ext_color_buffer_float)
+            return mvr_renderer_fail(r, MVR_ERROR_UNSUPPORTED,
+                                     "HDR frame (tone mapping, physical exposure or dithering): %s renders to no "
+                                     "half-float format", r->ctx->caps.renderer);
+        gl->GenTextures(1, &t->hdr_color);
+        mvr_state_texture(&r->state, 0, GL_TEXTURE_2D_ARRAY, t->hdr_color);
+        gl->TexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_RGBA16F, w, h, (GLsizei)t->desc.layers);
+    }
+    if (t->desc.samples > 1 && !t->msaa_hdr_fbo) {
+        gl->GenRenderbuffers(1, &t->msaa_hdr_color);
+        gl->BindRenderbuffer(GL_RENDERBUFFER, t->msaa_hdr_color);
+        gl->RenderbufferStorageMultisample(GL_RENDERBUFFER, (GLsizei)t->desc.samples, GL_RGBA16F, w, h);
+        gl->BindRenderbuffer(GL_RENDERBUFFER, 0);
+        gl->GenFramebuffers(1, &t->msaa_hdr_fbo);
+        mvr_state_draw_framebuffer(&r->state, t->msaa_hdr_fbo);
+        gl->FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t->msaa_hdr_color);
+        gl->FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t->msaa_depth);
+        mvr_result res = mvr_gl_check_framebuffer(r->ctx, GL_DRAW_FRAMEBUFFER, "multisampled HDR framebuffer");
+        if (res != MVR_OK)
+            return mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
+    }
+    mvr_result res = mvr_gl_check(r->ctx, "HDR color array", true);
+    if (res != MVR_OK)
+        return mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
+    return MVR_OK;
+}
+
+mvr_result mvr_target_luminance_framebuffer(mvr_target *t, int kind, uint32_t base, uint32_t count, GLuint *out)
+{
+    mvr_renderer *r = t->renderer;
+    const mvr_gl_api_table *gl = r->gl;
+    if (!t->lum) {
+        /* RG16F: renderable and filterable (the mip chain averages it) on GLES 3 with half-float rendering */
+        uint32_t size = t->desc.width > t->desc.height ? t->desc.width : t->desc.height, levels = 1;
+        while (size > 1) {
+            size /= 2;
+            levels++;
+        }
+        gl->GenTextures(1, &t->lum);
+        mvr_state_texture(&r->state, 0, GL_TEXTURE_2D_ARRAY, t->lum);
+        gl->TexStorage3D(GL_TEXTURE_2D_ARRAY, (GLsizei)levels, GL_RG16F, (GLsizei)t->desc.width,
+                         (GLsizei)t->desc.height, (GLsizei)t->desc.layers);
+        t->lum_levels = levels;
+    }
+    for (uint32_t i = 0; i < t->fbo_count; ++i)
+        if (t->fbos[i].aux == kind && t->fbos[i].base == base && t->fbos[i].count == count) {
+            *out = t->fbos[i].fbo;
+            return MVR_OK;
+        }
+    if (t->fbo_count == t->fbo_cap) {
+        uint32_t cap = t->fbo_cap ? t->fbo_cap * 2 : 8;
+        mvr_fbo_entry *p = realloc(t->fbos, cap * sizeof *p);
+        if (!p)
+            return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "framebuffers: out of memory");
+        t->fbos = p;
+        t->fbo_cap = cap;
+    }
+    GLuint fbo = 0;
+    gl->GenFramebuffers(1, &fbo);
+    mvr_state_draw_framebuffer(&r->state, fbo);
+    if (kind == MVR_FBO_LUMINANCE && count > 0)
+        gl->FramebufferTextureMultiviewOVR(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, t->lum, 0, (GLint)base,
+                                           (GLsizei)count);
+    else
+        gl->FramebufferTextureLayer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, t->lum,
+                                    kind == MVR_FBO_LUMINANCE_TOP ? (GLint)t->lum_levels - 1 : 0, (GLint)base);
+    mvr_fbo_entry *e = &t->fbos[t->fbo_count++];
+    e->base = base;
+    e->count = count;
+    e->output = false;
+    e->msaa = false;
+    e->aux = (uint8_t)kind;
+    e->fbo = fbo;
+    mvr_result res = mvr_gl_check(r->ctx, "luminance framebuffer", true);
+    if (res == MVR_OK)
+        res = mvr_gl_check_framebuffer(r->ctx, GL_DRAW_FRAMEBUFFER, "luminance framebuffer");
     if (res != MVR_OK)
         return mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
     *out = fbo;

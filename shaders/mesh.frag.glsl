@@ -42,55 +42,16 @@ layout(std140) uniform mvr_shadows {
 };
 #endif
 uniform vec3 mvr_ambient;    // rgb radiance of a uniform environment
-uniform float mvr_exposure;  // multiplies the lit color before tone mapping
+uniform float mvr_exposure;  // multiplies the lit color (the linear exposure, or a post pass's pre-exposure)
 
-#ifdef MVR_TONEMAP_ACES
-// The fitted ACES curve (Stephen Hill's fit of the RRT + ODT) that the Khronos
-// glTF Sample Renderer uses: sRGB -> AP1 with RRT saturation, the rational
-// fit, and back to sRGB.
-const mat3 MVR_ACES_INPUT = mat3(0.59719, 0.07600, 0.02840,
-                                 0.35458, 0.90834, 0.13383,
-                                 0.04823, 0.01566, 0.83777);
-const mat3 MVR_ACES_OUTPUT = mat3(1.60475, -0.10208, -0.00327,
-                                  -0.53108, 1.10813, -0.07276,
-                                  -0.07367, -0.00605, 1.07602);
-vec3 mvr_tone_map(vec3 c)
-{
-    c = MVR_ACES_INPUT * c;
-    vec3 a = c * (c + 0.0245786) - 0.000090537;
-    vec3 b = c * (0.983729 * c + 0.4329510) + 0.238081;
-    return clamp(MVR_ACES_OUTPUT * (a / b), 0.0, 1.0);
-}
-#elif defined(MVR_TONEMAP_PBR_NEUTRAL)
-// Khronos PBR Neutral (KhronosGroup/ToneMapping, PBR_Neutral).
-vec3 mvr_tone_map(vec3 c)
-{
-    const float start_compression = 0.8 - 0.04;
-    const float desaturation = 0.15;
-    float x = min(c.r, min(c.g, c.b));
-    float offset = x < 0.08 ? x - 6.25 * x * x : 0.04;
-    c -= offset;
-    float peak = max(c.r, max(c.g, c.b));
-    if (peak < start_compression)
-        return c;
-    const float d = 1.0 - start_compression;
-    float new_peak = 1.0 - d * d / (peak + d - start_compression);
-    c *= new_peak / peak;
-    float g = 1.0 - 1.0 / (desaturation * (peak - new_peak) + 1.0);
-    return mix(c, vec3(new_peak), g);
-}
-#else
-vec3 mvr_tone_map(vec3 c)
-{
-    return c;
-}
-#endif
-
-// Exposure, tone map, and (for UNORM targets) the exact sRGB encode; sRGB
-// targets encode in hardware with the same piecewise function.
+// Exposure and (for UNORM targets) the exact sRGB encode; sRGB targets
+// encode in hardware with the same piecewise function. Tone mapping is the
+// post pass's (composite.frag.glsl), after lighting is summed and blended
+// in linear HDR; there mvr_exposure is the pre-exposure that keeps the half
+// float target in range. The min() keeps inf out of a half float target.
 vec4 mvr_output(vec4 c)
 {
-    vec3 rgb = mvr_tone_map(max(c.rgb, vec3(0.0)) * mvr_exposure);
+    vec3 rgb = min(max(c.rgb, vec3(0.0)) * mvr_exposure, vec3(65000.0));
 #ifdef MVR_SRGB_OUTPUT
     rgb = mvr_linear_to_srgb(rgb);
 #endif

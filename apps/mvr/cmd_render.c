@@ -32,6 +32,7 @@ typedef struct render_options {
     uint32_t supersample;        /* samples per pixel side; 1 = none */
     uint32_t msaa;               /* multisample count; 0 = none */
     mvr_anti_aliasing aa;        /* --aa: the library's anti-aliasing choice */
+    bool exposure_set, tone_map_set;
     bool reference;
     mvr_color_format format;
     bool format_set;
@@ -84,9 +85,19 @@ static void render_usage(FILE *out)
             "                      (glTF has no such flag, so none), for every directional\n"
             "                      and spot light, or none (default: default)\n"
             "  --shadow-size N     shadow map texels per side (default: 1024)\n"
-            "  --exposure X        linear exposure multiplier (default: 1)\n"
+            );
+    /* two strings: C99 promises 4095 characters in one literal */
+    fprintf(out,
+            "  --exposure E        auto | an EV100 (physical camera exposure; default: auto\n"
+            "                      when the lights are in physical units, e.g. a sun of\n"
+            "                      thousands of lux, else a linear 1)\n"
+            "  --exposure-scale X  linear exposure multiplier instead (default: 1)\n"
+            "  --camera N,T,ISO    physical exposure of a camera: f-number, shutter seconds, ISO\n"
+            "  --exposure-per-view auto-exposure per view (default: one for all views)\n"
+            "  --dither            +-1 step of noise before 8-bit storage (default: off)\n"
             "  --clear R,G,B[,A]   linear clear color (default: a dark opaque sky)\n"
-            "  --tone-map T        none | aces | pbr-neutral (default: none)\n"
+            "  --tone-map T        none | aces | pbr-neutral (default: pbr-neutral with auto\n"
+            "                      exposure, none otherwise)\n"
             "  --frames N          render N frames (the last is written; default: 1)\n"
             "  --stats FILE.json   write the last frame's stats as JSON\n"
             "  --program-cache D   program binaries in D, so a later run compiles no shader;\n"
@@ -319,13 +330,48 @@ static int parse(int argc, char **argv, render_options *o)
             ++i;
         } else if (strcmp(a, "--exposure") == 0) {
             char *end = NULL;
-            o->render.exposure = strtof(v, &end);
-            if (!end || *end || !(o->render.exposure > 0.0f)) {
-                fprintf(stderr, "mvr render: --exposure takes a number > 0\n");
+            o->exposure_set = true;
+            if (v && strcmp(v, "auto") == 0) {
+                o->render.exposure_mode = MVR_EXPOSURE_AUTO;
+            } else {
+                o->render.exposure_mode = MVR_EXPOSURE_EV100;
+                o->render.ev100 = v ? strtod(v, &end) : 0.0;
+                if (!v || !end || *end || !isfinite(o->render.ev100)) {
+                    fprintf(stderr, "mvr render: --exposure takes auto or an EV100 (e.g. 15 for sunlight)\n");
+                    return MVR_EXIT_USAGE;
+                }
+            }
+            ++i;
+        } else if (strcmp(a, "--exposure-scale") == 0) {
+            char *end = NULL;
+            o->exposure_set = true;
+            o->render.exposure_mode = MVR_EXPOSURE_LINEAR;
+            o->render.exposure = v ? strtof(v, &end) : 0.0f;
+            if (!v || !end || *end || !(o->render.exposure > 0.0f) || !isfinite(o->render.exposure)) {
+                fprintf(stderr, "mvr render: --exposure-scale takes a number > 0\n");
                 return MVR_EXIT_USAGE;
             }
             ++i;
+        } else if (strcmp(a, "--camera") == 0) {
+            double n = 0, sh = 0, iso = 0;
+            o->exposure_set = true;
+            if (!v || sscanf(v, "%lf,%lf,%lf", &n, &sh, &iso) != 3 || !(n > 0) || !(sh > 0) || !(iso > 0)) {
+                fprintf(stderr, "mvr render: --camera takes f-number,shutter-seconds,ISO (e.g. 16,0.008,100)\n");
+                return MVR_EXIT_USAGE;
+            }
+            o->render.exposure_mode = MVR_EXPOSURE_CAMERA;
+            o->render.aperture = n;
+            o->render.shutter = sh;
+            o->render.iso = iso;
+            ++i;
+        } else if (strcmp(a, "--exposure-per-view") == 0) {
+            o->render.exposure_per_view = true;
+        } else if (strcmp(a, "--dither") == 0) {
+            o->render.dither = true;
         } else if (strcmp(a, "--tone-map") == 0) {
+            o->tone_map_set = true;
+            if (!v)
+                v = "";
             if (strcmp(v, "none") == 0)
                 o->render.tone_map = MVR_TONE_MAP_NONE;
             else if (strcmp(v, "aces") == 0)
@@ -436,6 +482,11 @@ static void write_stats_json(FILE *f, const mvr_renderer *r, const mvr_frame_sta
     json_int(&jw, "mask", s->sub_passes[1]);
     json_int(&jw, "blend", s->sub_passes[2]);
     json_end_object(&jw);
+    json_string(&jw, "exposure_mode", mvr_exposure_mode_name(s->exposure_mode));
+    json_double(&jw, "exposure_ev100", s->exposure_ev100);
+    json_string(&jw, "tone_mapper", mvr_tone_map_name(s->tone_mapper));
+    json_int(&jw, "post_passes", s->post_passes);
+    json_int(&jw, "luminance_passes", s->luminance_passes);
     json_int(&jw, "shadow_passes", s->shadow_passes);
     json_int(&jw, "shadow_layers", s->shadow_layers);
     json_int(&jw, "shadow_draws", s->shadow_draws);
@@ -550,6 +601,16 @@ int mvr_cmd_render(int argc, char **argv)
     rc = cli_load_scene("mvr render", &so, &scene, &views);
     if (rc != MVR_EXIT_OK)
         goto done;
+    /* a file lit in physical units (a sun of thousands of lux) is a white
+     * image at exposure 1: expose it automatically and tone map it, as a
+     * camera would */
+    if (!o.exposure_set && mvr_scene_lights_physical(scene)) {
+        o.render.exposure_mode = MVR_EXPOSURE_AUTO;
+        if (!o.tone_map_set)
+            o.render.tone_map = MVR_TONE_MAP_KHR_PBR_NEUTRAL;
+    } else if (!o.tone_map_set && o.render.exposure_mode == MVR_EXPOSURE_AUTO) {
+        o.render.tone_map = MVR_TONE_MAP_KHR_PBR_NEUTRAL;
+    }
     rc = MVR_EXIT_FAILURE;
     char cache_buf[4096];
     mvr_renderer_desc rd = {.context = ctx, .view_path = o.view_path, .logger = o.context.logger,
@@ -626,6 +687,11 @@ int mvr_cmd_render(int argc, char **argv)
                mvr_view_path_name(st.view_path), st.passes, st.passes == 1 ? "" : "es", st.views,
                st.views == 1 ? "" : "s", c->limits.max_views_ovr);
         printf("  depth       %s\n", st.depth_mode == MVR_DEPTH_MODE_REVERSED_Z ? "reversed-Z (clip control, float depth)" : "standard");
+        if (st.post_passes)
+            printf("  exposure    %s: EV100 %.2f, tone map %s, %u post pass%s, %u luminance pass%s\n",
+                   mvr_exposure_mode_name(st.exposure_mode), st.exposure_ev100, mvr_tone_map_name(st.tone_mapper),
+                   st.post_passes, st.post_passes == 1 ? "" : "es", st.luminance_passes,
+                   st.luminance_passes == 1 ? "" : "es");
         if (st.shadow_layers)
             printf("  shadows     %u layer%s in %u pass%s, %u caster draws\n", st.shadow_layers,
                    st.shadow_layers == 1 ? "" : "s", st.shadow_passes, st.shadow_passes == 1 ? "" : "es",

@@ -420,7 +420,15 @@ void mvr_scene_set_ambient(mvr_scene *scene, const float rgb[3]);
 typedef struct mvr_scene_info {
     uint32_t images, materials, meshes, primitives, nodes, lights, cameras;
     double bounds_min[3], bounds_max[3]; /* world space, of every drawn primitive */
+    /* the brightest light of each type (directional lux; point and spot
+     * candela; color's largest channel times intensity) */
+    float max_light_intensity[3];
 } mvr_scene_info;
+/* True when the lights are in physical units at a scale exposure 1 would
+ * blow out (a directional light over 20 lux, or a point or spot light over
+ * 100 candela: a tool's export of a real scene, as KHR_lights_punctual
+ * asks), so an auto-exposed, tone-mapped render is the one to show. */
+bool mvr_scene_lights_physical(const mvr_scene *scene);
 void mvr_scene_get_info(const mvr_scene *scene, mvr_scene_info *out);
 
 /* Nodes that carry a camera, in node order. */
@@ -648,12 +656,54 @@ typedef struct mvr_shadow_desc {
     float normal_bias;           /* receiver offset along its normal, in shadow texels; 0 = 1.5 */
 } mvr_shadow_desc;
 
+const char *mvr_tone_map_name(mvr_tone_map tone_map);
+
+/* Exposure. LINEAR multiplies the lit color by `exposure` in the lighting
+ * pass (the default: results of existing code do not move). The others are
+ * physical (glTF's lights are in lux and candela) and, like any tone
+ * mapping or dithering, make the frame an HDR one: lighting goes into a
+ * half-float array, and one final full-screen pass per chunk of views (one
+ * multiview pass; per view on the loop path, the same bytes) applies
+ * exposure, tone mapping, dithering and the sRGB encode into the target.
+ * The photometric exposure follows Lagarde and de Rousiers, "Moving
+ * Frostbite to Physically Based Rendering" (2014): exposure =
+ * 1 / (1.2 * 2^EV100) (saturation-based speed, ISO 12232, S = 100), and
+ * EV100 = log2(N^2 / t * 100 / S) for a camera of f-number N, shutter t
+ * seconds and sensitivity S. */
+typedef enum mvr_exposure_mode {
+    MVR_EXPOSURE_LINEAR = 0,     /* `exposure` as a multiplier (0 = 1) */
+    MVR_EXPOSURE_EV100,          /* ev100 */
+    MVR_EXPOSURE_CAMERA,         /* aperture, shutter, iso */
+    /* from the rendered HDR layers: their average log2 luminance (a
+     * reduction through the mip levels of a log-luminance array) is put on
+     * `exposure_key`; one EV100 for all views unless exposure_per_view */
+    MVR_EXPOSURE_AUTO
+} mvr_exposure_mode;
+const char *mvr_exposure_mode_name(mvr_exposure_mode mode);
+
 typedef struct mvr_render_desc {
     float clear_color[4];        /* linear RGBA */
-    float exposure;              /* multiplies the lit color; 0 = 1 */
+    float exposure;              /* LINEAR: multiplies the lit color; 0 = 1 */
     mvr_tone_map tone_map;
     mvr_shadow_desc shadows;
+    mvr_exposure_mode exposure_mode;
+    double ev100;                /* EV100 mode */
+    double aperture;             /* CAMERA: f-number; 0 = 16 */
+    double shutter;              /* CAMERA: seconds; 0 = 1/125 */
+    double iso;                  /* CAMERA: 0 = 100 */
+    float exposure_compensation; /* EV added to what the mode gives (not LINEAR) */
+    float exposure_key;          /* AUTO: where the average log luminance lands; 0 = 0.18 */
+    float ev100_min, ev100_max;  /* AUTO: clamps; both 0 = -8 .. 24 */
+    bool exposure_per_view;      /* AUTO: each view its own EV100 (default: one shared, so two
+                                    eyes never disagree) */
+    bool dither;                 /* +-1 step of triangular noise before 8-bit storage (HDR frames) */
 } mvr_render_desc;
+
+/* The photometric exposure of an EV100 (see mvr_exposure_mode): the
+ * multiplier from scene luminance to the tone mapper's input. */
+double mvr_exposure_from_ev100(double ev100);
+/* EV100 of a camera: f-number, shutter in seconds, ISO sensitivity. */
+double mvr_ev100_from_camera(double aperture, double shutter, double iso);
 
 /* Renders every enabled view of the set into its layer of the target
  * (view i -> layer i). Uploads what changed in the scene first. */
@@ -714,6 +764,13 @@ typedef struct mvr_frame_stats {
                                     layers) whatever the view count; one per layer without multiview */
     uint32_t shadow_layers;      /* layers of the shadow map array in use (cascades + spot maps) */
     uint32_t shadow_draws;       /* caster objects drawn into the shadow maps */
+    mvr_exposure_mode exposure_mode;
+    double exposure_ev100;       /* the EV100 that ran (view 0's with per-view auto exposure;
+                                    LINEAR: the EV100 whose exposure is that multiplier) */
+    mvr_tone_map tone_mapper;
+    uint32_t post_passes;        /* final full-screen passes (1 per multiview chunk, 1 per view on
+                                    the loop path; 0 without an HDR frame) */
+    uint32_t luminance_passes;   /* auto-exposure log-luminance passes */
     double cpu_ms;               /* submitting thread, render call */
     double gpu_ms;               /* timer queries; < 0 when not available */
 } mvr_frame_stats;

@@ -1,0 +1,298 @@
+/* gl: the HDR frame's post pass. Auto-exposure puts a 100,000 lux sun in a
+ * sane band; the multiview post pass and the loop's give the same bytes on
+ * every demo (one pass for 6 views); each tone mapper matches its formula
+ * (a CPU reference here, written from the published curves). */
+#include <math.h>
+
+#include "stress/stress_util.h"
+
+static double srgb_decode(double e)
+{
+    return e <= 0.04045 ? e / 12.92 : pow((e + 0.055) / 1.055, 2.4);
+}
+
+static double srgb_encode_d(double c)
+{
+    c = c < 0 ? 0 : c > 1 ? 1 : c;
+    return c <= 0.0031308 ? c * 12.92 : 1.055 * pow(c, 1.0 / 2.4) - 0.055;
+}
+
+/* A grey floor with boxes under a 100,000 lux sun (noon in summer). */
+static mvr_scene *sunny_scene(mvr_test_state *t)
+{
+    mvr_scene *s = stress_scene();
+    mvr_material_desc m = mvr_material_defaults();
+    m.metallic_factor = 0.0f;
+    m.roughness_factor = 0.7f;
+    m.base_color_factor[0] = m.base_color_factor[1] = m.base_color_factor[2] = 0.5f;
+    mvr_material_id grey;
+    CHECK(t, mvr_scene_add_material(s, &m, &grey) == MVR_OK);
+    m.base_color_factor[0] = 0.7f, m.base_color_factor[1] = 0.2f, m.base_color_factor[2] = 0.1f;
+    mvr_material_id red;
+    CHECK(t, mvr_scene_add_material(s, &m, &red) == MVR_OK);
+    const double h = 0.70710678118654752;
+    mvr_node_desc floor = {.mesh = stress_add_quad(t, s, grey), .rotation = {-h, 0, 0, h}, .scale = {10, 10, 10}};
+    mvr_node_id id;
+    CHECK(t, mvr_scene_add_node(s, &floor, &id) == MVR_OK);
+    mvr_mesh_id box = stress_add_box(t, s, 0.5f, red);
+    for (int i = 0; i < 5; ++i)
+        stress_node(t, s, box, -3.0 + 1.5 * i, 0.5, -1.0 - (i % 2), 1.0);
+    double a = -0.9; /* the sun high, from the front */
+    mvr_light_desc sun = {.type = MVR_LIGHT_DIRECTIONAL, .intensity = 100000.0f};
+    mvr_light_id lid;
+    CHECK(t, mvr_scene_add_light(s, &sun, &lid) == MVR_OK);
+    mvr_node_desc sn = {.light = lid, .rotation = {sin(a / 2), 0, 0, cos(a / 2)}};
+    CHECK(t, mvr_scene_add_node(s, &sn, &id) == MVR_OK);
+    /* skylight: a fifth of the sun's illuminance, as radiance (E / pi) */
+    float sky[3] = {20000.0f / 3.14159265f * 0.6f, 20000.0f / 3.14159265f * 0.7f, 20000.0f / 3.14159265f};
+    mvr_scene_set_ambient(s, sky);
+    return s;
+}
+
+static uint8_t *render_desc(mvr_test_state *t, mvr_context *ctx, mvr_scene *s, const mvr_view_set *vs,
+                            mvr_view_path path, mvr_color_format format, uint32_t w, uint32_t h,
+                            const mvr_render_desc *rd, mvr_frame_stats *st)
+{
+    uint32_t n = mvr_view_set_count(vs);
+    mvr_renderer_desc d = {.context = ctx, .view_path = path};
+    mvr_renderer *r = NULL;
+    mvr_target *target = NULL;
+    bool ok = mvr_renderer_create(&d, &r, NULL) == MVR_OK;
+    mvr_target_desc td = {w, h, n, format, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT};
+    ok = ok && mvr_target_create(r, &td, &target) == MVR_OK && mvr_renderer_render(r, s, vs, target, rd) == MVR_OK;
+    CHECK_MSG(t, ok, "render: %s", r ? mvr_renderer_last_error(r) : "renderer");
+    size_t layer = (size_t)w * h * 4;
+    uint8_t *out = ok ? malloc(layer * n) : NULL;
+    for (uint32_t k = 0; ok && k < n; ++k)
+        ok = mvr_renderer_read_layer(r, target, k, MVR_READBACK_RGBA8, out + layer * k, layer) == MVR_OK;
+    if (ok && st)
+        mvr_renderer_get_stats(r, st);
+    if (!ok) {
+        free(out);
+        out = NULL;
+    }
+    mvr_target_destroy(target);
+    mvr_renderer_destroy(r);
+    return out;
+}
+
+static void auto_exposure_tames_the_sun(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    mvr_scene *s = sunny_scene(t);
+    const double eye[3] = {0, 2.5, 6}, target[3] = {0, 0.3, -1};
+    mvr_projection proj = {.yfov = 0.9, .znear = 0.1};
+    mvr_view_desc v[2] = {stress_view(eye, target, proj), stress_view(eye, target, proj)};
+    v[1].position[0] += 0.064;
+    mvr_view_set *vs = stress_view_set(t, v, 2, NULL);
+    const uint32_t W = 96, H = 64;
+    /* the clear color of an HDR frame is scene-referred: a blue sky of
+     * about 5000 cd/m2 */
+    mvr_render_desc linear = {.clear_color = {3000, 4500, 8000, 1}};
+    mvr_render_desc autod = {.clear_color = {3000, 4500, 8000, 1}, .exposure_mode = MVR_EXPOSURE_AUTO,
+                             .tone_map = MVR_TONE_MAP_KHR_PBR_NEUTRAL};
+    mvr_frame_stats st_lin, st_auto;
+    uint8_t *white = render_desc(t, ctx, s, vs, MVR_VIEW_PATH_AUTO, MVR_COLOR_FORMAT_DEFAULT, W, H, &linear, &st_lin);
+    uint8_t *img = render_desc(t, ctx, s, vs, MVR_VIEW_PATH_AUTO, MVR_COLOR_FORMAT_DEFAULT, W, H, &autod, &st_auto);
+    if (white && img) {
+        for (int k = 0; k < 2; ++k) {
+            const uint8_t *im = k ? img : white;
+            double sum = 0;
+            size_t clipped = 0, n = (size_t)W * H * 2;
+            for (size_t i = 0; i < n; ++i) {
+                const uint8_t *p = im + i * 4;
+                double y = 0.2126 * srgb_decode(p[0] / 255.0) + 0.7152 * srgb_decode(p[1] / 255.0) +
+                           0.0722 * srgb_decode(p[2] / 255.0);
+                sum += y;
+                clipped += p[0] >= 254 || p[1] >= 254 || p[2] >= 254;
+            }
+            double mean = sum / n, clip = (double)clipped / n;
+            printf("  %s: mean luminance %.3f, %.1f%% clipped, EV100 %.2f\n", k ? "auto" : "exposure 1", mean,
+                   100.0 * clip, k ? st_auto.exposure_ev100 : st_lin.exposure_ev100);
+            if (k) {
+                CHECK_MSG(t, mean >= 0.1 && mean <= 0.6, "auto-exposed mean luminance %.3f", mean);
+                CHECK_MSG(t, clip <= 0.03, "auto-exposed: %.1f%% clipped", 100.0 * clip);
+                /* about sunny 16: EV100 15 for sunlit scenes */
+                CHECK_MSG(t, st_auto.exposure_ev100 > 12.0 && st_auto.exposure_ev100 < 18.0, "EV100 %.2f",
+                          st_auto.exposure_ev100);
+                CHECK_EQ_INT(t, st_auto.exposure_mode, MVR_EXPOSURE_AUTO);
+                CHECK_EQ_INT(t, st_auto.tone_mapper, MVR_TONE_MAP_KHR_PBR_NEUTRAL);
+                CHECK_EQ_INT(t, st_auto.luminance_passes, st_auto.passes);
+            } else {
+                CHECK_MSG(t, clip > 0.5, "exposure 1 should blow the sun out: %.1f%% clipped", 100.0 * clip);
+                CHECK_EQ_INT(t, st_lin.post_passes, 0); /* the default: no HDR frame */
+            }
+        }
+        /* shared exposure: the two eyes agree (nearly the same picture) */
+        size_t layer = (size_t)W * H * 4;
+        double d = 0;
+        for (size_t i = 0; i < layer; ++i)
+            d += fabs((double)img[i] - img[layer + i]);
+        CHECK_MSG(t, d / layer < 6.0, "the eyes differ by %.2f on average", d / layer);
+    }
+    free(white);
+    free(img);
+    mvr_view_set_destroy(vs);
+    mvr_scene_destroy(s);
+    mvr_context_destroy(ctx);
+}
+
+static void post_pass_is_the_same_on_both_paths(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    const uint32_t W = 64, H = 48;
+    const mvr_render_desc descs[3] = {
+        {.clear_color = {0.02f, 0.02f, 0.03f, 1}, .exposure_mode = MVR_EXPOSURE_AUTO, .tone_map = MVR_TONE_MAP_ACES},
+        {.clear_color = {0.02f, 0.02f, 0.03f, 1}, .exposure_mode = MVR_EXPOSURE_AUTO, .exposure_per_view = true,
+         .tone_map = MVR_TONE_MAP_KHR_PBR_NEUTRAL},
+        {.clear_color = {0.02f, 0.02f, 0.03f, 1}, .exposure_mode = MVR_EXPOSURE_EV100, .ev100 = -1.0,
+         .dither = true},
+    };
+    for (uint32_t d = 0; mvr_demo_name(d); ++d) {
+        const char *demo = mvr_demo_name(d);
+        uint32_t views = strcmp(demo, "cube") == 0 ? 6 : 2;
+        mvr_scene *s = NULL;
+        mvr_view_set *vs = NULL;
+        mvr_demo_desc dd = {views, W, H, {0}};
+        CHECK(t, mvr_demo_create(demo, &dd, &s, &vs, NULL) == MVR_OK);
+        for (int k = 0; k < 3 && s; ++k) {
+            mvr_frame_stats mv, loop;
+            uint8_t *a = render_desc(t, ctx, s, vs, MVR_VIEW_PATH_MULTIVIEW, MVR_COLOR_FORMAT_DEFAULT, W, H, &descs[k], &mv);
+            uint8_t *b = render_desc(t, ctx, s, vs, MVR_VIEW_PATH_LOOP, MVR_COLOR_FORMAT_DEFAULT, W, H, &descs[k], &loop);
+            if (a && b) {
+                size_t bytes = (size_t)W * H * 4 * views;
+                unsigned diff = max_abs_diff8(a, b, bytes);
+                CHECK_MSG(t, diff == 0, "%s, post %d: multiview and loop differ by %u", demo, k, diff);
+                CHECK_EQ_INT(t, mv.post_passes, 1); /* one multiview pass, whatever N (<= 6 here) */
+                CHECK_EQ_INT(t, loop.post_passes, views);
+                CHECK_MSG(t, mv.exposure_ev100 == loop.exposure_ev100, "%s: EV100 %g vs %g", demo, mv.exposure_ev100,
+                          loop.exposure_ev100);
+                if (k == 0 && d == 0)
+                    printf("  %s: EV100 %.3f, %u post pass(es) for %u views\n", demo, mv.exposure_ev100,
+                           mv.post_passes, views);
+            }
+            free(a);
+            free(b);
+        }
+        mvr_view_set_destroy(vs);
+        mvr_scene_destroy(s);
+    }
+    mvr_context_destroy(ctx);
+}
+
+/* The Khronos glTF Sample Renderer's curves, in double. */
+static void ref_aces(const double in[3], double out[3])
+{
+    static const double mi[3][3] = {{0.59719, 0.35458, 0.04823}, {0.07600, 0.90834, 0.01566}, {0.02840, 0.13383, 0.83777}};
+    static const double mo[3][3] = {{1.60475, -0.53108, -0.07367}, {-0.10208, 1.10813, -0.00605}, {-0.00327, -0.07276, 1.07602}};
+    double c[3], f[3];
+    for (int i = 0; i < 3; ++i)
+        c[i] = mi[i][0] * in[0] + mi[i][1] * in[1] + mi[i][2] * in[2];
+    for (int i = 0; i < 3; ++i) {
+        double a = c[i] * (c[i] + 0.0245786) - 0.000090537;
+        double b = c[i] * (0.983729 * c[i] + 0.4329510) + 0.238081;
+        f[i] = a / b;
+    }
+    for (int i = 0; i < 3; ++i) {
+        double v = mo[i][0] * f[0] + mo[i][1] * f[1] + mo[i][2] * f[2];
+        out[i] = v < 0 ? 0 : v > 1 ? 1 : v;
+    }
+}
+
+static void ref_pbr_neutral(const double in[3], double out[3])
+{
+    const double start = 0.8 - 0.04, desat = 0.15;
+    double x = fmin(in[0], fmin(in[1], in[2]));
+    double offset = x < 0.08 ? x - 6.25 * x * x : 0.04;
+    double c[3] = {in[0] - offset, in[1] - offset, in[2] - offset};
+    double peak = fmax(c[0], fmax(c[1], c[2]));
+    if (peak < start) {
+        memcpy(out, c, sizeof c);
+        return;
+    }
+    double d = 1.0 - start;
+    double new_peak = 1.0 - d * d / (peak + d - start);
+    double g = 1.0 - 1.0 / (desat * (peak - new_peak) + 1.0);
+    for (int i = 0; i < 3; ++i)
+        out[i] = c[i] * (new_peak / peak) * (1.0 - g) + new_peak * g;
+}
+
+static void tone_mappers_match_their_formulas(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    /* a ramp of emissive quads (base black, no lights): the HDR value of
+     * quad i is emissive_i exactly, from 0.005 to 40, log-spaced */
+    enum { N = 24 };
+    mvr_scene *s = stress_scene();
+    double value[N][3];
+    mvr_mesh_id quads[N];
+    for (int i = 0; i < N; ++i) {
+        double v = 0.005 * pow(8000.0, i / (double)(N - 1));
+        const double tint[3] = {1.0, 0.55, 0.2};
+        mvr_material_desc m = mvr_material_defaults();
+        m.base_color_factor[0] = m.base_color_factor[1] = m.base_color_factor[2] = 0.0f;
+        m.metallic_factor = 0.0f;
+        for (int c = 0; c < 3; ++c) {
+            m.emissive_factor[c] = (float)tint[c];
+            value[i][c] = (float)tint[c] * (float)v;
+        }
+        m.emissive_strength = (float)v;
+        mvr_material_id mat;
+        CHECK(t, mvr_scene_add_material(s, &m, &mat) == MVR_OK);
+        quads[i] = stress_add_quad(t, s, mat);
+        stress_node(t, s, quads[i], -(N - 1) / 2.0 + i, 0, 0, 0.45);
+    }
+    mvr_view_desc v;
+    memset(&v, 0, sizeof v);
+    v.position[2] = 5;
+    v.projection.type = MVR_PROJECTION_ORTHOGRAPHIC;
+    v.projection.xmag = N / 2.0;
+    v.projection.ymag = 1;
+    v.projection.zfar = 10;
+    mvr_view_set *vs = stress_view_set(t, &v, 1, NULL);
+    const uint32_t W = N * 4, H = 8;
+    const mvr_tone_map maps[3] = {MVR_TONE_MAP_NONE, MVR_TONE_MAP_ACES, MVR_TONE_MAP_KHR_PBR_NEUTRAL};
+    const mvr_color_format formats[2] = {MVR_COLOR_FORMAT_DEFAULT, MVR_COLOR_FORMAT_RGBA8};
+    for (int k = 0; k < 3; ++k)
+        for (int f = 0; f < 2; ++f) {
+            /* EV100 mode with exposure exactly 1: 1 / (1.2 * 2^ev) = 1 */
+            mvr_render_desc rd = {.exposure_mode = MVR_EXPOSURE_EV100, .ev100 = -log2(1.2), .tone_map = maps[k]};
+            mvr_frame_stats st;
+            uint8_t *img = render_desc(t, ctx, s, vs, MVR_VIEW_PATH_AUTO, formats[f], W, H, &rd, &st);
+            if (!img)
+                continue;
+            CHECK_EQ_INT(t, st.post_passes, 1);
+            double worst = 0;
+            for (int i = 0; i < N; ++i) {
+                const uint8_t *p = img + ((size_t)(H / 2) * W + (size_t)(i * 4 + 2)) * 4;
+                double out[3];
+                if (maps[k] == MVR_TONE_MAP_ACES)
+                    ref_aces(value[i], out);
+                else if (maps[k] == MVR_TONE_MAP_KHR_PBR_NEUTRAL)
+                    ref_pbr_neutral(value[i], out);
+                else
+                    memcpy(out, value[i], sizeof out);
+                for (int c = 0; c < 3; ++c) {
+                    double e = fabs(p[c] / 255.0 - srgb_encode_d(out[c]));
+                    worst = fmax(worst, e);
+                }
+            }
+            printf("  %-11s %-12s worst %.2f/255 over %d values\n", mvr_tone_map_name(maps[k]),
+                   mvr_color_format_name(formats[f]), worst * 255.0, N);
+            CHECK_MSG(t, worst <= 1.0 / 255.0 + 1e-9, "%s on %s: %.2f/255 from the reference",
+                      mvr_tone_map_name(maps[k]), mvr_color_format_name(formats[f]), worst * 255.0);
+            free(img);
+        }
+    mvr_view_set_destroy(vs);
+    mvr_scene_destroy(s);
+    mvr_context_destroy(ctx);
+}
+
+MVR_TEST_MAIN(TEST(auto_exposure_tames_the_sun), TEST(post_pass_is_the_same_on_both_paths),
+              TEST(tone_mappers_match_their_formulas))
