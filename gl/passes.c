@@ -885,7 +885,9 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
                 }
                 mvr_state_read_framebuffer(st, read_fbo);
                 mvr_state_draw_framebuffer(st, out_fbo);
-                r->gl->BlitFramebuffer(vp->x, vp->y, x1, y1, vp->x, vp->y, x1, y1, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+                /* an HDR frame's metering reads depth: resolve it too */
+                GLbitfield bits = GL_COLOR_BUFFER_BIT | (t->hdr_frame && !mv_msaa ? GL_DEPTH_BUFFER_BIT : 0u);
+                r->gl->BlitFramebuffer(vp->x, vp->y, x1, y1, vp->x, vp->y, x1, y1, bits, GL_NEAREST);
                 r->stats.resolves++;
             }
         }

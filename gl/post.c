@@ -120,6 +120,8 @@ static mvr_result full_screen_passes(mvr_renderer *r, mvr_target *t, GLuint sour
             gl->Uniform1i(e->loc_layer_base, (GLint)base);
             if (e->loc_factor >= 0)
                 gl->Uniform1i(e->loc_factor, (GLint)mvr_target_factor(t));
+            if (e->loc_clear_depth >= 0)
+                gl->Uniform1f(e->loc_clear_depth, r->reversed_z ? 0.0f : 1.0f);
             if (e->loc_post_exposure >= 0)
                 gl->Uniform1fv(e->loc_post_exposure, (GLsizei)(count ? count : 1), post_mul + base);
             mvr_state_draw_framebuffer(st, fbo);
@@ -159,6 +161,15 @@ static mvr_result measure(mvr_renderer *r, mvr_target *t, const mvr_view_set *vi
 {
     const mvr_gl_api_table *gl = r->gl;
     uint32_t features = MVR_FEATURE_LOG_LUMINANCE | (t->ss_color ? MVR_FEATURE_DOWNSAMPLE : 0u);
+    /* the depth array, read texel by texel: a nearest sampler (a depth
+     * texture with linear filtering and no comparison is incomplete) */
+    if (!r->nearest_sampler) {
+        gl->GenSamplers(1, &r->nearest_sampler);
+        gl->SamplerParameteri(r->nearest_sampler, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        gl->SamplerParameteri(r->nearest_sampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    }
+    mvr_state_texture(&r->state, MVR_UNIT_COMPOSITE_DEPTH, GL_TEXTURE_2D_ARRAY, t->depth);
+    mvr_state_sampler(&r->state, MVR_UNIT_COMPOSITE_DEPTH, r->nearest_sampler);
     GLuint source = t->ss_color ? t->ss_color : t->hdr_color;
     mvr_result res = full_screen_passes(r, t, source, chunks, chunk_count, multiview, features, NULL, true,
                                         &r->stats.luminance_passes);

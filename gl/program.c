@@ -211,6 +211,7 @@ mvr_result mvr_gl_program_build_cached(mvr_context *ctx, const mvr_shader_varian
     bind_sampler(gl, program, "mvr_emissive_tex", MVR_UNIT_EMISSIVE);
     bind_sampler(gl, program, "mvr_shadow_map", MVR_UNIT_SHADOW_MAP);
     bind_sampler(gl, program, "mvr_source", MVR_UNIT_COMPOSITE_SOURCE);
+    bind_sampler(gl, program, "mvr_depth", MVR_UNIT_COMPOSITE_DEPTH);
     r = mvr_gl_check(ctx, "mvr_gl_program_build", false);
     if (r != MVR_OK) {
         gl->DeleteProgram(program);

@@ -22,7 +22,8 @@ enum {
     MVR_UNIT_OCCLUSION = 3,
     MVR_UNIT_EMISSIVE = 4,
     MVR_UNIT_SHADOW_MAP = 5,
-    MVR_UNIT_COMPOSITE_SOURCE = 0
+    MVR_UNIT_COMPOSITE_SOURCE = 0,
+    MVR_UNIT_COMPOSITE_DEPTH = 1
 };
 
 /* Builds the variant into a linked program with its blocks and samplers bound.

@@ -233,6 +233,8 @@ void mvr_renderer_destroy(mvr_renderer *r)
         return;
     const mvr_gl_api_table *gl = r->gl;
     mvr_shadows_release(r);
+    if (r->nearest_sampler)
+        gl->DeleteSamplers(1, &r->nearest_sampler);
     mvr_gpu_scene_release(r);
     for (uint32_t i = 0; i < r->program_count; ++i)
         gl->DeleteProgram(r->programs[i].program);
@@ -296,6 +298,7 @@ mvr_result mvr_renderer_program(mvr_renderer *r, const mvr_shader_variant *v, mv
     e->loc_layer_base = r->gl->GetUniformLocation(program, "mvr_layer_base");
     e->loc_factor = r->gl->GetUniformLocation(program, "mvr_factor");
     e->loc_post_exposure = r->gl->GetUniformLocation(program, "mvr_post_exposure");
+    e->loc_clear_depth = r->gl->GetUniformLocation(program, "mvr_clear_depth");
     e->view_base = INT32_MIN;
     e->from_binary = info.from_binary;
     if (info.from_binary)

@@ -16,7 +16,7 @@ typedef struct mvr_program_entry {
     mvr_shader_variant variant;
     GLuint program;
     GLint loc_view_base, loc_ambient, loc_exposure;
-    GLint loc_layer_base, loc_factor, loc_post_exposure;  /* composite programs */
+    GLint loc_layer_base, loc_factor, loc_post_exposure, loc_clear_depth;  /* composite programs */
     int32_t view_base;           /* last value set (INT32_MIN = unknown) */
     uint64_t frame_serial;       /* frame whose per-frame uniforms are set */
     bool from_binary;            /* linked from the binary cache */
@@ -194,6 +194,7 @@ struct mvr_renderer {
     size_t compact_scratch_cap;
     GLuint empty_vao;            /* for attributeless full-screen passes */
     mvr_shadow_maps shadows;
+    GLuint nearest_sampler;      /* texel reads of depth (auto-exposure metering) */
 };
 
 mvr_result mvr_renderer_fail(mvr_renderer *r, mvr_result result, const char *fmt, ...) MVR_PRINTF(3, 4);

@@ -12,6 +12,10 @@ uniform sampler2DArray mvr_source;
 #ifdef MVR_DOWNSAMPLE
 uniform int mvr_factor;
 #endif
+#ifdef MVR_LOG_LUMINANCE
+uniform sampler2DArray mvr_depth;  // the views' depth: where nothing was drawn is not metered
+uniform float mvr_clear_depth;
+#endif
 #ifdef MVR_POST
 #define MVR_POST_VIEWS 32
 uniform float mvr_post_exposure[MVR_POST_VIEWS]; // per view of the pass: exposure / pre-exposure
@@ -81,11 +85,17 @@ void main()
     vec4 c = textureLod(mvr_source, vec3(v_uv, float(v_layer)), 0.0);
 #endif
 #ifdef MVR_LOG_LUMINANCE
-    // Rec. 709 luminance: r = log2 of it, g = 1 where there is any (the
-    // mean of r over the mean of g is the average over lit texels: a black
-    // background, nothing drawn, does not drag the exposure up)
+    // Rec. 709 luminance: r = log2 of it, g = 1 where a surface was drawn
+    // and lit (the mean of r over the mean of g is the average over those:
+    // the clear color, an arbitrary backdrop, does not move the exposure)
     float l = dot(max(c.rgb, vec3(0.0)), vec3(0.2126, 0.7152, 0.0722));
-    o_color = l > 1e-6 ? vec4(log2(l), 1.0, 0.0, 1.0) : vec4(0.0, 0.0, 0.0, 1.0);
+#ifdef MVR_DOWNSAMPLE
+    float depth = texelFetch(mvr_depth, ivec3(ivec2(gl_FragCoord.xy) * mvr_factor, v_layer), 0).r;
+#else
+    float depth = texelFetch(mvr_depth, ivec3(ivec2(gl_FragCoord.xy), v_layer), 0).r;
+#endif
+    bool drawn = depth != mvr_clear_depth;  // the background (clear color) is no subject
+    o_color = l > 1e-6 && drawn ? vec4(log2(l), 1.0, 0.0, 1.0) : vec4(0.0, 0.0, 0.0, 1.0);
     return;
 #endif
 #ifdef MVR_POST

@@ -53,8 +53,9 @@ static int load_scene_file(const char *command, const cli_scene_options *o, mvr_
     }
     double ipd = o->ipd > 0 ? o->ipd : 0.064;
     mvr_result r;
-    if (o->camera >= 0) {
-        r = camera_views(*scene, (uint32_t)o->camera, o->views ? o->views : 2, ipd, views, &err);
+    if (o->camera >= 0 || (o->camera == CLI_CAMERA_IF_ANY && mvr_scene_camera_node_count(*scene) > 0)) {
+        uint32_t k = o->camera >= 0 ? (uint32_t)o->camera : 0;
+        r = camera_views(*scene, k, o->views ? o->views : 2, ipd, views, &err);
     } else {
         mvr_framing_desc fd = {o->layout, o->views, ipd, (double)o->width / (double)o->height};
         r = mvr_view_set_frame_scene(*scene, &fd, views, &err);

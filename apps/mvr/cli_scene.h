@@ -7,10 +7,13 @@
 
 #include "mvr/mvr.h"
 
+#define CLI_CAMERA_IF_ANY (-2)
+
 typedef struct cli_scene_options {
     const char *demo;            /* used when scene_file is NULL */
     const char *scene_file;      /* .gltf / .glb */
-    int camera;                  /* file: view from this camera node; -1 = frame with layout */
+    int camera;                  /* file: view from this camera node; -1 = frame with layout;
+                                    CLI_CAMERA_IF_ANY: the first camera when the file has one */
     mvr_view_layout layout;
     double ipd;                  /* 0 = 0.064 */
     uint32_t gltf_scene;         /* 1-based; 0 = the file's default */

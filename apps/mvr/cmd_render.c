@@ -32,7 +32,7 @@ typedef struct render_options {
     uint32_t supersample;        /* samples per pixel side; 1 = none */
     uint32_t msaa;               /* multisample count; 0 = none */
     mvr_anti_aliasing aa;        /* --aa: the library's anti-aliasing choice */
-    bool exposure_set, tone_map_set;
+    bool exposure_set, tone_map_set, layout_set;
     bool reference;
     mvr_color_format format;
     bool format_set;
@@ -55,6 +55,7 @@ static void render_usage(FILE *out)
             "  --views N           number of views (default: the demo's or layout's own)\n"
             "  --camera K          SCENE: view from the file's K-th camera node (0-based);\n"
             "                      N views are eyes --ipd apart along its right axis\n"
+            "                      (default: the first camera when the file has one)\n"
             "  --layout L          SCENE without --camera: stereo | cube | ring | grid around\n"
             "                      the scene's bounding sphere (default: stereo)\n"
             "  --ipd M             distance between stereo eyes in scene units (default: 0.064)\n"
@@ -92,7 +93,8 @@ static void render_usage(FILE *out)
             "                      when the lights are in physical units, e.g. a sun of\n"
             "                      thousands of lux, else a linear 1)\n"
             "  --exposure-scale X  linear exposure multiplier instead (default: 1)\n"
-            "  --camera N,T,ISO    physical exposure of a camera: f-number, shutter seconds, ISO\n"
+            "  --camera-exposure N,T,ISO  physical exposure of a camera: f-number,\n"
+            "                      shutter seconds, ISO (e.g. 16,0.008,100)\n"
             "  --exposure-per-view auto-exposure per view (default: one for all views)\n"
             "  --dither            +-1 step of noise before 8-bit storage (default: off)\n"
             "  --clear R,G,B[,A]   linear clear color (default: a dark opaque sky)\n"
@@ -165,6 +167,7 @@ static int parse(int argc, char **argv, render_options *o)
             for (int l = MVR_LAYOUT_STEREO; l <= MVR_LAYOUT_GRID; ++l)
                 if (strcmp(v, mvr_view_layout_name((mvr_view_layout)l)) == 0) {
                     o->layout = (mvr_view_layout)l;
+                    o->layout_set = true;
                     found = true;
                 }
             if (!found) {
@@ -352,11 +355,11 @@ static int parse(int argc, char **argv, render_options *o)
                 return MVR_EXIT_USAGE;
             }
             ++i;
-        } else if (strcmp(a, "--camera") == 0) {
+        } else if (strcmp(a, "--camera-exposure") == 0) {
             double n = 0, sh = 0, iso = 0;
             o->exposure_set = true;
             if (!v || sscanf(v, "%lf,%lf,%lf", &n, &sh, &iso) != 3 || !(n > 0) || !(sh > 0) || !(iso > 0)) {
-                fprintf(stderr, "mvr render: --camera takes f-number,shutter-seconds,ISO (e.g. 16,0.008,100)\n");
+                fprintf(stderr, "mvr render: --camera-exposure takes f-number,shutter-seconds,ISO (e.g. 16,0.008,100)\n");
                 return MVR_EXIT_USAGE;
             }
             o->render.exposure_mode = MVR_EXPOSURE_CAMERA;
@@ -401,6 +404,9 @@ static int parse(int argc, char **argv, render_options *o)
     }
     if (!o->demo && !o->scene_file)
         o->demo = "stereo";
+    /* a file with a camera is seen from it unless a layout is asked for */
+    if (o->scene_file && o->camera < 0 && !o->layout_set)
+        o->camera = CLI_CAMERA_IF_ANY;
     if (!cli_context_check("render", &o->context))
         return MVR_EXIT_USAGE;
     if (o->exr && !o->format_set)

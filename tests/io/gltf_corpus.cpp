@@ -221,6 +221,31 @@ static std::string scene_graph(builder &b, const std::string &dir)
     return b.write(dir, "scene_graph", container::glb);
 }
 
+// Light values as Blender's glTF exporter writes them for a modest scene
+// (KHR_lights_punctual units: a sun of 2049 lux, a point light of 27,000
+// candela), with a camera: a white image at exposure 1.
+static std::string physical_lights(builder &b, const std::string &dir)
+{
+    b.add(b.materials, "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.6,0.6,0.6,1],\"metallicFactor\":0,"
+                       "\"roughnessFactor\":0.6}}");
+    b.add(b.materials, "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.8,0.25,0.1,1],\"metallicFactor\":0,"
+                       "\"roughnessFactor\":0.4}}");
+    b.add(b.meshes, "{\"primitives\":[" + quad_primitive(b, 0, 0, 0) + "]}");
+    b.add(b.meshes, "{\"primitives\":[" + quad_primitive(b, 0, 0, 1) + "]}");
+    b.add(b.cameras, "{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.7,\"znear\":0.1,\"zfar\":100}}");
+    b.add(b.lights, "{\"type\":\"directional\",\"intensity\":2049,\"color\":[1,0.96,0.9],\"name\":\"Sun\"}");
+    b.add(b.lights, "{\"type\":\"point\",\"intensity\":27000,\"color\":[1,0.85,0.7],\"name\":\"Point\"}");
+    b.ext_used.push_back("KHR_lights_punctual");
+    b.add(b.nodes, "{\"mesh\":0,\"rotation\":[-0.7071068,0,0,0.7071068],\"scale\":[12,12,12]}");
+    b.add(b.nodes, "{\"mesh\":1,\"translation\":[-1,0.5,0],\"scale\":[1.2,1.2,1.2]}");
+    b.add(b.nodes, "{\"mesh\":1,\"translation\":[1,0.5,-1],\"rotation\":[0,0.38,0,0.92],\"scale\":[1.2,1.2,1.2]}");
+    b.add(b.nodes, "{\"camera\":0,\"translation\":[0,1.6,5],\"rotation\":[-0.1,0,0,0.995]}");
+    b.add(b.nodes, "{\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}},\"rotation\":[-0.42,0.22,0.1,0.87]}");
+    b.add(b.nodes, "{\"extensions\":{\"KHR_lights_punctual\":{\"light\":1}},\"translation\":[0.5,3,2]}");
+    b.scenes.push_back("{\"nodes\":[0,1,2,3,4,5]}");
+    return b.write(dir, "physical_lights", container::data_uri);
+}
+
 static std::string skin_morph(builder &b, const std::string &dir)
 {
     std::string quad = quad_primitive(b, 0, 0, -1);
@@ -295,6 +320,7 @@ corpus write_corpus(const std::string &dir)
     { builder b; c.features.push_back(scene_graph(b, dir)); }
     { builder b; c.features.push_back(skin_morph(b, dir)); }
     { builder b; c.features.push_back(optional_ext(b, dir)); }
+    { builder b; c.features.push_back(physical_lights(b, dir)); }
 
     const int INVALID = MVR_ERROR_INVALID_ASSET, UNSUPPORTED = MVR_ERROR_UNSUPPORTED;
     auto broken = [&](const std::string &path, int result, const std::string &part) {

@@ -291,5 +291,79 @@ static void memory_loads_and_caps(mvr_test_state *t)
     CHECK(t, mvr_gltf_load_memory(nullptr, 0, nullptr, &s, nullptr, &err) == MVR_ERROR_INVALID_ARGUMENT);
 }
 
-MVR_TEST_MAIN(TEST(feature_files_render_alike_on_both_paths), TEST(features_convert_as_specified),
+// A file lit as Blender exports it (a 2049 lux sun, a 27,000 cd point
+// light): at exposure 1 a white image; with what `mvr render` does by
+// default for such lights (auto-exposure, Khronos PBR Neutral) a picture
+// whose mean luminance is in a sane band with little clipped.
+static void physical_lights_are_exposed_by_default(mvr_test_state *t)
+{
+    std::string path;
+    for (const std::string &p : corpus().features)
+        if (p.find("physical_lights") != std::string::npos)
+            path = p;
+    CHECK(t, !path.empty());
+    mvr_gltf_info info;
+    mvr_scene *scene = path.empty() ? nullptr : load(t, path, &info);
+    mvr_context *ctx = nullptr;
+    mvr_error err;
+    if (!scene || mvr_context_create(nullptr, &ctx, &err) != MVR_OK) {
+        CHECK_MSG(t, 0, "%s", scene ? err.message : "load");
+        mvr_scene_destroy(scene);
+        return;
+    }
+    CHECK(t, mvr_scene_lights_physical(scene));
+    mvr_view_desc view;
+    CHECK(t, mvr_scene_camera_view(scene, mvr_scene_camera_node(scene, 0), &view) == MVR_OK);
+    mvr_view_set_desc vsd = {1, &view, false, {0, 0, 0}};
+    mvr_view_set *views = nullptr;
+    CHECK(t, mvr_view_set_create(&vsd, &views, nullptr) == MVR_OK);
+    mvr_renderer_desc rd = {};
+    rd.context = ctx;
+    mvr_renderer *r = nullptr;
+    mvr_target *target = nullptr;
+    mvr_target_desc td = {W, H, 1, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT};
+    bool ok = mvr_renderer_create(&rd, &r, &err) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK;
+    for (int k = 0; ok && k < 2; ++k) {
+        mvr_render_desc desc = {};
+        desc.clear_color[0] = 2000.0f, desc.clear_color[1] = 3000.0f, desc.clear_color[2] = 5000.0f; /* sky, cd/m2 */
+        desc.clear_color[3] = 1.0f;
+        if (k == 1) {
+            desc.exposure_mode = MVR_EXPOSURE_AUTO;
+            desc.tone_map = MVR_TONE_MAP_KHR_PBR_NEUTRAL;
+        }
+        std::vector<uint8_t> px(size_t(W) * H * 4);
+        ok = mvr_renderer_render(r, scene, views, target, &desc) == MVR_OK &&
+             mvr_renderer_read_layer(r, target, 0, MVR_READBACK_RGBA8, px.data(), px.size()) == MVR_OK;
+        CHECK_MSG(t, ok, "%s", mvr_renderer_last_error(r));
+        double sum = 0;
+        size_t clipped = 0;
+        auto lin = [](uint8_t v) {
+            double e = v / 255.0;
+            return e <= 0.04045 ? e / 12.92 : std::pow((e + 0.055) / 1.055, 2.4);
+        };
+        for (size_t i = 0; i < size_t(W) * H; ++i) {
+            const uint8_t *p = &px[i * 4];
+            sum += 0.2126 * lin(p[0]) + 0.7152 * lin(p[1]) + 0.0722 * lin(p[2]);
+            clipped += p[0] >= 254 || p[1] >= 254 || p[2] >= 254;
+        }
+        double mean = sum / (double(W) * H), clip = double(clipped) / (double(W) * H);
+        mvr_frame_stats st;
+        mvr_renderer_get_stats(r, &st);
+        std::printf("  %s: mean luminance %.3f, %.1f%% clipped, EV100 %.2f\n", k ? "auto + PBR Neutral" : "exposure 1",
+                    mean, 100.0 * clip, st.exposure_ev100);
+        if (k == 0) {
+            CHECK_MSG(t, clip > 0.9, "exposure 1: only %.1f%% clipped", 100.0 * clip);
+        } else {
+            CHECK_MSG(t, mean >= 0.1 && mean <= 0.6 && clip <= 0.03, "auto: mean %.3f, %.1f%% clipped", mean,
+                      100.0 * clip);
+        }
+    }
+    mvr_target_destroy(target);
+    mvr_renderer_destroy(r);
+    mvr_view_set_destroy(views);
+    mvr_scene_destroy(scene);
+    mvr_context_destroy(ctx);
+}
+
+MVR_TEST_MAIN(TEST(physical_lights_are_exposed_by_default), TEST(feature_files_render_alike_on_both_paths), TEST(features_convert_as_specified),
               TEST(broken_files_are_refused_by_name), TEST(memory_loads_and_caps))
