@@ -836,7 +836,9 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
         pc.last_program = NULL;
         /* blended draws: the centroid order serves every view of a
          * multiview pass unless they disagree (auto) or per_view asks */
-        bool split_blend = mv_pass && r->frame.pass_count[MVR_PASS_BLEND] > 0 &&
+        /* (not with multisampled multiview: a view's samples cannot be
+         * drawn apart there, so its chunk blends in the shared order) */
+        bool split_blend = mv_pass && !mv_msaa && r->frame.pass_count[MVR_PASS_BLEND] > 0 &&
                            r->blend_policy != MVR_TRANSPARENCY_ORDER_CENTROID;
         if (split_blend) {
             bool diverged = blend_orders_diverge(r, &pc);
@@ -850,11 +852,6 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
          * multiview pass, as a loop pass would draw them */
         for (uint32_t v = ch->base; split_blend && res == MVR_OK && v < ch->base + ch->count; ++v) {
             GLuint layer_fbo = 0;
-            if (mv_msaa) {
-                /* a layer of multisampled multiview storage cannot be drawn
-                 * alone here: blend in the shared order instead */
-                break;
-            }
             res = mvr_target_framebuffer(t, v, 0, &layer_fbo);
             if (res != MVR_OK)
                 break;
