@@ -16,12 +16,6 @@
 #define VIEW_INFO_SIZE 16u /* one ivec4 of mvr_view_info: the view's light mask */
 #define VIEW_BLOCK_SIZE (VIEWS_PER_BLOCK * (MVR_VIEW_MATRIX_SIZE + MVR_VIEW_EYE_SIZE + VIEW_INFO_SIZE))
 
-typedef struct view_chunk {
-    uint32_t base;               /* first view (= layer) */
-    uint32_t count;              /* views in the pass */
-    mvr_viewport viewport;
-} view_chunk;
-
 static GLsizeiptr align_up(GLsizeiptr v, GLsizeiptr a)
 {
     return (v + a - 1) / a * a;
@@ -36,7 +30,7 @@ static bool same_viewport(mvr_viewport a, mvr_viewport b)
  * layers with one viewport (the GL has one viewport per pass), at most
  * max_views of them, never crossing a view block. */
 static uint32_t make_chunks(const mvr_view_set *views, const mvr_target *t, bool multiview,
-                            uint32_t max_views, view_chunk *out)
+                            uint32_t max_views, mvr_view_chunk *out)
 {
     uint32_t n = 0;
     for (uint32_t i = 0; i < views->count; ++i) {
@@ -45,7 +39,7 @@ static uint32_t make_chunks(const mvr_view_set *views, const mvr_target *t, bool
         if (v->disabled || vp.width == 0 || vp.height == 0)
             continue;
         if (multiview && n > 0) {
-            view_chunk *c = &out[n - 1];
+            mvr_view_chunk *c = &out[n - 1];
             if (c->base + c->count == i && c->count < max_views && same_viewport(c->viewport, vp) &&
                 c->base / VIEWS_PER_BLOCK == i / VIEWS_PER_BLOCK) {
                 c->count++;
@@ -98,7 +92,7 @@ static bool visible_in_views(const mvr_renderer *r, uint32_t first, uint32_t cou
  * into this frame's segment; runs then skip culled draws. Blended draws are
  * never instanced and keep reading the static blocks. Returns the bytes
  * the chunk needs (0 = not compacted). */
-static GLsizeiptr compact_size(const mvr_renderer *r, const view_chunk *ch)
+static GLsizeiptr compact_size(const mvr_renderer *r, const mvr_view_chunk *ch)
 {
     const mvr_frame *f = &r->frame;
     if (!r->culling || r->draw_capacity <= 1 || r->material_path == MVR_MATERIAL_PATH_PER_DRAW)
@@ -117,7 +111,7 @@ static GLsizeiptr compact_size(const mvr_renderer *r, const view_chunk *ch)
 }
 
 /* Writes the compacted blocks of every chunk that needs them (one upload). */
-static mvr_result upload_compacted(mvr_renderer *r, const view_chunk *chunks, uint32_t chunk_count,
+static mvr_result upload_compacted(mvr_renderer *r, const mvr_view_chunk *chunks, uint32_t chunk_count,
                                    frame_layout *lay, GLintptr at, GLsizeiptr bytes)
 {
     const mvr_frame *f = &r->frame;
@@ -180,7 +174,7 @@ static void upload_static(mvr_renderer *r)
 }
 
 static mvr_result upload_frame(mvr_renderer *r, const mvr_view_set *views, const mvr_target *t,
-                               const view_chunk *chunks, uint32_t chunk_count, frame_layout *lay,
+                               const mvr_view_chunk *chunks, uint32_t chunk_count, frame_layout *lay,
                                bool static_current)
 {
     const mvr_gl_api_table *gl = r->gl;
@@ -588,58 +582,6 @@ static mvr_result draw_list(pass_context *pc, mvr_pass_kind kind)
     return MVR_OK;
 }
 
-/* The supersampling resolve: per chunk of views, one pass (multiview over
- * the chunk's layers, or one per layer on the loop path) drawing each
- * layer's pixels as the mean of their factor x factor samples, with the
- * output's sRGB encode (by the GL for sRGB arrays, by the shader for UNORM
- * ones). Same shader code per layer on either path: the same bytes. */
-static mvr_result resolve_supersampled(mvr_renderer *r, mvr_target *t, const view_chunk *chunks,
-                                       uint32_t chunk_count, bool multiview)
-{
-    const mvr_gl_api_table *gl = r->gl;
-    mvr_state_cache *st = &r->state;
-    if (!r->empty_vao)
-        gl->GenVertexArrays(1, &r->empty_vao); /* attributeless draws still need one (core GL) */
-    mvr_state_depth(st, false, GL_ALWAYS, GL_FALSE);
-    mvr_state_blend(st, false, GL_ONE, GL_ZERO, GL_ONE, GL_ZERO);
-    mvr_state_cull(st, false, GL_CCW);
-    mvr_state_color_mask(st, true);
-    mvr_state_scissor_test(st, false);
-    mvr_state_vao(st, r->empty_vao);
-    mvr_state_texture(st, MVR_UNIT_COMPOSITE_SOURCE, GL_TEXTURE_2D_ARRAY, t->ss_color);
-    mvr_state_sampler(st, MVR_UNIT_COMPOSITE_SOURCE, 0);
-    for (uint32_t c = 0; c < chunk_count; ++c) {
-        const view_chunk *ch = &chunks[c];
-        bool mv_pass = multiview && ch->count > 1;
-        /* the loop path: one pass per layer (a chunk there is one view) */
-        for (uint32_t k = 0; k < (mv_pass ? 1u : ch->count); ++k) {
-            uint32_t base = ch->base + k;
-            GLuint fbo = 0;
-            mvr_result res = mvr_target_output_framebuffer(t, base, mv_pass ? ch->count : 0, &fbo);
-            if (res != MVR_OK)
-                return res;
-            mvr_shader_variant v;
-            memset(&v, 0, sizeof v);
-            v.program = MVR_PROGRAM_COMPOSITE;
-            v.features = MVR_FEATURE_DOWNSAMPLE | (t->internal_format == GL_RGBA8 ? MVR_FEATURE_SRGB_ENCODE : 0u);
-            v.num_views = mv_pass ? ch->count : 0;
-            mvr_program_entry *e = NULL;
-            res = mvr_renderer_program(r, &v, &e);
-            if (res != MVR_OK)
-                return res;
-            mvr_state_program(st, e->program);
-            gl->Uniform1i(e->loc_layer_base, (GLint)base);
-            gl->Uniform1i(e->loc_factor, (GLint)t->desc.supersample);
-            mvr_state_draw_framebuffer(st, fbo);
-            mvr_state_viewport(st, ch->viewport.x, ch->viewport.y, (GLsizei)ch->viewport.width,
-                               (GLsizei)ch->viewport.height);
-            gl->DrawArrays(GL_TRIANGLES, 0, 3);
-            r->stats.resolves++;
-        }
-    }
-    return MVR_OK;
-}
-
 /* The per-draw baseline re-binds textures and uniform ranges every draw. */
 static void st_rebind_setup(mvr_renderer *r)
 {
@@ -711,7 +653,7 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
     uint32_t max_views = (uint32_t)r->ctx->caps.limits.max_views_ovr;
     if (max_views > VIEWS_PER_BLOCK)
         max_views = VIEWS_PER_BLOCK;
-    view_chunk *chunks = malloc(views->count * sizeof *chunks);
+    mvr_view_chunk *chunks = malloc(views->count * sizeof *chunks);
     GLintptr *compact = malloc(views->count * sizeof *compact);
     uint8_t *groups_used = r->gpu.arrays ? calloc(r->gpu.plan.group_count + 1, 1) : NULL;
     if (!chunks || !compact || (r->gpu.arrays && !groups_used)) {
@@ -779,7 +721,7 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
     res = mvr_shadows_draw(r, lay.shadow_views, lay.draws);
 
     for (uint32_t c = 0; c < chunk_count && res == MVR_OK; ++c) {
-        const view_chunk *ch = &chunks[c];
+        const mvr_view_chunk *ch = &chunks[c];
         /* one view gains nothing from multiview, and on llvmpipe a 1-view
          * multiview pass costs about 50% more CPU than a plain one (measured
          * with tests/bench/bench_views): a plain single-layer pass instead */
@@ -903,21 +845,13 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
             ps->texture_groups = pc.groups_used_count;
         }
     }
-    if (res == MVR_OK && post) {
-        mvr_post_chunk *pcs = (mvr_post_chunk *)malloc((chunk_count ? chunk_count : 1) * sizeof *pcs);
-        if (!pcs)
-            res = mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "post pass: out of memory");
-        for (uint32_t c = 0; pcs && c < chunk_count; ++c) {
-            pcs[c].base = chunks[c].base;
-            pcs[c].count = chunks[c].count;
-            pcs[c].viewport = chunks[c].viewport;
-        }
-        if (pcs)
-            res = mvr_post_run(r, t, views, desc, pcs, chunk_count, multiview, pre_exposure);
-        free(pcs);
-    } else if (res == MVR_OK && factor > 1) {
-        res = resolve_supersampled(r, t, chunks, chunk_count, multiview);
-    }
+    if (res == MVR_OK && post)
+        res = mvr_post_run(r, t, views, desc, chunks, chunk_count, multiview, pre_exposure);
+    else if (res == MVR_OK && factor > 1) /* the supersampling resolve: the mean of each pixel's samples, encoded */
+        res = mvr_full_screen_passes(r, t, t->ss_color, chunks, chunk_count, multiview,
+                                     MVR_FEATURE_DOWNSAMPLE |
+                                         (t->internal_format == GL_RGBA8 ? MVR_FEATURE_SRGB_ENCODE : 0u),
+                                     NULL, false, &r->stats.resolves);
     st->rebind_always = false;
     free(chunks);
     free(compact);

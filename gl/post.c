@@ -86,17 +86,31 @@ static uint32_t post_features(const mvr_target *t, const mvr_render_desc *d)
     return f;
 }
 
-/* One full-screen composite pass per chunk (multiview) or per view. */
-typedef mvr_result (*pass_target_fn)(mvr_target *t, uint32_t base, uint32_t count, GLuint *out);
-
-static mvr_result full_screen_passes(mvr_renderer *r, mvr_target *t, GLuint source, const mvr_post_chunk *chunks,
-                                     uint32_t chunk_count, bool multiview, uint32_t features, const float *post_mul,
-                                     bool luminance, uint32_t *passes)
+static void full_screen_state(mvr_renderer *r, GLuint source)
 {
     const mvr_gl_api_table *gl = r->gl;
     mvr_state_cache *st = &r->state;
+    if (!r->empty_vao)
+        gl->GenVertexArrays(1, &r->empty_vao); /* attributeless draws still need one (core GL) */
+    mvr_state_depth(st, false, GL_ALWAYS, GL_FALSE);
+    mvr_state_blend(st, false, GL_ONE, GL_ZERO, GL_ONE, GL_ZERO);
+    mvr_state_cull(st, false, GL_CCW);
+    mvr_state_color_mask(st, true);
+    mvr_state_scissor_test(st, false);
+    mvr_state_vao(st, r->empty_vao);
+    mvr_state_texture(st, MVR_UNIT_COMPOSITE_SOURCE, GL_TEXTURE_2D_ARRAY, source);
+    mvr_state_sampler(st, MVR_UNIT_COMPOSITE_SOURCE, 0);
+}
+
+mvr_result mvr_full_screen_passes(mvr_renderer *r, mvr_target *t, GLuint source, const mvr_view_chunk *chunks,
+                                  uint32_t chunk_count, bool multiview, uint32_t features, const float *post_mul,
+                                  bool luminance, uint32_t *passes)
+{
+    const mvr_gl_api_table *gl = r->gl;
+    mvr_state_cache *st = &r->state;
+    full_screen_state(r, source);
     for (uint32_t c = 0; c < chunk_count; ++c) {
-        const mvr_post_chunk *ch = &chunks[c];
+        const mvr_view_chunk *ch = &chunks[c];
         bool mv_pass = multiview && ch->count > 1;
         for (uint32_t k = 0; k < (mv_pass ? 1u : ch->count); ++k) {
             uint32_t base = ch->base + k, count = mv_pass ? ch->count : 0;
@@ -138,26 +152,10 @@ static mvr_result full_screen_passes(mvr_renderer *r, mvr_target *t, GLuint sour
     return MVR_OK;
 }
 
-static void full_screen_state(mvr_renderer *r, GLuint source)
-{
-    const mvr_gl_api_table *gl = r->gl;
-    mvr_state_cache *st = &r->state;
-    if (!r->empty_vao)
-        gl->GenVertexArrays(1, &r->empty_vao); /* attributeless draws still need one (core GL) */
-    mvr_state_depth(st, false, GL_ALWAYS, GL_FALSE);
-    mvr_state_blend(st, false, GL_ONE, GL_ZERO, GL_ONE, GL_ZERO);
-    mvr_state_cull(st, false, GL_CCW);
-    mvr_state_color_mask(st, true);
-    mvr_state_scissor_test(st, false);
-    mvr_state_vao(st, r->empty_vao);
-    mvr_state_texture(st, MVR_UNIT_COMPOSITE_SOURCE, GL_TEXTURE_2D_ARRAY, source);
-    mvr_state_sampler(st, MVR_UNIT_COMPOSITE_SOURCE, 0);
-}
-
 /* Auto-exposure: the mean log2 luminance of each enabled layer (of the
  * pre-exposed source), through the mip chain. */
-static mvr_result measure(mvr_renderer *r, mvr_target *t, const mvr_view_set *views, const mvr_post_chunk *chunks,
-                          uint32_t chunk_count, bool multiview, double *mean_log2, bool *measured)
+static mvr_result measure(mvr_renderer *r, mvr_target *t, const mvr_view_chunk *chunks, uint32_t chunk_count,
+                          bool multiview, double *mean_log2, bool *measured)
 {
     const mvr_gl_api_table *gl = r->gl;
     uint32_t features = MVR_FEATURE_LOG_LUMINANCE | (t->ss_color ? MVR_FEATURE_DOWNSAMPLE : 0u);
@@ -171,7 +169,7 @@ static mvr_result measure(mvr_renderer *r, mvr_target *t, const mvr_view_set *vi
     mvr_state_texture(&r->state, MVR_UNIT_COMPOSITE_DEPTH, GL_TEXTURE_2D_ARRAY, t->depth);
     mvr_state_sampler(&r->state, MVR_UNIT_COMPOSITE_DEPTH, r->nearest_sampler);
     GLuint source = t->ss_color ? t->ss_color : t->hdr_color;
-    mvr_result res = full_screen_passes(r, t, source, chunks, chunk_count, multiview, features, NULL, true,
+    mvr_result res = mvr_full_screen_passes(r, t, source, chunks, chunk_count, multiview, features, NULL, true,
                                         &r->stats.luminance_passes);
     if (res != MVR_OK)
         return res;
@@ -191,14 +189,13 @@ static mvr_result measure(mvr_renderer *r, mvr_target *t, const mvr_view_set *vi
             measured[layer] = isfinite(px[0]) && px[1] > 1e-4f;
             mean_log2[layer] = measured[layer] ? px[0] / px[1] : 0.0;
         }
-    (void)views;
     return mvr_gl_check(r->ctx, "auto-exposure reduction", true) == MVR_OK
                ? MVR_OK
                : mvr_renderer_fail(r, MVR_ERROR_GL, "%s", mvr_context_last_error(r->ctx));
 }
 
 mvr_result mvr_post_run(mvr_renderer *r, mvr_target *t, const mvr_view_set *views, const mvr_render_desc *d,
-                        const mvr_post_chunk *chunks, uint32_t chunk_count, bool multiview, double pre_exposure)
+                        const mvr_view_chunk *chunks, uint32_t chunk_count, bool multiview, double pre_exposure)
 {
     uint32_t n = views->count;
     float post_mul[256];
@@ -208,16 +205,14 @@ mvr_result mvr_post_run(mvr_renderer *r, mvr_target *t, const mvr_view_set *view
     if (n > 256)
         return mvr_renderer_fail(r, MVR_ERROR_UNSUPPORTED, "post pass: more than 256 views");
     GLuint source = t->ss_color ? t->ss_color : t->hdr_color;
-    full_screen_state(r, source);
     double manual = manual_ev100(d);
     for (uint32_t v = 0; v < n; ++v)
         ev[v] = manual;
     if (d->exposure_mode == MVR_EXPOSURE_AUTO) {
         memset(measured, 0, sizeof measured);
-        mvr_result res = measure(r, t, views, chunks, chunk_count, multiview, mean_log2, measured);
+        mvr_result res = measure(r, t, chunks, chunk_count, multiview, mean_log2, measured);
         if (res != MVR_OK)
             return res;
-        full_screen_state(r, source);
         /* EV100 that puts the average log luminance on the key:
          * exposure(EV) * L_avg = key, L_avg = 2^mean / pre-exposure */
         double lo = d->ev100_min, hi = d->ev100_max;
@@ -253,7 +248,7 @@ mvr_result mvr_post_run(mvr_renderer *r, mvr_target *t, const mvr_view_set *view
         return mvr_renderer_fail(r, MVR_ERROR_INTERNAL, "post pass: a chunk of %u views (at most %d)", max_chunk,
                                  POST_VIEWS);
     r->stats.exposure_ev100 = ev[0];
-    mvr_result res = full_screen_passes(r, t, source, chunks, chunk_count, multiview, post_features(t, d), post_mul, false,
+    mvr_result res = mvr_full_screen_passes(r, t, source, chunks, chunk_count, multiview, post_features(t, d), post_mul, false,
                                         &r->stats.post_passes);
     r->stats.resolves += t->ss_color ? r->stats.post_passes : 0;
     return res;

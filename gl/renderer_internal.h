@@ -237,17 +237,29 @@ mvr_result mvr_shadows_draw(mvr_renderer *r, GLintptr views_at, GLintptr draws_a
 void mvr_shadows_bind(mvr_renderer *r, GLintptr block_at);
 void mvr_shadows_release(mvr_renderer *r);
 
-/* post.c: the HDR frame's final passes (exposure, tone map, encode), with
- * auto-exposure's luminance reduction first. chunks: as the views' passes. */
-typedef struct mvr_post_chunk {
+/* A pass's views: consecutive layers sharing one viewport (passes.c
+ * splits the view set into these; a loop-path chunk is one view). */
+typedef struct mvr_view_chunk {
     uint32_t base, count;
     mvr_viewport viewport;
-} mvr_post_chunk;
+} mvr_view_chunk;
+
+/* post.c: full-screen composite passes reading `source` (bound to the
+ * composite unit, with the state such passes need): per chunk one
+ * multiview pass over its layers (multiview) or one pass per view, into the
+ * target's output layers, or (luminance) level 0 of its log-luminance
+ * array. post_mul: per view, exposure / pre-exposure (MVR_FEATURE_POST),
+ * else NULL. Each pass adds 1 to *passes. */
+mvr_result mvr_full_screen_passes(mvr_renderer *r, mvr_target *t, GLuint source, const mvr_view_chunk *chunks,
+                                  uint32_t chunk_count, bool multiview, uint32_t features, const float *post_mul,
+                                  bool luminance, uint32_t *passes);
+/* The HDR frame's final passes (exposure, tone map, encode), with
+ * auto-exposure's luminance reduction first. chunks: as the views' passes. */
 bool mvr_post_needed(const mvr_render_desc *desc);
 /* The pre-exposure the lighting pass multiplies by (keeps half floats in range). */
 double mvr_post_pre_exposure(mvr_renderer *r, const mvr_target *t, const mvr_render_desc *desc);
 mvr_result mvr_post_run(mvr_renderer *r, mvr_target *t, const mvr_view_set *views, const mvr_render_desc *desc,
-                        const mvr_post_chunk *chunks, uint32_t chunk_count, bool multiview, double pre_exposure);
+                        const mvr_view_chunk *chunks, uint32_t chunk_count, bool multiview, double pre_exposure);
 
 /* passes.c */
 mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, const mvr_view_set *views,
