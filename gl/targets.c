@@ -307,15 +307,17 @@ mvr_result mvr_target_output_framebuffer(mvr_target *t, uint32_t base, uint32_t 
     return target_framebuffer(t, base, count, t->ss_color != 0 || t->hdr_frame, out);
 }
 
-static mvr_result target_framebuffer(mvr_target *t, uint32_t base, uint32_t count, bool output, GLuint *out)
+/* The target's framebuffer for a key (base, count, output, msaa, aux): the
+ * cached one (*created false), or a new one, generated, recorded and bound
+ * for drawing, for the caller to attach to and check (*created true). */
+static mvr_result fbo_find_or_create(mvr_target *t, mvr_fbo_entry key, GLuint *out, bool *created)
 {
-    /* an HDR frame draws views into the half-float array (a supersampled
-     * target's own array is float already) */
-    uint8_t aux = !output && t->hdr_frame && !t->ss_color ? (uint8_t)MVR_FBO_HDR : 0;
     for (uint32_t i = 0; i < t->fbo_count; ++i) {
-        if (t->fbos[i].base == base && t->fbos[i].count == count && t->fbos[i].output == output &&
-            !t->fbos[i].msaa && t->fbos[i].aux == aux) {
-            *out = t->fbos[i].fbo;
+        const mvr_fbo_entry *e = &t->fbos[i];
+        if (e->base == key.base && e->count == key.count && e->output == key.output && e->msaa == key.msaa &&
+            e->aux == key.aux) {
+            *out = e->fbo;
+            *created = false;
             return MVR_OK;
         }
     }
@@ -328,10 +330,38 @@ static mvr_result target_framebuffer(mvr_target *t, uint32_t base, uint32_t coun
         t->fbos = p;
         t->fbo_cap = cap;
     }
-    const mvr_gl_api_table *gl = r->gl;
-    GLuint fbo = 0;
-    gl->GenFramebuffers(1, &fbo);
-    mvr_state_draw_framebuffer(&r->state, fbo);
+    key.fbo = 0;
+    r->gl->GenFramebuffers(1, &key.fbo);
+    mvr_state_draw_framebuffer(&r->state, key.fbo);
+    t->fbos[t->fbo_count++] = key;
+    *out = key.fbo;
+    *created = true;
+    return MVR_OK;
+}
+
+/* After attaching: no GL error and a complete framebuffer, or a message naming where. */
+static mvr_result fbo_check(mvr_target *t, const char *where)
+{
+    mvr_renderer *r = t->renderer;
+    mvr_result res = mvr_gl_check(r->ctx, where, true);
+    if (res == MVR_OK)
+        res = mvr_gl_check_framebuffer(r->ctx, GL_DRAW_FRAMEBUFFER, where);
+    if (res != MVR_OK)
+        return mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
+    return MVR_OK;
+}
+
+static mvr_result target_framebuffer(mvr_target *t, uint32_t base, uint32_t count, bool output, GLuint *out)
+{
+    /* an HDR frame draws views into the half-float array (a supersampled
+     * target's own array is float already) */
+    uint8_t aux = !output && t->hdr_frame && !t->ss_color ? (uint8_t)MVR_FBO_HDR : 0;
+    mvr_fbo_entry key = {.base = base, .count = count, .output = output, .aux = aux};
+    bool created = false;
+    mvr_result res = fbo_find_or_create(t, key, out, &created);
+    if (res != MVR_OK || !created)
+        return res;
+    const mvr_gl_api_table *gl = t->renderer->gl;
     /* the real level and base layer: the application's array may be a level
      * or a slice of a larger texture; a supersampled target draws views into
      * its own array and writes the application's only in the resolve */
@@ -350,46 +380,23 @@ static mvr_result target_framebuffer(mvr_target *t, uint32_t base, uint32_t coun
         if (!output)
             gl->FramebufferTextureLayer(GL_DRAW_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, t->depth, 0, (GLint)base);
     }
-    t->fbos[t->fbo_count].base = base;
-    t->fbos[t->fbo_count].msaa = false;
-    t->fbos[t->fbo_count].aux = aux;
-    t->fbos[t->fbo_count].output = output;
-    t->fbos[t->fbo_count].count = count;
-    t->fbos[t->fbo_count++].fbo = fbo;
     char where[96];
     mvr_str_format(where, sizeof where, "framebuffer for layers %u..%u%s", base, base + (count ? count : 1) - 1,
                    count ? " (multiview)" : "");
-    mvr_result res = mvr_gl_check(r->ctx, where, true);
-    if (res == MVR_OK)
-        res = mvr_gl_check_framebuffer(r->ctx, GL_DRAW_FRAMEBUFFER, where);
-    if (res != MVR_OK)
-        return mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
-    *out = fbo;
-    return MVR_OK;
+    return fbo_check(t, where);
 }
 
 mvr_result mvr_target_msaa_framebuffer(mvr_target *t, uint32_t base, uint32_t count, GLuint *out)
 {
-    for (uint32_t i = 0; i < t->fbo_count; ++i)
-        if (t->fbos[i].msaa && t->fbos[i].base == base && t->fbos[i].count == count) {
-            *out = t->fbos[i].fbo;
-            return MVR_OK;
-        }
-    mvr_renderer *r = t->renderer;
     if (t->msaa_multiview == MVR_MSAA_MV_NONE)
-        return mvr_renderer_fail(r, MVR_ERROR_INTERNAL, "multisampled multiview framebuffer without the GL's support");
-    if (t->fbo_count == t->fbo_cap) {
-        uint32_t cap = t->fbo_cap ? t->fbo_cap * 2 : 8;
-        mvr_fbo_entry *p = realloc(t->fbos, cap * sizeof *p);
-        if (!p)
-            return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "framebuffers: out of memory");
-        t->fbos = p;
-        t->fbo_cap = cap;
-    }
-    const mvr_gl_api_table *gl = r->gl;
-    GLuint fbo = 0;
-    gl->GenFramebuffers(1, &fbo);
-    mvr_state_draw_framebuffer(&r->state, fbo);
+        return mvr_renderer_fail(t->renderer, MVR_ERROR_INTERNAL,
+                                 "multisampled multiview framebuffer without the GL's support");
+    mvr_fbo_entry key = {.base = base, .count = count, .msaa = true};
+    bool created = false;
+    mvr_result res = fbo_find_or_create(t, key, out, &created);
+    if (res != MVR_OK || !created)
+        return res;
+    const mvr_gl_api_table *gl = t->renderer->gl;
     GLsizei samples = (GLsizei)t->desc.samples;
     GLint layer = (GLint)(t->desc.external_base_layer + base);
     if (t->msaa_multiview == MVR_MSAA_MV_RENDER_TO_TEXTURE) {
@@ -407,23 +414,10 @@ mvr_result mvr_target_msaa_framebuffer(mvr_target *t, uint32_t base, uint32_t co
         /* one layer of the multisampled array, read by the resolve blit */
         gl->FramebufferTextureLayer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, t->msaa_array_color, 0, (GLint)base);
     }
-    mvr_fbo_entry *e = &t->fbos[t->fbo_count++];
-    e->base = base;
-    e->count = count;
-    e->output = false;
-    e->msaa = true;
-    e->aux = 0;
-    e->fbo = fbo;
     char where[96];
     mvr_str_format(where, sizeof where, "multisampled framebuffer for layers %u..%u", base,
                    base + (count ? count : 1) - 1);
-    mvr_result res = mvr_gl_check(r->ctx, where, true);
-    if (res == MVR_OK)
-        res = mvr_gl_check_framebuffer(r->ctx, GL_DRAW_FRAMEBUFFER, where);
-    if (res != MVR_OK)
-        return mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
-    *out = fbo;
-    return MVR_OK;
+    return fbo_check(t, where);
 }
 
 mvr_result mvr_target_ensure_hdr(mvr_target *t)
@@ -478,40 +472,16 @@ mvr_result mvr_target_luminance_framebuffer(mvr_target *t, int kind, uint32_t ba
                          (GLsizei)t->desc.height, (GLsizei)t->desc.layers);
         t->lum_levels = levels;
     }
-    for (uint32_t i = 0; i < t->fbo_count; ++i)
-        if (t->fbos[i].aux == kind && t->fbos[i].base == base && t->fbos[i].count == count) {
-            *out = t->fbos[i].fbo;
-            return MVR_OK;
-        }
-    if (t->fbo_count == t->fbo_cap) {
-        uint32_t cap = t->fbo_cap ? t->fbo_cap * 2 : 8;
-        mvr_fbo_entry *p = realloc(t->fbos, cap * sizeof *p);
-        if (!p)
-            return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "framebuffers: out of memory");
-        t->fbos = p;
-        t->fbo_cap = cap;
-    }
-    GLuint fbo = 0;
-    gl->GenFramebuffers(1, &fbo);
-    mvr_state_draw_framebuffer(&r->state, fbo);
+    mvr_fbo_entry key = {.base = base, .count = count, .aux = (uint8_t)kind};
+    bool created = false;
+    mvr_result res = fbo_find_or_create(t, key, out, &created);
+    if (res != MVR_OK || !created)
+        return res;
     if (kind == MVR_FBO_LUMINANCE && count > 0)
         gl->FramebufferTextureMultiviewOVR(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, t->lum, 0, (GLint)base,
                                            (GLsizei)count);
     else
         gl->FramebufferTextureLayer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, t->lum,
                                     kind == MVR_FBO_LUMINANCE_TOP ? (GLint)t->lum_levels - 1 : 0, (GLint)base);
-    mvr_fbo_entry *e = &t->fbos[t->fbo_count++];
-    e->base = base;
-    e->count = count;
-    e->output = false;
-    e->msaa = false;
-    e->aux = (uint8_t)kind;
-    e->fbo = fbo;
-    mvr_result res = mvr_gl_check(r->ctx, "luminance framebuffer", true);
-    if (res == MVR_OK)
-        res = mvr_gl_check_framebuffer(r->ctx, GL_DRAW_FRAMEBUFFER, "luminance framebuffer");
-    if (res != MVR_OK)
-        return mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
-    *out = fbo;
-    return MVR_OK;
+    return fbo_check(t, "luminance framebuffer");
 }
