@@ -402,19 +402,11 @@ static mvr_result bind_program(pass_context *pc, uint32_t features)
     mvr_program_entry *e = pc->last_program;
     if (!e || pc->last_features != features) {
         const mvr_frame *f = &r->frame;
-        mvr_shader_variant v;
-        memset(&v, 0, sizeof v);
-        v.program = MVR_PROGRAM_MESH;
-        v.features = features | pc->output_features;
-        if (r->force_inert_features)
-            v.features |= inert_features(r, features);
-        v.num_views = pc->num_views;
+        uint32_t all = features | pc->output_features | (r->force_inert_features ? inert_features(r, features) : 0u);
+        mvr_shader_variant v = mvr_renderer_mesh_variant(r, all, pc->num_views);
         v.directional_lights = (uint8_t)f->light_counts[0];
         v.point_lights = (uint8_t)f->light_counts[1];
         v.spot_lights = (uint8_t)f->light_counts[2];
-        v.material_capacity = (uint16_t)r->material_capacity;
-        v.draw_capacity = (uint16_t)r->draw_capacity;
-        v.draw_stride = r->draw_capacity > 1 && r->draw_stride > MVR_DRAW_BLOCK_SIZE ? (uint16_t)r->draw_stride : 0;
         mvr_result res = mvr_renderer_program(r, &v, &e);
         if (res != MVR_OK)
             return res;

@@ -265,6 +265,20 @@ static bool same_variant(const mvr_shader_variant *a, const mvr_shader_variant *
            a->draw_capacity == b->draw_capacity && a->draw_stride == b->draw_stride;
 }
 
+mvr_shader_variant mvr_renderer_mesh_variant(const mvr_renderer *r, uint32_t features, uint32_t num_views)
+{
+    mvr_shader_variant v;
+    memset(&v, 0, sizeof v);
+    v.program = MVR_PROGRAM_MESH;
+    v.features = features;
+    v.num_views = num_views;
+    v.material_capacity = (uint16_t)r->material_capacity;
+    v.draw_capacity = (uint16_t)r->draw_capacity;
+    /* padded blocks only matter to instanced draws, which index the array */
+    v.draw_stride = r->draw_capacity > 1 && r->draw_stride > MVR_DRAW_BLOCK_SIZE ? (uint16_t)r->draw_stride : 0;
+    return v;
+}
+
 mvr_result mvr_renderer_program(mvr_renderer *r, const mvr_shader_variant *v, mvr_program_entry **out)
 {
     for (uint32_t i = 0; i < r->program_count; ++i) {

@@ -199,6 +199,10 @@ struct mvr_renderer {
 
 mvr_result mvr_renderer_fail(mvr_renderer *r, mvr_result result, const char *fmt, ...) MVR_PRINTF(3, 4);
 
+/* A mesh variant as this renderer's blocks lay out: features, views (0 =
+ * loop), its material table and per-draw block sizes; no lights. */
+mvr_shader_variant mvr_renderer_mesh_variant(const mvr_renderer *r, uint32_t features, uint32_t num_views);
+
 /* Program of a variant, compiled on first use. */
 mvr_result mvr_renderer_program(mvr_renderer *r, const mvr_shader_variant *v, mvr_program_entry **out);
 

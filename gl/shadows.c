@@ -176,14 +176,7 @@ typedef struct caster_pass {
 
 static mvr_result bind_caster_program(mvr_renderer *r, const caster_pass *cp, uint32_t features)
 {
-    mvr_shader_variant v;
-    memset(&v, 0, sizeof v);
-    v.program = MVR_PROGRAM_MESH;
-    v.features = features;
-    v.num_views = cp->num_views;
-    v.material_capacity = (uint16_t)r->material_capacity;
-    v.draw_capacity = (uint16_t)r->draw_capacity;
-    v.draw_stride = r->draw_capacity > 1 && r->draw_stride > MVR_DRAW_BLOCK_SIZE ? (uint16_t)r->draw_stride : 0;
+    mvr_shader_variant v = mvr_renderer_mesh_variant(r, features, cp->num_views);
     mvr_program_entry *e = NULL;
     mvr_result res = mvr_renderer_program(r, &v, &e);
     if (res != MVR_OK)
