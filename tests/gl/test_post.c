@@ -53,27 +53,8 @@ static uint8_t *render_desc(mvr_test_state *t, mvr_context *ctx, mvr_scene *s, c
                             mvr_view_path path, mvr_color_format format, uint32_t w, uint32_t h,
                             const mvr_render_desc *rd, mvr_frame_stats *st)
 {
-    uint32_t n = mvr_view_set_count(vs);
-    mvr_renderer_desc d = {.context = ctx, .view_path = path};
-    mvr_renderer *r = NULL;
-    mvr_target *target = NULL;
-    bool ok = mvr_renderer_create(&d, &r, NULL) == MVR_OK;
-    mvr_target_desc td = {w, h, n, format, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT};
-    ok = ok && mvr_target_create(r, &td, &target) == MVR_OK && mvr_renderer_render(r, s, vs, target, rd) == MVR_OK;
-    CHECK_MSG(t, ok, "render: %s", r ? mvr_renderer_last_error(r) : "renderer");
-    size_t layer = (size_t)w * h * 4;
-    uint8_t *out = ok ? malloc(layer * n) : NULL;
-    for (uint32_t k = 0; ok && k < n; ++k)
-        ok = mvr_renderer_read_layer(r, target, k, MVR_READBACK_RGBA8, out + layer * k, layer) == MVR_OK;
-    if (ok && st)
-        mvr_renderer_get_stats(r, st);
-    if (!ok) {
-        free(out);
-        out = NULL;
-    }
-    mvr_target_destroy(target);
-    mvr_renderer_destroy(r);
-    return out;
+    stress_options o = {.path = path, .format = format, .width = w, .height = h, .render = rd};
+    return stress_render(t, ctx, s, vs, &o, st);
 }
 
 static void auto_exposure_tames_the_sun(mvr_test_state *t)

@@ -136,6 +136,7 @@ typedef struct stress_options {
     uint32_t width, height;
     float clear[4];
     mvr_shadow_desc shadows;
+    const mvr_render_desc *render; /* the whole render desc (clear and shadows above unused); NULL = those */
 } stress_options;
 
 /* Renders every view of vs into its layer and reads them all back, layer
@@ -160,6 +161,8 @@ static inline void *stress_render(mvr_test_state *t, mvr_context *ctx, mvr_scene
                             .exposure = 1.0f,
                             .tone_map = MVR_TONE_MAP_NONE,
                             .shadows = o->shadows};
+    if (o->render)
+        desc = *o->render;
     bool ok = mvr_target_create(r, &td, &target) == MVR_OK && mvr_renderer_render(r, scene, vs, target, &desc) == MVR_OK;
     CHECK_MSG(t, ok, "render: %s", mvr_renderer_last_error(r));
     if (ok) {
