@@ -473,6 +473,56 @@ static uint32_t instance_run(const pass_context *pc, mvr_pass_kind kind, uint32_
     return span;
 }
 
+void mvr_bind_draw_textures(mvr_renderer *r, const mvr_draw *d, uint32_t features, uint8_t *groups_used,
+                            uint32_t *groups_used_count)
+{
+    const mvr_gpu_scene *g = &r->gpu;
+    mvr_state_cache *st = &r->state;
+    uint32_t slot = d->material == MVR_NO_INDEX ? g->material_count - 1 : d->material;
+    if (g->arrays) {
+        /* one array per role and group: binds change only at group boundaries */
+        const mvr_material_slots *ms = &g->plan.materials[slot];
+        for (GLuint k = 0; k < 5; ++k) {
+            if (!(features & role_bits[k]) || ms->group[k] == MVR_NO_GROUP)
+                continue;
+            uint16_t grp = ms->group[k];
+            mvr_state_texture(st, k, GL_TEXTURE_2D_ARRAY, g->group_textures[grp]);
+            mvr_state_sampler(st, k, g->group_samplers[grp]);
+            if (groups_used && !groups_used[grp]) {
+                groups_used[grp] = 1;
+                (*groups_used_count)++;
+            }
+        }
+    } else {
+        const mvr_gpu_material *m = &g->materials[slot];
+        for (GLuint k = 0; k < 5; ++k) {
+            if (!(features & role_bits[k]))
+                continue;
+            mvr_state_texture(st, k, GL_TEXTURE_2D, m->textures[k]);
+            mvr_state_sampler(st, k, m->samplers[k]);
+        }
+    }
+}
+
+void mvr_submit_draw(mvr_renderer *r, const mvr_draw *d, uint32_t instances)
+{
+    const mvr_gl_api_table *gl = r->gl;
+    bool double_sided = (d->features & MVR_FEATURE_DOUBLE_SIDED) != 0;
+    mvr_state_cull(&r->state, !double_sided, d->mirrored ? GL_CW : GL_CCW);
+    const mvr_gpu_primitive *p = &r->gpu.primitives[d->primitive];
+    mvr_state_vao(&r->state, p->vao);
+    if (instances > 1) {
+        if (p->ibo)
+            gl->DrawElementsInstanced(p->mode, p->count, p->index_type, NULL, (GLsizei)instances);
+        else
+            gl->DrawArraysInstanced(p->mode, 0, p->count, (GLsizei)instances);
+    } else if (p->ibo) {
+        gl->DrawElements(p->mode, p->count, p->index_type, NULL);
+    } else {
+        gl->DrawArrays(p->mode, 0, p->count);
+    }
+}
+
 _Static_assert(MVR_PASS_KIND_COUNT == 3, "mvr_frame_stats.sub_passes has one entry per pass kind");
 
 static mvr_result draw_list(pass_context *pc, mvr_pass_kind kind)
@@ -480,7 +530,6 @@ static mvr_result draw_list(pass_context *pc, mvr_pass_kind kind)
     mvr_renderer *r = pc->r;
     const mvr_frame *f = &r->frame;
     const mvr_gpu_scene *g = &r->gpu;
-    const mvr_gl_api_table *gl = r->gl;
     mvr_state_cache *st = &r->state;
     GLenum depth_func = r->reversed_z ? GL_GREATER : GL_LESS;
     /* pass skipping: a list with nothing visible in this pass sets no state
@@ -528,45 +577,9 @@ static mvr_result draw_list(pass_context *pc, mvr_pass_kind kind)
             mvr_state_ubo_range(st, MVR_BLOCK_MATERIALS, g->material_ubo,
                                 (GLintptr)d->material_page * g->material_page_stride,
                                 (GLsizeiptr)r->material_capacity * MVR_MATERIAL_BLOCK_SIZE);
-        uint32_t slot = d->material == MVR_NO_INDEX ? g->material_count - 1 : d->material;
-        if (g->arrays) {
-            /* one array per role and group: binds change only at group boundaries */
-            const mvr_material_slots *ms = &g->plan.materials[slot];
-            for (GLuint k = 0; k < 5; ++k) {
-                if (!(d->features & role_bits[k]) || ms->group[k] == MVR_NO_GROUP)
-                    continue;
-                uint16_t grp = ms->group[k];
-                mvr_state_texture(st, k, GL_TEXTURE_2D_ARRAY, g->group_textures[grp]);
-                mvr_state_sampler(st, k, g->group_samplers[grp]);
-                if (pc->groups_used && !pc->groups_used[grp]) {
-                    pc->groups_used[grp] = 1;
-                    pc->groups_used_count++;
-                }
-            }
-        } else {
-            const mvr_gpu_material *m = &g->materials[slot];
-            for (GLuint k = 0; k < 5; ++k) {
-                if (!(d->features & role_bits[k]))
-                    continue;
-                mvr_state_texture(st, k, GL_TEXTURE_2D, m->textures[k]);
-                mvr_state_sampler(st, k, m->samplers[k]);
-            }
-        }
-        bool double_sided = (d->features & MVR_FEATURE_DOUBLE_SIDED) != 0;
-        mvr_state_cull(st, !double_sided, d->mirrored ? GL_CW : GL_CCW);
-        const mvr_gpu_primitive *p = &g->primitives[d->primitive];
-        mvr_state_vao(st, p->vao);
-        if (instances > 1) {
-            if (p->ibo)
-                gl->DrawElementsInstanced(p->mode, p->count, p->index_type, NULL, (GLsizei)instances);
-            else
-                gl->DrawArraysInstanced(p->mode, 0, p->count, (GLsizei)instances);
-            r->stats.instanced_draw_calls++;
-        } else if (p->ibo) {
-            gl->DrawElements(p->mode, p->count, p->index_type, NULL);
-        } else {
-            gl->DrawArrays(p->mode, 0, p->count);
-        }
+        mvr_bind_draw_textures(r, d, d->features, pc->groups_used, &pc->groups_used_count);
+        mvr_submit_draw(r, d, instances);
+        r->stats.instanced_draw_calls += instances > 1;
         r->stats.draws += instances;
         r->stats.draw_calls++;
         i += span - 1;

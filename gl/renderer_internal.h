@@ -266,6 +266,14 @@ mvr_result mvr_post_run(mvr_renderer *r, mvr_target *t, const mvr_view_set *view
                         const mvr_view_chunk *chunks, uint32_t chunk_count, bool multiview, double pre_exposure);
 
 /* passes.c */
+/* Binds the textures of the roles in `features` a draw samples (array
+ * path: its groups' arrays, marking them in groups_used when given; else
+ * its material's 2D textures). */
+void mvr_bind_draw_textures(mvr_renderer *r, const mvr_draw *d, uint32_t features, uint8_t *groups_used,
+                            uint32_t *groups_used_count);
+/* Face culling for the draw's winding and sidedness, its vertex array, and
+ * the draw command for `instances` consecutive per-draw blocks. */
+void mvr_submit_draw(mvr_renderer *r, const mvr_draw *d, uint32_t instances);
 mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, const mvr_view_set *views,
                                    mvr_target *target, const mvr_render_desc *desc, mvr_view_path path);
 

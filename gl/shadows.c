@@ -189,30 +189,10 @@ static mvr_result bind_caster_program(mvr_renderer *r, const caster_pass *cp, ui
     return MVR_OK;
 }
 
-/* The base color texture a masked caster's alpha test reads. */
-static void bind_caster_texture(mvr_renderer *r, const mvr_draw *d)
-{
-    const mvr_gpu_scene *g = &r->gpu;
-    if (!(d->features & MVR_FEATURE_BASE_COLOR_TEX))
-        return;
-    uint32_t slot = d->material == MVR_NO_INDEX ? g->material_count - 1 : d->material;
-    if (g->arrays) {
-        uint16_t grp = g->plan.materials[slot].group[0];
-        if (grp == MVR_NO_GROUP)
-            return;
-        mvr_state_texture(&r->state, MVR_UNIT_BASE_COLOR, GL_TEXTURE_2D_ARRAY, g->group_textures[grp]);
-        mvr_state_sampler(&r->state, MVR_UNIT_BASE_COLOR, g->group_samplers[grp]);
-    } else {
-        mvr_state_texture(&r->state, MVR_UNIT_BASE_COLOR, GL_TEXTURE_2D, g->materials[slot].textures[0]);
-        mvr_state_sampler(&r->state, MVR_UNIT_BASE_COLOR, g->materials[slot].samplers[0]);
-    }
-}
-
 static mvr_result draw_casters(mvr_renderer *r, const caster_pass *cp)
 {
     const mvr_frame *f = &r->frame;
     const mvr_gpu_scene *g = &r->gpu;
-    const mvr_gl_api_table *gl = r->gl;
     mvr_state_cache *st = &r->state;
     GLsizeiptr draw_range = r->draw_capacity > 1 ? (GLsizeiptr)r->draw_capacity * r->draw_stride
                                                  : (GLsizeiptr)MVR_DRAW_BLOCK_SIZE;
@@ -252,22 +232,10 @@ static mvr_result draw_casters(mvr_renderer *r, const caster_pass *cp)
             mvr_state_ubo_range(st, MVR_BLOCK_MATERIALS, g->material_ubo,
                                 (GLintptr)d->material_page * g->material_page_stride,
                                 (GLsizeiptr)r->material_capacity * MVR_MATERIAL_BLOCK_SIZE);
-            bind_caster_texture(r, d);
+            /* the base color a masked caster's alpha test reads */
+            mvr_bind_draw_textures(r, d, d->features & MVR_FEATURE_BASE_COLOR_TEX, NULL, NULL);
         }
-        bool double_sided = (d->features & MVR_FEATURE_DOUBLE_SIDED) != 0;
-        mvr_state_cull(st, !double_sided, d->mirrored ? GL_CW : GL_CCW);
-        const mvr_gpu_primitive *p = &g->primitives[d->primitive];
-        mvr_state_vao(st, p->vao);
-        if (n > 1) {
-            if (p->ibo)
-                gl->DrawElementsInstanced(p->mode, p->count, p->index_type, NULL, (GLsizei)n);
-            else
-                gl->DrawArraysInstanced(p->mode, 0, p->count, (GLsizei)n);
-        } else if (p->ibo) {
-            gl->DrawElements(p->mode, p->count, p->index_type, NULL);
-        } else {
-            gl->DrawArrays(p->mode, 0, p->count);
-        }
+        mvr_submit_draw(r, d, n);
         r->stats.shadow_draws += n;
         r->stats.draw_calls++;
         pos += n - 1;
