@@ -185,6 +185,7 @@ static void pack_lights(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin)
         li->outer_cone_angle = l->outer_cone_angle;
         li->cast_shadows = l->cast_shadows;
         li->layers = l->layers ? l->layers : 0xffffffffu;
+        li->peak = (double)fmaxf(l->color[0], fmaxf(l->color[1], l->color[2])) * l->intensity;
         b[0] = (float)p.x;
         b[1] = (float)p.y;
         b[2] = (float)p.z;

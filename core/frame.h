@@ -53,6 +53,7 @@ typedef struct mvr_frame_light {
     double outer_cone_angle;     /* spot */
     bool cast_shadows;
     uint32_t layers;             /* render layers (never 0: 0 means all) */
+    double peak;                 /* intensity times the color's largest channel (lux or candela) */
 } mvr_frame_light;
 
 typedef struct mvr_frame {

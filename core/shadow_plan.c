@@ -92,15 +92,15 @@ static void slice_corners(const view_geometry *g, double d, mvr_dvec3 out[4])
     }
 }
 
-typedef struct caster_extent {
-    mvr_dvec3 center;            /* bounding sphere of every caster */
+typedef struct scene_extent {
+    mvr_dvec3 center;            /* bounding sphere of every draw */
     double radius;
     bool any;
-} caster_extent;
+} scene_extent;
 
-static caster_extent casters_of(const mvr_frame *f)
+static scene_extent scene_extent_of(const mvr_frame *f)
 {
-    caster_extent e = {{0, 0, 0}, 0, false};
+    scene_extent e = {{0, 0, 0}, 0, false};
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (uint32_t i = 0; i < f->draw_count; ++i) {
         const mvr_draw *d = &f->draws[i];
@@ -225,7 +225,7 @@ void mvr_shadow_plan_build(mvr_shadow_plan *plan, const mvr_frame *f, const mvr_
         if ((m & all) != all)
             plan->masked = true;
     }
-    caster_extent scene = casters_of(f);
+    scene_extent scene = scene_extent_of(f);
     if (s->mode == MVR_SHADOWS_OFF || !scene.any)
         return;
     for (uint32_t i = 0; i < light_count; ++i) {

@@ -52,8 +52,7 @@ static double guess_auto_exposure(const mvr_renderer *r, const mvr_render_desc *
     uint32_t n = f->light_counts[0] + f->light_counts[1] + f->light_counts[2];
     double lux = 0.0;
     for (uint32_t i = 0; i < n; ++i) {
-        const float *b = (const float *)(const void *)(f->light_blocks + (size_t)i * MVR_LIGHT_BLOCK_SIZE);
-        double intensity = fmax(b[8], fmax(b[9], b[10])); /* color * intensity */
+        double intensity = f->lights[i].peak;
         if (f->lights[i].type == MVR_LIGHT_DIRECTIONAL)
             lux += intensity;
         else
