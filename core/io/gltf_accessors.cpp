@@ -97,9 +97,8 @@ static float component_value(const unsigned char *p, int t, bool normalized)
     }
 }
 
-// The bytes of a buffer view, after checking it lies inside its buffer.
-static const unsigned char *view_bytes(context &cx, int view_index, uint64_t *length, uint64_t *stride,
-                                       const std::string &what)
+const unsigned char *view_bytes(context &cx, int view_index, uint64_t *length, uint64_t *stride,
+                                const std::string &what)
 {
     const auto &m = *cx.model;
     if (view_index < 0 || size_t(view_index) >= m.bufferViews.size())
@@ -109,18 +108,18 @@ static const unsigned char *view_bytes(context &cx, int view_index, uint64_t *le
     std::string vname = "bufferViews[" + std::to_string(view_index) + "]";
     if (v.buffer < 0 || size_t(v.buffer) >= m.buffers.size())
         refuse(what + ": " + vname + " names buffer " + std::to_string(v.buffer) + ", which does not exist");
-    const auto &data = m.buffers[size_t(v.buffer)].data;
     uint64_t end = add_checked(uint64_t(v.byteOffset), uint64_t(v.byteLength), vname);
-    if (end > data.size())
+    if (size_t(v.buffer) < cx.res.buffers.size() && end > cx.res.buffers[size_t(v.buffer)].byte_length)
         refuse(what + ": " + vname + " (bytes " + std::to_string(v.byteOffset) + ".." + std::to_string(end) +
-               ") reads past the end of buffer " + std::to_string(v.buffer) + " (" + std::to_string(data.size()) +
-               " bytes)");
+               ") reads past the end of buffer " + std::to_string(v.buffer) + " (" +
+               std::to_string(cx.res.buffers[size_t(v.buffer)].byte_length) + " bytes)");
+    byte_span data = cx.buffer(v.buffer, what + " (" + vname + ")");
     if (v.byteStride != 0 && (v.byteStride < 4 || v.byteStride > 252 || v.byteStride % 4 != 0))
         refuse(what + ": " + vname + " byteStride " + std::to_string(v.byteStride) +
                " is not a multiple of 4 in 4..252");
     *length = uint64_t(v.byteLength);
     *stride = uint64_t(v.byteStride);
-    return data.data() + v.byteOffset;
+    return data.data + v.byteOffset;
 }
 
 // Checks that count elements of elem bytes, stride apart, from offset fit in length.
@@ -146,6 +145,21 @@ static void read_elements(const unsigned char *base, uint64_t stride, uint64_t c
             out[i * uint64_t(comps) + uint64_t(c)] = component_value(base + i * stride + uint64_t(c) * cs, ctype, normalized);
 }
 
+// An unsigned index of 1, 2 or 4 bytes.
+static uint32_t index_value(const unsigned char *p, uint64_t size)
+{
+    if (size == 1)
+        return p[0];
+    if (size == 2) {
+        uint16_t v;
+        std::memcpy(&v, p, 2);
+        return v;
+    }
+    uint32_t v;
+    std::memcpy(&v, p, 4);
+    return v;
+}
+
 static const Accessor &accessor_at(context &cx, int index, const std::string &what)
 {
     const auto &m = *cx.model;
@@ -153,6 +167,50 @@ static const Accessor &accessor_at(context &cx, int index, const std::string &wh
         refuse(what + ": accessor " + std::to_string(index) + " does not exist (" + std::to_string(m.accessors.size()) +
                " accessors)");
     return m.accessors[size_t(index)];
+}
+
+// A sparse accessor's substitution (glTF 2.0, 3.6.2.3), checked: count
+// indices and values inside their bufferViews; target() checks each index.
+struct sparse_data {
+    uint64_t count = 0, index_size = 0;
+    const unsigned char *indices = nullptr, *values = nullptr;
+    std::string name;
+    uint64_t target(uint64_t k, uint64_t accessor_count, const std::string &what) const
+    {
+        uint64_t t = index_value(indices + k * index_size, index_size);
+        if (t >= accessor_count)
+            refuse(what + ": " + name + ".indices[" + std::to_string(k) + "] = " + std::to_string(t) +
+                   " is past the accessor's " + std::to_string(accessor_count) + " elements");
+        return t;
+    }
+};
+
+static sparse_data sparse_of(context &cx, const Accessor &a, uint64_t count, uint64_t elem, const std::string &what,
+                             const std::string &aname)
+{
+    sparse_data sp;
+    sp.name = aname + ".sparse";
+    sp.count = uint64_t(a.sparse.count);
+    if (a.sparse.count <= 0 || sp.count > count)
+        refuse(what + ": " + sp.name + " count " + std::to_string(a.sparse.count) + " not in 1.." +
+               std::to_string(count));
+    int itype = a.sparse.indices.componentType;
+    if (itype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && itype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        itype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+        refuse(what + ": " + sp.name + ".indices componentType " + std::to_string(itype) + " is not unsigned");
+    uint64_t ilen = 0, istride = 0, vlen = 0, vstride = 0;
+    const unsigned char *ib =
+        view_bytes(cx, a.sparse.indices.bufferView, &ilen, &istride, what + " (" + sp.name + ".indices)");
+    const unsigned char *vb =
+        view_bytes(cx, a.sparse.values.bufferView, &vlen, &vstride, what + " (" + sp.name + ".values)");
+    sp.index_size = component_size(itype);
+    check_span(uint64_t(a.sparse.indices.byteOffset), sp.index_size, sp.count, sp.index_size, ilen, what,
+               sp.name + ".indices", "bufferView " + std::to_string(a.sparse.indices.bufferView));
+    check_span(uint64_t(a.sparse.values.byteOffset), elem, sp.count, elem, vlen, what, sp.name + ".values",
+               "bufferView " + std::to_string(a.sparse.values.bufferView));
+    sp.indices = ib + a.sparse.indices.byteOffset;
+    sp.values = vb + a.sparse.values.byteOffset;
+    return sp;
 }
 
 std::vector<float> read_floats(context &cx, int index, int components, const std::string &what,
@@ -190,41 +248,19 @@ std::vector<float> read_floats(context &cx, int index, int components, const std
         check_span(uint64_t(a.byteOffset), stride, count, elem, length, what, aname,
                    "bufferView " + std::to_string(a.bufferView));
     }
-    std::vector<float> out(size_t(mul_checked(count, uint64_t(comps), what)), 0.0f);
+    uint64_t floats = mul_checked(count, uint64_t(comps), what);
+    cx.mem.charge(floats * sizeof(float), what + " (" + aname + ")");
+    cx.mesh_bytes += floats * sizeof(float);
+    std::vector<float> out(size_t(floats), 0.0f);
     if (base)
         read_elements(base + a.byteOffset, stride, count, comps, a.componentType, a.normalized, out.data());
     if (a.sparse.isSparse) {
-        std::string sname = aname + ".sparse";
-        uint64_t scount = uint64_t(a.sparse.count);
-        if (a.sparse.count <= 0 || scount > count)
-            refuse(what + ": " + sname + " count " + std::to_string(a.sparse.count) + " not in 1.." +
-                   std::to_string(count));
-        int itype = a.sparse.indices.componentType;
-        if (itype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && itype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-            itype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-            refuse(what + ": " + sname + ".indices componentType " + std::to_string(itype) + " is not unsigned");
-        uint64_t ilen = 0, istride = 0, vlen = 0, vstride = 0;
-        const unsigned char *ib = view_bytes(cx, a.sparse.indices.bufferView, &ilen, &istride, what + " (" + sname + ".indices)");
-        const unsigned char *vb = view_bytes(cx, a.sparse.values.bufferView, &vlen, &vstride, what + " (" + sname + ".values)");
-        uint64_t isize = component_size(itype);
-        check_span(uint64_t(a.sparse.indices.byteOffset), isize, scount, isize, ilen, what, sname + ".indices",
-                   "bufferView " + std::to_string(a.sparse.indices.bufferView));
-        check_span(uint64_t(a.sparse.values.byteOffset), elem, scount, elem, vlen, what, sname + ".values",
-                   "bufferView " + std::to_string(a.sparse.values.bufferView));
+        sparse_data sp = sparse_of(cx, a, count, elem, what, aname);
+        uint64_t scount = sp.count;
         std::vector<float> values(size_t(scount) * size_t(comps));
-        read_elements(vb + a.sparse.values.byteOffset, elem, scount, comps, a.componentType, a.normalized,
-                      values.data());
-        const unsigned char *ip = ib + a.sparse.indices.byteOffset;
+        read_elements(sp.values, elem, scount, comps, a.componentType, a.normalized, values.data());
         for (uint64_t k = 0; k < scount; ++k) {
-            uint64_t target = uint64_t(component_value(ip + k * isize, itype, false));
-            if (itype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
-                uint32_t v;
-                std::memcpy(&v, ip + k * isize, 4);
-                target = v; /* exact: floats round above 2^24 */
-            }
-            if (target >= count)
-                refuse(what + ": " + sname + ".indices[" + std::to_string(k) + "] = " + std::to_string(target) +
-                       " is past the accessor's " + std::to_string(count) + " elements");
+            uint64_t target = sp.target(k, count, what);
             std::memcpy(&out[size_t(target) * size_t(comps)], &values[size_t(k) * size_t(comps)],
                         size_t(comps) * sizeof(float));
         }
@@ -248,27 +284,28 @@ std::vector<uint32_t> read_indices(context &cx, int index, const std::string &wh
     if (count > cx.limits.max_indices)
         refuse(what + ": " + aname + " count " + std::to_string(count) + " exceeds the cap of " +
                std::to_string(cx.limits.max_indices) + " (mvr_gltf_options.max_indices)");
-    if (a.sparse.isSparse)
-        refuse(what + ": " + aname + " is a sparse index accessor; mvr reads index accessors from a bufferView");
-    if (a.bufferView < 0)
-        refuse(what + ": " + aname + " has no bufferView");
-    uint64_t length = 0, stride = 0;
-    const unsigned char *base = view_bytes(cx, a.bufferView, &length, &stride, what);
+    cx.mem.charge(count * sizeof(uint32_t), what + " (" + aname + ")");
+    cx.mesh_bytes += count * sizeof(uint32_t);
     uint64_t cs = component_size(t);
-    if (stride != 0 && stride != cs)
-        refuse(what + ": index bufferView " + std::to_string(a.bufferView) + " has a byteStride (indices are tightly packed)");
-    check_span(uint64_t(a.byteOffset), cs, count, cs, length, what, aname, "bufferView " + std::to_string(a.bufferView));
-    std::vector<uint32_t> out(static_cast<size_t>(count));
-    const unsigned char *p = base + a.byteOffset;
-    for (uint64_t i = 0; i < count; ++i) {
-        if (cs == 1) {
-            out[i] = p[i];
-        } else if (cs == 2) {
-            uint16_t v;
-            std::memcpy(&v, p + i * 2, 2);
-            out[i] = v;
-        } else {
-            std::memcpy(&out[i], p + i * 4, 4);
+    // glTF 2.0, 3.6.2.1: an accessor without a bufferView is zeros (sparse may replace some)
+    std::vector<uint32_t> out(static_cast<size_t>(count), 0u);
+    if (a.bufferView >= 0) {
+        uint64_t length = 0, stride = 0;
+        const unsigned char *base = view_bytes(cx, a.bufferView, &length, &stride, what);
+        if (stride != 0 && stride != cs)
+            refuse(what + ": index bufferView " + std::to_string(a.bufferView) +
+                   " has a byteStride (indices are tightly packed)");
+        check_span(uint64_t(a.byteOffset), cs, count, cs, length, what, aname,
+                   "bufferView " + std::to_string(a.bufferView));
+        const unsigned char *p = base + a.byteOffset;
+        for (uint64_t i = 0; i < count; ++i)
+            out[i] = index_value(p + i * cs, cs);
+    }
+    if (a.sparse.isSparse) {
+        sparse_data sp = sparse_of(cx, a, count, cs, what, aname);
+        for (uint64_t k = 0; k < sp.count; ++k) {
+            uint64_t target = sp.target(k, count, what);
+            out[size_t(target)] = index_value(sp.values + k * cs, cs);
         }
     }
     return out;

@@ -5,6 +5,8 @@
 #include <tiny_gltf.h>
 
 #include <cstdint>
+#include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -24,20 +26,91 @@ struct load_error : std::runtime_error {
     throw load_error(MVR_ERROR_INVALID_ASSET, msg);
 }
 
+// A value from the file, quoted for a message: at most 80 characters
+// (longer values end in "..."), control characters escaped.
+std::string quote(const std::string &value);
+
 struct caps {
     uint64_t max_file_bytes, max_vertices, max_indices;
-    uint32_t max_image_dimension, max_nodes;
+    uint32_t max_image_dimension, max_nodes, max_images;
 };
+
+// The load's memory budget: every allocation the file can make large is
+// charged before it is made and released when it is freed.
+struct budget {
+    uint64_t limit = 0, used = 0, peak = 0;
+    void charge(uint64_t bytes, const std::string &what);   // refuses (out of memory) past the limit
+    void release(uint64_t bytes) { used = bytes > used ? 0 : used - bytes; }
+};
+
+// Bytes charged to the budget while the object lives.
+struct charged {
+    budget *b = nullptr;
+    uint64_t bytes = 0;
+    charged() = default;
+    charged(budget &bud, uint64_t n, const std::string &what) : b(&bud), bytes(n) { bud.charge(n, what); }
+    charged(const charged &) = delete;
+    charged &operator=(const charged &) = delete;
+    ~charged() { if (b) b->release(bytes); }
+};
+
+// Where a buffer's or an image's bytes come from, as the JSON says (mvr's
+// pre-pass takes these out before tinygltf parses the rest: mvr reads every
+// byte itself, and only what the scene uses).
+struct byte_span {
+    const unsigned char *data = nullptr;
+    uint64_t size = 0;
+};
+
+struct buffer_source {
+    bool has_uri = false;
+    std::string uri;
+    uint64_t byte_length = 0;
+    bool loaded = false;
+    byte_span span;                       // byteLength bytes, once read
+    std::shared_ptr<const void> owner;    // keeps them (shared by buffers naming one file)
+};
+
+struct image_source {
+    bool has_uri = false;
+    std::string uri;
+    int buffer_view = -1;
+    std::string mime_type;
+};
+
+struct resources {
+    std::vector<buffer_source> buffers;
+    std::vector<image_source> images;
+    const unsigned char *bin = nullptr;   // the GLB's BIN chunk (buffer 0), if any
+    uint64_t bin_size = 0;
+    bool glb = false;
+};
+
+class file_resolver;
 
 struct context {
     const tinygltf::Model *model = nullptr;
     caps limits{};
     mvr_logger logger{};
+    budget mem;
+    resources res;
+    file_resolver *files = nullptr;
     uint32_t warnings = 0;
+    uint32_t buffers_read = 0;
+    uint32_t images_missing = 0, images_decoded = 0;
+    bool strict = false;                  // missing images are errors
     uint64_t vertices = 0, indices = 0;   // running totals against the caps
+    uint64_t mesh_bytes = 0;              // charged for the mesh being read (released once in the scene)
     bool quantization_declared = false;   // KHR_mesh_quantization in extensionsUsed
     void warn(const std::string &msg);
+    // The byteLength bytes of buffers[index], read on first use; what names the reader.
+    byte_span buffer(int index, const std::string &what);
 };
+
+// The bytes of bufferViews[view_index] after checking they lie inside their
+// buffer (read on first use); stride 0 = tightly packed.
+const unsigned char *view_bytes(context &cx, int view_index, uint64_t *length, uint64_t *stride,
+                                const std::string &what);
 
 // Reads accessor `index` as floats, `components` per element (the accessor's
 // type must have exactly that many). Normalized integers become [0, 1] or

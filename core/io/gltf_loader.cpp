@@ -9,7 +9,9 @@
 #include <map>
 #include <set>
 
+#include "gltf_files.hpp"
 #include "gltf_internal.hpp"
+#include "gltf_prepass.hpp"
 #include "mvr/mvr_image.h"
 
 extern "C" {
@@ -25,6 +27,40 @@ void context::warn(const std::string &msg)
         logger.fn(MVR_LOG_WARNING, MVR_LOG_ID_GENERAL, ("mvr_gltf: " + msg).c_str(), logger.user_data);
 }
 
+byte_span context::buffer(int index, const std::string &what)
+{
+    if (index < 0 || size_t(index) >= res.buffers.size())
+        refuse(what + ": buffer " + std::to_string(index) + " does not exist (" + std::to_string(res.buffers.size()) +
+               " buffers)");
+    buffer_source &b = res.buffers[size_t(index)];
+    if (b.loaded)
+        return b.span;
+    std::string w = "buffers[" + std::to_string(index) + "]";
+    if (!b.has_uri) {
+        // glTF 2.0, 4.4.3.3: only buffers[0] may refer to the GLB's BIN chunk
+        if (!res.glb)
+            refuse(w + " has no uri (read by " + what + ")");
+        if (index != 0)
+            refuse(w + " has no uri: only buffers[0] may use the GLB's BIN chunk (read by " + what + ")");
+        if (!res.bin)
+            refuse(w + " refers to the GLB's BIN chunk, but the GLB has none");
+        if (b.byte_length > res.bin_size)
+            refuse(w + ".byteLength " + std::to_string(b.byte_length) + " is more than the BIN chunk's " +
+                   std::to_string(res.bin_size) + " bytes");
+        b.span = byte_span{res.bin, b.byte_length};
+    } else {
+        read_result r = files->read(b.uri, w + ".uri", true);
+        if (r.data->bytes.size() < b.byte_length)
+            refuse(w + ".uri " + quote(b.uri) + ": " + std::to_string(r.data->bytes.size()) +
+                   " bytes, byteLength says " + std::to_string(b.byte_length));
+        b.owner = r.data;
+        b.span = byte_span{r.data->bytes.data(), b.byte_length};
+        ++buffers_read;
+    }
+    b.loaded = true;
+    return b.span;
+}
+
 namespace {
 
 using tinygltf::Model;
@@ -34,149 +70,40 @@ const std::set<std::string> implemented = {
     "KHR_lights_punctual", "KHR_materials_unlit", "KHR_texture_transform", "KHR_materials_emissive_strength",
     "KHR_mesh_quantization"};
 
-// ---- file access for tinygltf: bounded reads, no ~ expansion ----
-
-struct fs_state {
-    uint64_t max_bytes;
-    bool allow_files;
-    std::string error;
-};
-
-bool fs_exists(const std::string &path, void *user)
+// tinygltf's file access, never used (it is given no external URI): refused.
+bool refuse_exists(const std::string &, void *)
 {
-    auto *st = static_cast<fs_state *>(user);
-    if (!st->allow_files) {
-        if (st->error.empty())
-            st->error = "external file '" + path + "' refused: loaded from memory without a base_dir";
-        return false;
-    }
-    struct stat sb;
-    return stat(path.c_str(), &sb) == 0 && S_ISREG(sb.st_mode);
+    return false;
+}
+std::string refuse_expand(const std::string &, void *)
+{
+    return "";
+}
+bool refuse_read(std::vector<unsigned char> *, std::string *, const std::string &, void *)
+{
+    return false;
+}
+bool refuse_write(std::string *, const std::string &, const std::vector<unsigned char> &, void *)
+{
+    return false;
 }
 
-std::string fs_expand(const std::string &path, void *)
+// tinygltf calls this for the one-byte placeholder each image became in
+// the pre-pass: mvr decodes images itself, from the sources it took out.
+bool ignore_placeholder(tinygltf::Image *, const int, std::string *, std::string *, int, int, const unsigned char *,
+                        int, void *)
 {
-    return path; // no home-directory or environment expansion of names from a file
-}
-
-bool fs_read(std::vector<unsigned char> *out, std::string *err, const std::string &path, void *user)
-{
-    auto *st = static_cast<fs_state *>(user);
-    if (!st->allow_files) {
-        if (err)
-            *err += "external file '" + path + "' refused: loaded from memory without a base_dir\n";
-        return false;
-    }
-    struct stat sb;
-    if (stat(path.c_str(), &sb) != 0 || !S_ISREG(sb.st_mode)) {
-        if (err)
-            *err += "cannot open '" + path + "'\n";
-        return false;
-    }
-    if (uint64_t(sb.st_size) > st->max_bytes) {
-        st->error = "'" + path + "' is " + std::to_string(sb.st_size) + " bytes, over the cap of " +
-                    std::to_string(st->max_bytes) + " (mvr_gltf_options.max_file_bytes)";
-        if (err)
-            *err += st->error + "\n";
-        return false;
-    }
-    std::ifstream f(path, std::ios::binary);
-    out->resize(size_t(sb.st_size));
-    if (!f.read(reinterpret_cast<char *>(out->data()), std::streamsize(sb.st_size))) {
-        if (err)
-            *err += "cannot read '" + path + "'\n";
-        return false;
-    }
     return true;
 }
 
-bool fs_write(std::string *, const std::string &, const std::vector<unsigned char> &, void *)
+// tinygltf's messages, shortened: they may quote names and URIs from the file.
+std::string short_message(std::string m)
 {
-    return false; // the loader never writes
-}
-
-// Images are kept encoded (mvr_image decodes them with OpenImageIO). For an
-// image in a buffer view, tinygltf 2.7 computes bytes and size from the view
-// without checking them against the buffer (found by the fuzzer): the view is
-// checked here, against the model tinygltf is filling (user = the Model),
-// before a byte is read.
-bool keep_encoded(tinygltf::Image *image, const int index, std::string *err, std::string *, int, int,
-                  const unsigned char *bytes, int size, void *user)
-{
-    if (size <= 0 || !bytes)
-        return false;
-    if (image->bufferView >= 0) {
-        const auto *model = static_cast<const tinygltf::Model *>(user);
-        std::string what = "images[" + std::to_string(index) + "]: bufferView " + std::to_string(image->bufferView);
-        if (size_t(image->bufferView) >= model->bufferViews.size()) {
-            if (err)
-                *err += what + " does not exist\n";
-            return false;
-        }
-        const auto &v = model->bufferViews[size_t(image->bufferView)];
-        if (v.buffer < 0 || size_t(v.buffer) >= model->buffers.size()) {
-            if (err)
-                *err += what + " names a missing buffer\n";
-            return false;
-        }
-        const auto &data = model->buffers[size_t(v.buffer)].data;
-        uint64_t end = uint64_t(v.byteOffset) + uint64_t(v.byteLength);
-        if (end > data.size() || uint64_t(size) > v.byteLength || end < v.byteOffset ||
-            bytes < data.data() || bytes + size > data.data() + data.size()) {
-            if (err)
-                *err += what + " reads past the end of buffer " + std::to_string(v.buffer) + "\n";
-            return false;
-        }
-    }
-    image->image.assign(bytes, bytes + size);
-    image->as_is = true;
-    return true;
-}
-
-// JSON nesting deeper than this is refused before parsing: parsers and
-// destructors recurse on nesting, and a glTF never needs more than ~10 levels.
-constexpr int max_json_depth = 64;
-
-void check_json_depth(const unsigned char *p, size_t n)
-{
-    int depth = 0;
-    bool in_string = false;
-    for (size_t i = 0; i < n; ++i) {
-        unsigned char c = p[i];
-        if (in_string) {
-            if (c == '\\')
-                ++i;
-            else if (c == '"')
-                in_string = false;
-        } else if (c == '"') {
-            in_string = true;
-        } else if (c == '[' || c == '{') {
-            if (++depth > max_json_depth)
-                refuse("JSON nests deeper than " + std::to_string(max_json_depth) + " levels");
-        } else if (c == ']' || c == '}') {
-            --depth;
-        }
-    }
-}
-
-// The JSON chunk of a GLB (12-byte header, then chunks of length + type).
-void check_glb(const unsigned char *p, size_t n)
-{
-    if (n < 20)
-        refuse("GLB is " + std::to_string(n) + " bytes: too short for a header and a JSON chunk");
-    uint32_t version, length, chunk_length, chunk_type;
-    std::memcpy(&version, p + 4, 4);
-    std::memcpy(&length, p + 8, 4);
-    std::memcpy(&chunk_length, p + 12, 4);
-    std::memcpy(&chunk_type, p + 16, 4);
-    if (version != 2)
-        refuse("GLB version " + std::to_string(version) + " (2 is supported)");
-    if (length > n)
-        refuse("GLB header says " + std::to_string(length) + " bytes, the file has " + std::to_string(n) +
-               " (truncated?)");
-    if (chunk_type != 0x4E4F534Au || uint64_t(chunk_length) + 20 > length)
-        refuse("GLB's first chunk is not a JSON chunk inside the file");
-    check_json_depth(p + 20, chunk_length);
+    while (!m.empty() && (m.back() == '\n' || m.back() == ' '))
+        m.pop_back();
+    std::string first = m.substr(0, m.find('\n'));
+    std::string q = quote(first);
+    return q.substr(1, q.size() - 2) + (first.size() < m.size() ? " (and more)" : "");
 }
 
 // ---- conversions ----
@@ -212,15 +139,28 @@ double number(const tinygltf::Value &v, const char *key, double fallback)
 }
 
 struct converter {
+    converter(context &c, mvr_scene *s, const Model &model) : cx(c), scene(s), m(model) {}
     context &cx;
     mvr_scene *scene;
     const Model &m;
-    std::map<int, mvr_image_id> images;      // glTF image -> scene image
+    std::map<int, mvr_image_id> images;      // glTF image -> scene image (0: left out)
+    std::map<std::string, mvr_image_id> decoded;   // source (file, bufferView) -> scene image
     std::map<int, mvr_material_id> materials;
     std::map<int, mvr_mesh_id> meshes;
     std::map<int, mvr_camera_id> cameras;
     std::map<int, mvr_light_id> lights;
     bool warned_skin = false, warned_morph = false;
+    bool missing_texture = false;   // set when a texture's image was left out
+    // cameras and lights that failed their checks: an error only if a node uses them
+    std::map<int, std::string> bad_cameras, bad_lights;
+
+    void set_aside(const load_error &e, std::map<int, std::string> &bad, int index)
+    {
+        if (e.result == MVR_ERROR_OUT_OF_MEMORY)
+            throw e;
+        bad[index] = e.what();
+        cx.warn(std::string(e.what()) + "; ignored unless a node uses it");
+    }
 
     void check(mvr_result r, const std::string &what)
     {
@@ -229,47 +169,88 @@ struct converter {
                              what + ": " + mvr_scene_last_error(scene));
     }
 
+    // The scene image of images[index], decoded once (also when several
+    // images name one file). A missing or undecodable image is left out
+    // with a warning (id 0: its textures take the role's default) unless
+    // strict; the budget is never waived.
     mvr_image_id image(int index, const std::string &what)
     {
         auto found = images.find(index);
         if (found != images.end())
             return found->second;
-        if (index < 0 || size_t(index) >= m.images.size())
+        if (index < 0 || size_t(index) >= cx.res.images.size())
             refuse(what + ": image " + std::to_string(index) + " does not exist");
-        const tinygltf::Image &img = m.images[size_t(index)];
         std::string iname = "images[" + std::to_string(index) + "]";
-        std::vector<unsigned char> bytes = img.image;
-        if (img.bufferView >= 0) {
-            // an image in a buffer view: bounds checked like any accessor
-            if (size_t(img.bufferView) >= m.bufferViews.size())
-                refuse(iname + ": bufferView " + std::to_string(img.bufferView) + " does not exist");
-            const auto &v = m.bufferViews[size_t(img.bufferView)];
-            if (v.buffer < 0 || size_t(v.buffer) >= m.buffers.size())
-                refuse(iname + ": bufferView " + std::to_string(img.bufferView) + " names a missing buffer");
-            const auto &data = m.buffers[size_t(v.buffer)].data;
-            if (add_checked(v.byteOffset, v.byteLength, iname) > data.size())
-                refuse(iname + ": bufferView " + std::to_string(img.bufferView) + " reads past the end of buffer " +
-                       std::to_string(v.buffer));
-            if (bytes.empty())
-                bytes.assign(data.begin() + long(v.byteOffset), data.begin() + long(v.byteOffset + v.byteLength));
-        }
-        if (bytes.empty())
-            refuse(iname + ": no image data (missing file or bufferView)");
-        mvr_image_data decoded;
-        mvr_error err;
-        const char *hint = !img.mimeType.empty() ? img.mimeType.c_str() : img.uri.c_str();
-        if (mvr_image_decode(bytes.data(), bytes.size(), hint, cx.limits.max_image_dimension, &decoded, &err) !=
-            MVR_OK)
-            throw load_error(err.result == MVR_ERROR_OUT_OF_MEMORY ? err.result : MVR_ERROR_INVALID_ASSET,
-                             iname + (img.uri.empty() ? "" : " (" + (img.uri.size() > 64 ? img.uri.substr(0, 64) + "..." : img.uri) + ")") +
-                                 ": " + err.message);
-        mvr_image_desc d = {decoded.width, decoded.height, static_cast<const uint8_t *>(decoded.pixels),
-                            img.name.c_str()};
         mvr_image_id id = {0};
-        mvr_result r = mvr_scene_add_image(scene, &d, &id);
-        mvr_image_free(&decoded);
-        check(r, iname);
+        try {
+            id = decode_image(size_t(index), iname);
+        } catch (const load_error &e) {
+            if (e.result == MVR_ERROR_OUT_OF_MEMORY || cx.strict)
+                throw;
+            cx.warn(std::string(e.what()) + "; left out, its textures take their defaults");
+            ++cx.images_missing;
+        }
         images[index] = id;
+        return id;
+    }
+
+    mvr_image_id decode_image(size_t index, const std::string &iname)
+    {
+        const image_source &src = cx.res.images[index];
+        const unsigned char *bytes = nullptr;
+        uint64_t size = 0;
+        read_result file;
+        std::string key;
+        if (src.buffer_view >= 0) {
+            uint64_t stride = 0;
+            bytes = view_bytes(cx, src.buffer_view, &size, &stride, iname);
+            key = "bufferView:" + std::to_string(src.buffer_view);
+        } else if (src.has_uri) {
+            file = cx.files->read(src.uri, iname + ".uri", false);
+            bytes = file.data->bytes.data();
+            size = file.data->bytes.size();
+            key = file.key;
+        } else {
+            refuse(iname + " has neither a uri nor a bufferView");
+        }
+        auto same = decoded.find(key);
+        if (!key.empty() && same != decoded.end())
+            return same->second;
+        if (size == 0)
+            refuse(iname + ": no image data");
+        const std::string &mime = !src.mime_type.empty() ? src.mime_type : file.media_type;
+        mvr_image_header h;
+        mvr_error err;
+        mvr_result r = mvr_image_probe(bytes, size_t(size), mime.c_str(), &h, &err);
+        if (r != MVR_OK)
+            throw load_error(r == MVR_ERROR_UNSUPPORTED ? r : MVR_ERROR_INVALID_ASSET, iname + ": " + err.message);
+        if (h.width > cx.limits.max_image_dimension || h.height > cx.limits.max_image_dimension)
+            refuse(iname + ": " + std::to_string(h.width) + "x" + std::to_string(h.height) + " is over the cap of " +
+                   std::to_string(cx.limits.max_image_dimension) + " (mvr_gltf_options.max_image_dimension)");
+        if (decoded.size() >= cx.limits.max_images)
+            refuse(iname + ": more than " + std::to_string(cx.limits.max_images) +
+                   " images (mvr_gltf_options.max_images)");
+        // the scene's RGBA8 copy stays; decoding holds the stored channels and
+        // an RGBA8 result besides, until the copy is made
+        uint64_t texels = uint64_t(h.width) * h.height;
+        cx.mem.charge(texels * 4, iname + " (" + std::to_string(h.width) + "x" + std::to_string(h.height) + ")");
+        mvr_image_data pixels;
+        {
+            charged decoding(cx.mem, texels * (4 + uint64_t(h.channels)) + texels * 4, iname + " decoding");
+            if (mvr_image_decode(bytes, size_t(size), mime.c_str(), cx.limits.max_image_dimension, &pixels, &err) !=
+                MVR_OK)
+                throw load_error(err.result == MVR_ERROR_OUT_OF_MEMORY ? err.result : MVR_ERROR_INVALID_ASSET,
+                                 iname + ": " + err.message);
+        }
+        const std::string &name = m.images.size() > index ? m.images[index].name : std::string();
+        mvr_image_desc d = {pixels.width, pixels.height, static_cast<const uint8_t *>(pixels.pixels), name.c_str()};
+        mvr_image_id id = {0};
+        mvr_result added = mvr_scene_add_image(scene, &d, &id);
+        mvr_image_free(&pixels);
+        check(added, iname);
+        ++cx.images_decoded;
+        if (!key.empty())
+            decoded[key] = id;
         return id;
     }
 
@@ -294,6 +275,10 @@ struct converter {
             return ref;
         }
         ref.image = image(t.source, tname);
+        if (ref.image.id == 0) {
+            missing_texture = true;
+            return ref;
+        }
         if (t.sampler >= 0) {
             if (size_t(t.sampler) >= m.samplers.size())
                 refuse(tname + ": sampler " + std::to_string(t.sampler) + " does not exist");
@@ -354,13 +339,16 @@ struct converter {
         d.occlusion = texture_ref(g.occlusionTexture.index, g.occlusionTexture.texCoord,
                                   g.occlusionTexture.extensions, w + ".occlusionTexture");
         d.occlusion_strength = float(g.occlusionTexture.strength);
+        missing_texture = false;
         d.emissive = texture(g.emissiveTexture, w + ".emissiveTexture");
+        if (missing_texture)
+            d.emissive_factor[0] = d.emissive_factor[1] = d.emissive_factor[2] = 0.0f; /* no emission without its map */
         if (g.alphaMode == "MASK")
             d.alpha_mode = MVR_ALPHA_MASK;
         else if (g.alphaMode == "BLEND")
             d.alpha_mode = MVR_ALPHA_BLEND;
         else if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty())
-            refuse(w + ": alphaMode '" + g.alphaMode + "' is not OPAQUE, MASK or BLEND");
+            refuse(w + ": alphaMode " + quote(g.alphaMode) + " is not OPAQUE, MASK or BLEND");
         d.alpha_cutoff = float(g.alphaCutoff);
         if (d.alpha_cutoff == 0.0f)
             d.alpha_cutoff = 1e-7f; /* a cutoff of 0 is valid glTF; 0 means "default" in mvr */
@@ -494,6 +482,8 @@ mvr_mesh_id converter::mesh(int index)
             int comps = size_t(a_col) < m.accessors.size() && m.accessors[size_t(a_col)].type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
             std::vector<float> c;
             optional("COLOR_0", comps, FLOAT | U8 | U16, c);
+            cx.mem.charge(vcount * 4 * sizeof(float), pw + ".attributes.COLOR_0 (as RGBA)");
+            cx.mesh_bytes += vcount * 4 * sizeof(float);
             d.col.resize(vcount * 4, 1.0f);
             for (size_t v = 0; v < vcount; ++v)
                 for (int ch = 0; ch < comps; ++ch)
@@ -511,11 +501,17 @@ mvr_mesh_id converter::mesh(int index)
                     refuse(pw + ".indices: accessor " + std::to_string(p.indices) + " element " + std::to_string(i) +
                            " = " + std::to_string(idx[i]) + " is past the " + std::to_string(vcount) + " vertices");
         } else {
+            cx.mem.charge(vcount * sizeof(uint32_t), pw + " (implicit indices)");
+            cx.mesh_bytes += vcount * sizeof(uint32_t);
             idx.resize(vcount);
             for (size_t i = 0; i < vcount; ++i)
                 idx[i] = uint32_t(i);
         }
         d.idx = to_list(p.mode, idx, &d.mode);
+        if (d.idx.size() > idx.size()) {
+            cx.mem.charge((d.idx.size() - idx.size()) * sizeof(uint32_t), pw + " (strip / fan as a list)");
+            cx.mesh_bytes += (d.idx.size() - idx.size()) * sizeof(uint32_t);
+        }
         cx.indices = add_checked(cx.indices, d.idx.size(), pw);
         if (cx.indices > cx.limits.max_indices)
             refuse(pw + ": more than " + std::to_string(cx.limits.max_indices) +
@@ -550,7 +546,12 @@ mvr_mesh_id converter::mesh(int index)
         pd.material = d.material;
     }
     mvr_mesh_desc md = {prims.data(), uint32_t(prims.size()), g.name.c_str()};
+    // the scene keeps a copy of what was read: charged while both exist
+    cx.mem.charge(cx.mesh_bytes, w + " (the scene's copy)");
     check(mvr_scene_add_mesh(scene, &md, &id), w);
+    data.clear();
+    cx.mem.release(cx.mesh_bytes);
+    cx.mesh_bytes = 0;
     meshes[index] = id;
     return id;
 }
@@ -605,6 +606,8 @@ void converter::node(int index, mvr_node_id parent, std::vector<char> &state, ui
     }
     if (g.camera >= 0) {
         auto found = cameras.find(g.camera);
+        if (found == cameras.end() && bad_cameras.count(g.camera))
+            refuse(w + " uses " + bad_cameras[g.camera]);
         if (found == cameras.end())
             refuse(w + ": camera " + std::to_string(g.camera) + " does not exist");
         d.camera = found->second;
@@ -613,6 +616,8 @@ void converter::node(int index, mvr_node_id parent, std::vector<char> &state, ui
     if (lp != g.extensions.end()) {
         int li = int(number(lp->second, "light", -1));
         auto found = lights.find(li);
+        if (found == lights.end() && bad_lights.count(li))
+            refuse(w + " uses " + bad_lights[li]);
         if (found == lights.end())
             refuse(w + ".extensions.KHR_lights_punctual: light " + std::to_string(li) + " does not exist");
         d.light = found->second;
@@ -630,6 +635,7 @@ void convert_cameras_and_lights(converter &cv)
     for (size_t i = 0; i < m.cameras.size(); ++i) {
         const tinygltf::Camera &c = m.cameras[i];
         std::string w = "cameras[" + std::to_string(i) + "]";
+        try {
         mvr_projection p;
         std::memset(&p, 0, sizeof p);
         if (c.type == "perspective") {
@@ -649,15 +655,19 @@ void convert_cameras_and_lights(converter &cv)
             if (!(p.xmag > 0 && p.ymag > 0) || !(p.zfar > p.znear))
                 refuse(w + ": orthographic xmag / ymag / znear / zfar out of range");
         } else {
-            refuse(w + ": type '" + c.type + "' is not perspective or orthographic");
+            refuse(w + ": type " + quote(c.type) + " is not perspective or orthographic");
         }
         mvr_camera_id id = {0};
         cv.check(mvr_scene_add_camera(cv.scene, &p, &id), w);
         cv.cameras[int(i)] = id;
+        } catch (const load_error &e) {
+            cv.set_aside(e, cv.bad_cameras, int(i));
+        }
     }
     for (size_t i = 0; i < m.lights.size(); ++i) {
         const tinygltf::Light &l = m.lights[i];
         std::string w = "extensions.KHR_lights_punctual.lights[" + std::to_string(i) + "]";
+        try {
         mvr_light_desc d;
         std::memset(&d, 0, sizeof d);
         if (l.type == "directional")
@@ -667,7 +677,7 @@ void convert_cameras_and_lights(converter &cv)
         else if (l.type == "spot")
             d.type = MVR_LIGHT_SPOT;
         else
-            refuse(w + ": type '" + l.type + "' is not directional, point or spot");
+            refuse(w + ": type " + quote(l.type) + " is not directional, point or spot");
         d.color[0] = d.color[1] = d.color[2] = 1.0f;
         for (size_t c = 0; c < 3 && c < l.color.size(); ++c)
             d.color[c] = float(l.color[c]);
@@ -681,6 +691,9 @@ void convert_cameras_and_lights(converter &cv)
         mvr_light_id id = {0};
         cv.check(mvr_scene_add_light(cv.scene, &d, &id), w);
         cv.lights[int(i)] = id;
+        } catch (const load_error &e) {
+            cv.set_aside(e, cv.bad_lights, int(i));
+        }
     }
 }
 
@@ -694,50 +707,53 @@ mvr_result load(const unsigned char *bytes, size_t size, const std::string &base
         std::memset(&o, 0, sizeof o);
     context cx;
     cx.logger = o.logger;
+    cx.strict = o.strict;
     cx.limits.max_file_bytes = o.max_file_bytes ? o.max_file_bytes : (uint64_t(1) << 30);
     cx.limits.max_vertices = o.max_vertices ? o.max_vertices : (uint64_t(16) << 20);
     cx.limits.max_indices = o.max_indices ? o.max_indices : (uint64_t(64) << 20);
     cx.limits.max_image_dimension = o.max_image_dimension ? o.max_image_dimension : 16384;
     cx.limits.max_nodes = o.max_nodes ? o.max_nodes : (1u << 20);
+    cx.limits.max_images = o.max_images ? o.max_images : 4096;
+    cx.mem.limit = o.memory_budget ? o.memory_budget : (uint64_t(2) << 30);
+    file_resolver files(base_dir, allow_files, o.file_access, cx.limits.max_file_bytes, cx.mem);
+    cx.files = &files;
+    uint64_t json_estimate = 0;
     mvr_scene *scene = nullptr;
     try {
         if (size > cx.limits.max_file_bytes)
             refuse("the file is " + std::to_string(size) + " bytes, over the cap of " +
                    std::to_string(cx.limits.max_file_bytes) + " (mvr_gltf_options.max_file_bytes)");
-        bool glb = size >= 4 && std::memcmp(bytes, "glTF", 4) == 0;
-        if (glb)
-            check_glb(bytes, size);
-        else
-            check_json_depth(bytes, size);
-        tinygltf::TinyGLTF loader;
-        fs_state fs{cx.limits.max_file_bytes, allow_files, ""};
-        loader.SetFsCallbacks(tinygltf::FsCallbacks{fs_exists, fs_expand, fs_read, fs_write, &fs});
+        cx.mem.charge(size, "the file");
+        json_text json = split_container(bytes, size, cx.res, cx);
+        json_estimate = scan_json(json.data, json.size);
+        cx.mem.charge(json_estimate, "the parsed JSON (estimated from its " + std::to_string(json.size) + " bytes)");
         Model model;
-        loader.SetImageLoader(keep_encoded, &model);
-        std::string err, warn;
-        bool ok = glb ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes, unsigned(size), base_dir)
-                      : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char *>(bytes),
-                                                   unsigned(size), base_dir);
-        if (!fs.error.empty())
-            refuse(fs.error);
-        if (!ok) {
-            while (!err.empty() && (err.back() == '\n' || err.back() == ' '))
-                err.pop_back();
-            refuse(err.empty() ? "not a glTF file" : err);
+        {
+            std::string rewritten = extract_resources(json, cx.res);
+            tinygltf::TinyGLTF loader;
+            // tinygltf is handed no file to open: every resource is a data: placeholder
+            loader.SetFsCallbacks(tinygltf::FsCallbacks{refuse_exists, refuse_expand, refuse_read, refuse_write, nullptr});
+            loader.SetImageLoader(ignore_placeholder, nullptr);
+            std::string err, warn;
+            bool ok = loader.LoadASCIIFromString(&model, &err, &warn, rewritten.data(), unsigned(rewritten.size()), "");
+            if (!ok)
+                refuse(err.empty() ? "not a glTF file" : short_message(err));
+            if (!warn.empty())
+                cx.warn(short_message(warn));
         }
-        if (!warn.empty())
-            cx.warn(warn);
         cx.model = &model;
         for (const auto &e : model.extensionsRequired)
             if (!implemented.count(e))
                 throw load_error(MVR_ERROR_UNSUPPORTED,
-                                 "the file requires extension " + e + ", which mvr does not implement");
+                                 "the file requires extension " + quote(e) + ", which mvr does not implement");
         for (const auto &e : model.extensionsUsed) {
             if (e == "KHR_mesh_quantization")
                 cx.quantization_declared = true;
             else if (!implemented.count(e))
-                cx.warn("extension " + e + " is used but not implemented; the file renders without it");
+                cx.warn("extension " + quote(e) + " is used but not implemented; the file renders without it");
         }
+        // the scene's node records: a fixed cost each (see core/scene.c)
+        cx.mem.charge(uint64_t(model.nodes.size()) * 512, std::to_string(model.nodes.size()) + " nodes");
         if (model.nodes.size() > cx.limits.max_nodes)
             refuse(std::to_string(model.nodes.size()) + " nodes, over the cap of " +
                    std::to_string(cx.limits.max_nodes) + " (mvr_gltf_options.max_nodes)");
@@ -747,7 +763,7 @@ mvr_result load(const unsigned char *bytes, size_t size, const std::string &base
         mvr_error serr;
         if (mvr_scene_create(&sd, &scene, &serr) != MVR_OK)
             throw load_error(serr.result, serr.message);
-        converter cv{cx, scene, model, {}, {}, {}, {}, {}, false, false};
+        converter cv{cx, scene, model};
         convert_cameras_and_lights(cv);
         // which scene: the option, the file's default, or the first
         int si = o.scene ? int(o.scene) - 1 : (model.defaultScene >= 0 ? model.defaultScene : 0);
@@ -774,6 +790,12 @@ mvr_result load(const unsigned char *bytes, size_t size, const std::string &base
         if (info) {
             info->warnings = cx.warnings;
             info->camera_nodes = mvr_scene_camera_node_count(scene);
+            info->images_missing = cx.images_missing;
+            info->images_decoded = cx.images_decoded;
+            info->buffers_read = cx.buffers_read;
+            info->memory_budget = cx.mem.limit;
+            info->memory_peak = cx.mem.peak;
+            info->json_bytes_estimate = json_estimate;
         }
         *out = scene;
         if (error) {
@@ -833,7 +855,10 @@ extern "C" mvr_result mvr_gltf_load_file(const char *path, const mvr_gltf_option
             return mvr_error_set(error, MVR_ERROR_IO, "mvr_gltf_load_file: cannot read '%s'", path);
         std::string p = path;
         size_t slash = p.find_last_of('/');
-        std::string base = slash == std::string::npos ? "." : p.substr(0, slash);
+        std::string base = options && options->base_dir ? options->base_dir
+                           : slash == std::string::npos ? "."
+                           : slash == 0               ? "/"
+                                                      : p.substr(0, slash);
         mvr_result r = mvr_gltf::load(bytes.data(), bytes.size(), base, true, options, out_scene, info, error);
         if (r != MVR_OK && error) {
             /* name the file in the message */

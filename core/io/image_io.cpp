@@ -26,33 +26,59 @@ mvr_result fail(mvr_error *error, mvr_result r, const std::string &msg)
     return r;
 }
 
-// A file name OpenImageIO can pick a reader by: a MIME type becomes one.
-std::string name_for_hint(const char *hint)
+// Formats mvr decodes, told apart by their signatures (PNG: ISO/IEC 15948,
+// 5.2; JPEG: ISO/IEC 10918-1 SOI marker FF D8 FF; WebP: RIFF....WEBP). The
+// OpenImageIO reader is named by the signature, never by a file name, so a
+// URI's extension cannot pick a decoder (a video plugin, say).
+struct image_format {
+    const char *name;        /* mvr_image_header.format */
+    const char *oiio_name;   /* a name OpenImageIO picks the reader by */
+    const char *mime;
+};
+
+const image_format *format_of_bytes(const unsigned char *p, size_t n)
 {
-    std::string h = hint ? hint : "";
-    if (h == "image/png")
-        return "image.png";
-    if (h == "image/jpeg" || h == "image/jpg")
-        return "image.jpg";
-    if (h == "image/webp")
-        return "image.webp";
-    if (h == "image/ktx2" || h == "image/vnd-ms.dds")
-        return "";
-    if (h.find('.') != std::string::npos)
-        return h;
-    return "";
+    static const image_format png = {"png", "image.png", "image/png"};
+    static const image_format jpeg = {"jpeg", "image.jpg", "image/jpeg"};
+    static const image_format webp = {"webp", "image.webp", "image/webp"};
+    static const unsigned char png_sig[8] = {137, 80, 78, 71, 13, 10, 26, 10};
+    if (n >= 8 && std::memcmp(p, png_sig, 8) == 0)
+        return &png;
+    if (n >= 3 && p[0] == 0xFF && p[1] == 0xD8 && p[2] == 0xFF)
+        return &jpeg;
+    if (n >= 12 && std::memcmp(p, "RIFF", 4) == 0 && std::memcmp(p + 8, "WEBP", 4) == 0)
+        return &webp;
+    return nullptr;
 }
 
-// Signature sniffing, for hints that say nothing (glTF images may lack a MIME type).
-std::string name_for_bytes(const unsigned char *p, size_t n)
+// The declared MIME type (glTF 2.0, 5.19: image/jpeg or image/png; WebP by
+// EXT_texture_webp) must name what the bytes are.
+bool mime_agrees(const char *mime, const image_format *f)
 {
-    static const unsigned char png[8] = {137, 80, 78, 71, 13, 10, 26, 10};
-    if (n >= 8 && std::memcmp(p, png, 8) == 0)
-        return "image.png";
-    if (n >= 3 && p[0] == 0xFF && p[1] == 0xD8 && p[2] == 0xFF)
-        return "image.jpg";
-    return "";
+    if (!mime || !*mime)
+        return true;
+    std::string m = mime;
+    if (m == "image/jpg")
+        m = "image/jpeg"; /* a common misspelling, same format */
+    return m == f->mime;
 }
+
+// At most 80 characters of a value that came from a file, for a message.
+std::string short_value(const char *v)
+{
+    std::string s = v ? v : "";
+    if (s.size() > 80)
+        s = s.substr(0, 80) + "...";
+    for (char &c : s)
+        if (static_cast<unsigned char>(c) < 0x20)
+            c = '?';
+    return "'" + s + "'";
+}
+
+// Opens the reader the signature names, after the checks every caller needs.
+mvr_result open_encoded(const unsigned char *bytes, size_t size, const char *mime, const char *who,
+                        Filesystem::IOMemReader *mem, std::unique_ptr<ImageInput> *in, const image_format **fmt,
+                        mvr_error *error);
 
 // PNG framing (ISO/IEC 15948, 5.3): the signature, then chunks of length +
 // type + data + CRC, the last one IEND, all inside the bytes. Checked before
@@ -153,28 +179,75 @@ static mvr_result read_rgba(ImageInput *in, mvr_pixel_type type, uint32_t max_di
     return MVR_OK;
 }
 
-extern "C" mvr_result mvr_image_decode(const void *data, size_t size, const char *format_hint,
+namespace {
+
+mvr_result open_encoded(const unsigned char *bytes, size_t size, const char *mime, const char *who,
+                        Filesystem::IOMemReader *mem, std::unique_ptr<ImageInput> *in, const image_format **fmt,
+                        mvr_error *error)
+{
+    const image_format *f = format_of_bytes(bytes, size);
+    if (!f)
+        return fail(error, MVR_ERROR_UNSUPPORTED,
+                    std::string(who) + ": the bytes are not PNG, JPEG or WebP (declared " +
+                        (mime && *mime ? short_value(mime) : std::string("no mimeType")) + ")");
+    if (!mime_agrees(mime, f))
+        return fail(error, MVR_ERROR_INVALID_ASSET,
+                    std::string(who) + ": mimeType " + short_value(mime) + " but the bytes are " + f->name);
+    std::string why;
+    if (std::strcmp(f->name, "png") == 0 && !png_framing_ok(bytes, size, &why))
+        return fail(error, MVR_ERROR_INVALID_ASSET, std::string(who) + ": " + why);
+    *in = ImageInput::open(f->oiio_name, nullptr, mem);
+    if (!*in)
+        return fail(error, MVR_ERROR_INVALID_ASSET, std::string(who) + ": " + short_value(OIIO::geterror().c_str()));
+    *fmt = f;
+    return MVR_OK;
+}
+
+}  // namespace
+
+extern "C" mvr_result mvr_image_probe(const void *data, size_t size, const char *mime_type, mvr_image_header *out,
+                                      mvr_error *error)
+{
+    if (!out || !data || size == 0)
+        return fail(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_probe: no data");
+    std::memset(out, 0, sizeof *out);
+    try {
+        Filesystem::IOMemReader mem(data, size);
+        std::unique_ptr<ImageInput> in;
+        const image_format *f = nullptr;
+        mvr_result r = open_encoded(static_cast<const unsigned char *>(data), size, mime_type, "mvr_image_probe", &mem,
+                                    &in, &f, error);
+        if (r != MVR_OK)
+            return r;
+        const ImageSpec &spec = in->spec();
+        if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth > 1)
+            return fail(error, MVR_ERROR_INVALID_ASSET, "mvr_image_probe: the header has no valid size");
+        out->width = uint32_t(spec.width);
+        out->height = uint32_t(spec.height);
+        out->channels = uint32_t(spec.nchannels);
+        out->format = f->name;
+        return MVR_OK;
+    } catch (const std::exception &e) {
+        return fail(error, MVR_ERROR_INVALID_ASSET, std::string("mvr_image_probe: ") + e.what());
+    } catch (...) {
+        return fail(error, MVR_ERROR_INTERNAL, "mvr_image_probe: unknown exception");
+    }
+}
+
+extern "C" mvr_result mvr_image_decode(const void *data, size_t size, const char *mime_type,
                                        uint32_t max_dimension, mvr_image_data *out, mvr_error *error)
 {
     if (!out || !data || size == 0)
         return fail(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_decode: no data");
     std::memset(out, 0, sizeof *out);
     try {
-        const auto *bytes = static_cast<const unsigned char *>(data);
-        std::string name = name_for_hint(format_hint);
-        if (name.empty())
-            name = name_for_bytes(bytes, size);
-        if (name.empty())
-            return fail(error, MVR_ERROR_UNSUPPORTED,
-                        std::string("mvr_image_decode: unknown image format (") + (format_hint ? format_hint : "no type") +
-                            "); PNG and JPEG are read");
-        std::string why;
-        if (name == "image.png" && !png_framing_ok(bytes, size, &why))
-            return fail(error, MVR_ERROR_INVALID_ASSET, "mvr_image_decode: " + why);
-        Filesystem::IOMemReader mem(bytes, size);
-        auto in = ImageInput::open(name, nullptr, &mem);
-        if (!in)
-            return fail(error, MVR_ERROR_INVALID_ASSET, "mvr_image_decode: " + OIIO::geterror());
+        Filesystem::IOMemReader mem(data, size);
+        std::unique_ptr<ImageInput> in;
+        const image_format *f = nullptr;
+        mvr_result r = open_encoded(static_cast<const unsigned char *>(data), size, mime_type, "mvr_image_decode", &mem,
+                                    &in, &f, error);
+        if (r != MVR_OK)
+            return r;
         return read_rgba(in.get(), MVR_PIXEL_U8, max_dimension, "mvr_image_decode", out, error);
     } catch (const std::exception &e) {
         return fail(error, MVR_ERROR_INVALID_ASSET, std::string("mvr_image_decode: ") + e.what());

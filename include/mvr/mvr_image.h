@@ -35,11 +35,24 @@ typedef struct mvr_image_data {
 
 void mvr_image_free(mvr_image_data *image);
 
-/* Decodes an encoded image (PNG, JPEG, ... as OpenImageIO reads them) from
- * memory into RGBA8: gray, gray-alpha and RGB are expanded, 16-bit scaled.
- * format_hint: a MIME type ("image/png") or a file name whose extension names
- * the format. Images larger than max_dimension (0 = 16384) either way are refused. */
-mvr_result mvr_image_decode(const void *data, size_t size, const char *format_hint,
+/* What an encoded image's header says, read without decoding its pixels. */
+typedef struct mvr_image_header {
+    uint32_t width, height;
+    uint32_t channels;           /* as stored (decoding expands to 4) */
+    const char *format;          /* "png", "jpeg", "webp"; static storage */
+} mvr_image_header;
+
+/* Reads an encoded image's header from memory. The format is chosen from the
+ * bytes' signature (PNG, JPEG, WebP), never from a name; mime_type (NULL or ""
+ * = not declared) must agree with it, else MVR_ERROR_INVALID_ASSET; an
+ * unknown signature is MVR_ERROR_UNSUPPORTED. */
+mvr_result mvr_image_probe(const void *data, size_t size, const char *mime_type, mvr_image_header *out,
+                           mvr_error *error);
+
+/* Decodes an encoded image from memory into RGBA8 (gray, gray-alpha and RGB
+ * expanded, 16-bit scaled), the format chosen as mvr_image_probe chooses it.
+ * Images larger than max_dimension (0 = 16384) either way are refused. */
+mvr_result mvr_image_decode(const void *data, size_t size, const char *mime_type,
                             uint32_t max_dimension, mvr_image_data *out, mvr_error *error);
 
 /* Reads a file into RGBA8 or RGBA float. */

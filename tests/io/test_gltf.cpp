@@ -250,7 +250,10 @@ static void broken_files_are_refused_by_name(mvr_test_state *t)
     for (const auto &b : corpus().broken_files) {
         mvr_scene *s = reinterpret_cast<mvr_scene *>(&s);
         mvr_error err;
-        mvr_result r = mvr_gltf_load_file(b.path.c_str(), nullptr, &s, nullptr, &err);
+        // strict: an undecodable image is an error too (it degrades otherwise)
+        mvr_gltf_options strict = {};
+        strict.strict = true;
+        mvr_result r = mvr_gltf_load_file(b.path.c_str(), &strict, &s, nullptr, &err);
         printf("  %-22s %s: %s\n", base_name(b.path).c_str(), mvr_result_name(r), err.message);
         CHECK_MSG(t, int(r) == b.expected_result, "%s: %s, expected %s", base_name(b.path).c_str(), mvr_result_name(r),
                   mvr_result_name(mvr_result(b.expected_result)));
@@ -259,6 +262,15 @@ static void broken_files_are_refused_by_name(mvr_test_state *t)
         CHECK(t, s == nullptr);
     }
     CHECK(t, corpus().broken_files.size() >= 15);
+    // without strict, the undecodable image is left out: the file loads
+    // with a warning naming it, and the count says so
+    mvr_gltf_info info = {};
+    warn_count warns;
+    if (mvr_scene *s = load(t, corpus_dir() + "/bad_image.gltf", &info, &warns)) {
+        CHECK_MSG(t, info.images_missing == 1 && info.images_decoded == 0, "%u missing", info.images_missing);
+        CHECK_MSG(t, warns.last.find("images[0]") != std::string::npos, "%s", warns.last.c_str());
+        mvr_scene_destroy(s);
+    }
 }
 
 static void memory_loads_and_caps(mvr_test_state *t)
@@ -281,8 +293,15 @@ static void memory_loads_and_caps(mvr_test_state *t)
     CHECK_MSG(t, strstr(err.message, "max_vertices") != nullptr, "%s", err.message);
     o.max_vertices = 0;
     o.max_image_dimension = 16;
+    mvr_gltf_info info = {};
+    CHECK(t, mvr_gltf_load_memory(ext.data(), ext.size(), &o, &s, &info, &err) == MVR_OK);
+    CHECK_MSG(t, info.images_missing == 2, "%u", info.images_missing); /* its PNG and its JPEG */
+    mvr_scene_destroy(s);
+    o.strict = true;
     CHECK(t, mvr_gltf_load_memory(ext.data(), ext.size(), &o, &s, nullptr, &err) == MVR_ERROR_INVALID_ASSET);
-    CHECK_MSG(t, strstr(err.message, "images[0]") != nullptr, "%s", err.message);
+    CHECK_MSG(t, strstr(err.message, "images[0]") != nullptr && strstr(err.message, "max_image_dimension"), "%s",
+              err.message);
+    o.strict = false;
     o.max_image_dimension = 0;
     o.max_file_bytes = 100;
     CHECK(t, mvr_gltf_load_file((d + "/textured.glb").c_str(), &o, &s, nullptr, &err) == MVR_ERROR_INVALID_ASSET);

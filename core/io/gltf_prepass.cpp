@@ -1,0 +1,203 @@
+// Before tinygltf sees a byte: the GLB container is checked and split, the
+// JSON's nesting and size are bounded, and every buffer's and image's source
+// (uri, bufferView, mimeType) is taken out of the JSON. tinygltf then parses
+// a JSON whose buffers and images are one-byte data: placeholders: it never
+// opens a file, never decodes a resource, and never reads the BIN chunk
+// (tinygltf 2.7 bounds that chunk without its 8-byte header, an 8-byte heap
+// over-read, and binds every uri-less buffer to it).
+#include <cstdint>
+#include <cstring>
+
+#include <nlohmann/json.hpp>
+
+#include "gltf_prepass.hpp"
+
+namespace mvr_gltf {
+
+// JSON nesting deeper than this is refused before parsing: parsers and
+// destructors recurse on nesting, and a glTF never needs more than ~10 levels.
+constexpr int max_json_depth = 64;
+
+// Heap bytes per JSON value once parsed, measured with glibc's mallinfo2 on
+// glTF files of many small objects (nlohmann's tree + tinygltf's model, both
+// alive at the peak): see tests/io/test_hostile.cpp's JSON case. An upper
+// bound, so the budget refuses before the parser allocates.
+constexpr uint64_t json_bytes_per_value = 320;
+
+uint64_t scan_json(const unsigned char *p, size_t n)
+{
+    int depth = 0;
+    bool in_string = false;
+    uint64_t values = 1;
+    for (size_t i = 0; i < n; ++i) {
+        unsigned char c = p[i];
+        if (in_string) {
+            if (c == '\\')
+                ++i;
+            else if (c == '"')
+                in_string = false;
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > max_json_depth)
+                refuse("JSON nests deeper than " + std::to_string(max_json_depth) + " levels");
+        } else if (c == ']' || c == '}') {
+            --depth;
+        } else if (c == ',' || c == ':') {
+            ++values;
+        }
+    }
+    // each value costs its node; its text (strings, keys) is held about twice
+    return values * json_bytes_per_value + 2 * uint64_t(n);
+}
+
+static uint32_t u32_at(const unsigned char *p)
+{
+    uint32_t v;
+    std::memcpy(&v, p, 4);
+    return v; /* GLB is little-endian, like every platform mvr builds for */
+}
+
+// glTF 2.0, 4.4 (GLB): a 12-byte header (magic, version 2, length), then
+// chunks of (length, type, data), each starting and ending on a 4-byte
+// boundary; the first chunk is JSON, an optional BIN chunk follows it;
+// chunks of other types are ignored.
+json_text split_container(const unsigned char *bytes, size_t size, resources &res, context &cx)
+{
+    json_text out{bytes, size};
+    res.glb = size >= 4 && std::memcmp(bytes, "glTF", 4) == 0;
+    if (!res.glb)
+        return out;
+    if (size < 20)
+        refuse("GLB is " + std::to_string(size) + " bytes: too short for a header and a JSON chunk");
+    uint32_t version = u32_at(bytes + 4), length = u32_at(bytes + 8);
+    if (version != 2)
+        refuse("GLB version " + std::to_string(version) + " (2 is supported)");
+    if (length > size)
+        refuse("GLB header says " + std::to_string(length) + " bytes, the file has " + std::to_string(size) +
+               " (truncated?)");
+    if (length < size)
+        cx.warn("GLB header says " + std::to_string(length) + " bytes, the file has " + std::to_string(size) +
+                "; the rest is ignored");
+    if (length % 4 != 0)
+        refuse("GLB length " + std::to_string(length) + " is not a multiple of 4");
+    uint64_t at = 12;
+    int chunk = 0;
+    bool have_json = false;
+    while (at < length) {
+        std::string cname = "GLB chunk " + std::to_string(chunk);
+        if (length - at < 8)
+            refuse(cname + " at byte " + std::to_string(at) + ": its 8-byte header runs past the GLB's end");
+        uint32_t clen = u32_at(bytes + at), ctype = u32_at(bytes + at + 4);
+        uint64_t data_at = at + 8;
+        if (uint64_t(clen) > length - data_at)
+            refuse(cname + " (" + std::to_string(clen) + " bytes at byte " + std::to_string(data_at) +
+                   ") runs past the GLB's end (" + std::to_string(length) + " bytes)");
+        if (clen % 4 != 0)
+            refuse(cname + " length " + std::to_string(clen) + " is not a multiple of 4 (chunks are 4-byte aligned)");
+        if (chunk == 0) {
+            if (ctype != 0x4E4F534Au)
+                refuse("GLB's first chunk is not a JSON chunk");
+            out = json_text{bytes + data_at, size_t(clen)};
+            have_json = true;
+        } else if (ctype == 0x4E4F534Au) {
+            refuse(cname + " is a second JSON chunk");
+        } else if (ctype == 0x004E4942u) {
+            if (chunk != 1)
+                refuse(cname + " is a BIN chunk; only the chunk after the JSON chunk may be one");
+            res.bin = bytes + data_at;
+            res.bin_size = clen;
+        }
+        at = data_at + clen;
+        ++chunk;
+    }
+    if (!have_json)
+        refuse("GLB has no JSON chunk");
+    return out;
+}
+
+namespace {
+
+const char *placeholder_buffer = "data:application/octet-stream;base64,AA==";
+const char *placeholder_image = "data:image/png;base64,AA==";
+
+std::string type_name(const nlohmann::json &j)
+{
+    return j.type_name();
+}
+
+}  // namespace
+
+std::string extract_resources(const json_text &text, resources &res)
+{
+    nlohmann::json doc;
+    try {
+        doc = nlohmann::json::parse(text.data, text.data + text.size);
+    } catch (const nlohmann::json::exception &e) {
+        refuse("the JSON does not parse: " + quote(e.what()));
+    }
+    if (!doc.is_object())
+        refuse("the JSON is a " + type_name(doc) + ", not an object");
+    auto buffers = doc.find("buffers");
+    if (buffers != doc.end()) {
+        if (!buffers->is_array())
+            refuse("buffers is a " + type_name(*buffers) + ", not an array");
+        res.buffers.resize(buffers->size());
+        for (size_t i = 0; i < buffers->size(); ++i) {
+            std::string w = "buffers[" + std::to_string(i) + "]";
+            nlohmann::json &b = (*buffers)[i];
+            if (!b.is_object())
+                refuse(w + " is not an object");
+            buffer_source &src = res.buffers[i];
+            auto len = b.find("byteLength");
+            if (len == b.end() || !len->is_number_integer() || len->get<int64_t>() < 1)
+                refuse(w + ".byteLength is missing or not an integer >= 1");
+            src.byte_length = len->get<uint64_t>();
+            auto uri = b.find("uri");
+            if (uri != b.end()) {
+                if (!uri->is_string())
+                    refuse(w + ".uri is not a string");
+                src.has_uri = true;
+                src.uri = uri->get<std::string>();
+            }
+            b["uri"] = placeholder_buffer;
+            b["byteLength"] = 1;
+        }
+    }
+    auto images = doc.find("images");
+    if (images != doc.end()) {
+        if (!images->is_array())
+            refuse("images is a " + type_name(*images) + ", not an array");
+        res.images.resize(images->size());
+        for (size_t i = 0; i < images->size(); ++i) {
+            std::string w = "images[" + std::to_string(i) + "]";
+            nlohmann::json &im = (*images)[i];
+            if (!im.is_object())
+                refuse(w + " is not an object");
+            image_source &src = res.images[i];
+            auto uri = im.find("uri");
+            if (uri != im.end()) {
+                if (!uri->is_string())
+                    refuse(w + ".uri is not a string");
+                src.has_uri = true;
+                src.uri = uri->get<std::string>();
+            }
+            auto view = im.find("bufferView");
+            if (view != im.end()) {
+                if (!view->is_number_integer() || view->get<int64_t>() < 0 || view->get<int64_t>() > INT32_MAX)
+                    refuse(w + ".bufferView is not a valid index");
+                src.buffer_view = int(view->get<int64_t>());
+                im.erase("bufferView");
+            }
+            if (src.has_uri && src.buffer_view >= 0)
+                refuse(w + " has both a uri and a bufferView");
+            auto mime = im.find("mimeType");
+            if (mime != im.end() && mime->is_string())
+                src.mime_type = mime->get<std::string>();
+            im["uri"] = placeholder_image;
+        }
+    }
+    return doc.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+}  // namespace mvr_gltf
