@@ -729,7 +729,10 @@ mvr_result load(const unsigned char *bytes, size_t size, const std::string &base
         cx.mem.charge(json_estimate, "the parsed JSON (estimated from its " + std::to_string(json.size) + " bytes)");
         Model model;
         {
-            std::string rewritten = extract_resources(json, cx.res);
+            uint64_t model_size = 0;
+            std::string rewritten = extract_resources(json, cx.res, &model_size);
+            cx.mem.charge(model_size, "tinygltf's model of the JSON");
+            json_estimate += model_size;
             tinygltf::TinyGLTF loader;
             // tinygltf is handed no file to open: every resource is a data: placeholder
             loader.SetFsCallbacks(tinygltf::FsCallbacks{refuse_exists, refuse_expand, refuse_read, refuse_write, nullptr});

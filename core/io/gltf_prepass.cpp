@@ -18,11 +18,15 @@ namespace mvr_gltf {
 // destructors recurse on nesting, and a glTF never needs more than ~10 levels.
 constexpr int max_json_depth = 64;
 
-// Heap bytes per JSON value once parsed, measured with glibc's mallinfo2 on
-// glTF files of many small objects (nlohmann's tree + tinygltf's model, both
-// alive at the peak): see tests/io/test_hostile.cpp's JSON case. An upper
-// bound, so the budget refuses before the parser allocates.
-constexpr uint64_t json_bytes_per_value = 320;
+// Heap bytes per JSON value while it is parsed: a parsed tree's node and
+// tinygltf's copy of extras / extensions (tinygltf::Value, 152 bytes), which
+// live together at the peak. Measured as the rise of VmHWM over a load: 208
+// bytes per value for 2 M numbers in an extras array, 118 per empty object;
+// an upper bound, so the budget refuses before a parser allocates.
+// tinygltf's model objects are counted apart, by their real sizes
+// (model_bytes below): 500 k empty materials are 2 MB of JSON and 1.1 GB of
+// tinygltf::Material.
+constexpr uint64_t json_bytes_per_value = 256;
 
 uint64_t scan_json(const unsigned char *p, size_t n)
 {
@@ -41,6 +45,7 @@ uint64_t scan_json(const unsigned char *p, size_t n)
         } else if (c == '[' || c == '{') {
             if (++depth > max_json_depth)
                 refuse("JSON nests deeper than " + std::to_string(max_json_depth) + " levels");
+            ++values;
         } else if (c == ']' || c == '}') {
             --depth;
         } else if (c == ',' || c == ':') {
@@ -128,7 +133,37 @@ std::string type_name(const nlohmann::json &j)
 
 }  // namespace
 
-std::string extract_resources(const json_text &text, resources &res)
+// What tinygltf's model will hold for the top-level arrays: count x sizeof.
+static uint64_t model_bytes(const nlohmann::json &doc)
+{
+    auto count = [&](const char *key) -> uint64_t {
+        auto it = doc.find(key);
+        return it != doc.end() && it->is_array() ? it->size() : 0;
+    };
+    auto nested = [&](const char *key, const char *inner) -> uint64_t {
+        uint64_t n = 0;
+        auto it = doc.find(key);
+        if (it != doc.end() && it->is_array())
+            for (const auto &e : *it)
+                if (e.is_object()) {
+                    auto in = e.find(inner);
+                    if (in != e.end() && in->is_array())
+                        n += in->size();
+                }
+        return n;
+    };
+    using namespace tinygltf;
+    return count("accessors") * sizeof(Accessor) + count("animations") * sizeof(Animation) +
+           nested("animations", "channels") * sizeof(AnimationChannel) +
+           nested("animations", "samplers") * sizeof(AnimationSampler) + count("buffers") * sizeof(Buffer) +
+           count("bufferViews") * sizeof(BufferView) + count("cameras") * sizeof(Camera) +
+           count("images") * sizeof(Image) + count("materials") * sizeof(Material) + count("meshes") * sizeof(Mesh) +
+           nested("meshes", "primitives") * sizeof(Primitive) + count("nodes") * sizeof(Node) +
+           count("samplers") * sizeof(Sampler) + count("scenes") * sizeof(Scene) + count("skins") * sizeof(Skin) +
+           count("textures") * sizeof(Texture);
+}
+
+std::string extract_resources(const json_text &text, resources &res, uint64_t *model_size)
 {
     nlohmann::json doc;
     try {
@@ -138,6 +173,7 @@ std::string extract_resources(const json_text &text, resources &res)
     }
     if (!doc.is_object())
         refuse("the JSON is a " + type_name(doc) + ", not an object");
+    *model_size = model_bytes(doc);
     auto buffers = doc.find("buffers");
     if (buffers != doc.end()) {
         if (!buffers->is_array())

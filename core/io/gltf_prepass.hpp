@@ -22,8 +22,9 @@ json_text split_container(const unsigned char *bytes, size_t size, resources &re
 uint64_t scan_json(const unsigned char *p, size_t n);
 
 // Takes every buffer's and image's source out of the JSON into res and
-// returns the JSON tinygltf parses (those replaced by one-byte placeholders).
-std::string extract_resources(const json_text &text, resources &res);
+// returns the JSON tinygltf parses (those replaced by one-byte placeholders);
+// model_size: what tinygltf's model objects will take.
+std::string extract_resources(const json_text &text, resources &res, uint64_t *model_size);
 
 }  // namespace mvr_gltf
 
