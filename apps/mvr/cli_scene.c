@@ -45,9 +45,14 @@ static int load_scene_file(const char *command, const cli_scene_options *o, mvr_
     memset(&go, 0, sizeof go);
     go.scene = o->gltf_scene;
     go.logger = o->logger;
+    go.strict = o->strict;
+    go.memory_budget = o->memory_budget;
     mvr_gltf_info info;
     mvr_error err;
-    if (mvr_gltf_load_file(o->scene_file, &go, scene, &info, &err) != MVR_OK) {
+    mvr_result loaded = mvr_gltf_load_file(o->scene_file, &go, scene, &info, &err);
+    if (o->gltf_info)
+        *o->gltf_info = info;
+    if (loaded != MVR_OK) {
         fprintf(stderr, "%s: %s (%s)\n", command, err.message, mvr_result_name(err.result));
         return MVR_EXIT_FAILURE;
     }

@@ -19,6 +19,9 @@ typedef struct cli_scene_options {
     uint32_t gltf_scene;         /* 1-based; 0 = the file's default */
     uint32_t views, width, height;
     mvr_logger logger;
+    bool strict;                 /* glTF: a missing or undecodable image fails the load */
+    uint64_t memory_budget;      /* glTF: the load's memory budget in bytes; 0 = the loader's default */
+    struct mvr_gltf_info *gltf_info; /* optional: what the glTF load reports */
 } cli_scene_options;
 
 /* A demo or a glTF file and its views; prints what failed (prefixed with

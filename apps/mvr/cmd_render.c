@@ -40,6 +40,8 @@ typedef struct render_options {
     mvr_render_desc render;
     const char *program_cache;   /* directory; NULL = the user's cache directory; "off" = none */
     bool quiet;
+    bool strict;                 /* glTF: missing or undecodable images are errors */
+    uint64_t memory_budget;      /* glTF load budget in bytes; 0 = the loader's default */
 } render_options;
 
 static void render_usage(FILE *out)
@@ -102,6 +104,9 @@ static void render_usage(FILE *out)
             "                      exposure, none otherwise)\n"
             "  --frames N          render N frames (the last is written; default: 1)\n"
             "  --stats FILE.json   write the last frame's stats as JSON\n"
+            "  --strict            a glTF image that is missing or cannot be decoded fails the\n"
+            "                      load (default: its textures take their defaults, warned)\n"
+            "  --memory-budget MIB most memory a glTF load may hold (default: 2048)\n"
             "  --program-cache D   program binaries in D, so a later run compiles no shader;\n"
             "                      off disables it (default: $XDG_CACHE_HOME/mvr/programs or\n"
             "                      ~/.cache/mvr/programs)\n"
@@ -135,6 +140,8 @@ static int parse(int argc, char **argv, render_options *o)
             return -1;
         } else if (strcmp(a, "--quiet") == 0) {
             o->quiet = true;
+        } else if (strcmp(a, "--strict") == 0) {
+            o->strict = true;
         } else if (a[0] == '-' && a[1] == '-' && !v) {
             fprintf(stderr, "mvr render: %s needs a value\n", a);
             return MVR_EXIT_USAGE;
@@ -207,6 +214,14 @@ static int parse(int argc, char **argv, render_options *o)
             o->out_dir = v, ++i;
         } else if (strcmp(a, "--stats") == 0) {
             o->stats_file = v, ++i;
+        } else if (strcmp(a, "--memory-budget") == 0) {
+            uint32_t mib;
+            if (!cli_parse_u32(v, 1, 1u << 20, &mib)) {
+                fprintf(stderr, "mvr render: --memory-budget takes MiB in 1..1048576\n");
+                return MVR_EXIT_USAGE;
+            }
+            o->memory_budget = (uint64_t)mib << 20;
+            ++i;
         } else if (strcmp(a, "--program-cache") == 0) {
             o->program_cache = v, ++i;
         } else if (strcmp(a, "--view-path") == 0) {
@@ -461,11 +476,23 @@ static const char *program_cache_dir(const render_options *o, char *buf, size_t 
 }
 
 static void write_stats_json(FILE *f, const mvr_renderer *r, const mvr_frame_stats *s, const char *demo, uint32_t w,
-                             uint32_t h, uint32_t supersample)
+                             uint32_t h, uint32_t supersample, const mvr_gltf_info *load)
 {
     json_writer jw = {f, 0, {false}, {0}};
     json_begin_object(&jw, NULL);
     json_string(&jw, "scene", demo);
+    if (load) {
+        /* the glTF load's own accounting (mvr_gltf_info) */
+        json_begin_object(&jw, "load");
+        json_int(&jw, "warnings", load->warnings);
+        json_int(&jw, "images_missing", load->images_missing);
+        json_int(&jw, "images_decoded", load->images_decoded);
+        json_int(&jw, "buffers_read", load->buffers_read);
+        json_int(&jw, "memory_budget", (long long)load->memory_budget);
+        json_int(&jw, "memory_peak", (long long)load->memory_peak);
+        json_int(&jw, "json_bytes_estimate", (long long)load->json_bytes_estimate);
+        json_end_object(&jw);
+    }
     json_int(&jw, "width", w);
     json_int(&jw, "height", h);
     json_int(&jw, "supersample", supersample);
@@ -602,8 +629,12 @@ int mvr_cmd_render(int argc, char **argv)
         fprintf(stderr, "mvr render: %s\n", err.message);
         goto done;
     }
-    cli_scene_options so = {o.demo, o.scene_file, o.camera, o.layout, o.ipd, o.gltf_scene,
-                            o.views, o.width, o.height, o.context.logger};
+    mvr_gltf_info gltf_info;
+    memset(&gltf_info, 0, sizeof gltf_info);
+    cli_scene_options so = {.demo = o.demo, .scene_file = o.scene_file, .camera = o.camera, .layout = o.layout,
+                            .ipd = o.ipd, .gltf_scene = o.gltf_scene, .views = o.views, .width = o.width,
+                            .height = o.height, .logger = o.context.logger, .strict = o.strict,
+                            .memory_budget = o.memory_budget, .gltf_info = &gltf_info};
     rc = cli_load_scene("mvr render", &so, &scene, &views);
     if (rc != MVR_EXIT_OK)
         goto done;
@@ -682,7 +713,8 @@ int mvr_cmd_render(int argc, char **argv)
             fprintf(stderr, "mvr render: cannot write %s: %s\n", o.stats_file, strerror(errno));
             goto done;
         }
-        write_stats_json(f, renderer, &st, o.scene_file ? o.scene_file : o.demo, o.width, o.height, ss);
+        write_stats_json(f, renderer, &st, o.scene_file ? o.scene_file : o.demo, o.width, o.height, ss,
+                         o.scene_file ? &gltf_info : NULL);
         fclose(f);
     }
     if (!o.quiet) {
@@ -692,6 +724,12 @@ int mvr_cmd_render(int argc, char **argv)
         printf("  view path   %s: %u pass%s for %u view%s (GL_MAX_VIEWS_OVR %d)\n",
                mvr_view_path_name(st.view_path), st.passes, st.passes == 1 ? "" : "es", st.views,
                st.views == 1 ? "" : "s", c->limits.max_views_ovr);
+        if (o.scene_file)
+            printf("  load        %u image%s decoded, %u missing (their textures take defaults), %u buffer%s read; "
+                   "peak %.1f of %.0f MiB budget\n",
+                   gltf_info.images_decoded, gltf_info.images_decoded == 1 ? "" : "s", gltf_info.images_missing,
+                   gltf_info.buffers_read, gltf_info.buffers_read == 1 ? "" : "s",
+                   (double)gltf_info.memory_peak / 1048576.0, (double)gltf_info.memory_budget / 1048576.0);
         printf("  depth       %s\n", st.depth_mode == MVR_DEPTH_MODE_REVERSED_Z ? "reversed-Z (clip control, float depth)" : "standard");
         if (st.post_passes)
             printf("  exposure    %s: EV100 %.2f, tone map %s, %u post pass%s, %u luminance pass%s\n",
