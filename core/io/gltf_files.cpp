@@ -149,6 +149,8 @@ read_result file_resolver::read(const std::string &uri, const std::string &what,
         refuse(what + " " + quote(uri) + ": malformed percent-encoding (or an encoded NUL)");
     read_result r;
     if (access_.read) {
+        if (!decoded.empty() && (decoded[0] == '/' || decoded[0] == '\\'))
+            refuse(what + " " + quote(uri) + ": absolute paths are refused (URIs are relative to the asset's folder)");
         r.key = "callback:" + decoded;
         auto found = cache_.find(r.key);
         r.data = found != cache_.end() ? found->second : read_callback(decoded, uri, what);

@@ -56,9 +56,10 @@ extern "C" {
 #endif
 
 /* A caller's own reader for external URIs (like cgltf's file options). It
- * receives the URI percent-decoded (data: URIs never reach it; nothing else is
- * refused before it: confinement is then the caller's) and returns at most
- * max_bytes bytes in memory it allocated; mvr hands them back to release. */
+ * receives the URI percent-decoded, without query or fragment; data: URIs,
+ * other schemes and absolute paths never reach it, but ".." does: confinement
+ * is then the caller's. It returns at most max_bytes bytes in memory it
+ * allocated; mvr hands them back to release. */
 typedef mvr_result (*mvr_gltf_read_fn)(const char *uri, uint64_t max_bytes, void **out_data, size_t *out_size,
                                        void *user_data);
 typedef void (*mvr_gltf_release_fn)(void *data, void *user_data);
