@@ -690,6 +690,9 @@ files write_all(const std::string &root_in)
         d.add(d.scenes, "{\"nodes\":[0]}");
         f.text("zeros_16m_positions.gltf", d.json(), "POSITION: 16M VEC3 float, no bufferView (zeros, 192 MB)",
                "with memory_budget 64 MiB: OUT_OF_MEMORY, memory_budget");
+        d.accessors[0] = replace_all(d.accessors[0], "16000000", "4000000");
+        f.text("zeros_4m_positions.gltf", d.json(), "POSITION: 4M VEC3 float, no bufferView (zeros, 48 MB)",
+               "loads; the accounting covers what the process took");
     }
     {
         doc d;
@@ -710,14 +713,14 @@ files write_all(const std::string &root_in)
            "loads by default; memory_budget 64 MiB: OUT_OF_MEMORY naming buffers[1]");
 
     {
-        // 2M JSON numbers (4 MB of text): the parsed JSON is counted before it is parsed
+        // 1M JSON numbers (2 MB of text): the parsed JSON is counted before it is parsed
         doc d = textured_doc("", false);
         std::string zeros;
-        zeros.reserve(4 * MiB + 16);
-        for (int i = 0; i < 2000000; ++i)
+        zeros.reserve(2 * MiB + 16);
+        for (int i = 0; i < 1000000; ++i)
             zeros += i ? ",0" : "0";
         d.extra = ",\"extras\":[" + zeros + "]";
-        f.text("json_tokens_2m.gltf", d.json(), "2M numbers in extras (4 MB of JSON)",
+        f.text("json_tokens_1m.gltf", d.json(), "1M numbers in extras (2 MB of JSON)",
                "loads by default; memory_budget 16 MiB: OUT_OF_MEMORY, memory_budget");
     }
     {
@@ -970,6 +973,20 @@ files write_all(const std::string &root_in)
         f.text("widen_read_callback.gltf", d.json(), "buffer geo%20data.bin, image tex%20ture.png (neither on disk)",
                "fails by default; loads through file_access.read");
         write_bytes(f.asset + "/callback_geometry.bin", b.data(), b.size()); // what the callback serves
+        // with file_access.read: absolute paths and schemes never reach it; query and fragment are cut
+        doc g;
+        std::vector<uint8_t> gb;
+        const char *uris[3] = {"/abs/x.png", "http://127.0.0.1:1/x.png", "tex%20ture.png?v=2#f"};
+        std::vector<std::string> prims;
+        for (int i = 0; i < 3; ++i) {
+            g.add(g.images, std::string("{\"uri\":") + jstr(uris[i]) + "}");
+            g.add(g.textures, "{\"source\":" + std::to_string(i) + "}");
+            prims.push_back(quad(g, gb, 0, -1.0f + float(i), 0, 0.4f, unlit(g, i)));
+        }
+        one_mesh(g, prims);
+        g.buffers.insert(g.buffers.begin(), data_buffer(gb));
+        f.text("widen_read_callback_refused.gltf", g.json(), "images /abs/x.png, http://..., tex%20ture.png?v=2#f",
+               "file_access.read sees only 'tex ture.png'");
         doc e = textured_doc("{\"uri\":\"%2e%2e/x.png\"}");
         f.text("widen_read_callback_dotdot.gltf", e.json(), "image %2e%2e/x.png",
                "file_access.read receives ../x.png (confinement is the caller's)");
@@ -1502,6 +1519,17 @@ void huge_counts_and_files_are_refused_early(mvr_test_state *t)
         CHECK_MSG(t, o.rss_growth_kb < 100 * 1024, "%s: peak RSS grew by %ld KB", n, o.rss_growth_kb);
     }
     {
+        // under the default budget 48 MB of zeros load; the accounting covers what the process took
+        outcome o = load(t, f.path("zeros_4m_positions.gltf"), defaults());
+        std::printf("    (zeros_4m_positions: peak %.1f MiB by the load's accounting, process peak RSS grew %.1f MiB)\n",
+                    double(o.info.memory_peak) / MiB, double(o.rss_growth_kb) / 1024);
+        CHECK_MSG(t, o.r == MVR_OK && o.info.memory_peak >= 4000000ull * 12, "zeros_4m_positions: %s peak %llu",
+                  o.msg.c_str(), (unsigned long long)o.info.memory_peak);
+        CHECK_MSG(t, o.rss_growth_kb * 1024ll <= (long long)(o.info.memory_peak + 64 * MiB),
+                  "zeros_4m_positions: the process grew %ld KB, the load counted a peak of %llu bytes",
+                  o.rss_growth_kb, (unsigned long long)o.info.memory_peak);
+    }
+    {
         outcome o = load(t, f.path("huge_sparse_bin.gltf"), defaults());
         CHECK_MSG(t, (o.r == MVR_ERROR_INVALID_ASSET && has(o.msg, "max_file_bytes")) ||
                          (o.r == MVR_ERROR_OUT_OF_MEMORY && has(o.msg, "memory_budget")),
@@ -1532,13 +1560,20 @@ void budgets_add_up(mvr_test_state *t)
 {
     const files &f = F();
     {
-        outcome o = load(t, f.path("json_tokens_2m.gltf"), defaults());
-        CHECK_MSG(t, o.r == MVR_OK && o.info.json_bytes_estimate > 4 * MiB, "json_tokens_2m: %s, json estimate %llu",
+        outcome o = load(t, f.path("json_tokens_1m.gltf"), defaults());
+        std::printf("    (json_tokens_1m: JSON estimate %.1f MiB, peak %.1f MiB, process peak RSS grew %.1f MiB)\n",
+                    double(o.info.json_bytes_estimate) / MiB, double(o.info.memory_peak) / MiB,
+                    double(o.rss_growth_kb) / 1024);
+        CHECK_MSG(t, o.r == MVR_OK && o.info.json_bytes_estimate > 2 * MiB, "json_tokens_1m: %s, json estimate %llu",
                   o.msg.c_str(), (unsigned long long)o.info.json_bytes_estimate);
-        outcome b = load(t, f.path("json_tokens_2m.gltf"), budget(16 * MiB), "json_tokens_2m 16M");
+        // the accounting is not an under-estimate: what the process took is within what the load counted
+        CHECK_MSG(t, o.rss_growth_kb * 1024ll <= (long long)(o.info.memory_peak + 64 * MiB),
+                  "json_tokens_1m: the process grew %ld KB, the load counted a peak of %llu bytes", o.rss_growth_kb,
+                  (unsigned long long)o.info.memory_peak);
+        outcome b = load(t, f.path("json_tokens_1m.gltf"), budget(16 * MiB), "json_tokens_1m 16M");
         CHECK_MSG(t, b.r == MVR_ERROR_OUT_OF_MEMORY && has(b.msg, "memory_budget") && has(b.msg, "JSON"),
-                  "json_tokens_2m 16M: %s %s", mvr_result_name(b.r), b.msg.c_str());
-        CHECK_MSG(t, b.rss_growth_kb < 40 * 1024, "json_tokens_2m 16M: peak RSS grew by %ld KB (parsed anyway?)",
+                  "json_tokens_1m 16M: %s %s", mvr_result_name(b.r), b.msg.c_str());
+        CHECK_MSG(t, b.rss_growth_kb < 40 * 1024, "json_tokens_1m 16M: peak RSS grew by %ld KB (parsed anyway?)",
                   b.rss_growth_kb);
     }
     {
@@ -1826,6 +1861,23 @@ void read_callback_replaces_file_access(mvr_test_state *t)
                   s.uris.size(), s.uris.empty() ? "none" : s.uris[0].c_str());
         left_out_and_clean(t, w, "widen_read_callback_dotdot (callback fails)");
         CHECK_EQ_INT(t, s.releases, 0);
+    }
+    {
+        reader_state s;
+        s.serve["tex ture.png"] = gen::read_file(f.path("my tex.png"));
+        mvr_gltf_options o = defaults();
+        o.file_access.read = read_cb;
+        o.file_access.release = release_cb;
+        o.file_access.user_data = &s;
+        outcome w = load(t, f.path("widen_read_callback_refused.gltf"), o);
+        CHECK_MSG(t, s.uris.size() == 1 && s.uris[0] == "tex ture.png",
+                  "the callback saw %zu URIs (first '%s'), expected only 'tex ture.png'", s.uris.size(),
+                  s.uris.empty() ? "" : s.uris[0].c_str());
+        CHECK_MSG(t, w.r == MVR_OK && w.info.images_decoded == 1 && w.info.images_missing == 2 && w.warned("images[0]") &&
+                         w.warned("images[1]"),
+                  "widen_read_callback_refused: %s decoded %u missing %u", w.msg.c_str(), w.info.images_decoded,
+                  w.info.images_missing);
+        CHECK_EQ_INT(t, s.releases, s.reads_ok);
     }
 }
 
