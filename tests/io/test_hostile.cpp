@@ -559,6 +559,13 @@ files write_all(const std::string &root_in)
            "image 0 ../no_such_outside.png", DEGRADE_IMG + ", as for an existing file");
     f.text("trav_img_symlink_dangling.gltf", textured_doc("{\"uri\":\"link_dangling.png\"}").json(),
            "image 0 a symlink to a missing file outside", DEGRADE_IMG + ", as for an existing target");
+    // positive controls: the same bytes inside the folder do reach the pixels (the magenta detector works)
+    write_bytes(f.asset + "/magenta_inside.png", magenta.data(), magenta.size());
+    write_bytes(f.asset + "/magenta_inside.bin", outside_bin.data(), outside_bin.size());
+    f.text("control_magenta_image.gltf", textured_doc("{\"uri\":\"magenta_inside.png\"}").json(),
+           "control: the outside PNG's bytes inside the folder", "loads, draws magenta");
+    f.text("control_magenta_buffer.gltf", colour_doc("magenta_inside.bin", OUTSIDE_BIN_SIZE).json(),
+           "control: the outside .bin's bytes inside the folder", "loads, draws magenta");
     f.text("reference.gltf", textured_doc("", false).json(), "the untextured quad (reference)", "loads");
     f.text("cwd_buf.gltf", colour_doc("only_in_cwd.bin", OUTSIDE_BIN_SIZE).json(),
            "buffer 1 uri names a file only in the current directory", "refused (IO) naming buffers[1].uri");
@@ -1265,6 +1272,17 @@ void left_out_and_clean(mvr_test_state *t, const outcome &o, const char *what, b
 
 // ------------------------------------------------------------ cases
 
+void magenta_controls_draw_magenta(mvr_test_state *t)
+{
+    const files &f = F();
+    for (const char *n : {"control_magenta_image.gltf", "control_magenta_buffer.gltf"}) {
+        outcome o = load(t, f.path(n), defaults());
+        CHECK_MSG(t, o.r == MVR_OK, "%s: %s", n, o.msg.c_str());
+        size_t m = count_pixels(render(t, o.scene, n), magenta);
+        CHECK_MSG(t, m > 200, "%s: %zu magenta pixels: the detector would miss a leak", n, m);
+    }
+}
+
 void traversal_buffers_are_refused(mvr_test_state *t)
 {
     const files &f = F();
@@ -1902,6 +1920,7 @@ int main(int argc, char **argv)
     }
     g_root = MVR_HOSTILE_DIR;
     static const mvr_test_case cases[] = {
+        TEST(magenta_controls_draw_magenta),
         TEST(traversal_buffers_are_refused),
         TEST(traversal_images_never_reach_a_pixel),
         TEST(refusals_do_not_tell_whether_outside_files_exist),
