@@ -79,6 +79,108 @@ bool mvr_context_provider_built(mvr_context_provider provider)
     return false;
 }
 
+bool mvr_context_is_current(const mvr_context *ctx)
+{
+    if (ctx->provider && ctx->ops)
+        return ctx->ops->is_current(ctx->provider);
+    if (ctx->external_is_current)
+        return ctx->external_is_current(ctx->external_is_current_user_data);
+    if (ctx->external_egl_context)
+        return mvr_egl_current_context(ctx->external_egl_api) == ctx->external_egl_context;
+    /* GLX, WGL, ...: no identity to compare; trust the caller, but a thread
+     * without any context gets NULL from glvnd's (or Mesa's) no-op dispatch */
+    return ctx->gl.GetString && ctx->gl.GetString(GL_VERSION) != NULL;
+}
+
+/* Why the context is not current, for messages. */
+static const char *not_current_why(const mvr_context *ctx)
+{
+    if (ctx->provider_kind != MVR_CONTEXT_PROVIDER_EXTERNAL)
+        return "another context (or none) is current on this thread: call mvr_context_make_current "
+               "(mvr never switches contexts by itself)";
+    if (ctx->external_is_current)
+        return "the application's is_current callback says its context is not current on this thread";
+    if (ctx->external_egl_context)
+        return "eglGetCurrentContext() is not the application's context adopted at create time";
+    return "no GL context answers on this thread";
+}
+
+static void delete_now(const mvr_gl_api_table *gl, const mvr_gl_garbage *g)
+{
+    GLuint name = g->name;
+    switch (g->kind) {
+    case MVR_GL_TEXTURE: gl->DeleteTextures(1, &name); return;
+    case MVR_GL_BUFFER: gl->DeleteBuffers(1, &name); return;
+    case MVR_GL_FRAMEBUFFER: gl->DeleteFramebuffers(1, &name); return;
+    case MVR_GL_RENDERBUFFER: gl->DeleteRenderbuffers(1, &name); return;
+    case MVR_GL_VERTEX_ARRAY: gl->DeleteVertexArrays(1, &name); return;
+    case MVR_GL_SAMPLER: gl->DeleteSamplers(1, &name); return;
+    case MVR_GL_PROGRAM: gl->DeleteProgram(name); return;
+    case MVR_GL_QUERY: gl->DeleteQueries(1, &name); return;
+    case MVR_GL_SYNC: gl->DeleteSync(g->sync); return;
+    }
+}
+
+static void defer_delete(mvr_context *ctx, mvr_gl_garbage g)
+{
+    if (mvr_context_is_current(ctx)) {
+        delete_now(&ctx->gl, &g);
+        return;
+    }
+    if (!mvr_array_grow((void **)&ctx->garbage, &ctx->garbage_cap, ctx->garbage_count, sizeof *ctx->garbage)) {
+        mvr_log(&ctx->logger, MVR_LOG_WARNING, MVR_LOG_ID_GENERAL,
+                "mvr: out of memory queueing a GL object for deletion; it leaks until its context goes");
+        return;
+    }
+    ctx->garbage[ctx->garbage_count++] = g;
+}
+
+void mvr_context_delete(mvr_context *ctx, mvr_gl_object kind, GLuint name)
+{
+    if (!ctx || !name)
+        return;
+    mvr_gl_garbage g = {kind, name, NULL};
+    defer_delete(ctx, g);
+}
+
+void mvr_context_delete_sync(mvr_context *ctx, GLsync sync)
+{
+    if (!ctx || !sync)
+        return;
+    mvr_gl_garbage g = {MVR_GL_SYNC, 0, sync};
+    defer_delete(ctx, g);
+}
+
+/* With the context current: deletes what waited for it. */
+static void flush_garbage(mvr_context *ctx)
+{
+    for (uint32_t i = 0; i < ctx->garbage_count; ++i)
+        delete_now(&ctx->gl, &ctx->garbage[i]);
+    ctx->garbage_count = 0;
+}
+
+mvr_result mvr_context_begin(mvr_context *ctx, const char *where)
+{
+    if (!mvr_context_is_current(ctx))
+        return mvr_context_fail(ctx, MVR_ERROR_CONTEXT, "%s: the %s context is not current: %s", where,
+                                mvr_context_provider_name(ctx->provider_kind), not_current_why(ctx));
+    /* errors from before this call are not mvr's: said as such, and dropped
+     * so the check after mvr's work reports only its own */
+    char names[256] = "";
+    size_t used = 0;
+    int count = 0;
+    for (GLenum e; count < 16 && (e = ctx->gl.GetError()) != GL_NO_ERROR; ++count) {
+        mvr_str_format(names + used, sizeof names - used, "%s%s", count ? ", " : "", mvr_gl_error_name(e));
+        used = strlen(names);
+    }
+    if (count)
+        mvr_log(&ctx->logger, MVR_LOG_WARNING, MVR_LOG_ID_GL_ERROR,
+                "mvr: %s: %s was pending before mvr's work (an earlier GL call of the application's): dropped",
+                where, names);
+    flush_garbage(ctx);
+    return MVR_OK;
+}
+
 mvr_result mvr_context_fail(mvr_context *ctx, mvr_result result, const char *fmt, ...)
 {
     va_list ap;
@@ -175,9 +277,18 @@ static mvr_result finish_create(mvr_context *ctx, bool debug_output, mvr_error *
                              "mvr_context_create(%s): no GL context is current "
                              "(glGetString(GL_VERSION) returned NULL)",
                              mvr_context_provider_name(ctx->provider_kind));
-    if (ctx->provider_kind == MVR_CONTEXT_PROVIDER_EXTERNAL)
+    if (ctx->provider_kind == MVR_CONTEXT_PROVIDER_EXTERNAL) {
         ctx->caps.api = strstr((const char *)version, "OpenGL ES") ? MVR_GL_API_GLES
                                                                    : MVR_GL_API_DESKTOP;
+        if (ctx->external_is_current && !ctx->external_is_current(ctx->external_is_current_user_data))
+            return mvr_error_set(error, MVR_ERROR_CONTEXT,
+                                 "mvr_context_create(external): the is_current callback says the "
+                                 "application's context is not current");
+    }
+    /* the application's earlier errors (external) are not the probe's */
+    mvr_result begun = mvr_context_begin(ctx, "mvr_context_create");
+    if (begun != MVR_OK)
+        return mvr_error_set(error, begun, "%s", ctx->last_error);
     mvr_caps_probe(ctx);
     if (ctx->provider)
         ctx->ops->describe(ctx->provider, &ctx->caps);
@@ -192,8 +303,9 @@ static mvr_result finish_create(mvr_context *ctx, bool debug_output, mvr_error *
     /* Only when asked: on an external context this changes the application's state. */
     if (debug_output)
         mvr_gl_debug_install(ctx);
-    if (mvr_gl_check(ctx, "mvr_context_create (capability probe)", false) != MVR_OK)
-        return mvr_error_set(error, MVR_ERROR_GL, "%s", ctx->last_error);
+    mvr_result checked = mvr_gl_check(ctx, "mvr_context_create (capability probe)", true);
+    if (checked != MVR_OK)
+        return mvr_error_set(error, checked, "%s", ctx->last_error);
     mvr_log(&ctx->logger, MVR_LOG_INFO, MVR_LOG_ID_CONTEXT, "mvr: %s context: %s, %s",
             mvr_context_provider_name(ctx->provider_kind), ctx->caps.version, ctx->caps.renderer);
     return MVR_OK;
@@ -234,6 +346,13 @@ mvr_result mvr_context_create(const mvr_context_desc *desc_in, mvr_context **out
         ctx->provider_kind = MVR_CONTEXT_PROVIDER_EXTERNAL;
         ctx->external_get_proc = desc.get_proc_address;
         ctx->external_user_data = desc.get_proc_user_data;
+        ctx->external_is_current = desc.is_current;
+        ctx->external_is_current_user_data = desc.is_current_user_data;
+        if (!desc.is_current) {
+            /* the EGL context current now is the application's: its identity */
+            ctx->external_egl_api = mvr_egl_bound_api();
+            ctx->external_egl_context = mvr_egl_current_context(ctx->external_egl_api);
+        }
         r = MVR_OK;
     } else if (desc.provider == MVR_CONTEXT_PROVIDER_DEFAULT) {
         static const mvr_context_provider order[] = {MVR_CONTEXT_PROVIDER_SURFACELESS,
@@ -282,9 +401,33 @@ void mvr_context_destroy(mvr_context *ctx)
 {
     if (!ctx)
         return;
-    /* The callback points at ctx: take it back from a context that outlives us. */
-    if (ctx->debug_installed && ctx->provider_kind == MVR_CONTEXT_PROVIDER_EXTERNAL)
-        ctx->gl.DebugMessageCallback(NULL, NULL);
+    bool current = mvr_context_is_current(ctx);
+    /* renderers (and their targets) still alive give their GL objects back
+     * now and keep only their memory: later calls on them fail, destroys free */
+    while (ctx->renderers)
+        mvr_renderer_context_destroyed(ctx->renderers);
+    if (current) {
+        flush_garbage(ctx);
+    } else if (ctx->garbage_count && ctx->provider_kind == MVR_CONTEXT_PROVIDER_EXTERNAL) {
+        /* mvr's own contexts take their objects with them; the application's outlives us */
+        mvr_log(&ctx->logger, MVR_LOG_WARNING, MVR_LOG_ID_GENERAL,
+                "mvr: mvr_context_destroy(external): the application's context is not current: %u GL "
+                "objects of mvr's stay in it", ctx->garbage_count);
+    }
+    free(ctx->garbage);
+    if (ctx->debug_sink) {
+        if (current) {
+            /* the callback points at the sink: take it back */
+            ctx->gl.DebugMessageCallback(NULL, NULL);
+            free(ctx->debug_sink);
+        } else if (ctx->provider_kind == MVR_CONTEXT_PROVIDER_EXTERNAL) {
+            /* still installed in a context mvr cannot reach: a silent sink
+             * stays behind (a few bytes) rather than a dangling pointer */
+            ctx->debug_sink->logger.fn = NULL;
+        } else {
+            free(ctx->debug_sink); /* its context is destroyed below */
+        }
+    }
     if (ctx->provider && ctx->ops)
         ctx->ops->destroy(ctx->provider);
     free(ctx);
@@ -295,11 +438,11 @@ mvr_result mvr_context_make_current(mvr_context *ctx)
     if (!ctx)
         return MVR_ERROR_INVALID_ARGUMENT;
     if (ctx->provider_kind == MVR_CONTEXT_PROVIDER_EXTERNAL) {
-        /* mvr never makes the application's context current; it checks one is. */
-        if (!ctx->gl.GetString(GL_VERSION))
+        /* mvr never makes the application's context current; it checks it is. */
+        if (!mvr_context_is_current(ctx))
             return mvr_context_fail(ctx, MVR_ERROR_CONTEXT,
                                     "mvr_context_make_current(external): the application's "
-                                    "context is not current on this thread");
+                                    "context is not current on this thread (%s)", not_current_why(ctx));
         return MVR_OK;
     }
     char why[MVR_ERROR_MESSAGE_SIZE] = "";
@@ -307,6 +450,7 @@ mvr_result mvr_context_make_current(mvr_context *ctx)
     if (r != MVR_OK)
         return mvr_context_fail(ctx, r, "mvr_context_make_current(%s): %s",
                                 mvr_context_provider_name(ctx->provider_kind), why);
+    flush_garbage(ctx); /* objects of renderers destroyed while another context was current */
     return MVR_OK;
 }
 

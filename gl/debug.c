@@ -1,4 +1,5 @@
 /* GL error checks and KHR_debug forwarding. */
+#include <stdlib.h>
 #include <string.h>
 
 #include "context_internal.h"
@@ -43,17 +44,21 @@ mvr_result mvr_gl_check(mvr_context *ctx, const char *where, bool force)
     char names[256] = "";
     size_t used = 0;
     int count = 0;
+    bool oom = false;
     /* Bounded: a lost context may report errors forever. */
     for (GLenum e; count < 16 && (e = ctx->gl.GetError()) != GL_NO_ERROR; ++count) {
         mvr_str_format(names + used, sizeof names - used, "%s%s", count ? ", " : "",
                        mvr_gl_error_name(e));
         used = strlen(names);
+        oom |= e == GL_OUT_OF_MEMORY;
     }
     if (count == 0)
         return MVR_OK;
     mvr_log(&ctx->logger, MVR_LOG_ERROR, MVR_LOG_ID_GL_ERROR, "mvr: GL error after %s: %s", where,
             names);
-    return mvr_context_fail(ctx, MVR_ERROR_GL, "%s: GL error %s", where, names);
+    /* out of memory is what the caller can act on (smaller targets, fewer
+     * or smaller images); other errors are bugs or misuse */
+    return mvr_context_fail(ctx, oom ? MVR_ERROR_OUT_OF_MEMORY : MVR_ERROR_GL, "%s: %s", where, names);
 }
 
 mvr_result mvr_gl_check_framebuffer(mvr_context *ctx, GLenum target, const char *where)
@@ -83,17 +88,20 @@ static void GL_APIENTRY debug_callback(GLenum source, GLenum type, GLuint id, GL
 {
     (void)source;
     (void)length;
-    const mvr_context *ctx = user_param;
-    mvr_log(&ctx->logger, debug_level(severity, type), MVR_LOG_ID_GL_DEBUG, "GL debug %u: %s",
+    const mvr_debug_sink *sink = user_param;
+    mvr_log(&sink->logger, debug_level(severity, type), MVR_LOG_ID_GL_DEBUG, "GL debug %u: %s",
             (unsigned)id, message);
 }
 
 void mvr_gl_debug_install(mvr_context *ctx)
 {
-    if (!ctx->caps.ext.khr_debug || !ctx->gl.DebugMessageCallback)
+    if (!ctx->caps.ext.khr_debug || !ctx->gl.DebugMessageCallback || ctx->debug_sink)
         return;
-    ctx->gl.DebugMessageCallback(debug_callback, ctx);
+    ctx->debug_sink = calloc(1, sizeof *ctx->debug_sink);
+    if (!ctx->debug_sink)
+        return;
+    ctx->debug_sink->logger = ctx->logger;
+    ctx->gl.DebugMessageCallback(debug_callback, ctx->debug_sink);
     ctx->gl.Enable(GL_DEBUG_OUTPUT_SYNCHRONOUS_KHR);
     ctx->gl.Enable(GL_DEBUG_OUTPUT_KHR);
-    ctx->debug_installed = true;
 }

@@ -1,6 +1,7 @@
 /* Uploads of a scene: geometry once per geometry change, textures once per
  * image (and color space), the material table once per material change.
  * Nothing here depends on the views. */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -89,50 +90,279 @@ static bool image_needs_mipmaps(const mvr_scene *s, uint32_t image)
     return false;
 }
 
+/* ---- images too large for the GL (mvr_oversized_image) */
+
+/* Box filter of an RGBA8 image into dw x dh (each side at most the
+ * source's): each output texel averages the source texels it covers. sRGB
+ * color channels are averaged in linear light (as the GL filters sRGB
+ * mips), alpha and linear roles as stored. NULL when out of memory. */
+static uint8_t *downscale_rgba8(const uint8_t *src, uint32_t sw, uint32_t sh, uint32_t dw, uint32_t dh, bool srgb)
+{
+    uint8_t *dst = malloc((size_t)dw * dh * 4);
+    if (!dst)
+        return NULL;
+    float lut[256], mid[255];
+    for (int i = 0; i < 256; ++i) {
+        float c = (float)i / 255.0f;
+        lut[i] = !srgb ? c : c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f);
+    }
+    for (int i = 0; i < 255; ++i)
+        mid[i] = 0.5f * (lut[i] + lut[i + 1]);
+    for (uint32_t y = 0; y < dh; ++y) {
+        uint32_t y0 = (uint32_t)((uint64_t)y * sh / dh), y1 = (uint32_t)((uint64_t)(y + 1) * sh / dh);
+        for (uint32_t x = 0; x < dw; ++x) {
+            uint32_t x0 = (uint32_t)((uint64_t)x * sw / dw), x1 = (uint32_t)((uint64_t)(x + 1) * sw / dw);
+            float sum[4] = {0, 0, 0, 0};
+            for (uint32_t yy = y0; yy < y1; ++yy) {
+                const uint8_t *row = src + ((size_t)yy * sw + x0) * 4;
+                for (uint32_t xx = x0; xx < x1; ++xx, row += 4) {
+                    for (int c = 0; c < 3; ++c)
+                        sum[c] += lut[row[c]];
+                    sum[3] += (float)row[3];
+                }
+            }
+            float n = (float)((y1 - y0) * (x1 - x0));
+            uint8_t *out = dst + ((size_t)y * dw + x) * 4;
+            for (int c = 0; c < 3; ++c) {
+                /* the nearest byte: how many midpoints lie below the mean */
+                float v = sum[c] / n;
+                int lo = 0, hi = 255;
+                while (lo < hi) {
+                    int m = (lo + hi) / 2;
+                    if (mid[m] < v)
+                        lo = m + 1;
+                    else
+                        hi = m;
+                }
+                out[c] = (uint8_t)lo;
+            }
+            out[3] = (uint8_t)(sum[3] / n + 0.5f);
+        }
+    }
+    return dst;
+}
+
+/* Marks a scene image as stored downscaled (counted once however many
+ * textures hold it). */
+static void mark_downscaled(mvr_gpu_scene *g, uint32_t image, uint32_t image_count)
+{
+    if (image >= g->downscaled_cap) {
+        uint8_t *p = realloc(g->downscaled, image_count);
+        if (!p)
+            return; /* only the count suffers */
+        memset(p + g->downscaled_cap, 0, image_count - g->downscaled_cap);
+        g->downscaled = p;
+        g->downscaled_cap = image_count;
+    }
+    if (!g->downscaled[image]) {
+        g->downscaled[image] = 1;
+        g->downscaled_count++;
+    }
+}
+
+static void forget_downscaled(mvr_gpu_scene *g)
+{
+    if (g->downscaled)
+        memset(g->downscaled, 0, g->downscaled_cap);
+    g->downscaled_count = 0;
+}
+
+/* One texture to make: a 2D texture of one image (the per-material path),
+ * or a 2D array of a batch plan group (the array path; MVR_NO_INDEX layers
+ * are white). Every layer has the size width x height. */
+typedef struct texture_job {
+    GLenum target;               /* GL_TEXTURE_2D or GL_TEXTURE_2D_ARRAY */
+    bool srgb, mips;
+    uint32_t width, height;
+    const uint32_t *layer_images;
+    uint32_t layer_count;
+    char what[200];              /* "texture array of image 3 'wall', ..." for messages */
+} texture_job;
+
+static void describe_images(char *dst, size_t size, const char *prefix, const mvr_scene *s, const uint32_t *images,
+                            uint32_t count)
+{
+    mvr_str_copy(dst, size, prefix);
+    uint32_t named = 0;
+    for (uint32_t k = 0; k < count; ++k) {
+        if (images[k] == MVR_NO_INDEX)
+            continue;
+        size_t used = strlen(dst);
+        if (named == 4) {
+            mvr_str_format(dst + used, size - used, ", ...");
+            break;
+        }
+        const scene_image *img = &s->images[images[k]];
+        /* image ids as mvr_scene_add_image returned them (index + 1) */
+        mvr_str_format(dst + used, size - used, "%s%u%s%s%s", named ? ", " : " ", images[k] + 1,
+                       img->name[0] ? " '" : "", img->name, img->name[0] ? "'" : "");
+        named++;
+    }
+}
+
+/* Drains GL errors; true when there were any (oom: one was GL_OUT_OF_MEMORY). */
+static bool take_errors(const mvr_gl_api_table *gl, char *names, size_t size, bool *oom)
+{
+    size_t used = 0;
+    int count = 0;
+    names[0] = '\0';
+    *oom = false;
+    for (GLenum e; count < 16 && (e = gl->GetError()) != GL_NO_ERROR; ++count) {
+        mvr_str_format(names + used, size - used, "%s%s", count ? ", " : "", mvr_gl_error_name(e));
+        used = strlen(names);
+        *oom |= e == GL_OUT_OF_MEMORY;
+    }
+    return count > 0;
+}
+
+/* Storage and pixels of one size; false (with the GL's errors in why) when
+ * the GL refused. Out of host memory is an error of its own (*res). */
+static bool try_texture(mvr_renderer *r, const mvr_scene *s, const texture_job *job, uint32_t w, uint32_t h,
+                        GLuint *out, char *why, size_t why_size, bool *oom, mvr_result *res)
+{
+    const mvr_gl_api_table *gl = r->gl;
+    GLenum format = job->srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8;
+    GLsizei levels = job->mips ? (GLsizei)mvr_mip_levels(w, h) : 1;
+    bool array = job->target == GL_TEXTURE_2D_ARRAY;
+    *res = MVR_OK;
+    gl->GenTextures(1, out);
+    mvr_state_texture(&r->state, 0, job->target, *out);
+    if (array)
+        gl->TexStorage3D(job->target, levels, format, (GLsizei)w, (GLsizei)h, (GLsizei)job->layer_count);
+    else
+        gl->TexStorage2D(job->target, levels, format, (GLsizei)w, (GLsizei)h);
+    if (take_errors(gl, why, why_size, oom))
+        return false;
+    bool scaled = w != job->width || h != job->height;
+    uint8_t *white = NULL;
+    gl->PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    for (uint32_t layer = 0; layer < job->layer_count && *res == MVR_OK; ++layer) {
+        uint32_t image = job->layer_images[layer];
+        const uint8_t *pixels = NULL;
+        uint8_t *scratch = NULL;
+        if (image == MVR_NO_INDEX) {
+            if (!white && (white = malloc((size_t)w * h * 4)) != NULL)
+                memset(white, 255, (size_t)w * h * 4);
+            pixels = white;
+        } else if (scaled) {
+            const scene_image *img = &s->images[image];
+            pixels = scratch = downscale_rgba8(img->rgba, img->width, img->height, w, h, job->srgb);
+        } else {
+            pixels = s->images[image].rgba;
+        }
+        if (!pixels) {
+            *res = mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "%s: out of memory (%ux%u pixels)", job->what, w, h);
+            break;
+        }
+        /* rows as stored, top first: glTF's uv (0, 0) is the image's top-left */
+        if (array)
+            gl->TexSubImage3D(job->target, 0, 0, 0, (GLint)layer, (GLsizei)w, (GLsizei)h, 1, GL_RGBA,
+                              GL_UNSIGNED_BYTE, pixels);
+        else
+            gl->TexSubImage2D(job->target, 0, 0, 0, (GLsizei)w, (GLsizei)h, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
+        free(scratch);
+        r->upload_bytes += (uint64_t)w * h * 4;
+    }
+    free(white);
+    gl->PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    if (*res == MVR_OK && levels > 1)
+        gl->GenerateMipmap(job->target);
+    /* a GL may allocate lazily: uploads and mips can fail too */
+    return !take_errors(gl, why, why_size, oom) && *res == MVR_OK;
+}
+
+/* Makes a job's texture: at its size, or, where the GL cannot hold that
+ * (over GL_MAX_TEXTURE_SIZE, or GL_OUT_OF_MEMORY), halved until it can when
+ * the renderer's policy is to downscale. One function for both material
+ * paths, so they decide alike. */
+static mvr_result make_texture(mvr_renderer *r, const mvr_scene *s, const texture_job *job, GLuint *out)
+{
+    uint32_t max = (uint32_t)r->ctx->caps.limits.max_texture_size;
+    uint32_t w = job->width, h = job->height;
+    char first_why[128] = "";
+    *out = 0;
+    for (;;) {
+        char why[128] = "";
+        bool oom = false;
+        mvr_result res = MVR_OK;
+        if (w > max || h > max) {
+            mvr_str_format(why, sizeof why, "over GL_MAX_TEXTURE_SIZE %u", max);
+            res = MVR_ERROR_UNSUPPORTED;
+        } else if (try_texture(r, s, job, w, h, out, why, sizeof why, &oom, &res)) {
+            break;
+        } else {
+            mvr_renderer_delete(r, MVR_GL_TEXTURE, out);
+            if (res != MVR_OK) /* out of host memory: recorded */
+                return res;
+            res = oom ? MVR_ERROR_OUT_OF_MEMORY : MVR_ERROR_GL;
+        }
+        if (!first_why[0])
+            mvr_str_copy(first_why, sizeof first_why, why);
+        /* other GL errors are not about size: halving would not help */
+        bool halve = res != MVR_ERROR_GL && r->oversized_images == MVR_OVERSIZED_IMAGE_DOWNSCALE && (w > 1 || h > 1);
+        if (!halve)
+            return mvr_renderer_fail(r, res, "%s (%ux%u %s, %u mips): %s%s", job->what, w, h,
+                                     job->srgb ? "srgb8_alpha8" : "rgba8", job->mips ? mvr_mip_levels(w, h) : 1u, why,
+                                     res == MVR_ERROR_GL ? ""
+                                     : r->oversized_images == MVR_OVERSIZED_IMAGE_REFUSE
+                                         ? " (the renderer's oversized_images is refuse)"
+                                         : " (even at 1x1)");
+        w = w > 1 ? w / 2 : 1;
+        h = h > 1 ? h / 2 : 1;
+    }
+    if (w != job->width || h != job->height) {
+        mvr_log(&r->logger, MVR_LOG_WARNING, MVR_LOG_ID_GENERAL,
+                "mvr: %s: %ux%u (%s, %u mips, %u layers) does not fit this GL (%s): downscaled to %ux%u",
+                job->what, job->width, job->height, job->srgb ? "srgb8_alpha8" : "rgba8",
+                job->mips ? mvr_mip_levels(job->width, job->height) : 1u, job->layer_count, first_why, w, h);
+        for (uint32_t k = 0; k < job->layer_count; ++k)
+            if (job->layer_images[k] != MVR_NO_INDEX)
+                mark_downscaled(&r->gpu, job->layer_images[k], s->image_count);
+    }
+    return MVR_OK;
+}
+
 /* The GL texture of an image in a color space, uploaded on first use, with a
  * mip chain only where a sampler that reads it needs one. */
-static GLuint texture_for(mvr_renderer *r, const mvr_scene *s, uint32_t image, bool srgb)
+static mvr_result texture_for(mvr_renderer *r, const mvr_scene *s, uint32_t image, bool srgb, GLuint *out)
 {
     mvr_gpu_scene *g = &r->gpu;
     for (uint32_t i = 0; i < g->texture_count; ++i)
-        if (g->textures[i].image == image && g->textures[i].srgb == srgb)
-            return g->textures[i].texture;
+        if (g->textures[i].image == image && g->textures[i].srgb == srgb) {
+            *out = g->textures[i].texture;
+            return MVR_OK;
+        }
     if (g->texture_count == g->texture_cap) {
         uint32_t cap = g->texture_cap ? g->texture_cap * 2 : 16;
         mvr_gpu_texture *p = realloc(g->textures, cap * sizeof *p);
         if (!p)
-            return 0;
+            return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "textures: out of memory");
         g->textures = p;
         g->texture_cap = cap;
     }
     const scene_image *img = &s->images[image];
-    const mvr_gl_api_table *gl = r->gl;
+    texture_job job = {.target = GL_TEXTURE_2D, .srgb = srgb, .mips = image_needs_mipmaps(s, image),
+                       .width = img->width, .height = img->height, .layer_images = &image, .layer_count = 1};
+    describe_images(job.what, sizeof job.what, srgb ? "texture (sRGB) of image" : "texture of image", s, &image, 1);
     GLuint t = 0;
-    gl->GenTextures(1, &t);
-    mvr_state_texture(&r->state, 0, GL_TEXTURE_2D, t);
-    bool mipmaps = image_needs_mipmaps(s, image);
-    gl->TexStorage2D(GL_TEXTURE_2D, mipmaps ? (GLsizei)mvr_mip_levels(img->width, img->height) : 1,
-                     srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, (GLsizei)img->width, (GLsizei)img->height);
-    gl->PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    /* rows as stored, top first: glTF's uv (0, 0) is the image's top-left */
-    gl->TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, (GLsizei)img->width, (GLsizei)img->height, GL_RGBA,
-                      GL_UNSIGNED_BYTE, img->rgba);
-    gl->PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    if (mipmaps)
-        gl->GenerateMipmap(GL_TEXTURE_2D);
-    r->upload_bytes += (uint64_t)img->width * img->height * 4;
+    mvr_result res = make_texture(r, s, &job, &t);
+    if (res != MVR_OK)
+        return res;
     g->textures[g->texture_count].image = image;
     g->textures[g->texture_count].srgb = srgb;
     g->textures[g->texture_count++].texture = t;
-    return t;
+    *out = t;
+    return MVR_OK;
 }
+
+static const char *const role_names[MVR_ROLE_COUNT] = {"base color", "metallic-roughness", "normal", "occlusion",
+                                                       "emissive"};
 
 /* Array path: one GL_TEXTURE_2D_ARRAY per plan group, layers in plan order,
  * white for a group's neutral layer; mips generated for the whole array. */
 static mvr_result upload_arrays(mvr_renderer *r, const mvr_scene *s)
 {
     mvr_gpu_scene *g = &r->gpu;
-    const mvr_gl_api_table *gl = r->gl;
     mvr_result res = mvr_batch_plan_build(&g->plan, s, (uint32_t)r->ctx->caps.limits.max_array_texture_layers);
     if (res != MVR_OK)
         return mvr_renderer_fail(r, res, "batch plan: out of memory");
@@ -143,87 +373,54 @@ static mvr_result upload_arrays(mvr_renderer *r, const mvr_scene *s)
     g->group_samplers = calloc(count ? count : 1, sizeof *g->group_samplers);
     if (!g->group_textures || !g->group_samplers)
         return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "texture arrays: out of memory");
-    uint8_t *white = NULL;
-    gl->PixelStorei(GL_UNPACK_ALIGNMENT, 1);
     for (uint32_t k = 0; k < count; ++k) {
         const mvr_texture_group *grp = &g->plan.groups[k];
-        GLuint t = 0;
-        gl->GenTextures(1, &t);
-        g->group_textures[k] = t;
-        mvr_state_texture(&r->state, 0, GL_TEXTURE_2D_ARRAY, t);
-        gl->TexStorage3D(GL_TEXTURE_2D_ARRAY, (GLsizei)grp->levels, grp->srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8,
-                         (GLsizei)grp->width, (GLsizei)grp->height, (GLsizei)grp->layer_count);
-        for (uint32_t layer = 0; layer < grp->layer_count; ++layer) {
-            const uint8_t *pixels;
-            uint32_t image = grp->layer_images[layer];
-            if (image == MVR_NO_INDEX) {
-                if (!white) {
-                    size_t bytes = (size_t)grp->width * grp->height * 4;
-                    white = malloc(bytes);
-                    if (!white)
-                        return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "texture arrays: out of memory");
-                    memset(white, 255, bytes);
-                } else {
-                    uint8_t *w = realloc(white, (size_t)grp->width * grp->height * 4);
-                    if (!w) {
-                        free(white);
-                        return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "texture arrays: out of memory");
-                    }
-                    white = w;
-                    memset(white, 255, (size_t)grp->width * grp->height * 4);
-                }
-                pixels = white;
-            } else {
-                pixels = s->images[image].rgba;
-            }
-            gl->TexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, (GLint)layer, (GLsizei)grp->width,
-                              (GLsizei)grp->height, 1, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
-            r->upload_bytes += (uint64_t)grp->width * grp->height * 4;
-        }
-        if (grp->levels > 1)
-            gl->GenerateMipmap(GL_TEXTURE_2D_ARRAY);
+        texture_job job = {.target = GL_TEXTURE_2D_ARRAY, .srgb = grp->srgb, .mips = grp->levels > 1,
+                           .width = grp->width, .height = grp->height, .layer_images = grp->layer_images,
+                           .layer_count = grp->layer_count};
+        char prefix[64];
+        mvr_str_format(prefix, sizeof prefix, "%s texture array %u (%u layers) of image%s", role_names[grp->role], k,
+                       grp->layer_count, grp->layer_count - (grp->neutral_layer != MVR_NO_INDEX) > 1 ? "s" : "");
+        describe_images(job.what, sizeof job.what, prefix, s, grp->layer_images, grp->layer_count);
+        res = make_texture(r, s, &job, &g->group_textures[k]);
+        if (res != MVR_OK)
+            return res;
         g->group_samplers[k] = sampler_for(r, &grp->sampler);
+        if (!g->group_samplers[k])
+            return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "samplers: out of memory");
     }
-    gl->PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    free(white);
     return MVR_OK;
 }
 
 static void release_arrays(mvr_renderer *r)
 {
     mvr_gpu_scene *g = &r->gpu;
-    for (uint32_t k = 0; g->group_textures && k < g->plan.group_count; ++k) {
-        mvr_state_forget_texture(&r->state, g->group_textures[k]);
-        r->gl->DeleteTextures(1, &g->group_textures[k]);
-    }
+    for (uint32_t k = 0; g->group_textures && k < g->plan.group_count; ++k)
+        mvr_renderer_delete(r, MVR_GL_TEXTURE, &g->group_textures[k]);
     free(g->group_textures);
     free(g->group_samplers);
     g->group_textures = g->group_samplers = NULL;
     mvr_batch_plan_free(&g->plan);
+    forget_downscaled(g);
 }
 
 static void release_geometry(mvr_renderer *r)
 {
     mvr_gpu_scene *g = &r->gpu;
-    const mvr_gl_api_table *gl = r->gl;
     for (uint32_t i = 0; i < g->primitive_count; ++i) {
         mvr_gpu_primitive *p = &g->primitives[i];
-        mvr_state_forget_vao(&r->state, p->vao);
-        mvr_state_forget_buffer(&r->state, p->vbo);
-        gl->DeleteVertexArrays(1, &p->vao);
-        gl->DeleteBuffers(1, &p->vbo);
-        if (p->ibo)
-            gl->DeleteBuffers(1, &p->ibo);
+        mvr_renderer_delete(r, MVR_GL_VERTEX_ARRAY, &p->vao);
+        mvr_renderer_delete(r, MVR_GL_BUFFER, &p->vbo);
+        mvr_renderer_delete(r, MVR_GL_BUFFER, &p->ibo);
     }
     free(g->primitives);
     g->primitives = NULL;
     g->primitive_count = 0;
     release_arrays(r);
-    for (uint32_t i = 0; i < g->texture_count; ++i) {
-        mvr_state_forget_texture(&r->state, g->textures[i].texture);
-        gl->DeleteTextures(1, &g->textures[i].texture);
-    }
+    for (uint32_t i = 0; i < g->texture_count; ++i)
+        mvr_renderer_delete(r, MVR_GL_TEXTURE, &g->textures[i].texture);
     g->texture_count = 0;
+    forget_downscaled(g);
 }
 
 static mvr_result upload_geometry(mvr_renderer *r, const mvr_scene *s)
@@ -267,6 +464,12 @@ static mvr_result upload_geometry(mvr_renderer *r, const mvr_scene *s)
         mvr_state_array_buffer(&r->state, p->vbo);
         gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)total, staging, GL_STATIC_DRAW);
         free(staging);
+        mvr_result res = mvr_renderer_check_alloc(r, "vertex buffer of primitive %u (%u vertices, %zu bytes)", i,
+                                                  sp->vertex_count, total);
+        if (res != MVR_OK) {
+            mvr_state_vao(&r->state, 0);
+            return res;
+        }
         size_t offset = 0;
         for (size_t a = 0; a < MVR_ARRAY_COUNT(attrs); ++a) {
             if (!attrs[a].data)
@@ -284,8 +487,10 @@ static mvr_result upload_geometry(mvr_renderer *r, const mvr_scene *s)
             gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, p->ibo); /* VAO state */
             if (sp->small_indices) {
                 uint16_t *idx = malloc((size_t)sp->index_count * sizeof *idx);
-                if (!idx)
+                if (!idx) {
+                    mvr_state_vao(&r->state, 0);
                     return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "upload: out of memory");
+                }
                 for (uint32_t k = 0; k < sp->index_count; ++k)
                     idx[k] = (uint16_t)sp->indices[k];
                 gl->BufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(sp->index_count * sizeof *idx), idx,
@@ -300,6 +505,12 @@ static mvr_result upload_geometry(mvr_renderer *r, const mvr_scene *s)
                 r->upload_bytes += sp->index_count * 4u;
             }
             p->count = (GLsizei)sp->index_count;
+            mvr_result ires = mvr_renderer_check_alloc(r, "index buffer of primitive %u (%u indices)", i,
+                                                       sp->index_count);
+            if (ires != MVR_OK) {
+                mvr_state_vao(&r->state, 0);
+                return ires;
+            }
         } else {
             p->count = (GLsizei)sp->vertex_count;
         }
@@ -348,11 +559,15 @@ static mvr_result upload_materials(mvr_renderer *r, const mvr_scene *s)
             if (!roles[k]->image.id)
                 continue;
             bool srgb = k == 0 || k == 4; /* base color and emissive are sRGB (glTF 2.0 3.9.2) */
-            g->materials[i].textures[k] = texture_for(r, s, roles[k]->image.id - 1, srgb);
-            g->materials[i].samplers[k] = sampler_for(r, &roles[k]->sampler);
-            if (!g->materials[i].textures[k] || !g->materials[i].samplers[k]) {
+            mvr_result res = texture_for(r, s, roles[k]->image.id - 1, srgb, &g->materials[i].textures[k]);
+            if (res != MVR_OK) {
                 free(data);
-                return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "textures: out of memory");
+                return res;
+            }
+            g->materials[i].samplers[k] = sampler_for(r, &roles[k]->sampler);
+            if (!g->materials[i].samplers[k]) {
+                free(data);
+                return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "samplers: out of memory");
             }
         }
     }
@@ -364,7 +579,10 @@ static mvr_result upload_materials(mvr_renderer *r, const mvr_scene *s)
     mvr_state_forget_buffer(&r->state, g->material_ubo);
     r->upload_bytes += total;
     free(data);
-    return MVR_OK;
+    mvr_result res = mvr_renderer_check_alloc(r, "material buffer (%u materials, %zu bytes)", slots, total);
+    if (res != MVR_OK)
+        mvr_renderer_delete(r, MVR_GL_BUFFER, &g->material_ubo);
+    return res;
 }
 
 mvr_result mvr_gpu_scene_sync(mvr_renderer *r, const mvr_scene *s)
@@ -400,22 +618,21 @@ mvr_result mvr_gpu_scene_sync(mvr_renderer *r, const mvr_scene *s)
             return res;
         g->material_version = s->material_version;
     }
-    return mvr_gl_check(r->ctx, "scene upload", false);
+    /* each allocation was checked; the rest (attribute setup) in debug builds */
+    res = mvr_gl_check(r->ctx, "scene upload", false);
+    return res == MVR_OK ? MVR_OK : mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
 }
 
 void mvr_gpu_scene_release(mvr_renderer *r)
 {
     mvr_gpu_scene *g = &r->gpu;
-    const mvr_gl_api_table *gl = r->gl;
     release_geometry(r);
     free(g->textures);
     for (uint32_t i = 0; i < g->sampler_count; ++i)
-        gl->DeleteSamplers(1, &g->samplers[i].sampler);
+        mvr_renderer_delete(r, MVR_GL_SAMPLER, &g->samplers[i].sampler);
     free(g->samplers);
     free(g->materials);
-    if (g->material_ubo) {
-        mvr_state_forget_buffer(&r->state, g->material_ubo);
-        gl->DeleteBuffers(1, &g->material_ubo);
-    }
+    mvr_renderer_delete(r, MVR_GL_BUFFER, &g->material_ubo);
+    free(g->downscaled);
     memset(g, 0, sizeof *g);
 }

@@ -150,7 +150,7 @@ static mvr_result upload_compacted(mvr_renderer *r, const mvr_view_chunk *chunks
 /* Sends the per-draw blocks and lights into the ring's static region: only
  * when the frame was rebuilt (a transform, material, geometry or the origin
  * changed) or the ring was replaced. */
-static void upload_static(mvr_renderer *r)
+static mvr_result upload_static(mvr_renderer *r)
 {
     const mvr_gl_api_table *gl = r->gl;
     mvr_frame *f = &r->frame;
@@ -164,13 +164,17 @@ static void upload_static(mvr_renderer *r)
     uint32_t light_count = f->light_counts[0] + f->light_counts[1] + f->light_counts[2];
     GLsizeiptr lights_size = (GLsizeiptr)light_count * MVR_LIGHT_BLOCK_SIZE;
     GLsizeiptr rel_lights = align_up(draw_bytes, align);
-    mvr_ring_reserve_static(r, align_up(rel_lights + lights_size, align) + align);
+    bool reallocated = false;
+    mvr_result res = mvr_ring_reserve_static(r, align_up(rel_lights + lights_size, align) + align, &reallocated);
+    if (res != MVR_OK)
+        return res;
     gl->BindBuffer(GL_UNIFORM_BUFFER, r->ring.buffer);
     if (draw_bytes)
         gl->BufferSubData(GL_UNIFORM_BUFFER, 0, draw_bytes, f->draw_blocks);
     if (lights_size)
         gl->BufferSubData(GL_UNIFORM_BUFFER, rel_lights, lights_size, f->light_blocks);
     r->upload_bytes += (uint64_t)draw_bytes + (uint64_t)lights_size;
+    return MVR_OK;
 }
 
 static mvr_result upload_frame(mvr_renderer *r, const mvr_view_set *views, const mvr_target *t,
@@ -210,14 +214,15 @@ static mvr_result upload_frame(mvr_renderer *r, const mvr_view_set *views, const
     GLsizeiptr rel_shadow_block = align_up(rel_shadow_views + (GLsizeiptr)VIEW_BLOCK_SIZE, align);
     if (plan->layer_count)
         total = rel_shadow_block + (GLsizeiptr)MVR_SHADOW_BLOCK_SIZE;
-    if (!static_current)
-        upload_static(r);
-    bool reallocated = false;
-    mvr_result res = mvr_ring_begin_frame(r, total, &reallocated);
+    mvr_result res = static_current ? MVR_OK : upload_static(r);
     if (res != MVR_OK)
         return res;
-    if (reallocated) /* a new buffer: its static region is empty */
-        upload_static(r);
+    bool reallocated = false;
+    res = mvr_ring_begin_frame(r, total, &reallocated);
+    if (res == MVR_OK && reallocated) /* a new buffer: its static region is empty */
+        res = upload_static(r);
+    if (res != MVR_OK)
+        return res;
     r->frame_key.valid = true;
     GLintptr seg = r->ring.static_size + (GLintptr)r->ring.current * r->ring.segment_size;
     lay->views = seg;

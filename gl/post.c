@@ -188,9 +188,8 @@ static mvr_result measure(mvr_renderer *r, mvr_target *t, const mvr_view_chunk *
             measured[layer] = isfinite(px[0]) && px[1] > 1e-4f;
             mean_log2[layer] = measured[layer] ? px[0] / px[1] : 0.0;
         }
-    return mvr_gl_check(r->ctx, "auto-exposure reduction", true) == MVR_OK
-               ? MVR_OK
-               : mvr_renderer_fail(r, MVR_ERROR_GL, "%s", mvr_context_last_error(r->ctx));
+    res = mvr_gl_check(r->ctx, "auto-exposure reduction", true);
+    return res == MVR_OK ? MVR_OK : mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
 }
 
 mvr_result mvr_post_run(mvr_renderer *r, mvr_target *t, const mvr_view_set *views, const mvr_render_desc *d,

@@ -20,7 +20,15 @@ typedef struct mvr_provider_ops {
     void *(*get_proc)(const char *name, void *provider);
     /* Fills the provider's part of the caps (EGL vendor, version, device). */
     void (*describe)(mvr_provider *provider, mvr_caps *caps);
+    /* Whether the provider's context is current on the calling thread. */
+    bool (*is_current)(const mvr_provider *provider);
 } mvr_provider_ops;
+
+/* EGL's current context for a client API (EGL_OPENGL_ES_API, EGL_OPENGL_API)
+ * on the calling thread, or NULL; the thread's bound API is left as it was. */
+void *mvr_egl_current_context(unsigned api);
+/* eglQueryAPI(): the client API bound on the calling thread. */
+unsigned mvr_egl_bound_api(void);
 
 /* NULL where the provider is not built. */
 const mvr_provider_ops *mvr_provider_egl_ops(void);

@@ -355,6 +355,32 @@ static void *egl_get_proc(const char *name, void *user)
     return p->gl_library ? dlsym(p->gl_library, name) : NULL;
 }
 
+void *mvr_egl_current_context(unsigned api)
+{
+    /* EGL keeps one current context per client API and thread: ask for the
+     * given one, then give back the application's binding untouched */
+    EGLenum bound = eglQueryAPI();
+    if (bound == (EGLenum)api)
+        return eglGetCurrentContext();
+    if (!eglBindAPI((EGLenum)api))
+        return NULL;
+    EGLContext current = eglGetCurrentContext();
+    if (bound != EGL_NONE)
+        eglBindAPI(bound);
+    return current;
+}
+
+unsigned mvr_egl_bound_api(void)
+{
+    return (unsigned)eglQueryAPI();
+}
+
+static bool egl_is_current(const mvr_provider *p)
+{
+    return p->context != EGL_NO_CONTEXT &&
+           mvr_egl_current_context(p->api == MVR_GL_API_DESKTOP ? EGL_OPENGL_API : EGL_OPENGL_ES_API) == p->context;
+}
+
 static void egl_describe(mvr_provider *p, mvr_caps *caps)
 {
     mvr_str_copy(caps->egl_vendor, sizeof caps->egl_vendor, eglQueryString(p->display, EGL_VENDOR));
@@ -369,6 +395,7 @@ static const mvr_provider_ops egl_ops = {
     .make_current = egl_make_current,
     .get_proc = egl_get_proc,
     .describe = egl_describe,
+    .is_current = egl_is_current,
 };
 
 const mvr_provider_ops *mvr_provider_egl_ops(void)

@@ -95,12 +95,18 @@ static void osmesa_describe(mvr_provider *p, mvr_caps *caps)
     caps->egl_vendor[0] = caps->egl_version[0] = caps->egl_device[0] = '\0';
 }
 
+static bool osmesa_is_current(const mvr_provider *p)
+{
+    return OSMesaGetCurrentContext() == p->context;
+}
+
 static const mvr_provider_ops osmesa_ops = {
     .create = osmesa_create,
     .destroy = osmesa_destroy,
     .make_current = osmesa_make_current,
     .get_proc = osmesa_get_proc,
     .describe = osmesa_describe,
+    .is_current = osmesa_is_current,
 };
 
 const mvr_provider_ops *mvr_provider_osmesa_ops(void)

@@ -86,12 +86,76 @@ mvr_result mvr_renderer_fail(mvr_renderer *r, mvr_result result, const char *fmt
     va_start(ap, fmt);
     mvr_error_record(r->last_error, sizeof r->last_error, &r->logger, result, fmt, ap);
     va_end(ap);
+    r->failures++;
     return result;
 }
 
 const char *mvr_renderer_last_error(const mvr_renderer *r)
 {
     return r ? r->last_error : "mvr_renderer_last_error: renderer is NULL";
+}
+
+const char *mvr_oversized_image_name(mvr_oversized_image policy)
+{
+    switch (policy) {
+    case MVR_OVERSIZED_IMAGE_DEFAULT: return "default";
+    case MVR_OVERSIZED_IMAGE_DOWNSCALE: return "downscale";
+    case MVR_OVERSIZED_IMAGE_REFUSE: return "refuse";
+    }
+    return NULL;
+}
+
+mvr_result mvr_renderer_begin(mvr_renderer *r, const char *where)
+{
+    if (!r->ctx)
+        return mvr_renderer_fail(r, MVR_ERROR_CONTEXT, "%s: the renderer's context was destroyed", where);
+    mvr_result res = mvr_context_begin(r->ctx, where);
+    if (res != MVR_OK)
+        return mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
+    return MVR_OK;
+}
+
+mvr_result mvr_renderer_end(mvr_renderer *r, const char *where, mvr_result res)
+{
+    /* always drained, so a failed call leaves no error behind either */
+    mvr_result checked = mvr_gl_check(r->ctx, where, true);
+    if (res == MVR_OK && checked != MVR_OK)
+        res = mvr_renderer_fail(r, checked, "%s", mvr_context_last_error(r->ctx));
+    return res;
+}
+
+mvr_result mvr_renderer_check_alloc(mvr_renderer *r, const char *fmt, ...)
+{
+    char what[256];
+    va_list ap;
+    va_start(ap, fmt);
+    mvr_str_vformat(what, sizeof what, fmt, ap);
+    va_end(ap);
+    mvr_result res = mvr_gl_check(r->ctx, what, true);
+    if (res != MVR_OK)
+        return mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
+    return MVR_OK;
+}
+
+void mvr_renderer_delete(mvr_renderer *r, mvr_gl_object kind, GLuint *name)
+{
+    if (!*name)
+        return;
+    switch (kind) {
+    case MVR_GL_TEXTURE: mvr_state_forget_texture(&r->state, *name); break;
+    case MVR_GL_BUFFER: mvr_state_forget_buffer(&r->state, *name); break;
+    case MVR_GL_FRAMEBUFFER: mvr_state_forget_framebuffer(&r->state, *name); break;
+    case MVR_GL_VERTEX_ARRAY: mvr_state_forget_vao(&r->state, *name); break;
+    case MVR_GL_PROGRAM: mvr_state_forget_program(&r->state, *name); break;
+    case MVR_GL_RENDERBUFFER:
+    case MVR_GL_SAMPLER:
+    case MVR_GL_QUERY:
+    case MVR_GL_SYNC:
+        break;
+    }
+    if (r->ctx)
+        mvr_context_delete(r->ctx, kind, *name);
+    *name = 0;
 }
 
 /* MVR_VIEW_PATH=loop|multiview|auto overrides the descriptor (tests, benchmarks). */
@@ -162,6 +226,12 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
         return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
                              "mvr_renderer_create: material_path %d is not an mvr_material_path",
                              (int)desc->material_path);
+    if (!mvr_oversized_image_name(desc->oversized_images))
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
+                             "mvr_renderer_create: oversized_images %d is not an mvr_oversized_image",
+                             (int)desc->oversized_images);
+    if (mvr_context_begin(desc->context, "mvr_renderer_create") != MVR_OK)
+        return mvr_error_set(error, MVR_ERROR_CONTEXT, "%s", mvr_context_last_error(desc->context));
     mvr_renderer *r = calloc(1, sizeof *r);
     if (!r)
         return mvr_error_set(error, MVR_ERROR_OUT_OF_MEMORY, "mvr_renderer_create: out of memory");
@@ -173,6 +243,11 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
     r->force_inert_features = env_is("MVR_FORCE_FEATURES", "inert");
     r->culling = !desc->disable_culling && !env_is("MVR_CULLING", "off");
     r->blend_policy = desc->transparency_order;
+    r->oversized_images = desc->oversized_images == MVR_OVERSIZED_IMAGE_DEFAULT ? MVR_OVERSIZED_IMAGE_DOWNSCALE
+                                                                                : desc->oversized_images;
+    /* linked first: every failure below goes through mvr_renderer_destroy */
+    r->next_in_context = r->ctx->renderers;
+    r->ctx->renderers = r;
     const mvr_caps *c = &r->ctx->caps;
     r->reversed_z = depth_mode == MVR_DEPTH_MODE_AUTO ? clip_control : depth_mode == MVR_DEPTH_MODE_REVERSED_Z;
     r->ubo_alignment = (uint32_t)(c->limits.uniform_buffer_offset_alignment > 0
@@ -189,16 +264,16 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
     uint32_t cap = (uint32_t)c->limits.max_uniform_block_size / MVR_MATERIAL_BLOCK_SIZE;
     r->material_capacity = cap > MVR_SHADER_MAX_MATERIAL_CAPACITY ? MVR_SHADER_MAX_MATERIAL_CAPACITY : cap;
     if (r->material_capacity == 0) {
-        free(r);
+        int max_block = c->limits.max_uniform_block_size;
+        mvr_renderer_destroy(r);
         return mvr_error_set(error, MVR_ERROR_UNSUPPORTED,
-                             "mvr_renderer_create: GL_MAX_UNIFORM_BLOCK_SIZE %d holds no material",
-                             c->limits.max_uniform_block_size);
+                             "mvr_renderer_create: GL_MAX_UNIFORM_BLOCK_SIZE %d holds no material", max_block);
     }
     if (desc->program_cache_dir && desc->program_cache_dir[0]) {
         size_t n = strlen(desc->program_cache_dir);
         r->program_cache_dir = malloc(n + 1);
         if (!r->program_cache_dir) {
-            free(r);
+            mvr_renderer_destroy(r);
             return mvr_error_set(error, MVR_ERROR_OUT_OF_MEMORY, "mvr_renderer_create: out of memory");
         }
         memcpy(r->program_cache_dir, desc->program_cache_dir, n + 1);
@@ -217,9 +292,9 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
     r->draw_capacity = instancing && draw_cap > 1 ? draw_cap : 1;
     mvr_state_init(&r->state, r->gl, false);
     timer_init(r);
-    mvr_result res = mvr_gl_check(r->ctx, "mvr_renderer_create", false);
+    mvr_result res = mvr_renderer_end(r, "mvr_renderer_create", MVR_OK);
     if (res != MVR_OK) {
-        mvr_error_set(error, res, "%s", mvr_context_last_error(r->ctx));
+        mvr_error_set(error, res, "%s", r->last_error);
         mvr_renderer_destroy(r);
         return res;
     }
@@ -227,32 +302,69 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
     return MVR_OK;
 }
 
+/* Every GL object of the renderer and of its targets, through
+ * mvr_renderer_delete (now, later, or never once the context is gone); the
+ * targets are detached. Memory stays: a later destroy frees it. */
+static void release_gl(mvr_renderer *r)
+{
+    while (r->targets) {
+        mvr_target *t = r->targets;
+        mvr_target_release_gl(t);
+        r->targets = t->next;
+        t->next = NULL;
+        t->renderer = NULL;
+    }
+    mvr_shadows_release(r);
+    mvr_renderer_delete(r, MVR_GL_SAMPLER, &r->nearest_sampler);
+    mvr_gpu_scene_release(r);
+    for (uint32_t i = 0; i < r->program_count; ++i)
+        mvr_renderer_delete(r, MVR_GL_PROGRAM, &r->programs[i].program);
+    for (int i = 0; i < MVR_RING_SEGMENTS; ++i) {
+        if (r->ctx)
+            mvr_context_delete_sync(r->ctx, r->ring.fences[i]);
+        r->ring.fences[i] = 0;
+    }
+    mvr_renderer_delete(r, MVR_GL_BUFFER, &r->ring.buffer);
+    r->ring.static_size = r->ring.segment_size = 0;
+    if (r->timer.timestamps)
+        for (int i = 0; i < 2; ++i)
+            mvr_renderer_delete(r, MVR_GL_QUERY, &r->timer.queries[i]);
+    r->timer.timestamps = r->timer.pending = false;
+    mvr_renderer_delete(r, MVR_GL_VERTEX_ARRAY, &r->empty_vao);
+    r->frame_key.valid = false;
+}
+
+static void unlink_from_context(mvr_renderer *r)
+{
+    if (!r->ctx)
+        return;
+    for (mvr_renderer **p = &r->ctx->renderers; *p; p = &(*p)->next_in_context)
+        if (*p == r) {
+            *p = r->next_in_context;
+            break;
+        }
+    r->next_in_context = NULL;
+}
+
+void mvr_renderer_context_destroyed(mvr_renderer *r)
+{
+    release_gl(r);
+    unlink_from_context(r);
+    r->ctx = NULL;
+    r->gl = NULL;
+}
+
 void mvr_renderer_destroy(mvr_renderer *r)
 {
     if (!r)
         return;
-    const mvr_gl_api_table *gl = r->gl;
-    mvr_shadows_release(r);
-    if (r->nearest_sampler)
-        gl->DeleteSamplers(1, &r->nearest_sampler);
-    mvr_gpu_scene_release(r);
-    for (uint32_t i = 0; i < r->program_count; ++i)
-        gl->DeleteProgram(r->programs[i].program);
+    release_gl(r);
+    unlink_from_context(r);
     free(r->programs);
-    for (int i = 0; i < MVR_RING_SEGMENTS; ++i)
-        if (r->ring.fences[i])
-            gl->DeleteSync(r->ring.fences[i]);
-    if (r->ring.buffer)
-        gl->DeleteBuffers(1, &r->ring.buffer);
-
-    if (r->timer.timestamps)
-        gl->DeleteQueries(2, r->timer.queries);
     mvr_frame_free(&r->frame);
     mvr_visibility_free(&r->vis);
     free(r->program_cache_dir);
     free(r->compact_scratch);
-    if (r->empty_vao)
-        r->gl->DeleteVertexArrays(1, &r->empty_vao);
     free(r->blend_order);
     free(r);
 }
@@ -336,8 +448,8 @@ mvr_result mvr_renderer_program(mvr_renderer *r, const mvr_shader_variant *v, mv
 
 /* Replaces the ring buffer with one of the given region sizes. The old
  * buffer may still be read by queued draws; GL keeps it alive until they
- * finish, so deleting it here is safe. */
-static void ring_allocate(mvr_renderer *r, GLsizeiptr static_size, GLsizeiptr segment_size)
+ * finish, so deleting it here is safe. On failure the ring is empty. */
+static mvr_result ring_allocate(mvr_renderer *r, GLsizeiptr static_size, GLsizeiptr segment_size)
 {
     const mvr_gl_api_table *gl = r->gl;
     mvr_ring *ring = &r->ring;
@@ -346,17 +458,22 @@ static void ring_allocate(mvr_renderer *r, GLsizeiptr static_size, GLsizeiptr se
             gl->DeleteSync(ring->fences[i]);
         ring->fences[i] = 0;
     }
-    if (ring->buffer) {
-        mvr_state_forget_buffer(&r->state, ring->buffer);
-        gl->DeleteBuffers(1, &ring->buffer);
-    }
+    mvr_renderer_delete(r, MVR_GL_BUFFER, &ring->buffer);
+    r->frame_key.valid = false; /* the static region is empty now */
+    GLsizeiptr total = static_size + segment_size * MVR_RING_SEGMENTS;
     gl->GenBuffers(1, &ring->buffer);
     gl->BindBuffer(GL_UNIFORM_BUFFER, ring->buffer);
-    gl->BufferData(GL_UNIFORM_BUFFER, static_size + segment_size * MVR_RING_SEGMENTS, NULL, GL_DYNAMIC_DRAW);
+    gl->BufferData(GL_UNIFORM_BUFFER, total, NULL, GL_DYNAMIC_DRAW);
+    mvr_result res = mvr_renderer_check_alloc(r, "uniform ring buffer (%lld bytes)", (long long)total);
+    if (res != MVR_OK) {
+        mvr_renderer_delete(r, MVR_GL_BUFFER, &ring->buffer);
+        ring->static_size = ring->segment_size = 0;
+        return res;
+    }
     ring->static_size = static_size;
     ring->segment_size = segment_size;
     ring->current = 0;
-    r->frame_key.valid = false; /* the static region is empty now */
+    return MVR_OK;
 }
 
 static GLsizeiptr grown(GLsizeiptr have, GLsizeiptr need)
@@ -367,12 +484,13 @@ static GLsizeiptr grown(GLsizeiptr have, GLsizeiptr need)
     return v;
 }
 
-bool mvr_ring_reserve_static(mvr_renderer *r, GLsizeiptr size)
+mvr_result mvr_ring_reserve_static(mvr_renderer *r, GLsizeiptr size, bool *reallocated)
 {
+    *reallocated = false;
     if (r->ring.buffer && size <= r->ring.static_size)
-        return false;
-    ring_allocate(r, grown(r->ring.static_size, size), r->ring.segment_size ? r->ring.segment_size : 64 * 1024);
-    return true;
+        return MVR_OK;
+    *reallocated = true;
+    return ring_allocate(r, grown(r->ring.static_size, size), r->ring.segment_size ? r->ring.segment_size : 64 * 1024);
 }
 
 mvr_result mvr_ring_begin_frame(mvr_renderer *r, GLsizeiptr size, bool *reallocated)
@@ -381,7 +499,9 @@ mvr_result mvr_ring_begin_frame(mvr_renderer *r, GLsizeiptr size, bool *realloca
     mvr_ring *ring = &r->ring;
     *reallocated = false;
     if (!ring->buffer || size > ring->segment_size) {
-        ring_allocate(r, ring->static_size, grown(ring->segment_size, size));
+        mvr_result res = ring_allocate(r, ring->static_size, grown(ring->segment_size, size));
+        if (res != MVR_OK)
+            return res;
         *reallocated = true;
     } else {
         ring->current = (ring->current + 1) % MVR_RING_SEGMENTS;
@@ -448,7 +568,11 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
         return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "mvr_renderer_render: NULL scene, views or target");
     if (target->renderer != r)
         return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT,
-                                 "mvr_renderer_render: the target belongs to another renderer");
+                                 target->renderer ? "mvr_renderer_render: the target belongs to another renderer"
+                                                  : "mvr_renderer_render: the target was released with its renderer "
+                                                    "or context");
+    if (!r->ctx)
+        return mvr_renderer_fail(r, MVR_ERROR_CONTEXT, "mvr_renderer_render: the renderer's context was destroyed");
     uint32_t layers = target->desc.layers;
     if (views->count > layers)
         return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT,
@@ -499,6 +623,10 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
                                  "only mip level 0 with multiview (the target is level %u)",
                                  r->ctx->caps.renderer, target->desc.external_level);
 
+    /* the last check: nothing above touched GL or the renderer's state */
+    mvr_result res = mvr_renderer_begin(r, "mvr_renderer_render");
+    if (res != MVR_OK)
+        return res;
     double cpu_start = thread_cpu_ms();
     /* the application or another renderer may have changed GL state since */
     mvr_state_invalidate(&r->state);
@@ -516,7 +644,8 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
         mvr_state_draw_framebuffer(&r->state, 0); /* never time with a multiview FBO bound */
         r->gl->QueryCounter(r->timer.queries[0], GL_TIMESTAMP_EXT);
     }
-    mvr_result res = mvr_gpu_scene_sync(r, scene);
+    uint32_t failures = r->failures;
+    res = mvr_gpu_scene_sync(r, scene);
     if (res == MVR_OK)
         res = mvr_renderer_draw_frame(r, scene, views, target, &d, path);
     if (r->timer.timestamps) {
@@ -524,9 +653,8 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
         r->gl->QueryCounter(r->timer.queries[1], GL_TIMESTAMP_EXT);
         r->timer.pending = res == MVR_OK;
     }
-    if (res == MVR_OK)
-        res = mvr_gl_check(r->ctx, "mvr_renderer_render", false);
-    if (res != MVR_OK && !r->last_error[0])
+    res = mvr_renderer_end(r, "mvr_renderer_render", res);
+    if (res != MVR_OK && r->failures == failures) /* failed where only the context kept the message */
         mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
 
     mvr_frame_stats *st = &r->stats;
@@ -547,6 +675,7 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
     st->depth_mode = r->reversed_z ? MVR_DEPTH_MODE_REVERSED_Z : MVR_DEPTH_MODE_STANDARD;
     st->material_path = r->material_path;
     st->texture_groups = r->gpu.arrays ? r->gpu.plan.group_count : 0;
+    st->images_downscaled = r->gpu.downscaled_count;
     st->cpu_ms = thread_cpu_ms() - cpu_start;
     return res;
 }
@@ -555,7 +684,9 @@ void mvr_renderer_get_stats(mvr_renderer *r, mvr_frame_stats *out)
 {
     if (!r || !out)
         return;
-    if (r->timer.pending) {
+    /* the timer result is read only with the renderer's context current (else kept for later) */
+    if (r->timer.pending && r->ctx && mvr_context_is_current(r->ctx) &&
+        mvr_context_begin(r->ctx, "mvr_renderer_get_stats") == MVR_OK) {
         GLuint64 t0 = 0, t1 = 0;
         GLint disjoint = 0;
         r->gl->GetQueryObjectui64v(r->timer.queries[0], GL_QUERY_RESULT, &t0);
@@ -564,6 +695,8 @@ void mvr_renderer_get_stats(mvr_renderer *r, mvr_frame_stats *out)
             r->gl->GetIntegerv(GL_GPU_DISJOINT_EXT, &disjoint);
         r->stats.gpu_ms = (!disjoint && t1 >= t0) ? (double)(t1 - t0) * 1e-6 : -1.0;
         r->timer.pending = false;
+        /* a void call: an error of its own is logged, not left for the next call to blame on the application */
+        mvr_gl_check(r->ctx, "mvr_renderer_get_stats", true);
     }
     *out = r->stats;
 }
@@ -616,8 +749,11 @@ mvr_result mvr_renderer_finish(mvr_renderer *r)
 {
     if (!r)
         return MVR_ERROR_INVALID_ARGUMENT;
+    mvr_result res = mvr_renderer_begin(r, "mvr_renderer_finish");
+    if (res != MVR_OK)
+        return res;
     r->gl->Finish();
-    return mvr_gl_check(r->ctx, "mvr_renderer_finish", false);
+    return mvr_renderer_end(r, "mvr_renderer_finish", MVR_OK);
 }
 
 mvr_result mvr_renderer_read_layer(mvr_renderer *r, mvr_target *t, uint32_t layer,
@@ -626,7 +762,10 @@ mvr_result mvr_renderer_read_layer(mvr_renderer *r, mvr_target *t, uint32_t laye
     if (!r)
         return MVR_ERROR_INVALID_ARGUMENT;
     if (!t || !dst || t->renderer != r)
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "mvr_renderer_read_layer: bad target or buffer");
+        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT,
+                                 t && dst && !t->renderer
+                                     ? "mvr_renderer_read_layer: the target was released with its renderer or context"
+                                     : "mvr_renderer_read_layer: bad target or buffer");
     if (layer >= t->desc.layers)
         return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT,
                                  "mvr_renderer_read_layer: layer %u of %u", layer, t->desc.layers);
@@ -637,12 +776,15 @@ mvr_result mvr_renderer_read_layer(mvr_renderer *r, mvr_target *t, uint32_t laye
     if (size < need)
         return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT,
                                  "mvr_renderer_read_layer: buffer of %zu bytes, %zu needed", size, need);
+    mvr_result res = mvr_renderer_begin(r, "mvr_renderer_read_layer");
+    if (res != MVR_OK)
+        return res;
     mvr_state_invalidate(&r->state);
     /* One layer attached alone: reading from a multiview framebuffer is an error. */
     GLuint fbo = 0;
-    mvr_result res = mvr_target_output_framebuffer(t, layer, 0, &fbo);
+    res = mvr_target_output_framebuffer(t, layer, 0, &fbo);
     if (res != MVR_OK)
-        return res;
+        return mvr_renderer_end(r, "mvr_renderer_read_layer", res);
     const mvr_gl_api_table *gl = r->gl;
     mvr_state_read_framebuffer(&r->state, fbo);
     gl->ReadBuffer(GL_COLOR_ATTACHMENT0);
@@ -655,7 +797,9 @@ mvr_result mvr_renderer_read_layer(mvr_renderer *r, mvr_target *t, uint32_t laye
         /* float storage read as bytes: GLES reads float buffers as FLOAT only */
         float *tmp = malloc(pixels * 4 * sizeof *tmp);
         if (!tmp)
-            return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "mvr_renderer_read_layer: out of memory");
+            return mvr_renderer_end(r, "mvr_renderer_read_layer",
+                                    mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY,
+                                                      "mvr_renderer_read_layer: out of memory"));
         gl->ReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, tmp);
         uint8_t *out = dst;
         for (size_t i = 0; i < pixels * 4; ++i) {
@@ -667,7 +811,9 @@ mvr_result mvr_renderer_read_layer(mvr_renderer *r, mvr_target *t, uint32_t laye
         /* 8-bit storage read as floats: normalized */
         uint8_t *tmp = malloc(pixels * 4);
         if (!tmp)
-            return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "mvr_renderer_read_layer: out of memory");
+            return mvr_renderer_end(r, "mvr_renderer_read_layer",
+                                    mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY,
+                                                      "mvr_renderer_read_layer: out of memory"));
         gl->ReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, tmp);
         float *out = dst;
         for (size_t i = 0; i < pixels * 4; ++i)
@@ -675,7 +821,5 @@ mvr_result mvr_renderer_read_layer(mvr_renderer *r, mvr_target *t, uint32_t laye
         free(tmp);
     }
     gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
-    return mvr_gl_check(r->ctx, "mvr_renderer_read_layer", true) == MVR_OK
-               ? MVR_OK
-               : mvr_renderer_fail(r, MVR_ERROR_GL, "%s", mvr_context_last_error(r->ctx));
+    return mvr_renderer_end(r, "mvr_renderer_read_layer", MVR_OK);
 }

@@ -48,7 +48,10 @@ typedef struct mvr_gpu_material {
     GLuint samplers[5];
 } mvr_gpu_material;
 
-/* What the renderer has uploaded of one scene. */
+/* What the renderer has uploaded of one scene. `scene` is an identity (with
+ * its serial: a new scene at a freed one's address has another serial),
+ * dereferenced only during the render that passed it in: a scene may be
+ * destroyed between renders. */
 typedef struct mvr_gpu_scene {
     const mvr_scene *scene;
     uint64_t scene_serial;
@@ -68,6 +71,10 @@ typedef struct mvr_gpu_scene {
     GLuint material_ubo;
     uint32_t material_pages;
     GLsizeiptr material_page_stride; /* bytes between pages (aligned) */
+    /* images stored smaller than the scene's (too large for the GL): one
+     * flag per scene image, and how many are set */
+    uint8_t *downscaled;
+    uint32_t downscaled_cap, downscaled_count;
 } mvr_gpu_scene;
 
 /* Uniform data of one frame goes into one segment of a ring buffer; a fence
@@ -92,7 +99,8 @@ typedef struct mvr_fbo_entry {
 } mvr_fbo_entry;
 
 struct mvr_target {
-    mvr_renderer *renderer;
+    mvr_renderer *renderer;      /* NULL once the renderer (or its context) is destroyed */
+    mvr_target *next;            /* in renderer->targets */
     mvr_target_desc desc;
     GLenum internal_format;
     GLuint color, depth;
@@ -144,10 +152,14 @@ typedef struct mvr_shadow_maps {
 } mvr_shadow_maps;
 
 struct mvr_renderer {
-    mvr_context *ctx;
-    const mvr_gl_api_table *gl;
+    mvr_context *ctx;            /* NULL once the context is destroyed: calls fail, destroy frees */
+    const mvr_gl_api_table *gl;  /* &ctx->gl */
+    mvr_renderer *next_in_context; /* in ctx->renderers */
+    mvr_target *targets;         /* alive targets: detached when the renderer goes */
+    mvr_oversized_image oversized_images; /* resolved: never DEFAULT */
     mvr_logger logger;
     char last_error[MVR_ERROR_MESSAGE_SIZE];
+    uint32_t failures;           /* calls of mvr_renderer_fail (did a step record its message?) */
     mvr_view_path requested_path;
     mvr_material_path material_path; /* resolved: never AUTO */
     bool reversed_z;
@@ -199,6 +211,23 @@ struct mvr_renderer {
 
 mvr_result mvr_renderer_fail(mvr_renderer *r, mvr_result result, const char *fmt, ...) MVR_PRINTF(3, 4);
 
+/* Every public call that touches GL starts with begin (the renderer's
+ * context alive and current, the application's pending GL errors dropped)
+ * and ends with end, which fails the call if mvr's own work left a GL error
+ * (release builds too), so no call returns MVR_OK with one pending. */
+mvr_result mvr_renderer_begin(mvr_renderer *r, const char *where);
+mvr_result mvr_renderer_end(mvr_renderer *r, const char *where, mvr_result res);
+
+/* After a GL allocation (storage of a texture, buffer or renderbuffer, or a
+ * framebuffer's attachments): fails naming the object (printf-style), with
+ * MVR_ERROR_OUT_OF_MEMORY for GL_OUT_OF_MEMORY, else MVR_ERROR_GL. */
+mvr_result mvr_renderer_check_alloc(mvr_renderer *r, const char *fmt, ...) MVR_PRINTF(2, 3);
+
+/* Deletes a GL object of the renderer's (forgotten by the state cache) and
+ * zeroes *name: now when the context is current, later when it is not,
+ * never once the context is gone. */
+void mvr_renderer_delete(mvr_renderer *r, mvr_gl_object kind, GLuint *name);
+
 /* A mesh variant as this renderer's blocks lay out: features, views (0 =
  * loop), its material table and per-draw block sizes; no lights. */
 mvr_shader_variant mvr_renderer_mesh_variant(const mvr_renderer *r, uint32_t features, uint32_t num_views);
@@ -229,6 +258,8 @@ mvr_result mvr_target_luminance_framebuffer(mvr_target *t, int kind, uint32_t ba
  * [base, base + count) are drawn into (count > 1), or (count 0) one
  * multisampled layer to resolve from (the array mode). */
 mvr_result mvr_target_msaa_framebuffer(mvr_target *t, uint32_t base, uint32_t count, GLuint *out);
+/* Releases the target's GL objects (mvr_renderer_delete) and keeps its memory. */
+void mvr_target_release_gl(mvr_target *t);
 /* The size views are drawn at: the layer size times the supersample factor. */
 uint32_t mvr_target_factor(const mvr_target *t);
 
@@ -281,8 +312,9 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
  * aligned to the GL's uniform buffer offset alignment. Sets *reallocated when
  * the buffer was replaced (the static region's contents are then gone). */
 mvr_result mvr_ring_begin_frame(mvr_renderer *r, GLsizeiptr size, bool *reallocated);
-/* Makes the static region at least `size` bytes (reallocating the ring). */
-bool mvr_ring_reserve_static(mvr_renderer *r, GLsizeiptr size);
+/* Makes the static region at least `size` bytes (reallocating the ring;
+ * *reallocated says so). */
+mvr_result mvr_ring_reserve_static(mvr_renderer *r, GLsizeiptr size, bool *reallocated);
 void mvr_ring_end_frame(mvr_renderer *r);
 
 #endif

@@ -52,23 +52,13 @@ void mvr_shadows_plan(mvr_renderer *r, const mvr_view_set *views, const mvr_targ
 void mvr_shadows_release(mvr_renderer *r)
 {
     mvr_shadow_maps *sm = &r->shadows;
-    const mvr_gl_api_table *gl = r->gl;
-    for (uint32_t i = 0; i < sm->fbo_count; ++i) {
-        mvr_state_forget_framebuffer(&r->state, sm->fbos[i].fbo);
-        gl->DeleteFramebuffers(1, &sm->fbos[i].fbo);
-    }
+    for (uint32_t i = 0; i < sm->fbo_count; ++i)
+        mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &sm->fbos[i].fbo);
     sm->fbo_count = 0;
-    GLuint textures[2] = {sm->depth, sm->color};
-    for (int i = 0; i < 2; ++i)
-        if (textures[i]) {
-            mvr_state_forget_texture(&r->state, textures[i]);
-            gl->DeleteTextures(1, &textures[i]);
-        }
-    sm->depth = sm->color = 0;
+    mvr_renderer_delete(r, MVR_GL_TEXTURE, &sm->depth);
+    mvr_renderer_delete(r, MVR_GL_TEXTURE, &sm->color);
     sm->size = sm->layers = 0;
-    if (sm->sampler)
-        gl->DeleteSamplers(1, &sm->sampler);
-    sm->sampler = 0;
+    mvr_renderer_delete(r, MVR_GL_SAMPLER, &sm->sampler);
 }
 
 /* The arrays, (re)made when the size changes or more layers are needed. */
@@ -83,9 +73,18 @@ static mvr_result ensure_maps(mvr_renderer *r, uint32_t size, uint32_t layers)
     gl->GenTextures(1, &sm->depth);
     mvr_state_texture(&r->state, MVR_UNIT_SHADOW_MAP, GL_TEXTURE_2D_ARRAY, sm->depth);
     gl->TexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_DEPTH_COMPONENT32F, (GLsizei)size, (GLsizei)size, (GLsizei)layers);
-    gl->GenTextures(1, &sm->color);
-    mvr_state_texture(&r->state, MVR_UNIT_SHADOW_MAP, GL_TEXTURE_2D_ARRAY, sm->color);
-    gl->TexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_R8, (GLsizei)size, (GLsizei)size, (GLsizei)layers);
+    mvr_result res = mvr_renderer_check_alloc(r, "shadow map depth array (%ux%u, %u layers, depth32f)", size, size,
+                                              layers);
+    if (res == MVR_OK) {
+        gl->GenTextures(1, &sm->color);
+        mvr_state_texture(&r->state, MVR_UNIT_SHADOW_MAP, GL_TEXTURE_2D_ARRAY, sm->color);
+        gl->TexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_R8, (GLsizei)size, (GLsizei)size, (GLsizei)layers);
+        res = mvr_renderer_check_alloc(r, "shadow map color array (%ux%u, %u layers, r8)", size, size, layers);
+    }
+    if (res != MVR_OK) {
+        mvr_shadows_release(r); /* made again, whole, by the next frame that asks */
+        return res;
+    }
     gl->GenSamplers(1, &sm->sampler);
     /* linear + comparison: the GL's bilinear 2x2 PCF per tap */
     gl->SamplerParameteri(sm->sampler, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
@@ -98,10 +97,6 @@ static mvr_result ensure_maps(mvr_renderer *r, uint32_t size, uint32_t layers)
     sm->layers = layers;
     sm->compare = compare;
     r->upload_bytes += (uint64_t)size * size * layers * 5u;
-    mvr_result res = mvr_gl_check(r->ctx, "shadow map arrays", true);
-    if (res != MVR_OK)
-        return mvr_renderer_fail(r, res, "shadow maps (%u x %u x %u): %s", size, size, layers,
-                                 mvr_context_last_error(r->ctx));
     return MVR_OK;
 }
 
@@ -139,8 +134,10 @@ static mvr_result shadow_framebuffer(mvr_renderer *r, uint32_t base, uint32_t co
     mvr_result res = mvr_gl_check(r->ctx, where, true);
     if (res == MVR_OK)
         res = mvr_gl_check_framebuffer(r->ctx, GL_DRAW_FRAMEBUFFER, where);
-    if (res != MVR_OK)
+    if (res != MVR_OK) {
+        mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &sm->fbos[--sm->fbo_count].fbo);
         return mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
+    }
     *out = fbo;
     return MVR_OK;
 }

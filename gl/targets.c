@@ -33,15 +33,23 @@ static mvr_result make_msaa(mvr_target *t)
     gl->GenRenderbuffers(1, &t->msaa_color);
     gl->BindRenderbuffer(GL_RENDERBUFFER, t->msaa_color);
     gl->RenderbufferStorageMultisample(GL_RENDERBUFFER, n, t->internal_format, w, h);
+    mvr_result res = mvr_renderer_check_alloc(r, "mvr_target_create: multisampled color renderbuffer (%dx%d %s, %d "
+                                              "samples)", w, h, mvr_color_format_name(t->desc.color_format), n);
+    if (res != MVR_OK)
+        return res;
     gl->GenRenderbuffers(1, &t->msaa_depth);
     gl->BindRenderbuffer(GL_RENDERBUFFER, t->msaa_depth);
     gl->RenderbufferStorageMultisample(GL_RENDERBUFFER, n, GL_DEPTH_COMPONENT32F, w, h);
     gl->BindRenderbuffer(GL_RENDERBUFFER, 0);
+    res = mvr_renderer_check_alloc(r, "mvr_target_create: multisampled depth renderbuffer (%dx%d depth32f, %d samples)",
+                                   w, h, n);
+    if (res != MVR_OK)
+        return res;
     gl->GenFramebuffers(1, &t->msaa_fbo);
     mvr_state_draw_framebuffer(&r->state, t->msaa_fbo);
     gl->FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t->msaa_color);
     gl->FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t->msaa_depth);
-    mvr_result res = mvr_gl_check(r->ctx, "multisampled framebuffer", true);
+    res = mvr_gl_check(r->ctx, "multisampled framebuffer", true);
     if (res == MVR_OK)
         res = mvr_gl_check_framebuffer(r->ctx, GL_DRAW_FRAMEBUFFER, "multisampled framebuffer");
     if (res != MVR_OK)
@@ -123,14 +131,70 @@ static mvr_result make_msaa_multiview(mvr_target *t)
     gl->TexStorage3DMultisample(GL_TEXTURE_2D_MULTISAMPLE_ARRAY, n, GL_DEPTH_COMPONENT32F, w, h, layers, GL_TRUE);
     mvr_result res = mvr_gl_check(r->ctx, "multisampled arrays", true);
     if (res != MVR_OK) {
-        /* the probe passed for RGBA8; this format may not: per view instead */
+        /* the probe passed for RGBA8; this format (or this much memory) may
+         * not: per view instead, with the renderbuffers made already */
         mvr_log(&r->logger, MVR_LOG_INFO, MVR_LOG_ID_GENERAL,
                 "mvr: no multisampled %s array here (%s): MSAA resolves view by view",
                 mvr_color_format_name(t->desc.color_format), mvr_context_last_error(r->ctx));
+        mvr_renderer_delete(r, MVR_GL_TEXTURE, &t->msaa_array_color);
+        mvr_renderer_delete(r, MVR_GL_TEXTURE, &t->msaa_array_depth);
         return MVR_OK;
     }
     t->msaa_multiview = MVR_MSAA_MV_ARRAY;
     return MVR_OK;
+}
+
+/* A failure after mvr_renderer_begin: recorded, and no GL error left behind. */
+static mvr_result fail_create(mvr_renderer *r, mvr_result result, const char *fmt, ...) MVR_PRINTF(3, 4);
+static mvr_result fail_create(mvr_renderer *r, mvr_result result, const char *fmt, ...)
+{
+    char message[MVR_ERROR_MESSAGE_SIZE];
+    va_list ap;
+    va_start(ap, fmt);
+    mvr_str_vformat(message, sizeof message, fmt, ap);
+    va_end(ap);
+    return mvr_renderer_end(r, "mvr_target_create", mvr_renderer_fail(r, result, "%s", message));
+}
+
+/* One layered array of the target: storage checked, the failure naming it. */
+static mvr_result make_array(mvr_target *t, GLuint *name, const char *what, GLenum format, const char *format_name,
+                             uint32_t width, uint32_t height)
+{
+    mvr_renderer *r = t->renderer;
+    const mvr_gl_api_table *gl = r->gl;
+    gl->GenTextures(1, name);
+    mvr_state_texture(&r->state, 0, GL_TEXTURE_2D_ARRAY, *name);
+    gl->TexStorage3D(GL_TEXTURE_2D_ARRAY, 1, format, (GLsizei)width, (GLsizei)height, (GLsizei)t->desc.layers);
+    double mib = (double)width * height * t->desc.layers * (format == GL_RGBA32F ? 16 : format == GL_RGBA16F ? 8 : 4) /
+                 (1024.0 * 1024.0);
+    return mvr_renderer_check_alloc(r, "%s (%ux%u, %u layers, %s, %.1f %s)", what, width, height,
+                                    t->desc.layers, format_name, mib >= 1024.0 ? mib / 1024.0 : mib,
+                                    mib >= 1024.0 ? "GiB" : "MiB");
+}
+
+/* The color (unless the application's), supersampled and depth arrays. */
+static mvr_result make_arrays(mvr_target *t, uint32_t factor, GLenum ss_format)
+{
+    const mvr_target_desc *desc = &t->desc;
+    mvr_result res = MVR_OK;
+    if (desc->external_color_texture) {
+        t->color = desc->external_color_texture;
+    } else {
+        t->owns_color = true;
+        res = make_array(t, &t->color, "mvr_target_create: color array", t->internal_format,
+                         mvr_color_format_name(desc->color_format), desc->width, desc->height);
+    }
+    /* linear float samples: the resolve averages light, then encodes */
+    if (res == MVR_OK && factor > 1) {
+        t->ss_format = ss_format;
+        res = make_array(t, &t->ss_color, "mvr_target_create: supersampled color array", ss_format,
+                         ss_format == GL_RGBA32F ? "rgba32f" : "rgba16f", desc->width * factor, desc->height * factor);
+    }
+    /* depth: 32-bit float (reversed-Z keeps its precision with distance) */
+    if (res == MVR_OK)
+        res = make_array(t, &t->depth, "mvr_target_create: depth array", GL_DEPTH_COMPONENT32F, "depth32f",
+                         desc->width * factor, desc->height * factor);
+    return res;
 }
 
 mvr_result mvr_target_create(mvr_renderer *r, const mvr_target_desc *d, mvr_target **out)
@@ -140,6 +204,8 @@ mvr_result mvr_target_create(mvr_renderer *r, const mvr_target_desc *d, mvr_targ
     if (!d || !out)
         return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "mvr_target_create: NULL argument");
     *out = NULL;
+    if (!r->ctx)
+        return mvr_renderer_fail(r, MVR_ERROR_CONTEXT, "mvr_target_create: the renderer's context was destroyed");
     const mvr_caps *c = &r->ctx->caps;
     mvr_target_desc desc = *d;
     if (desc.layers == 0)
@@ -164,70 +230,56 @@ mvr_result mvr_target_create(mvr_renderer *r, const mvr_target_desc *d, mvr_targ
         (desc.color_format == MVR_COLOR_FORMAT_RGBA32F && !c->ext.ext_color_buffer_float))
         return mvr_renderer_fail(r, MVR_ERROR_UNSUPPORTED, "mvr_target_create: %s is not renderable on %s",
                                  mvr_color_format_name(desc.color_format), c->renderer);
+    mvr_result res = mvr_renderer_begin(r, "mvr_target_create");
+    if (res != MVR_OK)
+        return res;
     if (!mvr_color_format_name(desc.color_format) || !resolve_anti_aliasing(r, &desc))
-        return mvr_renderer_fail(r, MVR_ERROR_INTERNAL, "mvr_target_create: anti-aliasing");
+        return fail_create(r, MVR_ERROR_INTERNAL, "mvr_target_create: anti-aliasing");
     if (desc.supersample > 4 || (desc.supersample > 1 && desc.samples > 1))
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT,
-                                 "mvr_target_create: supersample %u (1..4, and not with samples)", desc.supersample);
+        return fail_create(r, MVR_ERROR_INVALID_ARGUMENT,
+                           "mvr_target_create: supersample %u (1..4, and not with samples)", desc.supersample);
     uint32_t factor = desc.supersample > 1 ? desc.supersample : 1;
     if ((uint64_t)desc.width * factor > (uint64_t)c->limits.max_texture_size ||
         (uint64_t)desc.height * factor > (uint64_t)c->limits.max_texture_size)
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT,
-                                 "mvr_target_create: %ux%u supersampled %u times exceeds GL_MAX_TEXTURE_SIZE %d",
-                                 desc.width, desc.height, factor, c->limits.max_texture_size);
+        return fail_create(r, MVR_ERROR_INVALID_ARGUMENT,
+                           "mvr_target_create: %ux%u supersampled %u times exceeds GL_MAX_TEXTURE_SIZE %d",
+                           desc.width, desc.height, factor, c->limits.max_texture_size);
     GLenum ss_format = desc.color_format == MVR_COLOR_FORMAT_RGBA32F || !c->ext.ext_color_buffer_half_float
                            ? GL_RGBA32F : GL_RGBA16F;
     if (factor > 1 && ss_format == GL_RGBA32F && !c->ext.ext_color_buffer_float)
-        return mvr_renderer_fail(r, MVR_ERROR_UNSUPPORTED,
-                                 "mvr_target_create: supersampling needs a renderable float format on %s", c->renderer);
+        return fail_create(r, MVR_ERROR_UNSUPPORTED,
+                           "mvr_target_create: supersampling needs a renderable float format on %s", c->renderer);
     if (desc.samples > 1 && desc.samples > (uint32_t)c->limits.max_samples)
-        return mvr_renderer_fail(r, MVR_ERROR_UNSUPPORTED, "mvr_target_create: %u samples; GL_MAX_SAMPLES is %d",
-                                 desc.samples, c->limits.max_samples);
+        return fail_create(r, MVR_ERROR_UNSUPPORTED, "mvr_target_create: %u samples; GL_MAX_SAMPLES is %d",
+                           desc.samples, c->limits.max_samples);
     if (!desc.external_color_texture && (desc.external_level || desc.external_base_layer))
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT,
-                                 "mvr_target_create: external_level / external_base_layer need an external texture");
+        return fail_create(r, MVR_ERROR_INVALID_ARGUMENT,
+                           "mvr_target_create: external_level / external_base_layer need an external texture");
     mvr_target *t = calloc(1, sizeof *t);
     if (!t)
-        return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "mvr_target_create: out of memory");
+        return fail_create(r, MVR_ERROR_OUT_OF_MEMORY, "mvr_target_create: out of memory");
     t->renderer = r;
     t->desc = desc;
+    /* linked first: a failure below releases through mvr_target_destroy */
+    t->next = r->targets;
+    r->targets = t;
     mvr_state_invalidate(&r->state);
     t->internal_format = gl_color_format(desc.color_format);
-    const mvr_gl_api_table *gl = r->gl;
-    if (desc.external_color_texture) {
-        t->color = desc.external_color_texture;
-    } else {
-        gl->GenTextures(1, &t->color);
-        mvr_state_texture(&r->state, 0, GL_TEXTURE_2D_ARRAY, t->color);
-        gl->TexStorage3D(GL_TEXTURE_2D_ARRAY, 1, t->internal_format, (GLsizei)desc.width,
-                         (GLsizei)desc.height, (GLsizei)desc.layers);
-        t->owns_color = true;
-    }
-    if (factor > 1) {
-        /* linear float samples: the resolve averages light, then encodes */
-        t->ss_format = ss_format;
-        gl->GenTextures(1, &t->ss_color);
-        mvr_state_texture(&r->state, 0, GL_TEXTURE_2D_ARRAY, t->ss_color);
-        gl->TexStorage3D(GL_TEXTURE_2D_ARRAY, 1, ss_format, (GLsizei)(desc.width * factor),
-                         (GLsizei)(desc.height * factor), (GLsizei)desc.layers);
-    }
-    /* depth: 32-bit float (reversed-Z keeps its precision with distance) */
-    gl->GenTextures(1, &t->depth);
-    mvr_state_texture(&r->state, 0, GL_TEXTURE_2D_ARRAY, t->depth);
-    gl->TexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_DEPTH_COMPONENT32F, (GLsizei)(desc.width * factor),
-                     (GLsizei)(desc.height * factor), (GLsizei)desc.layers);
-    if (mvr_gl_check(r->ctx, "mvr_target_create", true) != MVR_OK) {
-        mvr_result res = mvr_renderer_fail(r, MVR_ERROR_GL, "%s (external texture %u: a %s 2D array of at "
-                                           "least %ux%u and %llu layers?)",
-                                           mvr_context_last_error(r->ctx), desc.external_color_texture,
-                                           mvr_color_format_name(desc.color_format), desc.width,
-                                           desc.height, (unsigned long long)last_layer);
-        mvr_target_destroy(t);
-        return res;
-    }
+    res = make_arrays(t, factor, ss_format);
     /* an application texture of the wrong kind shows up as an incomplete FBO */
     GLuint fbo = 0;
-    mvr_result res = mvr_target_framebuffer(t, 0, 0, &fbo);
+    if (res == MVR_OK) {
+        res = mvr_target_framebuffer(t, 0, 0, &fbo);
+        if (res != MVR_OK && desc.external_color_texture) {
+            char why[MVR_ERROR_MESSAGE_SIZE];
+            mvr_str_copy(why, sizeof why, r->last_error);
+            res = mvr_renderer_fail(r, res,
+                                    "%s (external texture %u: a %s 2D array of at least %ux%u and %llu layers?)",
+                                    why, desc.external_color_texture,
+                                    mvr_color_format_name(desc.color_format), desc.width, desc.height,
+                                    (unsigned long long)last_layer);
+        }
+    }
     if (res == MVR_OK && desc.samples > 1)
         res = make_msaa(t);
     if (res == MVR_OK && desc.samples > 1)
@@ -235,6 +287,7 @@ mvr_result mvr_target_create(mvr_renderer *r, const mvr_target_desc *d, mvr_targ
     t->anti_aliasing = desc.samples > 1       ? MVR_ANTI_ALIASING_MSAA
                        : desc.supersample > 1 ? MVR_ANTI_ALIASING_SUPERSAMPLE
                                               : MVR_ANTI_ALIASING_NONE;
+    res = mvr_renderer_end(r, "mvr_target_create", res);
     if (res != MVR_OK) {
         mvr_target_destroy(t);
         return res;
@@ -243,44 +296,40 @@ mvr_result mvr_target_create(mvr_renderer *r, const mvr_target_desc *d, mvr_targ
     return MVR_OK;
 }
 
+void mvr_target_release_gl(mvr_target *t)
+{
+    mvr_renderer *r = t->renderer;
+    for (uint32_t i = 0; i < t->fbo_count; ++i)
+        mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &t->fbos[i].fbo);
+    t->fbo_count = 0;
+    if (t->owns_color)
+        mvr_renderer_delete(r, MVR_GL_TEXTURE, &t->color);
+    GLuint *textures[] = {&t->depth, &t->ss_color, &t->msaa_array_color, &t->msaa_array_depth, &t->hdr_color, &t->lum};
+    for (size_t i = 0; i < MVR_ARRAY_COUNT(textures); ++i)
+        mvr_renderer_delete(r, MVR_GL_TEXTURE, textures[i]);
+    mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &t->msaa_fbo);
+    mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &t->msaa_hdr_fbo);
+    mvr_renderer_delete(r, MVR_GL_RENDERBUFFER, &t->msaa_color);
+    mvr_renderer_delete(r, MVR_GL_RENDERBUFFER, &t->msaa_depth);
+    mvr_renderer_delete(r, MVR_GL_RENDERBUFFER, &t->msaa_hdr_color);
+    t->msaa_multiview = MVR_MSAA_MV_NONE;
+    t->lum_levels = 0;
+}
+
 void mvr_target_destroy(mvr_target *t)
 {
     if (!t)
         return;
     mvr_renderer *r = t->renderer;
-    const mvr_gl_api_table *gl = r->gl;
-    for (uint32_t i = 0; i < t->fbo_count; ++i) {
-        mvr_state_forget_framebuffer(&r->state, t->fbos[i].fbo);
-        gl->DeleteFramebuffers(1, &t->fbos[i].fbo);
+    if (r) {
+        mvr_target_release_gl(t);
+        for (mvr_target **p = &r->targets; *p; p = &(*p)->next)
+            if (*p == t) {
+                *p = t->next;
+                break;
+            }
     }
     free(t->fbos);
-    if (t->owns_color) {
-        mvr_state_forget_texture(&r->state, t->color);
-        gl->DeleteTextures(1, &t->color);
-    }
-    mvr_state_forget_texture(&r->state, t->depth);
-    gl->DeleteTextures(1, &t->depth);
-    if (t->ss_color) {
-        mvr_state_forget_texture(&r->state, t->ss_color);
-        gl->DeleteTextures(1, &t->ss_color);
-    }
-    if (t->msaa_fbo) {
-        mvr_state_forget_framebuffer(&r->state, t->msaa_fbo);
-        gl->DeleteFramebuffers(1, &t->msaa_fbo);
-    }
-    gl->DeleteRenderbuffers(1, &t->msaa_color);
-    gl->DeleteRenderbuffers(1, &t->msaa_depth);
-    if (t->msaa_hdr_fbo) {
-        mvr_state_forget_framebuffer(&r->state, t->msaa_hdr_fbo);
-        gl->DeleteFramebuffers(1, &t->msaa_hdr_fbo);
-    }
-    gl->DeleteRenderbuffers(1, &t->msaa_hdr_color);
-    GLuint arrays[4] = {t->msaa_array_color, t->msaa_array_depth, t->hdr_color, t->lum};
-    for (int i = 0; i < 4; ++i)
-        if (arrays[i]) {
-            mvr_state_forget_texture(&r->state, arrays[i]);
-            gl->DeleteTextures(1, &arrays[i]);
-        }
     free(t);
 }
 
@@ -339,15 +388,19 @@ static mvr_result fbo_find_or_create(mvr_target *t, mvr_fbo_entry key, GLuint *o
     return MVR_OK;
 }
 
-/* After attaching: no GL error and a complete framebuffer, or a message naming where. */
+/* After attaching the framebuffer fbo_find_or_create made last: no GL error
+ * and a complete framebuffer, or a message naming where (and the framebuffer
+ * leaves the cache, so a later lookup never finds it). */
 static mvr_result fbo_check(mvr_target *t, const char *where)
 {
     mvr_renderer *r = t->renderer;
     mvr_result res = mvr_gl_check(r->ctx, where, true);
     if (res == MVR_OK)
         res = mvr_gl_check_framebuffer(r->ctx, GL_DRAW_FRAMEBUFFER, where);
-    if (res != MVR_OK)
+    if (res != MVR_OK) {
+        mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &t->fbos[--t->fbo_count].fbo);
         return mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
+    }
     return MVR_OK;
 }
 
@@ -432,26 +485,38 @@ mvr_result mvr_target_ensure_hdr(mvr_target *t)
             return mvr_renderer_fail(r, MVR_ERROR_UNSUPPORTED,
                                      "HDR frame (tone mapping, physical exposure or dithering): %s renders to no "
                                      "half-float format", r->ctx->caps.renderer);
-        gl->GenTextures(1, &t->hdr_color);
-        mvr_state_texture(&r->state, 0, GL_TEXTURE_2D_ARRAY, t->hdr_color);
-        gl->TexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_RGBA16F, w, h, (GLsizei)t->desc.layers);
+        mvr_result res = make_array(t, &t->hdr_color, "the target's HDR color array", GL_RGBA16F, "rgba16f",
+                                    t->desc.width, t->desc.height);
+        if (res != MVR_OK) {
+            mvr_renderer_delete(r, MVR_GL_TEXTURE, &t->hdr_color); /* made again by the next HDR frame */
+            return res;
+        }
     }
     if (t->desc.samples > 1 && !t->msaa_hdr_fbo) {
-        gl->GenRenderbuffers(1, &t->msaa_hdr_color);
-        gl->BindRenderbuffer(GL_RENDERBUFFER, t->msaa_hdr_color);
-        gl->RenderbufferStorageMultisample(GL_RENDERBUFFER, (GLsizei)t->desc.samples, GL_RGBA16F, w, h);
-        gl->BindRenderbuffer(GL_RENDERBUFFER, 0);
+        if (!t->msaa_hdr_color) {
+            gl->GenRenderbuffers(1, &t->msaa_hdr_color);
+            gl->BindRenderbuffer(GL_RENDERBUFFER, t->msaa_hdr_color);
+            gl->RenderbufferStorageMultisample(GL_RENDERBUFFER, (GLsizei)t->desc.samples, GL_RGBA16F, w, h);
+            gl->BindRenderbuffer(GL_RENDERBUFFER, 0);
+            mvr_result res = mvr_renderer_check_alloc(r, "multisampled HDR renderbuffer (%dx%d rgba16f, %u samples)",
+                                                      w, h, t->desc.samples);
+            if (res != MVR_OK) {
+                mvr_renderer_delete(r, MVR_GL_RENDERBUFFER, &t->msaa_hdr_color);
+                return res;
+            }
+        }
         gl->GenFramebuffers(1, &t->msaa_hdr_fbo);
         mvr_state_draw_framebuffer(&r->state, t->msaa_hdr_fbo);
         gl->FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t->msaa_hdr_color);
         gl->FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t->msaa_depth);
-        mvr_result res = mvr_gl_check_framebuffer(r->ctx, GL_DRAW_FRAMEBUFFER, "multisampled HDR framebuffer");
-        if (res != MVR_OK)
+        mvr_result res = mvr_gl_check(r->ctx, "multisampled HDR framebuffer", true);
+        if (res == MVR_OK)
+            res = mvr_gl_check_framebuffer(r->ctx, GL_DRAW_FRAMEBUFFER, "multisampled HDR framebuffer");
+        if (res != MVR_OK) {
+            mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &t->msaa_hdr_fbo);
             return mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
+        }
     }
-    mvr_result res = mvr_gl_check(r->ctx, "HDR color array", true);
-    if (res != MVR_OK)
-        return mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
     return MVR_OK;
 }
 
@@ -470,6 +535,12 @@ mvr_result mvr_target_luminance_framebuffer(mvr_target *t, int kind, uint32_t ba
         mvr_state_texture(&r->state, 0, GL_TEXTURE_2D_ARRAY, t->lum);
         gl->TexStorage3D(GL_TEXTURE_2D_ARRAY, (GLsizei)levels, GL_RG16F, (GLsizei)t->desc.width,
                          (GLsizei)t->desc.height, (GLsizei)t->desc.layers);
+        mvr_result res = mvr_renderer_check_alloc(r, "auto-exposure luminance array (%ux%u, %u layers, rg16f, %u mips)",
+                                                  t->desc.width, t->desc.height, t->desc.layers, levels);
+        if (res != MVR_OK) {
+            mvr_renderer_delete(r, MVR_GL_TEXTURE, &t->lum);
+            return res;
+        }
         t->lum_levels = levels;
     }
     mvr_fbo_entry key = {.base = base, .count = count, .aux = (uint8_t)kind};

@@ -34,7 +34,8 @@ typedef enum mvr_result {
     MVR_ERROR_OUT_OF_MEMORY,
     MVR_ERROR_UNSUPPORTED,      /* the build, driver or GL lacks what was asked for */
     MVR_ERROR_NO_DISPLAY,       /* no EGL display / device / platform could be opened */
-    MVR_ERROR_CONTEXT,          /* context creation or make-current failed */
+    MVR_ERROR_CONTEXT,          /* context creation or make-current failed; or a call's context is not
+                                   current on this thread, or was destroyed */
     MVR_ERROR_GL,               /* the GL reported an error (glGetError) */
     MVR_ERROR_SHADER,           /* a shader failed to compile or a program to link */
     MVR_ERROR_FRAMEBUFFER,      /* a framebuffer is incomplete */
@@ -119,6 +120,9 @@ const char *mvr_gl_api_name(mvr_gl_api api);
 
 /* Returns the address of a GL entry point, or NULL (external provider). */
 typedef void *(*mvr_get_proc_fn)(const char *name, void *user_data);
+/* True when the application's context (external provider) is current on the
+ * calling thread. */
+typedef bool (*mvr_is_current_fn)(void *user_data);
 
 typedef struct mvr_context_desc {
     mvr_context_provider provider;
@@ -135,6 +139,13 @@ typedef struct mvr_context_desc {
     mvr_get_proc_fn get_proc_address;
     void *get_proc_user_data;
     mvr_logger logger;
+    /* EXTERNAL: how mvr tells, before it touches GL, that the application's
+     * context is the current one. NULL: where an EGL context was current at
+     * create time mvr compares eglGetCurrentContext() with it; elsewhere
+     * (GLX, WGL, ...) the GL offers no identity to compare, so mvr trusts
+     * the caller and only checks that some context answers glGetString. */
+    mvr_is_current_fn is_current;
+    void *is_current_user_data;
 } mvr_context_desc;
 
 /*
@@ -145,9 +156,13 @@ typedef struct mvr_context_desc {
  */
 mvr_result mvr_context_create(const mvr_context_desc *desc, mvr_context **out_context,
                               mvr_error *out_error);
-/* Releases what mvr created (EXTERNAL: nothing of the application's). NULL is fine. */
+/* Releases what mvr created (EXTERNAL: nothing of the application's). NULL is
+ * fine, and so are renderers and targets still alive: they are detached (see
+ * "Lifetimes and the current context" below). */
 void mvr_context_destroy(mvr_context *context);
-/* Makes the context current on this thread (EXTERNAL: checks that one is current). */
+/* Makes the context current on this thread (EXTERNAL: checks that it is
+ * current, as is_current says). The only call besides mvr_context_create
+ * that changes the thread's current context. */
 mvr_result mvr_context_make_current(mvr_context *context);
 /* The message of the last failed call on this object; "" when none failed. */
 const char *mvr_context_last_error(const mvr_context *context);
@@ -545,6 +560,23 @@ typedef enum mvr_tone_map {
     MVR_TONE_MAP_KHR_PBR_NEUTRAL /* Khronos PBR Neutral */
 } mvr_tone_map;
 
+/* Images the GL cannot hold: larger than GL_MAX_TEXTURE_SIZE, or whose
+ * texture (with its mip chain; on the array path, its texture array with the
+ * other layers of its group) the GL refuses with GL_OUT_OF_MEMORY. Both
+ * material paths decide the same way; the array path may halve further when
+ * its array's other layers are what does not fit. */
+typedef enum mvr_oversized_image {
+    MVR_OVERSIZED_IMAGE_DEFAULT = 0, /* downscale */
+    /* halved (both sides, a box filter in linear light for sRGB roles) until
+     * the GL holds it; logged as a warning naming the image, counted in
+     * mvr_frame_stats.images_downscaled */
+    MVR_OVERSIZED_IMAGE_DOWNSCALE,
+    /* the render fails (MVR_ERROR_UNSUPPORTED over GL_MAX_TEXTURE_SIZE,
+     * MVR_ERROR_OUT_OF_MEMORY on GL_OUT_OF_MEMORY) naming the image */
+    MVR_OVERSIZED_IMAGE_REFUSE
+} mvr_oversized_image;
+const char *mvr_oversized_image_name(mvr_oversized_image policy);
+
 typedef struct mvr_renderer_desc {
     mvr_context *context;        /* required; the renderer draws with it */
     mvr_view_path view_path;
@@ -566,9 +598,38 @@ typedef struct mvr_renderer_desc {
     bool disable_instancing;
     mvr_depth_mode depth_mode;   /* env MVR_DEPTH=reversed_z|standard overrides */
     mvr_transparency_order transparency_order;
+    mvr_oversized_image oversized_images;
 } mvr_renderer_desc;
 
+/*
+ * Lifetimes and the current context.
+ * - A renderer draws with its context, and only while that context is
+ *   current on the calling thread: every call that touches GL (create,
+ *   render, read, finish, target create) checks first and otherwise fails
+ *   with MVR_ERROR_CONTEXT, changing nothing, so the next call with the
+ *   right context current works as if the failed one never happened. mvr
+ *   never makes a context current by itself; only mvr_context_create (its
+ *   own new context) and mvr_context_make_current do. How the current
+ *   context is recognised: eglGetCurrentContext() (EGL providers),
+ *   OSMesaGetCurrentContext() (OSMesa), the desc's is_current callback or
+ *   the adopted EGL context (EXTERNAL; else the caller is trusted).
+ * - Contexts, renderers, targets and scenes may be destroyed in any order.
+ *   Destroying a context detaches its renderers, and destroying a renderer
+ *   its targets: what is detached keeps only its memory, its calls fail
+ *   (MVR_ERROR_CONTEXT, MVR_ERROR_INVALID_ARGUMENT) and its destroy frees it.
+ *   GL objects are deleted while their context is current; an object
+ *   destroyed while another context is current is deleted by the next call
+ *   that finds its context current (or goes with the context). Scenes hold
+ *   no GL: a renderer keeps nothing of a scene between renders but an
+ *   identity, so a scene may be destroyed at any time.
+ * - No call returns MVR_OK while a GL error from its own work is pending:
+ *   a failed allocation (texture, buffer, renderbuffer, framebuffer) fails
+ *   the call that made it (MVR_ERROR_OUT_OF_MEMORY for GL_OUT_OF_MEMORY)
+ *   with a message naming the object. GL errors already pending when a call
+ *   starts are the application's: logged as such (a warning) and dropped.
+ */
 mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out, mvr_error *out_error);
+/* NULL is fine. Its targets stay valid to destroy (they are detached). */
 void mvr_renderer_destroy(mvr_renderer *renderer);
 const char *mvr_renderer_last_error(const mvr_renderer *renderer);
 
@@ -626,9 +687,14 @@ typedef struct mvr_target_desc {
     mvr_anti_aliasing anti_aliasing;
 } mvr_target_desc;
 
+/* Allocates the target's arrays and framebuffers; any the GL refuses fails
+ * the call (MVR_ERROR_OUT_OF_MEMORY for GL_OUT_OF_MEMORY, MVR_ERROR_FRAMEBUFFER
+ * for an incomplete framebuffer) with a message on the renderer naming it. */
 mvr_result mvr_target_create(mvr_renderer *renderer, const mvr_target_desc *desc, mvr_target **out);
+/* NULL is fine; so is a target whose renderer is gone (frees its memory). */
 void mvr_target_destroy(mvr_target *target);
-/* The GL name of the color array (the application's, or mvr's). */
+/* The GL name of the color array (the application's, or mvr's; 0 once mvr's
+ * was released with its renderer). */
 uint32_t mvr_target_color_texture(const mvr_target *target);
 
 typedef enum mvr_shadow_mode {
@@ -773,6 +839,8 @@ typedef struct mvr_frame_stats {
     uint32_t luminance_passes;   /* auto-exposure log-luminance passes */
     double cpu_ms;               /* submitting thread, render call */
     double gpu_ms;               /* timer queries; < 0 when not available */
+    uint32_t images_downscaled;  /* scene images stored smaller than given: too large for the GL
+                                    (mvr_oversized_image) */
 } mvr_frame_stats;
 
 /* The supersampling resolve: box-filters linear RGBA float pixels (width x
