@@ -135,8 +135,11 @@ read_result file_resolver::read(const std::string &uri, const std::string &what,
     std::string scheme = scheme_of(uri);
     for (char &c : scheme)
         c = char(std::tolower(static_cast<unsigned char>(c)));
-    if (scheme == "data")
-        return read_data_uri(uri, what);
+    if (scheme == "data") {
+        read_result r = read_data_uri(uri, what);
+        r.fresh = true;
+        return r;
+    }
     if (uri.empty())
         refuse(what + " is empty");
     if (!scheme.empty())
@@ -152,13 +155,17 @@ read_result file_resolver::read(const std::string &uri, const std::string &what,
         if (!decoded.empty() && (decoded[0] == '/' || decoded[0] == '\\'))
             refuse(what + " " + quote(uri) + ": absolute paths are refused (URIs are relative to the asset's folder)");
         r.key = "callback:" + decoded;
-        auto found = cache_.find(r.key);
-        r.data = found != cache_.end() ? found->second : read_callback(decoded, uri, what);
     } else {
         r.key = confine(decoded, uri, what);
-        auto found = cache_.find(r.key);
-        r.data = found != cache_.end() ? found->second : read_file(r.key, uri, what);
     }
+    auto found = cache_.find(r.key);
+    r.fresh = found == cache_.end();
+    if (!r.fresh)
+        r.data = found->second;
+    else if (access_.read)
+        r.data = read_callback(decoded, uri, what);
+    else
+        r.data = read_file(r.key, uri, what);
     if (shared)
         cache_[r.key] = r.data;
     return r;
@@ -247,14 +254,29 @@ std::string file_resolver::confine(const std::string &decoded, const std::string
         inside = inside || under(lexical, root);
     if (!inside)
         refuse(what + " " + quote(uri) + ": the path leaves the asset's folder");
+    // Symbolic links: the real path must stay inside too. One answer for a
+    // link that leads out and for one that leads nowhere, so a refusal never
+    // tells whether a path outside the folder exists.
+    const std::string link_out = ": it goes through a symbolic link that does not resolve inside the asset's folder";
     std::string real = real_path(lexical);
-    if (real.empty())
+    if (real.empty()) {
+        // missing: plainly (no link on the way), or behind a link
+        std::string prefix;
+        for (const auto &p : parts) {
+            prefix += "/" + p;
+            struct stat sb;
+            if (::lstat(prefix.c_str(), &sb) != 0)
+                break;
+            if (S_ISLNK(sb.st_mode))
+                refuse(what + " " + quote(uri) + link_out);
+        }
         throw load_error(MVR_ERROR_IO, what + " " + quote(uri) + ": no such file in the asset's folder");
+    }
     inside = false;
     for (const auto &root : roots_)
         inside = inside || under(real, root);
     if (!inside)
-        refuse(what + " " + quote(uri) + ": a symbolic link leads out of the asset's folder");
+        refuse(what + " " + quote(uri) + link_out);
     return real;
 }
 

@@ -34,6 +34,7 @@ struct read_result {
     shared_bytes data;
     std::string key;
     std::string media_type;
+    bool fresh = false;   // read now (not another URI's bytes shared)
 };
 
 // Percent-decodes (RFC 3986, 2.1); false on a malformed escape, or on a NUL

@@ -81,6 +81,13 @@ struct image_source {
 struct resources {
     std::vector<buffer_source> buffers;
     std::vector<image_source> images;
+    // accessors without a bufferView (zeros): tinygltf 2.7 refuses such an
+    // index accessor, so the pre-pass gives them a placeholder view it drops again
+    std::vector<int> viewless_accessors;
+    bool placeholder_view = false;    // the last bufferView and buffer are the placeholder's
+    // cameras tinygltf would refuse to parse (unknown type, missing fields):
+    // replaced by a placeholder, an error only if a node uses them
+    std::map<int, std::string> bad_cameras;
     const unsigned char *bin = nullptr;   // the GLB's BIN chunk (buffer 0), if any
     uint64_t bin_size = 0;
     bool glb = false;

@@ -16,6 +16,7 @@
 
 extern "C" {
 #include "core_util.h"
+#include "scene_internal.h"
 }
 
 namespace mvr_gltf {
@@ -55,7 +56,7 @@ byte_span context::buffer(int index, const std::string &what)
                    " bytes, byteLength says " + std::to_string(b.byte_length));
         b.owner = r.data;
         b.span = byte_span{r.data->bytes.data(), b.byte_length};
-        ++buffers_read;
+        buffers_read += r.fresh ? 1 : 0;
     }
     b.loaded = true;
     return b.span;
@@ -69,6 +70,14 @@ using tinygltf::Model;
 const std::set<std::string> implemented = {
     "KHR_lights_punctual", "KHR_materials_unlit", "KHR_texture_transform", "KHR_materials_emissive_strength",
     "KHR_mesh_quantization"};
+
+void count_scene_warning(mvr_log_level level, mvr_log_id id, const char *message, void *user)
+{
+    auto *cx = static_cast<context *>(user);
+    if (level == MVR_LOG_WARNING)
+        ++cx->warnings;
+    mvr_log(&cx->logger, level, id, "%s", message);
+}
 
 // tinygltf's file access, never used (it is given no external URI): refused.
 bool refuse_exists(const std::string &, void *)
@@ -372,13 +381,14 @@ struct converter {
 };
 
 // Index list of a primitive in list form: strips, fans and loops converted.
-std::vector<uint32_t> to_list(int mode, const std::vector<uint32_t> &in, mvr_primitive_mode *out_mode)
+// Lists are moved through, not copied (the budget counted them once).
+std::vector<uint32_t> to_list(int mode, std::vector<uint32_t> in, mvr_primitive_mode *out_mode)
 {
     std::vector<uint32_t> out;
     size_t n = in.size();
     switch (mode) {
     case TINYGLTF_MODE_POINTS: *out_mode = MVR_PRIMITIVE_POINTS; return in;
-    case TINYGLTF_MODE_LINE: *out_mode = MVR_PRIMITIVE_LINES; out = in; out.resize(n / 2 * 2); return out;
+    case TINYGLTF_MODE_LINE: *out_mode = MVR_PRIMITIVE_LINES; in.resize(n / 2 * 2); return in;
     case TINYGLTF_MODE_LINE_STRIP:
     case TINYGLTF_MODE_LINE_LOOP:
         *out_mode = MVR_PRIMITIVE_LINES;
@@ -404,9 +414,8 @@ std::vector<uint32_t> to_list(int mode, const std::vector<uint32_t> &in, mvr_pri
         return out;
     default:
         *out_mode = MVR_PRIMITIVE_TRIANGLES;
-        out = in;
-        out.resize(n / 3 * 3);
-        return out;
+        in.resize(n / 3 * 3);
+        return in;
     }
 }
 
@@ -507,11 +516,13 @@ mvr_mesh_id converter::mesh(int index)
             for (size_t i = 0; i < vcount; ++i)
                 idx[i] = uint32_t(i);
         }
-        d.idx = to_list(p.mode, idx, &d.mode);
-        if (d.idx.size() > idx.size()) {
-            cx.mem.charge((d.idx.size() - idx.size()) * sizeof(uint32_t), pw + " (strip / fan as a list)");
-            cx.mesh_bytes += (d.idx.size() - idx.size()) * sizeof(uint32_t);
-        }
+        // strips and fans become lists (up to 3x the indices): charged first
+        uint64_t listed = p.mode == TINYGLTF_MODE_TRIANGLE_STRIP || p.mode == TINYGLTF_MODE_TRIANGLE_FAN ? idx.size() * 3
+                          : p.mode == TINYGLTF_MODE_LINE_STRIP || p.mode == TINYGLTF_MODE_LINE_LOOP ? idx.size() * 2
+                                                                                                       : 0;
+        cx.mem.charge(listed * sizeof(uint32_t), pw + " (strip / fan / loop as a list)");
+        cx.mesh_bytes += listed * sizeof(uint32_t);
+        d.idx = to_list(p.mode, std::move(idx), &d.mode);
         cx.indices = add_checked(cx.indices, d.idx.size(), pw);
         if (cx.indices > cx.limits.max_indices)
             refuse(pw + ": more than " + std::to_string(cx.limits.max_indices) +
@@ -629,6 +640,12 @@ void converter::node(int index, mvr_node_id parent, std::vector<char> &state, ui
     state[size_t(index)] = 2;
 }
 
+std::string cx_bad_camera(const converter &cv, int index)
+{
+    auto found = cv.cx.res.bad_cameras.find(index);
+    return found == cv.cx.res.bad_cameras.end() ? std::string() : found->second;
+}
+
 void convert_cameras_and_lights(converter &cv)
 {
     const Model &m = cv.m;
@@ -638,6 +655,9 @@ void convert_cameras_and_lights(converter &cv)
         try {
         mvr_projection p;
         std::memset(&p, 0, sizeof p);
+        auto bad = cx_bad_camera(cv, int(i));
+        if (!bad.empty())
+            refuse(bad);
         if (c.type == "perspective") {
             p.type = MVR_PROJECTION_PERSPECTIVE;
             p.yfov = c.perspective.yfov;
@@ -743,6 +763,14 @@ mvr_result load(const unsigned char *bytes, size_t size, const std::string &base
                 refuse(err.empty() ? "not a glTF file" : short_message(err));
             if (!warn.empty())
                 cx.warn(short_message(warn));
+            // undo the pre-pass's placeholder view: those accessors are zeros
+            if (cx.res.placeholder_view) {
+                for (int i : cx.res.viewless_accessors)
+                    if (size_t(i) < model.accessors.size())
+                        model.accessors[size_t(i)].bufferView = -1;
+                model.bufferViews.pop_back();
+                model.buffers.pop_back();
+            }
         }
         cx.model = &model;
         for (const auto &e : model.extensionsRequired)
@@ -762,7 +790,11 @@ mvr_result load(const unsigned char *bytes, size_t size, const std::string &base
                    std::to_string(cx.limits.max_nodes) + " (mvr_gltf_options.max_nodes)");
         mvr_scene_desc sd;
         std::memset(&sd, 0, sizeof sd);
-        sd.logger = o.logger;
+        // the scene's warnings (repaired values) count as the load's while it
+        // runs; the scene keeps the caller's logger afterwards
+        sd.logger.fn = count_scene_warning;
+        sd.logger.level = o.logger.level;
+        sd.logger.user_data = &cx;
         mvr_error serr;
         if (mvr_scene_create(&sd, &scene, &serr) != MVR_OK)
             throw load_error(serr.result, serr.message);
@@ -790,6 +822,7 @@ mvr_result load(const unsigned char *bytes, size_t size, const std::string &base
                 if (!child[i])
                     cv.node(int(i), mvr_node_id{0}, state, 0);
         }
+        scene->logger = o.logger;
         if (info) {
             info->warnings = cx.warnings;
             info->camera_nodes = mvr_scene_camera_node_count(scene);

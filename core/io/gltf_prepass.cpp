@@ -133,6 +133,38 @@ std::string type_name(const nlohmann::json &j)
 
 }  // namespace
 
+// What tinygltf 2.7's camera parser would refuse (glTF 2.0, 5.12-5.14: the
+// type's object with its required numbers); "" if nothing.
+static std::string camera_problem(const nlohmann::json &c)
+{
+    if (!c.is_object())
+        return "not an object";
+    auto type = c.find("type");
+    if (type == c.end() || !type->is_string())
+        return "type is missing or not a string";
+    std::string t = type->get<std::string>();
+    if (t != "perspective" && t != "orthographic")
+        return "type " + quote(t) + " is not perspective or orthographic";
+    auto p = c.find(t);
+    if (p == c.end() || !p->is_object())
+        return t + " is missing or not an object";
+    static const char *perspective[] = {"yfov", "znear"};
+    static const char *orthographic[] = {"xmag", "ymag", "zfar", "znear"};
+    const char **req = t == "perspective" ? perspective : orthographic;
+    size_t n = t == "perspective" ? 2 : 4;
+    for (size_t k = 0; k < n; ++k) {
+        auto v = p->find(req[k]);
+        if (v == p->end() || !v->is_number())
+            return t + "." + req[k] + " is missing or not a number";
+    }
+    for (const char *opt : {"aspectRatio", "zfar"}) {
+        auto v = p->find(opt);
+        if (t == "perspective" && v != p->end() && !v->is_number())
+            return t + "." + opt + " is not a number";
+    }
+    return "";
+}
+
 // What tinygltf's model will hold for the top-level arrays: count x sizeof.
 static uint64_t model_bytes(const nlohmann::json &doc)
 {
@@ -231,6 +263,37 @@ std::string extract_resources(const json_text &text, resources &res, uint64_t *m
             if (mime != im.end() && mime->is_string())
                 src.mime_type = mime->get<std::string>();
             im["uri"] = placeholder_image;
+        }
+    }
+    auto accessors = doc.find("accessors");
+    if (accessors != doc.end() && accessors->is_array()) {
+        for (size_t i = 0; i < accessors->size(); ++i) {
+            nlohmann::json &a = (*accessors)[i];
+            if (a.is_object() && a.find("bufferView") == a.end())
+                res.viewless_accessors.push_back(int(i));
+        }
+        if (!res.viewless_accessors.empty()) {
+            nlohmann::json &views = doc["bufferViews"];
+            nlohmann::json &bufs = doc["buffers"];
+            if (!views.is_array())
+                views = nlohmann::json::array();
+            if (!bufs.is_array())
+                bufs = nlohmann::json::array();
+            bufs.push_back({{"byteLength", 1}, {"uri", placeholder_buffer}});
+            views.push_back({{"buffer", bufs.size() - 1}, {"byteLength", 1}});
+            for (int i : res.viewless_accessors)
+                (*accessors)[size_t(i)]["bufferView"] = views.size() - 1;
+            res.placeholder_view = true;
+        }
+    }
+    auto cameras = doc.find("cameras");
+    if (cameras != doc.end() && cameras->is_array()) {
+        for (size_t i = 0; i < cameras->size(); ++i) {
+            std::string why = camera_problem((*cameras)[i]);
+            if (why.empty())
+                continue;
+            res.bad_cameras[int(i)] = "cameras[" + std::to_string(i) + "]: " + why;
+            (*cameras)[i] = {{"type", "perspective"}, {"perspective", {{"yfov", 1.0}, {"znear", 1.0}}}};
         }
     }
     return doc.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
