@@ -9,6 +9,7 @@
 #include <map>
 #include <set>
 
+#include "gltf_convert.hpp"
 #include "gltf_files.hpp"
 #include "gltf_internal.hpp"
 #include "gltf_prepass.hpp"
@@ -62,9 +63,9 @@ byte_span context::buffer(int index, const std::string &what)
     return b.span;
 }
 
-namespace {
-
 using tinygltf::Model;
+
+namespace {
 
 // Extensions mvr implements (a required one outside this list is an error).
 const std::set<std::string> implemented = {
@@ -117,268 +118,6 @@ std::string short_message(std::string m)
 
 // ---- conversions ----
 
-mvr_filter filter_of(int gl, bool min)
-{
-    switch (gl) {
-    case TINYGLTF_TEXTURE_FILTER_NEAREST: return MVR_FILTER_NEAREST;
-    case TINYGLTF_TEXTURE_FILTER_LINEAR: return MVR_FILTER_LINEAR;
-    case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST: return min ? MVR_FILTER_NEAREST_MIPMAP_NEAREST : MVR_FILTER_NEAREST;
-    case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST: return min ? MVR_FILTER_LINEAR_MIPMAP_NEAREST : MVR_FILTER_LINEAR;
-    case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR: return min ? MVR_FILTER_NEAREST_MIPMAP_LINEAR : MVR_FILTER_NEAREST;
-    case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR: return min ? MVR_FILTER_LINEAR_MIPMAP_LINEAR : MVR_FILTER_LINEAR;
-    default: return MVR_FILTER_DEFAULT;
-    }
-}
-
-mvr_wrap wrap_of(int gl)
-{
-    switch (gl) {
-    case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return MVR_WRAP_CLAMP_TO_EDGE;
-    case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return MVR_WRAP_MIRRORED_REPEAT;
-    default: return MVR_WRAP_REPEAT;
-    }
-}
-
-double number(const tinygltf::Value &v, const char *key, double fallback)
-{
-    if (!v.IsObject() || !v.Has(key))
-        return fallback;
-    const tinygltf::Value &n = v.Get(key);
-    return n.IsNumber() ? n.GetNumberAsDouble() : fallback;
-}
-
-struct converter {
-    converter(context &c, mvr_scene *s, const Model &model) : cx(c), scene(s), m(model) {}
-    context &cx;
-    mvr_scene *scene;
-    const Model &m;
-    std::map<int, mvr_image_id> images;      // glTF image -> scene image (0: left out)
-    std::map<std::string, mvr_image_id> decoded;   // source (file, bufferView) -> scene image
-    std::map<int, mvr_material_id> materials;
-    std::map<int, mvr_mesh_id> meshes;
-    std::map<int, mvr_camera_id> cameras;
-    std::map<int, mvr_light_id> lights;
-    bool warned_skin = false, warned_morph = false;
-    bool missing_texture = false;   // set when a texture's image was left out
-    // cameras and lights that failed their checks: an error only if a node uses them
-    std::map<int, std::string> bad_cameras, bad_lights;
-
-    void set_aside(const load_error &e, std::map<int, std::string> &bad, int index)
-    {
-        if (e.result == MVR_ERROR_OUT_OF_MEMORY)
-            throw e;
-        bad[index] = e.what();
-        cx.warn(std::string(e.what()) + "; ignored unless a node uses it");
-    }
-
-    void check(mvr_result r, const std::string &what)
-    {
-        if (r != MVR_OK)
-            throw load_error(r == MVR_ERROR_INVALID_ARGUMENT ? MVR_ERROR_INVALID_ASSET : r,
-                             what + ": " + mvr_scene_last_error(scene));
-    }
-
-    // The scene image of images[index], decoded once (also when several
-    // images name one file). A missing or undecodable image is left out
-    // with a warning (id 0: its textures take the role's default) unless
-    // strict; the budget is never waived.
-    mvr_image_id image(int index, const std::string &what)
-    {
-        auto found = images.find(index);
-        if (found != images.end())
-            return found->second;
-        if (index < 0 || size_t(index) >= cx.res.images.size())
-            refuse(what + ": image " + std::to_string(index) + " does not exist");
-        std::string iname = "images[" + std::to_string(index) + "]";
-        mvr_image_id id = {0};
-        try {
-            id = decode_image(size_t(index), iname);
-        } catch (const load_error &e) {
-            if (e.result == MVR_ERROR_OUT_OF_MEMORY || cx.strict)
-                throw;
-            cx.warn(std::string(e.what()) + "; left out, its textures take their defaults");
-            ++cx.images_missing;
-        }
-        images[index] = id;
-        return id;
-    }
-
-    mvr_image_id decode_image(size_t index, const std::string &iname)
-    {
-        const image_source &src = cx.res.images[index];
-        const unsigned char *bytes = nullptr;
-        uint64_t size = 0;
-        read_result file;
-        std::string key;
-        if (src.buffer_view >= 0) {
-            uint64_t stride = 0;
-            bytes = view_bytes(cx, src.buffer_view, &size, &stride, iname);
-            key = "bufferView:" + std::to_string(src.buffer_view);
-        } else if (src.has_uri) {
-            file = cx.files->read(src.uri, iname + ".uri", false);
-            bytes = file.data->bytes.data();
-            size = file.data->bytes.size();
-            key = file.key;
-        } else {
-            refuse(iname + " has neither a uri nor a bufferView");
-        }
-        auto same = decoded.find(key);
-        if (!key.empty() && same != decoded.end())
-            return same->second;
-        if (size == 0)
-            refuse(iname + ": no image data");
-        const std::string &mime = !src.mime_type.empty() ? src.mime_type : file.media_type;
-        mvr_image_header h;
-        mvr_error err;
-        mvr_result r = mvr_image_probe(bytes, size_t(size), mime.c_str(), &h, &err);
-        if (r != MVR_OK)
-            throw load_error(r == MVR_ERROR_UNSUPPORTED ? r : MVR_ERROR_INVALID_ASSET, iname + ": " + err.message);
-        if (h.width > cx.limits.max_image_dimension || h.height > cx.limits.max_image_dimension)
-            refuse(iname + ": " + std::to_string(h.width) + "x" + std::to_string(h.height) + " is over the cap of " +
-                   std::to_string(cx.limits.max_image_dimension) + " (mvr_gltf_options.max_image_dimension)");
-        if (decoded.size() >= cx.limits.max_images)
-            refuse(iname + ": more than " + std::to_string(cx.limits.max_images) +
-                   " images (mvr_gltf_options.max_images)");
-        // the scene's RGBA8 copy stays; decoding holds the stored channels and
-        // an RGBA8 result besides, until the copy is made
-        uint64_t texels = uint64_t(h.width) * h.height;
-        cx.mem.charge(texels * 4, iname + " (" + std::to_string(h.width) + "x" + std::to_string(h.height) + ")");
-        mvr_image_data pixels;
-        {
-            charged decoding(cx.mem, texels * (4 + uint64_t(h.channels)) + texels * 4, iname + " decoding");
-            if (mvr_image_decode(bytes, size_t(size), mime.c_str(), cx.limits.max_image_dimension, &pixels, &err) !=
-                MVR_OK)
-                throw load_error(err.result == MVR_ERROR_OUT_OF_MEMORY ? err.result : MVR_ERROR_INVALID_ASSET,
-                                 iname + ": " + err.message);
-        }
-        const std::string &name = m.images.size() > index ? m.images[index].name : std::string();
-        mvr_image_desc d = {pixels.width, pixels.height, static_cast<const uint8_t *>(pixels.pixels), name.c_str()};
-        mvr_image_id id = {0};
-        mvr_result added = mvr_scene_add_image(scene, &d, &id);
-        mvr_image_free(&pixels);
-        check(added, iname);
-        ++cx.images_decoded;
-        if (!key.empty())
-            decoded[key] = id;
-        return id;
-    }
-
-    mvr_texture_ref texture(const tinygltf::TextureInfo &info, const std::string &what)
-    {
-        return texture_ref(info.index, info.texCoord, info.extensions, what);
-    }
-
-    mvr_texture_ref texture_ref(int index, int texcoord, const tinygltf::ExtensionMap &ext, const std::string &what)
-    {
-        mvr_texture_ref ref;
-        std::memset(&ref, 0, sizeof ref);
-        if (index < 0)
-            return ref;
-        if (size_t(index) >= m.textures.size())
-            refuse(what + ": texture " + std::to_string(index) + " does not exist (" +
-                   std::to_string(m.textures.size()) + " textures)");
-        const tinygltf::Texture &t = m.textures[size_t(index)];
-        std::string tname = "textures[" + std::to_string(index) + "]";
-        if (t.source < 0) {
-            cx.warn(tname + " has no source image (or only an extension's); " + what + " is left untextured");
-            return ref;
-        }
-        ref.image = image(t.source, tname);
-        if (ref.image.id == 0) {
-            missing_texture = true;
-            return ref;
-        }
-        if (t.sampler >= 0) {
-            if (size_t(t.sampler) >= m.samplers.size())
-                refuse(tname + ": sampler " + std::to_string(t.sampler) + " does not exist");
-            const tinygltf::Sampler &s = m.samplers[size_t(t.sampler)];
-            ref.sampler.mag_filter = filter_of(s.magFilter, false);
-            ref.sampler.min_filter = filter_of(s.minFilter, true);
-            ref.sampler.wrap_s = wrap_of(s.wrapS);
-            ref.sampler.wrap_t = wrap_of(s.wrapT);
-        }
-        ref.texcoord = uint32_t(texcoord);
-        auto tt = ext.find("KHR_texture_transform");
-        if (tt != ext.end()) {
-            const tinygltf::Value &v = tt->second;
-            ref.transform.enabled = true;
-            if (v.Has("offset") && v.Get("offset").IsArray() && v.Get("offset").ArrayLen() == 2) {
-                ref.transform.offset[0] = float(v.Get("offset").Get(0).GetNumberAsDouble());
-                ref.transform.offset[1] = float(v.Get("offset").Get(1).GetNumberAsDouble());
-            }
-            ref.transform.rotation = float(number(v, "rotation", 0.0));
-            ref.transform.scale[0] = ref.transform.scale[1] = 1.0f;
-            if (v.Has("scale") && v.Get("scale").IsArray() && v.Get("scale").ArrayLen() == 2) {
-                ref.transform.scale[0] = float(v.Get("scale").Get(0).GetNumberAsDouble());
-                ref.transform.scale[1] = float(v.Get("scale").Get(1).GetNumberAsDouble());
-            }
-            if (v.Has("texCoord"))
-                ref.texcoord = uint32_t(number(v, "texCoord", texcoord)); /* overrides, per the extension */
-        }
-        if (ref.texcoord > 1) {
-            cx.warn(what + " uses TEXCOORD_" + std::to_string(ref.texcoord) + "; mvr reads sets 0 and 1, so it is left untextured");
-            std::memset(&ref, 0, sizeof ref);
-        }
-        return ref;
-    }
-
-    mvr_material_id material(int index)
-    {
-        auto found = materials.find(index);
-        if (found != materials.end())
-            return found->second;
-        if (size_t(index) >= m.materials.size())
-            refuse("material " + std::to_string(index) + " does not exist (" + std::to_string(m.materials.size()) +
-                   " materials)");
-        const tinygltf::Material &g = m.materials[size_t(index)];
-        std::string w = "materials[" + std::to_string(index) + "]";
-        mvr_material_desc d = mvr_material_defaults();
-        const auto &pbr = g.pbrMetallicRoughness;
-        for (size_t c = 0; c < 4 && c < pbr.baseColorFactor.size(); ++c)
-            d.base_color_factor[c] = float(pbr.baseColorFactor[c]);
-        d.metallic_factor = float(pbr.metallicFactor);
-        d.roughness_factor = float(pbr.roughnessFactor);
-        for (size_t c = 0; c < 3 && c < g.emissiveFactor.size(); ++c)
-            d.emissive_factor[c] = float(g.emissiveFactor[c]);
-        d.base_color = texture(pbr.baseColorTexture, w + ".pbrMetallicRoughness.baseColorTexture");
-        d.metallic_roughness = texture(pbr.metallicRoughnessTexture, w + ".pbrMetallicRoughness.metallicRoughnessTexture");
-        d.normal = texture_ref(g.normalTexture.index, g.normalTexture.texCoord, g.normalTexture.extensions,
-                               w + ".normalTexture");
-        d.normal_scale = float(g.normalTexture.scale);
-        d.occlusion = texture_ref(g.occlusionTexture.index, g.occlusionTexture.texCoord,
-                                  g.occlusionTexture.extensions, w + ".occlusionTexture");
-        d.occlusion_strength = float(g.occlusionTexture.strength);
-        missing_texture = false;
-        d.emissive = texture(g.emissiveTexture, w + ".emissiveTexture");
-        if (missing_texture)
-            d.emissive_factor[0] = d.emissive_factor[1] = d.emissive_factor[2] = 0.0f; /* no emission without its map */
-        if (g.alphaMode == "MASK")
-            d.alpha_mode = MVR_ALPHA_MASK;
-        else if (g.alphaMode == "BLEND")
-            d.alpha_mode = MVR_ALPHA_BLEND;
-        else if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty())
-            refuse(w + ": alphaMode " + quote(g.alphaMode) + " is not OPAQUE, MASK or BLEND");
-        d.alpha_cutoff = float(g.alphaCutoff);
-        if (d.alpha_cutoff == 0.0f)
-            d.alpha_cutoff = 1e-7f; /* a cutoff of 0 is valid glTF; 0 means "default" in mvr */
-        d.double_sided = g.doubleSided;
-        d.unlit = g.extensions.count("KHR_materials_unlit") > 0;
-        auto es = g.extensions.find("KHR_materials_emissive_strength");
-        if (es != g.extensions.end())
-            d.emissive_strength = float(number(es->second, "emissiveStrength", 1.0));
-        if (d.emissive_strength == 0.0f)
-            for (float &e : d.emissive_factor)
-                e = 0.0f; /* strength 0 turns emission off; 0 means "default" in mvr */
-        d.name = g.name.c_str();
-        mvr_material_id id = {0};
-        check(mvr_scene_add_material(scene, &d, &id), w);
-        materials[index] = id;
-        return id;
-    }
-
-    mvr_mesh_id mesh(int index);
-    void node(int index, mvr_node_id parent, std::vector<char> &state, uint32_t depth);
-};
 
 // Index list of a primitive in list form: strips, fans and loops converted.
 // Lists are moved through, not copied (the budget counted them once).
@@ -421,6 +160,8 @@ std::vector<uint32_t> to_list(int mode, std::vector<uint32_t> in, mvr_primitive_
 
 constexpr uint32_t FLOAT = ANY_FLOAT;
 constexpr uint32_t I8 = 1u << 0, U8 = 1u << 1, I16 = 1u << 2, U16 = 1u << 3;
+
+}  // namespace
 
 mvr_mesh_id converter::mesh(int index)
 {
@@ -639,6 +380,8 @@ void converter::node(int index, mvr_node_id parent, std::vector<char> &state, ui
         node(child, id, state, depth + 1);
     state[size_t(index)] = 2;
 }
+
+namespace {
 
 std::string cx_bad_camera(const converter &cv, int index)
 {
