@@ -301,6 +301,70 @@ static void patch(const std::string &path, const std::string &from, const std::s
     write_file(path, s.data(), s.size());
 }
 
+// ---- files with little or nothing to draw: the renderer's empty paths ----
+
+// Only LINES and POINTS, no triangle: a 9 x 9 grid of lines and a point in
+// every cell, unlit.
+static std::string lines_points(builder &b, const std::string &dir)
+{
+    std::vector<float> lines, points;
+    for (int k = 0; k <= 8; ++k) {
+        float v = -1.0f + 0.25f * float(k);
+        lines.insert(lines.end(), {-1.0f, v, 0, 1.0f, v, 0, v, -1.0f, 0, v, 1.0f, 0});
+        for (int j = 0; k < 8 && j < 8; ++j)
+            points.insert(points.end(), {v + 0.125f, -0.875f + 0.25f * float(j), 0});
+    }
+    int a_lines = b.floats(lines, "VEC3");
+    int a_points = b.floats(points, "VEC3");
+    b.add(b.materials, "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.2,0.9,0.4,1]},\"extensions\":{\"KHR_materials_unlit\":{}}}");
+    b.ext_used.push_back("KHR_materials_unlit");
+    one_mesh_scene(b, {"{\"attributes\":{\"POSITION\":" + std::to_string(a_lines) + "},\"mode\":1,\"material\":0}",
+                       "{\"attributes\":{\"POSITION\":" + std::to_string(a_points) + "},\"mode\":0,\"material\":0}"});
+    return b.write(dir, "lines_points", container::data_uri);
+}
+
+// A lit quad on a node scaled to nothing along one or all axes: a singular
+// model matrix (no inverse-transpose for the normals).
+static std::string scaled_quad(builder &b, const std::string &dir, const char *name, const char *scale)
+{
+    b.add(b.meshes, "{\"primitives\":[" + quad_primitive(b, 0, 0, -1) + "]}");
+    b.add(b.nodes, std::string("{\"mesh\":0,\"scale\":") + scale + "}");
+    b.scenes.push_back("{\"nodes\":[0," + std::to_string(light_scene(b)) + "]}");
+    return b.write(dir, name, container::data_uri);
+}
+
+static void nothing_to_draw(corpus &c, const std::string &dir)
+{
+    {   builder b; // a scene with no nodes
+        b.scenes.push_back("{}");
+        c.nothing_to_draw.push_back(b.write(dir, "empty_scene", container::data_uri)); }
+    {   builder b; // no scenes, no nodes: the asset alone
+        c.nothing_to_draw.push_back(b.write(dir, "asset_only", container::data_uri)); }
+    {   builder b; // a node tree (TRS and matrix) without a mesh, in a GLB with no BIN chunk
+        b.add(b.nodes, "{\"children\":[1,2],\"translation\":[1,2,3]}");
+        b.add(b.nodes, "{\"rotation\":[0,0.7071068,0,0.7071068],\"scale\":[2,2,2]}");
+        b.add(b.nodes, "{\"matrix\":[1,0,0,0,0,1,0,0,0,0,1,0,5,0,0,1],\"children\":[3]}");
+        b.add(b.nodes, "{}");
+        b.scenes.push_back("{\"nodes\":[0]}");
+        c.nothing_to_draw.push_back(b.write(dir, "nodes_no_mesh", container::glb)); }
+    {   builder b; // a camera alone
+        b.add(b.cameras, "{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.8,\"znear\":0.1}}");
+        b.add(b.nodes, "{\"camera\":0,\"translation\":[0,0,3]}");
+        b.scenes.push_back("{\"nodes\":[0]}");
+        c.nothing_to_draw.push_back(b.write(dir, "camera_only", container::data_uri)); }
+    {   builder b; // a light alone
+        int light = light_scene(b);
+        b.scenes.push_back("{\"nodes\":[" + std::to_string(light) + "]}");
+        c.nothing_to_draw.push_back(b.write(dir, "light_only", container::data_uri)); }
+    {   builder b; // a mesh no node uses
+        b.add(b.meshes, "{\"primitives\":[" + quad_primitive(b, 0, 0, -1) + "]}");
+        b.add(b.nodes, "{\"translation\":[0,1,0]}");
+        b.scenes.push_back("{\"nodes\":[0]}");
+        c.nothing_to_draw.push_back(b.write(dir, "unreferenced_mesh", container::external_bin)); }
+    {   builder b; // every triangle collapses to a point
+        c.nothing_to_draw.push_back(scaled_quad(b, dir, "zero_scale", "[0,0,0]")); }
+}
+
 corpus write_corpus(const std::string &dir)
 {
     corpus c;
@@ -417,6 +481,10 @@ corpus write_corpus(const std::string &dir)
     {   const char junk[] = "\x01\x02not json at all {{{";
         write_file(dir + "/not_json.gltf", junk, sizeof junk - 1);
         broken(dir + "/not_json.gltf", INVALID, "not_json.gltf"); }
+    // drawn with lines and points only; a quad flattened to z = 0 by its node
+    { builder b; c.features.push_back(lines_points(b, dir)); }
+    { builder b; c.features.push_back(scaled_quad(b, dir, "flat_scale", "[1,1,0]")); }
+    nothing_to_draw(c, dir);
     return c;
 }
 

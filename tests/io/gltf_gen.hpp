@@ -42,6 +42,9 @@ struct corpus {
     std::vector<std::string> features;
     struct broken { std::string path; int expected_result; std::string message_part; };
     std::vector<broken> broken_files;
+    // Files that load with MVR_OK and put nothing in the image: an empty
+    // scene, nodes without meshes, a camera or a light alone, zero scale
+    std::vector<std::string> nothing_to_draw;
 };
 corpus write_corpus(const std::string &dir);
 
