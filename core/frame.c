@@ -311,7 +311,10 @@ mvr_result mvr_frame_build(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin, u
             f->draw_count++;
         }
     }
-    qsort(f->draws, f->draw_count, sizeof *f->draws, compare_draws);
+    /* a scene with nothing to draw has no draw array: qsort's base must
+     * not be NULL, even for zero elements */
+    if (f->draw_count > 1)
+        qsort(f->draws, f->draw_count, sizeof *f->draws, compare_draws);
     /* blocks in draw order: a run of consecutive draws reads consecutive
      * blocks, so it can be one instanced draw over one range */
     for (uint32_t i = 0; i < f->draw_count; ++i) {
