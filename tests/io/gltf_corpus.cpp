@@ -424,7 +424,7 @@ corpus write_corpus(const std::string &dir)
         broken(b.write(dir, "shared_child", container::data_uri), INVALID, "nodes[2] has two parents"); }
     {   builder b = broken_base();
         b.buffer_uri_override = "missing.bin";
-        broken(b.write(dir, "missing_buffer", container::external_bin), INVALID, "missing.bin"); }
+        broken(b.write(dir, "missing_buffer", container::external_bin), MVR_ERROR_IO, "buffers[0].uri"); }
     {   builder b;
         std::vector<float> pos = {0, 0, 0, 1, NAN, 0, 0, 1, 0};
         int a = b.floats(pos, "VEC3");
