@@ -75,11 +75,6 @@ std::string short_value(const char *v)
     return "'" + s + "'";
 }
 
-// Opens the reader the signature names, after the checks every caller needs.
-mvr_result open_encoded(const unsigned char *bytes, size_t size, const char *mime, const char *who,
-                        Filesystem::IOMemReader *mem, std::unique_ptr<ImageInput> *in, const image_format **fmt,
-                        mvr_error *error);
-
 // PNG framing (ISO/IEC 15948, 5.3): the signature, then chunks of length +
 // type + data + CRC, the last one IEND, all inside the bytes. Checked before
 // decoding: OpenImageIO 2.4's PNG reader leaks when libpng longjmps out of a
@@ -181,26 +176,34 @@ static mvr_result read_rgba(ImageInput *in, mvr_pixel_type type, uint32_t max_di
 
 namespace {
 
-mvr_result open_encoded(const unsigned char *bytes, size_t size, const char *mime, const char *who,
-                        Filesystem::IOMemReader *mem, std::unique_ptr<ImageInput> *in, const image_format **fmt,
-                        mvr_error *error)
+// Opens the reader the signature names, after the checks every caller needs,
+// and hands it to use(in, format); exceptions become results named by who.
+template <typename Use>
+mvr_result with_encoded(const void *data, size_t size, const char *mime, const char *who, mvr_error *error, Use use)
 {
-    const image_format *f = format_of_bytes(bytes, size);
-    if (!f)
-        return fail(error, MVR_ERROR_UNSUPPORTED,
-                    std::string(who) + ": the bytes are not PNG, JPEG or WebP (declared " +
-                        (mime && *mime ? short_value(mime) : std::string("no mimeType")) + ")");
-    if (!mime_agrees(mime, f))
-        return fail(error, MVR_ERROR_INVALID_ASSET,
-                    std::string(who) + ": mimeType " + short_value(mime) + " but the bytes are " + f->name);
-    std::string why;
-    if (std::strcmp(f->name, "png") == 0 && !png_framing_ok(bytes, size, &why))
-        return fail(error, MVR_ERROR_INVALID_ASSET, std::string(who) + ": " + why);
-    *in = ImageInput::open(f->oiio_name, nullptr, mem);
-    if (!*in)
-        return fail(error, MVR_ERROR_INVALID_ASSET, std::string(who) + ": " + short_value(OIIO::geterror().c_str()));
-    *fmt = f;
-    return MVR_OK;
+    try {
+        const auto *bytes = static_cast<const unsigned char *>(data);
+        const image_format *f = format_of_bytes(bytes, size);
+        if (!f)
+            return fail(error, MVR_ERROR_UNSUPPORTED,
+                        std::string(who) + ": the bytes are not PNG, JPEG or WebP (declared " +
+                            (mime && *mime ? short_value(mime) : std::string("no mimeType")) + ")");
+        if (!mime_agrees(mime, f))
+            return fail(error, MVR_ERROR_INVALID_ASSET,
+                        std::string(who) + ": mimeType " + short_value(mime) + " but the bytes are " + f->name);
+        std::string why;
+        if (std::strcmp(f->name, "png") == 0 && !png_framing_ok(bytes, size, &why))
+            return fail(error, MVR_ERROR_INVALID_ASSET, std::string(who) + ": " + why);
+        Filesystem::IOMemReader mem(data, size);
+        auto in = ImageInput::open(f->oiio_name, nullptr, &mem);
+        if (!in)
+            return fail(error, MVR_ERROR_INVALID_ASSET, std::string(who) + ": " + short_value(OIIO::geterror().c_str()));
+        return use(in.get(), f);
+    } catch (const std::exception &e) {
+        return fail(error, MVR_ERROR_INVALID_ASSET, std::string(who) + ": " + e.what());
+    } catch (...) {
+        return fail(error, MVR_ERROR_INTERNAL, std::string(who) + ": unknown exception");
+    }
 }
 
 }  // namespace
@@ -211,14 +214,7 @@ extern "C" mvr_result mvr_image_probe(const void *data, size_t size, const char 
     if (!out || !data || size == 0)
         return fail(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_probe: no data");
     std::memset(out, 0, sizeof *out);
-    try {
-        Filesystem::IOMemReader mem(data, size);
-        std::unique_ptr<ImageInput> in;
-        const image_format *f = nullptr;
-        mvr_result r = open_encoded(static_cast<const unsigned char *>(data), size, mime_type, "mvr_image_probe", &mem,
-                                    &in, &f, error);
-        if (r != MVR_OK)
-            return r;
+    return with_encoded(data, size, mime_type, "mvr_image_probe", error, [&](ImageInput *in, const image_format *f) {
         const ImageSpec &spec = in->spec();
         if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth > 1)
             return fail(error, MVR_ERROR_INVALID_ASSET, "mvr_image_probe: the header has no valid size");
@@ -227,11 +223,7 @@ extern "C" mvr_result mvr_image_probe(const void *data, size_t size, const char 
         out->channels = uint32_t(spec.nchannels);
         out->format = f->name;
         return MVR_OK;
-    } catch (const std::exception &e) {
-        return fail(error, MVR_ERROR_INVALID_ASSET, std::string("mvr_image_probe: ") + e.what());
-    } catch (...) {
-        return fail(error, MVR_ERROR_INTERNAL, "mvr_image_probe: unknown exception");
-    }
+    });
 }
 
 extern "C" mvr_result mvr_image_decode(const void *data, size_t size, const char *mime_type,
@@ -240,20 +232,9 @@ extern "C" mvr_result mvr_image_decode(const void *data, size_t size, const char
     if (!out || !data || size == 0)
         return fail(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_decode: no data");
     std::memset(out, 0, sizeof *out);
-    try {
-        Filesystem::IOMemReader mem(data, size);
-        std::unique_ptr<ImageInput> in;
-        const image_format *f = nullptr;
-        mvr_result r = open_encoded(static_cast<const unsigned char *>(data), size, mime_type, "mvr_image_decode", &mem,
-                                    &in, &f, error);
-        if (r != MVR_OK)
-            return r;
-        return read_rgba(in.get(), MVR_PIXEL_U8, max_dimension, "mvr_image_decode", out, error);
-    } catch (const std::exception &e) {
-        return fail(error, MVR_ERROR_INVALID_ASSET, std::string("mvr_image_decode: ") + e.what());
-    } catch (...) {
-        return fail(error, MVR_ERROR_INTERNAL, "mvr_image_decode: unknown exception");
-    }
+    return with_encoded(data, size, mime_type, "mvr_image_decode", error, [&](ImageInput *in, const image_format *) {
+        return read_rgba(in, MVR_PIXEL_U8, max_dimension, "mvr_image_decode", out, error);
+    });
 }
 
 extern "C" mvr_result mvr_image_read(const char *path, mvr_pixel_type type, mvr_image_data *out, mvr_error *error)
