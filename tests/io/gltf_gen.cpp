@@ -4,6 +4,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
@@ -51,13 +52,13 @@ int builder::indices16(const std::vector<uint16_t> &v)
     return accessor(view(v.data(), v.size() * 2), 0, USHORT, (long long)v.size(), "SCALAR");
 }
 
-int builder::add(std::vector<std::string> &list, const std::string &json)
+int doc_lists::add(std::vector<std::string> &list, const std::string &json)
 {
     list.push_back(json);
     return int(list.size() - 1);
 }
 
-static std::string array(const std::vector<std::string> &items)
+std::string json_array(const std::vector<std::string> &items)
 {
     std::string s = "[";
     for (size_t i = 0; i < items.size(); ++i)
@@ -65,12 +66,53 @@ static std::string array(const std::vector<std::string> &items)
     return s + "]";
 }
 
-static std::string quoted(const std::vector<std::string> &items)
+std::string json_string(const std::string &s)
 {
-    std::vector<std::string> q;
-    for (const auto &i : items)
-        q.push_back("\"" + i + "\"");
-    return array(q);
+    std::string o = "\"";
+    for (unsigned char c : s) {
+        if (c == '"' || c == '\\') {
+            o += '\\';
+            o += char(c);
+        } else if (c < 0x20) {
+            char b[8];
+            std::snprintf(b, sizeof b, "\\u%04x", c);
+            o += b;
+        } else {
+            o += char(c);
+        }
+    }
+    return o + "\"";
+}
+
+std::string json_members(const doc_lists &d, int default_scene)
+{
+    std::string j;
+    auto member = [&](const char *name, const std::vector<std::string> &v) {
+        if (!v.empty())
+            j += std::string(",\"") + name + "\":" + json_array(v);
+    };
+    member("bufferViews", d.buffer_views);
+    member("accessors", d.accessors);
+    member("images", d.images);
+    member("samplers", d.samplers);
+    member("textures", d.textures);
+    member("materials", d.materials);
+    member("meshes", d.meshes);
+    member("cameras", d.cameras);
+    member("nodes", d.nodes);
+    member("scenes", d.scenes);
+    if (!d.scenes.empty())
+        j += ",\"scene\":" + std::to_string(default_scene);
+    if (!d.lights.empty())
+        j += ",\"extensions\":{\"KHR_lights_punctual\":{\"lights\":" + json_array(d.lights) + "}}";
+    std::vector<std::string> used, required;
+    for (const auto &e : d.ext_used)
+        used.push_back(json_string(e));
+    for (const auto &e : d.ext_required)
+        required.push_back(json_string(e));
+    member("extensionsUsed", used);
+    member("extensionsRequired", required);
+    return j;
 }
 
 std::string base64(const uint8_t *p, size_t n)
@@ -100,28 +142,7 @@ std::string builder::json(container c, const std::string &bin_name) const
             buffer += ",\"uri\":\"data:application/octet-stream;base64," + base64(bin.data(), bin.size()) + "\"";
         j += ",\"buffers\":[" + buffer + "}]";
     }
-    auto member = [&](const char *name, const std::vector<std::string> &v) {
-        if (!v.empty())
-            j += std::string(",\"") + name + "\":" + array(v);
-    };
-    member("bufferViews", buffer_views);
-    member("accessors", accessors);
-    member("images", images);
-    member("samplers", samplers);
-    member("textures", textures);
-    member("materials", materials);
-    member("meshes", meshes);
-    member("cameras", cameras);
-    member("nodes", nodes);
-    member("scenes", scenes);
-    if (!scenes.empty())
-        j += ",\"scene\":" + std::to_string(default_scene);
-    if (!lights.empty())
-        j += ",\"extensions\":{\"KHR_lights_punctual\":{\"lights\":" + array(lights) + "}}";
-    if (!ext_used.empty())
-        j += ",\"extensionsUsed\":" + quoted(ext_used);
-    if (!ext_required.empty())
-        j += ",\"extensionsRequired\":" + quoted(ext_required);
+    j += json_members(*this, default_scene);
     return j + "}";
 }
 

@@ -11,10 +11,26 @@ namespace gen {
 
 enum class container { external_bin, data_uri, glb };
 
-struct builder {
-    std::vector<uint8_t> bin;
+// A document's top-level lists, each entry the JSON of one object (lights:
+// KHR_lights_punctual's; ext_*: extension names, unquoted). builder and the
+// tests that assemble documents of their own (io_hostile) serialise them
+// through json_members(), in one order.
+struct doc_lists {
     std::vector<std::string> buffer_views, accessors, meshes, materials, textures, images, samplers, nodes,
         scenes, cameras, lights, ext_used, ext_required;
+    int add(std::vector<std::string> &list, const std::string &json); // returns the index
+};
+
+// The members after "buffers", each only when its list is non-empty:
+// ,"bufferViews":[...] ... ,"scenes":[...], ,"scene":default_scene (with
+// scenes), the KHR_lights_punctual lights, "extensionsUsed" and
+// "extensionsRequired" (the names as JSON strings).
+std::string json_members(const doc_lists &d, int default_scene);
+std::string json_array(const std::vector<std::string> &items); // [a,b,...]
+std::string json_string(const std::string &s);                 // quoted, with " \ and controls escaped
+
+struct builder : doc_lists {
+    std::vector<uint8_t> bin;
     int default_scene = 0;
     std::string buffer_uri_override;   // e.g. "missing.bin"
     long long buffer_length_delta = 0; // lie about the buffer's length
@@ -25,7 +41,6 @@ struct builder {
                  bool normalized = false, const std::string &extra = "");
     int floats(const std::vector<float> &v, const char *type);          // view + float accessor
     int indices16(const std::vector<uint16_t> &v);
-    int add(std::vector<std::string> &list, const std::string &json);   // returns the index
     std::string json(container c, const std::string &bin_name) const;
     // Writes name.gltf (+ name.bin) or name.glb into dir; returns the path.
     std::string write(const std::string &dir, const std::string &name, container c) const;

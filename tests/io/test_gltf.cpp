@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 
 #include "gltf_gen.hpp"
+#include "gltf_render.hpp"
 #include "mvr/mvr_gltf.h"
 #include "mvr_test.h"
 
@@ -65,40 +66,6 @@ static mvr_scene *load(mvr_test_state *t, const std::string &path, mvr_gltf_info
     return s;
 }
 
-// Renders views of the scene on one path; returns the layers' bytes.
-static std::vector<uint8_t> render(mvr_test_state *t, mvr_context *ctx, mvr_scene *scene, mvr_view_path path,
-                                   const char *what)
-{
-    mvr_framing_desc fd = {MVR_LAYOUT_STEREO, 2, 0.2, double(W) / H};
-    mvr_view_set *views = nullptr;
-    mvr_error err;
-    std::vector<uint8_t> out;
-    if (mvr_view_set_frame_scene(scene, &fd, &views, &err) != MVR_OK) {
-        CHECK_MSG(t, 0, "%s: framing: %s", what, err.message);
-        return out;
-    }
-    mvr_renderer_desc rd = {};
-    rd.context = ctx;
-    rd.view_path = path;
-    mvr_renderer *r = nullptr;
-    mvr_target *target = nullptr;
-    mvr_target_desc td = {W, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT};
-    mvr_render_desc desc = {{0.05f, 0.05f, 0.08f, 1.0f}, 1.0f, MVR_TONE_MAP_NONE};
-    bool ok = mvr_renderer_create(&rd, &r, &err) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK &&
-              mvr_renderer_render(r, scene, views, target, &desc) == MVR_OK;
-    CHECK_MSG(t, ok, "%s (%s): %s", what, mvr_view_path_name(path), r ? mvr_renderer_last_error(r) : err.message);
-    if (ok) {
-        out.resize(size_t(W) * H * 4 * 2);
-        for (uint32_t k = 0; k < 2; ++k)
-            CHECK(t, mvr_renderer_read_layer(r, target, k, MVR_READBACK_RGBA8, &out[size_t(k) * W * H * 4],
-                                             size_t(W) * H * 4) == MVR_OK);
-    }
-    mvr_target_destroy(target);
-    mvr_renderer_destroy(r);
-    mvr_view_set_destroy(views);
-    return out;
-}
-
 static size_t non_background(const std::vector<uint8_t> &px)
 {
     size_t n = 0;
@@ -122,11 +89,13 @@ static void feature_files_render_alike_on_both_paths(mvr_test_state *t)
         mvr_scene *s = load(t, path, &info);
         if (!s)
             continue;
-        std::vector<uint8_t> mv = render(t, ctx, s, multiview ? MVR_VIEW_PATH_MULTIVIEW : MVR_VIEW_PATH_LOOP, name.c_str());
-        std::vector<uint8_t> loop = render(t, ctx, s, MVR_VIEW_PATH_LOOP, name.c_str());
+        std::vector<uint8_t> mv =
+            gltf_render::two_layers(t, ctx, s, multiview ? MVR_VIEW_PATH_MULTIVIEW : MVR_VIEW_PATH_LOOP, name.c_str());
+        std::vector<uint8_t> loop = gltf_render::two_layers(t, ctx, s, MVR_VIEW_PATH_LOOP, name.c_str());
         CHECK_MSG(t, !mv.empty() && mv == loop, "%s: multiview and loop layers differ", name.c_str());
         size_t drawn = non_background(mv);
-        printf("  %-24s %zu of %d pixels drawn, %u warnings\n", name.c_str(), drawn, W * H * 2, info.warnings);
+        printf("  %-24s %zu of %d pixels drawn, %u warnings\n", name.c_str(), drawn,
+               gltf_render::frame_width * gltf_render::frame_height * 2, info.warnings);
         CHECK_MSG(t, drawn > 50, "%s: almost nothing drawn (%zu pixels)", name.c_str(), drawn);
         mvr_scene_destroy(s);
     }
