@@ -1,6 +1,7 @@
 // glTF materials, textures and images into the scene (glTF 2.0, 3.8 - 3.9):
 // samplers, KHR_texture_transform, images decoded once from bytes mvr read,
 // and images that cannot be had left out with a warning.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -101,24 +102,27 @@ mvr_image_id converter::decode_image(size_t index, const std::string &iname)
     if (decoded.size() >= cx.limits.max_images)
         refuse(iname + ": more than " + std::to_string(cx.limits.max_images) +
                " images (mvr_gltf_options.max_images)");
-    // the scene's RGBA8 copy stays; decoding holds the stored channels and
-    // an RGBA8 result besides, until the copy is made
+    // Decoding holds the stored channels and the RGBA8 result; adding it to
+    // the scene, the result and the scene's copy; then the copy stays. The
+    // larger of the two phases is charged before anything is allocated.
     uint64_t texels = uint64_t(h.width) * h.height;
-    cx.mem.charge(texels * 4, iname + " (" + std::to_string(h.width) + "x" + std::to_string(h.height) + ")");
-    mvr_image_data pixels;
+    uint64_t rgba = texels * 4, raw = texels * uint64_t(h.channels);
+    mvr_image_id id = {0};
     {
-        charged decoding(cx.mem, texels * (4 + uint64_t(h.channels)) + texels * 4, iname + " decoding");
+        charged decoding(cx.mem, rgba + std::max(raw, rgba),
+                         iname + " (" + std::to_string(h.width) + "x" + std::to_string(h.height) + ", decoding)");
+        mvr_image_data pixels;
         if (mvr_image_decode(bytes, size_t(size), mime.c_str(), cx.limits.max_image_dimension, &pixels, &err) !=
             MVR_OK)
             throw load_error(err.result == MVR_ERROR_OUT_OF_MEMORY ? err.result : MVR_ERROR_INVALID_ASSET,
                              iname + ": " + err.message);
+        const std::string &name = m.images.size() > index ? m.images[index].name : std::string();
+        mvr_image_desc d = {pixels.width, pixels.height, static_cast<const uint8_t *>(pixels.pixels), name.c_str()};
+        mvr_result added = mvr_scene_add_image(scene, &d, &id);
+        mvr_image_free(&pixels);
+        check(added, iname);
     }
-    const std::string &name = m.images.size() > index ? m.images[index].name : std::string();
-    mvr_image_desc d = {pixels.width, pixels.height, static_cast<const uint8_t *>(pixels.pixels), name.c_str()};
-    mvr_image_id id = {0};
-    mvr_result added = mvr_scene_add_image(scene, &d, &id);
-    mvr_image_free(&pixels);
-    check(added, iname);
+    cx.mem.charge(rgba, iname + " (the scene's copy)"); /* within what was just released */
     ++cx.images_decoded;
     if (!key.empty())
         decoded[key] = id;
