@@ -536,7 +536,7 @@ mvr_result load(const unsigned char *bytes, size_t size, const std::string &base
         // the scene's warnings (repaired values) count as the load's while it
         // runs; the scene keeps the caller's logger afterwards
         sd.logger.fn = count_scene_warning;
-        sd.logger.level = o.logger.level;
+        sd.logger.level = MVR_LOG_DEBUG; /* all of it: the forwarder applies the caller's level */
         sd.logger.user_data = &cx;
         mvr_error serr;
         if (mvr_scene_create(&sd, &scene, &serr) != MVR_OK)
