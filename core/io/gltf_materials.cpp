@@ -230,11 +230,12 @@ mvr_material_id converter::material(int index)
     d.double_sided = g.doubleSided;
     d.unlit = g.extensions.count("KHR_materials_unlit") > 0;
     auto es = g.extensions.find("KHR_materials_emissive_strength");
-    if (es != g.extensions.end())
+    if (es != g.extensions.end()) {
         d.emissive_strength = float(number(es->second, "emissiveStrength", 1.0));
-    if (d.emissive_strength == 0.0f)
-        for (float &e : d.emissive_factor)
-            e = 0.0f; /* strength 0 turns emission off; 0 means "default" in mvr */
+        if (d.emissive_strength == 0.0f)
+            for (float &e : d.emissive_factor)
+                e = 0.0f; /* the extension's strength 0 turns emission off; 0 means "default" in mvr */
+    }
     d.name = g.name.c_str();
     mvr_material_id id = {0};
     check(mvr_scene_add_material(scene, &d, &id), w);

@@ -197,6 +197,18 @@ static std::string materials(builder &b, const std::string &dir)
     return b.write(dir, "materials", container::external_bin);
 }
 
+// Emission without KHR_materials_emissive_strength (glTF 2.0, 3.9.4: the
+// factor alone), and the extension's strength 0 turning it off; no light.
+static std::string emission(builder &b, const std::string &dir)
+{
+    b.add(b.materials, "{\"emissiveFactor\":[1,0.5,0.25],\"pbrMetallicRoughness\":{\"baseColorFactor\":[0,0,0,1]}}");
+    b.add(b.materials, "{\"emissiveFactor\":[1,0.5,0.25],\"pbrMetallicRoughness\":{\"baseColorFactor\":[0,0,0,1]},"
+                       "\"extensions\":{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":0}}}");
+    b.ext_used = {"KHR_materials_emissive_strength"};
+    one_mesh_scene(b, {quad_primitive(b, -0.5f, 0, 0), quad_primitive(b, 0.5f, 0, 1)});
+    return b.write(dir, "emission", container::external_bin);
+}
+
 static std::string scene_graph(builder &b, const std::string &dir)
 {
     b.add(b.materials, "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.3,0.6,0.9,1],\"metallicFactor\":0}}");
@@ -378,6 +390,7 @@ corpus write_corpus(const std::string &dir)
     { builder b; textured(b, png, jpg, container::glb, dir, "textured_glb");
       glb = b.write(dir, "textured", container::glb); c.features.push_back(glb); }
     { builder b; c.features.push_back(component_types(b, dir)); }
+    { builder b; c.features.push_back(emission(b, dir)); }
     { builder b; c.features.push_back(sparse(b, dir)); }
     { builder b; c.features.push_back(modes(b, dir)); }
     { builder b; c.features.push_back(materials(b, dir)); }

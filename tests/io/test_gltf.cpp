@@ -358,5 +358,39 @@ static void physical_lights_are_exposed_by_default(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
+// Emission needs no extension: an emissiveFactor alone glows (it used to be
+// dropped unless KHR_materials_emissive_strength was present), and that
+// extension's strength 0 turns it off. No light: the emissive quad shows
+// its factor, sRGB-encoded (1, 0.5, 0.25 -> 255, 188, 137), the other black.
+static void emission_needs_no_extension(mvr_test_state *t)
+{
+    mvr_scene *s = load(t, corpus_dir() + "/emission.gltf", nullptr);
+    if (!s)
+        return;
+    const float *glow = s->materials[0].desc.emissive_factor, *off = s->materials[1].desc.emissive_factor;
+    CHECK_MSG(t, glow[0] == 1.0f && glow[1] == 0.5f && glow[2] == 0.25f, "factor %g %g %g", glow[0], glow[1], glow[2]);
+    CHECK(t, off[0] == 0.0f && off[1] == 0.0f && off[2] == 0.0f);
+    mvr_context *ctx = nullptr;
+    mvr_error err;
+    if (mvr_context_create(nullptr, &ctx, &err) != MVR_OK) {
+        CHECK_MSG(t, 0, "%s", err.message);
+        mvr_scene_destroy(s);
+        return;
+    }
+    std::vector<uint8_t> px = gltf_render::two_layers(t, ctx, s, MVR_VIEW_PATH_LOOP, "emission.gltf");
+    size_t glowing = 0, dark = 0;
+    for (size_t i = 0; i + 3 < px.size(); i += 4) {
+        auto near = [&](int r, int g, int b) {
+            return std::abs(px[i] - r) <= 3 && std::abs(px[i + 1] - g) <= 3 && std::abs(px[i + 2] - b) <= 3;
+        };
+        glowing += near(255, 188, 137);
+        dark += near(0, 0, 0);
+    }
+    std::printf("  %zu pixels glow, %zu are black\n", glowing, dark);
+    CHECK_MSG(t, glowing > 100 && dark > 100, "%zu glowing, %zu black pixels", glowing, dark);
+    mvr_scene_destroy(s);
+    mvr_context_destroy(ctx);
+}
+
 MVR_TEST_MAIN(TEST(physical_lights_are_exposed_by_default), TEST(feature_files_render_alike_on_both_paths), TEST(features_convert_as_specified),
-              TEST(broken_files_are_refused_by_name), TEST(memory_loads_and_caps))
+              TEST(broken_files_are_refused_by_name), TEST(memory_loads_and_caps), TEST(emission_needs_no_extension))
