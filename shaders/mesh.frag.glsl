@@ -268,10 +268,22 @@ void main()
     vec3 n_offset = n;       // shadow receivers move along the surface normal, not the normal map's
 
 #ifdef MVR_NORMAL_TEX
+    // The tangent frame is the front side's; a back face of a double-sided
+    // material takes the whole frame negated (t, b and n), so its relief is
+    // the front's seen from behind, as in the Khronos glTF Sample Viewer.
+    // (Negating n alone mirrors the map's x: cross() flips b, not t.)
+    float side = 1.0;
+    vec3 nf = n;
+#ifdef MVR_DOUBLE_SIDED
+    if (!gl_FrontFacing) {
+        side = -1.0;
+        nf = -n;
+    }
+#endif
     vec2 nuv = mvr_uv(2, m);
 #ifdef MVR_TANGENTS
-    vec3 t = mvr_safe_normalize(v_tangent.xyz - n * dot(n, v_tangent.xyz), vec3(0.0));
-    vec3 b = cross(n, t) * (v_tangent.w < 0.0 ? -1.0 : 1.0);
+    vec3 t = mvr_safe_normalize(v_tangent.xyz - nf * dot(nf, v_tangent.xyz), vec3(0.0));
+    vec3 b = cross(nf, t) * (v_tangent.w < 0.0 ? -1.0 : 1.0);
 #else
     // No tangents: t = dP/du from position and UV derivatives; b = n x t,
     // turned to point towards -v (image up: glTF normal maps are +Y up with
@@ -284,15 +296,15 @@ void main()
     if (abs(det) > 1e-20) {
         vec3 dpdu = (dp1 * duv2.y - dp2 * duv1.y) / det;
         vec3 dpdv = (dp2 * duv1.x - dp1 * duv2.x) / det;
-        t = mvr_safe_normalize(dpdu - n * dot(n, dpdu), vec3(0.0));
-        b = cross(n, t);
+        t = mvr_safe_normalize(dpdu - nf * dot(nf, dpdu), vec3(0.0));
+        b = cross(nf, t);
         if (dot(b, dpdv) > 0.0)
             b = -b;
     }
 #endif
     vec3 tn = MVR_SAMPLE(mvr_normal_tex, nuv, m.layers.z).xyz * 2.0 - 1.0;
     tn.xy *= m.params.z;
-    n = mvr_safe_normalize(t * tn.x + b * tn.y + n * tn.z, n);
+    n = mvr_safe_normalize(side * (t * tn.x + b * tn.y + nf * tn.z), n);
 #endif
 
     vec3 v = mvr_safe_normalize(v_to_eye, n);

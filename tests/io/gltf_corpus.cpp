@@ -209,6 +209,41 @@ static std::string emission(builder &b, const std::string &dir)
     return b.write(dir, "emission", container::external_bin);
 }
 
+// Normal maps on the back faces of a double-sided material: four quads with
+// one normal map tilting the front's normal toward its tangent (+u), with
+// and without TANGENT, at x = -1.5 / -0.5 facing the camera (+z) and, turned
+// 180 degrees about Y, at +0.5 / +1.5 showing their back faces. A back face
+// takes the front's whole tangent frame negated (the Khronos Sample Viewer's
+// rule: its relief is the front's seen from behind), so with the light
+// coming from (+1, 0, +1) all four shade alike.
+static std::string double_sided_normals(builder &b, const std::string &dir)
+{
+    auto png = solid_image("png", 4, 217, 128, 217); /* (0.70, 0, 0.70) in tangent space */
+    b.add(b.images, "{\"uri\":\"data:image/png;base64," + base64(png.data(), png.size()) + "\"}");
+    b.add(b.textures, "{\"source\":0}");
+    b.add(b.materials, "{\"doubleSided\":true,\"normalTexture\":{\"index\":0},"
+                       "\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.8,0.8,0.8,1],\"metallicFactor\":0,"
+                       "\"roughnessFactor\":1}}");
+    auto with_tangents = [&](std::string p) {
+        int a_tan = b.floats({1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1}, "VEC4");
+        return p.replace(p.find("{\"attributes\":{") + 15, 0, "\"TANGENT\":" + std::to_string(a_tan) + ",");
+    };
+    std::string tangent_quad = with_tangents(quad_primitive(b, -1.5f, 0, 0));
+    std::string derived_quad = quad_primitive(b, -0.5f, 0, 0);
+    std::string quads = "[" + tangent_quad + "," + derived_quad + "]";
+    b.add(b.meshes, "{\"primitives\":" + quads + "}");
+    /* turned about Y, x maps to -x: the derived-tangent quad lands at +0.5, the other at +1.5 */
+    b.add(b.nodes, "{\"mesh\":0}");
+    b.add(b.nodes, "{\"mesh\":0,\"rotation\":[0,1,0,0]}");
+    int light = b.add(b.lights, "{\"type\":\"directional\",\"intensity\":2}");
+    /* rotated 45 degrees about Y: the light travels along -(1, 0, 1) */
+    b.add(b.nodes, "{\"rotation\":[0,0.3826834,0,0.9238795],\"extensions\":{\"KHR_lights_punctual\":{\"light\":" +
+                       std::to_string(light) + "}}}");
+    b.add(b.scenes, "{\"nodes\":[0,1,2]}");
+    b.ext_used = {"KHR_lights_punctual"};
+    return b.write(dir, "double_sided_normals", container::external_bin);
+}
+
 static std::string scene_graph(builder &b, const std::string &dir)
 {
     b.add(b.materials, "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.3,0.6,0.9,1],\"metallicFactor\":0}}");
@@ -391,6 +426,7 @@ corpus write_corpus(const std::string &dir)
       glb = b.write(dir, "textured", container::glb); c.features.push_back(glb); }
     { builder b; c.features.push_back(component_types(b, dir)); }
     { builder b; c.features.push_back(emission(b, dir)); }
+    { builder b; c.features.push_back(double_sided_normals(b, dir)); }
     { builder b; c.features.push_back(sparse(b, dir)); }
     { builder b; c.features.push_back(modes(b, dir)); }
     { builder b; c.features.push_back(materials(b, dir)); }

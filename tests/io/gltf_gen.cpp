@@ -195,7 +195,10 @@ std::string builder::write(const std::string &dir, const std::string &name, cont
     return path;
 }
 
-std::vector<uint8_t> checker_image(const char *format, int size, uint8_t r, uint8_t g, uint8_t b, uint8_t a)
+// Encodes size x size pixels (RGBA, or RGB for JPEG) from colour(x, y)
+// through a temporary file: the tests decode it from memory.
+template <typename Colour>
+static std::vector<uint8_t> encode_image(const char *format, int size, Colour colour)
 {
     using namespace OIIO;
     bool jpeg = std::strcmp(format, "jpg") == 0;
@@ -203,15 +206,10 @@ std::vector<uint8_t> checker_image(const char *format, int size, uint8_t r, uint
     std::vector<uint8_t> px(size_t(size) * size_t(size) * size_t(channels));
     for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x) {
-            bool on = ((x * 4 / size) + (y * 4 / size)) % 2 == 0;
-            uint8_t *p = &px[(size_t(y) * size_t(size) + size_t(x)) * size_t(channels)];
-            p[0] = on ? r : uint8_t(255 - r);
-            p[1] = on ? g : uint8_t(255 - g);
-            p[2] = on ? b : uint8_t(255 - b);
-            if (!jpeg)
-                p[3] = a;
+            uint8_t rgba[4];
+            colour(x, y, rgba);
+            std::memcpy(&px[(size_t(y) * size_t(size) + size_t(x)) * size_t(channels)], rgba, size_t(channels));
         }
-    // encoded through a temporary file: the tests decode it from memory
     std::string path = Filesystem::unique_path(Filesystem::temp_directory_path() + "/mvr-gen-%%%%%%%%." + format);
     auto o = ImageOutput::create(path);
     ImageSpec spec(size, size, channels, TypeDesc::UINT8);
@@ -220,6 +218,27 @@ std::vector<uint8_t> checker_image(const char *format, int size, uint8_t r, uint
     std::vector<uint8_t> bytes = read_file(path);
     Filesystem::remove(path);
     return bytes;
+}
+
+std::vector<uint8_t> checker_image(const char *format, int size, uint8_t r, uint8_t g, uint8_t b, uint8_t a)
+{
+    return encode_image(format, size, [&](int x, int y, uint8_t *p) {
+        bool on = ((x * 4 / size) + (y * 4 / size)) % 2 == 0;
+        p[0] = on ? r : uint8_t(255 - r);
+        p[1] = on ? g : uint8_t(255 - g);
+        p[2] = on ? b : uint8_t(255 - b);
+        p[3] = a;
+    });
+}
+
+std::vector<uint8_t> solid_image(const char *format, int size, uint8_t r, uint8_t g, uint8_t b, uint8_t a)
+{
+    return encode_image(format, size, [&](int, int, uint8_t *p) {
+        p[0] = r;
+        p[1] = g;
+        p[2] = b;
+        p[3] = a;
+    });
 }
 
 }  // namespace gen

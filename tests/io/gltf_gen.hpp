@@ -49,6 +49,8 @@ struct builder : doc_lists {
 std::string base64(const uint8_t *p, size_t n);
 // A size x size RGBA checker encoded as PNG or JPEG ("png" / "jpg"), through OpenImageIO.
 std::vector<uint8_t> checker_image(const char *format, int size, uint8_t r, uint8_t g, uint8_t b, uint8_t a = 255);
+// A size x size image of one RGBA colour, encoded like checker_image.
+std::vector<uint8_t> solid_image(const char *format, int size, uint8_t r, uint8_t g, uint8_t b, uint8_t a = 255);
 void write_file(const std::string &path, const void *data, size_t n);
 std::vector<uint8_t> read_file(const std::string &path);
 

@@ -3,6 +3,7 @@
 // broken file fails with the expected result and a message naming the object.
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -392,5 +393,59 @@ static void emission_needs_no_extension(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
+// Normal maps on back faces (double_sided_normals.gltf): the quads showing
+// their back faces shade like those showing their fronts, with and without
+// tangents. Mirroring the frame (the old shader negated n and b, not t)
+// turned the back faces' normals away from the light: dark.
+static void back_faces_take_the_whole_tangent_frame(mvr_test_state *t)
+{
+    mvr_scene *s = load(t, corpus_dir() + "/double_sided_normals.gltf", nullptr);
+    if (!s)
+        return;
+    mvr_context *ctx = nullptr;
+    mvr_error err;
+    if (mvr_context_create(nullptr, &ctx, &err) != MVR_OK) {
+        CHECK_MSG(t, 0, "%s", err.message);
+        mvr_scene_destroy(s);
+        return;
+    }
+    std::vector<uint8_t> px = gltf_render::two_layers(t, ctx, s, MVR_VIEW_PATH_LOOP, "double_sided_normals.gltf");
+    const int w = gltf_render::frame_width, y = gltf_render::frame_height / 2;
+    // the quads along the middle row of layer 0, left to right: runs of
+    // pixels unlike the background (the row's first pixel)
+    std::vector<double> means;
+    auto quad_pixel = [&](int x) {
+        const uint8_t *p = &px[(size_t(y) * w + size_t(x)) * 4], *bg = &px[size_t(y) * w * 4];
+        return std::abs(p[0] - bg[0]) + std::abs(p[1] - bg[1]) + std::abs(p[2] - bg[2]) > 12;
+    };
+    for (int x = 0; x < w && !px.empty();) {
+        if (!quad_pixel(x)) {
+            ++x;
+            continue;
+        }
+        double sum = 0;
+        int n = 0;
+        for (; x < w && quad_pixel(x); ++x, ++n)
+            sum += px[(size_t(y) * w + size_t(x)) * 4];
+        if (n >= 3)
+            means.push_back(sum / n);
+    }
+    std::printf("  %zu quads, mean red:", means.size());
+    for (double m : means)
+        std::printf(" %.1f", m);
+    std::printf("\n");
+    // tangents: quads 0 (front) and 3 (back); derived frames: 1 and 2
+    CHECK_MSG(t, means.size() == 4, "%zu quads in the middle row, 4 expected", means.size());
+    if (means.size() == 4) {
+        CHECK_MSG(t, means[0] > 100 && means[1] > 100, "the fronts are not lit: %.1f %.1f", means[0], means[1]);
+        CHECK_MSG(t, std::fabs(means[0] - means[3]) <= 8.0, "with tangents: front %.1f, back %.1f", means[0], means[3]);
+        CHECK_MSG(t, std::fabs(means[1] - means[2]) <= 8.0, "derived tangents: front %.1f, back %.1f", means[1],
+                  means[2]);
+    }
+    mvr_scene_destroy(s);
+    mvr_context_destroy(ctx);
+}
+
 MVR_TEST_MAIN(TEST(physical_lights_are_exposed_by_default), TEST(feature_files_render_alike_on_both_paths), TEST(features_convert_as_specified),
-              TEST(broken_files_are_refused_by_name), TEST(memory_loads_and_caps), TEST(emission_needs_no_extension))
+              TEST(broken_files_are_refused_by_name), TEST(memory_loads_and_caps), TEST(emission_needs_no_extension),
+              TEST(back_faces_take_the_whole_tangent_frame))
