@@ -18,6 +18,11 @@ const char *mvr_view_layout_name(mvr_view_layout layout)
     return NULL;
 }
 
+double mvr_stereo_default_ipd(double viewing_distance)
+{
+    return viewing_distance > 0 && isfinite(viewing_distance) ? viewing_distance / 30.0 : 0.064;
+}
+
 static void look(mvr_view_desc *v, const double eye[3], const double target[3], const double up[3])
 {
     mvr_view_look_at(v, eye, target, up);
@@ -41,7 +46,6 @@ mvr_result mvr_view_set_frame_scene(const mvr_scene *scene, const mvr_framing_de
     uint32_t n = d.views ? d.views : defaults[d.layout];
     if (n > 1024)
         return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_view_set_frame_scene: %u views (at most 1024)", n);
-    double ipd = d.ipd > 0 ? d.ipd : 0.064;
     double aspect = d.aspect > 0 ? d.aspect : 1.0;
 
     mvr_scene_info info;
@@ -63,6 +67,7 @@ mvr_result mvr_view_set_frame_scene(const mvr_scene *scene, const mvr_framing_de
     double yfov = 50.0 * PI / 180.0;
     double half = fmin(yfov * 0.5, atan(tan(yfov * 0.5) * aspect));
     double dist = r / sin(half) * 1.05;
+    double ipd = d.ipd > 0 ? d.ipd : mvr_stereo_default_ipd(dist);
     double znear = fmax(dist - r, dist * 1e-3) * 0.5;
     if (d.layout == MVR_LAYOUT_CUBE)
         znear = r * 1e-3;

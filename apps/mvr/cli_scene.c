@@ -9,7 +9,8 @@
 #include "commands.h"
 #include "mvr/mvr_gltf.h"
 
-/* Views from a camera node of the file: N eyes ipd apart along its right axis. */
+/* Views from a camera node of the file: N eyes ipd apart along its right axis
+ * (ipd 0: scaled to the camera's distance to the scene). */
 static mvr_result camera_views(const mvr_scene *scene, uint32_t k, uint32_t n, double ipd, mvr_view_set **out,
                                mvr_error *err)
 {
@@ -20,6 +21,17 @@ static mvr_result camera_views(const mvr_scene *scene, uint32_t k, uint32_t n, d
         snprintf(err->message, sizeof err->message, "the file has %u camera nodes; --camera %u is not one",
                  mvr_scene_camera_node_count(scene), k);
         return err->result;
+    }
+    if (!(ipd > 0)) {
+        /* scaled to the scene: the camera's distance to the scene's centre */
+        mvr_scene_info info;
+        mvr_scene_get_info(scene, &info);
+        double d2 = 0;
+        for (int c = 0; c < 3; ++c) {
+            double mid = info.bounds_min[c] <= info.bounds_max[c] ? 0.5 * (info.bounds_min[c] + info.bounds_max[c]) : 0;
+            d2 += (mid - base.position[c]) * (mid - base.position[c]);
+        }
+        ipd = mvr_stereo_default_ipd(sqrt(d2));
     }
     mvr_view_desc *v = calloc(n, sizeof *v);
     if (!v)
@@ -56,13 +68,13 @@ static int load_scene_file(const char *command, const cli_scene_options *o, mvr_
         fprintf(stderr, "%s: %s (%s)\n", command, err.message, mvr_result_name(err.result));
         return MVR_EXIT_FAILURE;
     }
-    double ipd = o->ipd > 0 ? o->ipd : 0.064;
     mvr_result r;
     if (o->camera >= 0 || (o->camera == CLI_CAMERA_IF_ANY && mvr_scene_camera_node_count(*scene) > 0)) {
         uint32_t k = o->camera >= 0 ? (uint32_t)o->camera : 0;
-        r = camera_views(*scene, k, o->views ? o->views : 2, ipd, views, &err);
+        r = camera_views(*scene, k, o->views ? o->views : 2, o->ipd, views, &err);
     } else {
-        mvr_framing_desc fd = {o->layout, o->views, ipd, (double)o->width / (double)o->height};
+        /* ipd 0: the library's, scaled to the framing distance */
+        mvr_framing_desc fd = {o->layout, o->views, o->ipd, (double)o->width / (double)o->height};
         r = mvr_view_set_frame_scene(*scene, &fd, views, &err);
     }
     if (r != MVR_OK) {

@@ -15,7 +15,7 @@ typedef struct cli_scene_options {
     int camera;                  /* file: view from this camera node; -1 = frame with layout;
                                     CLI_CAMERA_IF_ANY: the first camera when the file has one */
     mvr_view_layout layout;
-    double ipd;                  /* 0 = 0.064 */
+    double ipd;                  /* 0 = mvr_stereo_default_ipd of the viewing distance */
     uint32_t gltf_scene;         /* 1-based; 0 = the file's default */
     uint32_t views, width, height;
     mvr_logger logger;

@@ -243,8 +243,7 @@ static void frame_scene(viewer *v)
     v->distance = v->radius * 2.5;
     v->yaw = 0.0;
     v->pitch = 0.25;
-    if (v->ipd <= 0)
-        v->ipd = 0.064;
+    v->ipd = mvr_stereo_default_ipd(v->distance); /* each scene its own; [ and ] scale it */
 }
 
 /* A demo keeps its own views (as mvr render draws them) and a file gets the

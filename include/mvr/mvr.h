@@ -904,9 +904,14 @@ typedef enum mvr_view_layout {
 typedef struct mvr_framing_desc {
     mvr_view_layout layout;
     uint32_t views;              /* 0 = the layout's own (stereo 2, cube 6, ring 8, grid 9) */
-    double ipd;                  /* stereo: metres between eyes; 0 = 0.064 */
+    double ipd;                  /* stereo: scene units between eyes; 0 = mvr_stereo_default_ipd of the framing distance */
     double aspect;               /* width / height of the layers; 0 = 1 */
 } mvr_framing_desc;
+
+/* The eye separation for a subject viewing_distance away: 1/30 of it (the
+ * stereographers' 1/30 rule), so a 2 cm model and a 100 m scene get the same
+ * depth impression; a subject framed 1.9 m away gets 0.064, a human IPD. */
+double mvr_stereo_default_ipd(double viewing_distance);
 
 const char *mvr_view_layout_name(mvr_view_layout layout);
 mvr_result mvr_view_set_frame_scene(const mvr_scene *scene, const mvr_framing_desc *desc, mvr_view_set **out,
