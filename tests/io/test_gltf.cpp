@@ -359,6 +359,25 @@ static void physical_lights_are_exposed_by_default(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
+// A corpus file loaded and rendered on the loop path (both layers' bytes);
+// empty after a failed check.
+static std::vector<uint8_t> render_corpus_file(mvr_test_state *t, const std::string &name)
+{
+    std::vector<uint8_t> px;
+    mvr_scene *s = load(t, corpus_dir() + "/" + name, nullptr);
+    if (!s)
+        return px;
+    mvr_context *ctx = nullptr;
+    mvr_error err;
+    if (mvr_context_create(nullptr, &ctx, &err) == MVR_OK)
+        px = gltf_render::two_layers(t, ctx, s, MVR_VIEW_PATH_LOOP, name.c_str());
+    else
+        CHECK_MSG(t, 0, "%s", err.message);
+    mvr_context_destroy(ctx);
+    mvr_scene_destroy(s);
+    return px;
+}
+
 // Emission needs no extension: an emissiveFactor alone glows (it used to be
 // dropped unless KHR_materials_emissive_strength was present), and that
 // extension's strength 0 turns it off. No light: the emissive quad shows
@@ -371,14 +390,8 @@ static void emission_needs_no_extension(mvr_test_state *t)
     const float *glow = s->materials[0].desc.emissive_factor, *off = s->materials[1].desc.emissive_factor;
     CHECK_MSG(t, glow[0] == 1.0f && glow[1] == 0.5f && glow[2] == 0.25f, "factor %g %g %g", glow[0], glow[1], glow[2]);
     CHECK(t, off[0] == 0.0f && off[1] == 0.0f && off[2] == 0.0f);
-    mvr_context *ctx = nullptr;
-    mvr_error err;
-    if (mvr_context_create(nullptr, &ctx, &err) != MVR_OK) {
-        CHECK_MSG(t, 0, "%s", err.message);
-        mvr_scene_destroy(s);
-        return;
-    }
-    std::vector<uint8_t> px = gltf_render::two_layers(t, ctx, s, MVR_VIEW_PATH_LOOP, "emission.gltf");
+    mvr_scene_destroy(s);
+    std::vector<uint8_t> px = render_corpus_file(t, "emission.gltf");
     size_t glowing = 0, dark = 0;
     for (size_t i = 0; i + 3 < px.size(); i += 4) {
         auto near = [&](int r, int g, int b) {
@@ -389,8 +402,6 @@ static void emission_needs_no_extension(mvr_test_state *t)
     }
     std::printf("  %zu pixels glow, %zu are black\n", glowing, dark);
     CHECK_MSG(t, glowing > 100 && dark > 100, "%zu glowing, %zu black pixels", glowing, dark);
-    mvr_scene_destroy(s);
-    mvr_context_destroy(ctx);
 }
 
 // Normal maps on back faces (double_sided_normals.gltf): the quads showing
@@ -399,17 +410,7 @@ static void emission_needs_no_extension(mvr_test_state *t)
 // turned the back faces' normals away from the light: dark.
 static void back_faces_take_the_whole_tangent_frame(mvr_test_state *t)
 {
-    mvr_scene *s = load(t, corpus_dir() + "/double_sided_normals.gltf", nullptr);
-    if (!s)
-        return;
-    mvr_context *ctx = nullptr;
-    mvr_error err;
-    if (mvr_context_create(nullptr, &ctx, &err) != MVR_OK) {
-        CHECK_MSG(t, 0, "%s", err.message);
-        mvr_scene_destroy(s);
-        return;
-    }
-    std::vector<uint8_t> px = gltf_render::two_layers(t, ctx, s, MVR_VIEW_PATH_LOOP, "double_sided_normals.gltf");
+    std::vector<uint8_t> px = render_corpus_file(t, "double_sided_normals.gltf");
     const int w = gltf_render::frame_width, y = gltf_render::frame_height / 2;
     // the quads along the middle row of layer 0, left to right: runs of
     // pixels unlike the background (the row's first pixel)
@@ -442,8 +443,6 @@ static void back_faces_take_the_whole_tangent_frame(mvr_test_state *t)
         CHECK_MSG(t, std::fabs(means[1] - means[2]) <= 8.0, "derived tangents: front %.1f, back %.1f", means[1],
                   means[2]);
     }
-    mvr_scene_destroy(s);
-    mvr_context_destroy(ctx);
 }
 
 MVR_TEST_MAIN(TEST(physical_lights_are_exposed_by_default), TEST(feature_files_render_alike_on_both_paths), TEST(features_convert_as_specified),
