@@ -159,10 +159,7 @@ static void target_too_large_fails(mvr_test_state *t)
     /* the renderer is not worse for it */
     mvr_scene *s = stress_scene();
     stress_node(t, s, stress_add_quad(t, s, stress_unlit(t, s, 1, 1, 1)), 0, 0, -1, 1.0);
-    double eye[3] = {0, 0, 0}, at[3] = {0, 0, -1};
-    mvr_projection proj = {.type = MVR_PROJECTION_ORTHOGRAPHIC, .xmag = 1, .ymag = 1, .znear = 0.1, .zfar = 10};
-    mvr_view_desc v = stress_view(eye, at, proj);
-    mvr_view_set *vs = stress_view_set(t, &v, 1, NULL);
+    mvr_view_set *vs = stress_front_view_set(t);
     CHECK(t, mvr_target_create(r, &small, &target) == MVR_OK);
     CHECK_MSG(t, mvr_renderer_render(r, s, vs, target, NULL) == MVR_OK, "%s", mvr_renderer_last_error(r));
     mvr_target_destroy(target);
@@ -194,15 +191,8 @@ static mvr_scene *image_scene(mvr_test_state *t, uint32_t iw, uint32_t ih)
             p[3] = 255;
         }
     mvr_image_desc id = {iw, ih, px, "huge"};
-    mvr_image_id img;
-    CHECK_MSG(t, mvr_scene_add_image(s, &id, &img) == MVR_OK, "%s", mvr_scene_last_error(s));
+    stress_unlit_image_quad(t, s, &id);
     free(px);
-    mvr_material_desc m = mvr_material_defaults();
-    m.unlit = true;
-    m.base_color.image = img;
-    mvr_material_id mat;
-    CHECK(t, mvr_scene_add_material(s, &m, &mat) == MVR_OK);
-    stress_node(t, s, stress_add_quad(t, s, mat), 0, 0, -1, 1.0);
     return s;
 }
 
@@ -235,10 +225,7 @@ static void run_image_case(mvr_test_state *t, mvr_context *ctx, mvr_scene *s, co
     mvr_target_desc td = {.width = W, .height = H, .layers = 1};
     mvr_target *target = NULL;
     CHECK(t, r && mvr_target_create(r, &td, &target) == MVR_OK);
-    double eye[3] = {0, 0, 0}, at[3] = {0, 0, -1};
-    mvr_projection proj = {.type = MVR_PROJECTION_ORTHOGRAPHIC, .xmag = 1, .ymag = 1, .znear = 0.1, .zfar = 10};
-    mvr_view_desc v = stress_view(eye, at, proj);
-    mvr_view_set *vs = stress_view_set(t, &v, 1, NULL);
+    mvr_view_set *vs = stress_front_view_set(t);
     if (target && vs) {
         mvr_render_desc desc = {.clear_color = {0, 0, 0, 1}};
         double t0 = now_ms();
@@ -373,10 +360,7 @@ static void application_error_is_not_blamed(mvr_test_state *t)
     mvr_target_desc td = {.width = W, .height = H, .layers = 1};
     mvr_target *target = NULL;
     CHECK(t, r && mvr_target_create(r, &td, &target) == MVR_OK);
-    double eye[3] = {0, 0, 0}, at[3] = {0, 0, -1};
-    mvr_projection proj = {.type = MVR_PROJECTION_ORTHOGRAPHIC, .xmag = 1, .ymag = 1, .znear = 0.1, .zfar = 10};
-    mvr_view_desc v = stress_view(eye, at, proj);
-    mvr_view_set *vs = stress_view_set(t, &v, 1, NULL);
+    mvr_view_set *vs = stress_front_view_set(t);
     if (s && target && vs) {
         ctx->gl.Enable(0x1234); /* GL_INVALID_ENUM, the application's */
         int warnings = sink.warnings;

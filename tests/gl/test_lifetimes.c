@@ -30,23 +30,8 @@ static mvr_scene *quad_scene(mvr_test_state *t, uint8_t r, uint8_t g, uint8_t b)
         px[i * 4 + 3] = 255;
     }
     mvr_image_desc id = {4, 4, px, "flat"};
-    mvr_image_id img;
-    CHECK(t, mvr_scene_add_image(s, &id, &img) == MVR_OK);
-    mvr_material_desc m = mvr_material_defaults();
-    m.unlit = true;
-    m.base_color.image = img;
-    mvr_material_id mat;
-    CHECK(t, mvr_scene_add_material(s, &m, &mat) == MVR_OK);
-    stress_node(t, s, stress_add_quad(t, s, mat), 0, 0, -1, 1.0);
+    stress_unlit_image_quad(t, s, &id);
     return s;
-}
-
-static mvr_view_set *quad_views(mvr_test_state *t)
-{
-    double eye[3] = {0, 0, 0}, target[3] = {0, 0, -1};
-    mvr_projection proj = {.type = MVR_PROJECTION_ORTHOGRAPHIC, .xmag = 1, .ymag = 1, .znear = 0.1, .zfar = 10};
-    mvr_view_desc v = stress_view(eye, target, proj);
-    return stress_view_set(t, &v, 1, NULL);
 }
 
 static mvr_renderer *make_renderer(mvr_test_state *t, mvr_context *ctx)
@@ -178,7 +163,7 @@ static void destroy_in_every_order(mvr_test_state *t)
         o.ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
         o.scene = quad_scene(t, 255, 0, 0);
         mvr_scene *spare = quad_scene(t, 0, 0, 255);
-        mvr_view_set *vs = quad_views(t);
+        mvr_view_set *vs = stress_front_view_set(t);
         o.r = o.ctx ? make_renderer(t, o.ctx) : NULL;
         o.target = make_target(t, o.r);
         if (o.ctx && o.r && o.target && o.scene && spare && vs) {
@@ -229,7 +214,7 @@ static void wrong_context_changes_nothing(mvr_test_state *t)
     if (!a)
         return;
     mvr_scene *s = quad_scene(t, 30, 200, 90);
-    mvr_view_set *vs = quad_views(t);
+    mvr_view_set *vs = stress_front_view_set(t);
     static const uint8_t green[3] = {30, 200, 90};
     /* on A: one renderer that rendered before the other context existed, one that never rendered */
     mvr_renderer *used = make_renderer(t, a), *fresh = make_renderer(t, a);
@@ -319,7 +304,7 @@ static void external_context_checks(mvr_test_state *t)
     if (!app)
         return;
     mvr_scene *s = quad_scene(t, 200, 100, 10);
-    mvr_view_set *vs = quad_views(t);
+    mvr_view_set *vs = stress_front_view_set(t);
     static const uint8_t orange[3] = {200, 100, 10};
 
     /* the callback */

@@ -103,6 +103,20 @@ static inline mvr_node_id stress_node(mvr_test_state *t, mvr_scene *s, mvr_mesh_
     return id;
 }
 
+/* The image as an unlit texture on a stress_add_quad at z = -1, which fills
+ * stress_front_view_set's view. */
+static inline void stress_unlit_image_quad(mvr_test_state *t, mvr_scene *s, const mvr_image_desc *image)
+{
+    mvr_image_id img = {0};
+    CHECK_MSG(t, mvr_scene_add_image(s, image, &img) == MVR_OK, "image: %s", mvr_scene_last_error(s));
+    mvr_material_desc m = mvr_material_defaults();
+    m.unlit = true;
+    m.base_color.image = img;
+    mvr_material_id mat = {0};
+    CHECK(t, mvr_scene_add_material(s, &m, &mat) == MVR_OK);
+    stress_node(t, s, stress_add_quad(t, s, mat), 0, 0, -1, 1.0);
+}
+
 /* One view at eye looking at target (up +Y unless looking along Y). */
 static inline mvr_view_desc stress_view(const double eye[3], const double target[3], mvr_projection proj)
 {
@@ -191,6 +205,16 @@ static inline unsigned max_abs_diff8(const uint8_t *a, const uint8_t *b, size_t 
         m = d > m ? d : m;
     }
     return m;
+}
+
+/* One orthographic view from the origin down -Z, 2 x 2 units: what
+ * stress_unlit_image_quad fills. */
+static inline mvr_view_set *stress_front_view_set(mvr_test_state *t)
+{
+    double eye[3] = {0, 0, 0}, target[3] = {0, 0, -1};
+    mvr_projection proj = {.type = MVR_PROJECTION_ORTHOGRAPHIC, .xmag = 1, .ymag = 1, .znear = 0.1, .zfar = 10};
+    mvr_view_desc v = stress_view(eye, target, proj);
+    return stress_view_set(t, &v, 1, NULL);
 }
 
 #endif
