@@ -383,12 +383,6 @@ void converter::node(int index, mvr_node_id parent, std::vector<char> &state, ui
 
 namespace {
 
-std::string cx_bad_camera(const converter &cv, int index)
-{
-    auto found = cv.cx.res.bad_cameras.find(index);
-    return found == cv.cx.res.bad_cameras.end() ? std::string() : found->second;
-}
-
 void convert_cameras_and_lights(converter &cv)
 {
     const Model &m = cv.m;
@@ -398,9 +392,9 @@ void convert_cameras_and_lights(converter &cv)
         try {
         mvr_projection p;
         std::memset(&p, 0, sizeof p);
-        auto bad = cx_bad_camera(cv, int(i));
-        if (!bad.empty())
-            refuse(bad);
+        auto bad = cv.cx.res.bad_cameras.find(int(i)); /* what the pre-pass found tinygltf could not parse */
+        if (bad != cv.cx.res.bad_cameras.end())
+            refuse(bad->second);
         if (c.type == "perspective") {
             p.type = MVR_PROJECTION_PERSPECTIVE;
             p.yfov = c.perspective.yfov;

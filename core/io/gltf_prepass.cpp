@@ -126,11 +126,6 @@ namespace {
 const char *placeholder_buffer = "data:application/octet-stream;base64,AA==";
 const char *placeholder_image = "data:image/png;base64,AA==";
 
-std::string type_name(const nlohmann::json &j)
-{
-    return j.type_name();
-}
-
 }  // namespace
 
 // What tinygltf 2.7's camera parser would refuse (glTF 2.0, 5.12-5.14: the
@@ -204,12 +199,12 @@ std::string extract_resources(const json_text &text, resources &res, uint64_t *m
         refuse("the JSON does not parse: " + quote(e.what()));
     }
     if (!doc.is_object())
-        refuse("the JSON is a " + type_name(doc) + ", not an object");
+        refuse(std::string("the JSON is a ") + doc.type_name() + ", not an object");
     *model_size = model_bytes(doc);
     auto buffers = doc.find("buffers");
     if (buffers != doc.end()) {
         if (!buffers->is_array())
-            refuse("buffers is a " + type_name(*buffers) + ", not an array");
+            refuse(std::string("buffers is a ") + buffers->type_name() + ", not an array");
         res.buffers.resize(buffers->size());
         for (size_t i = 0; i < buffers->size(); ++i) {
             std::string w = "buffers[" + std::to_string(i) + "]";
@@ -235,7 +230,7 @@ std::string extract_resources(const json_text &text, resources &res, uint64_t *m
     auto images = doc.find("images");
     if (images != doc.end()) {
         if (!images->is_array())
-            refuse("images is a " + type_name(*images) + ", not an array");
+            refuse(std::string("images is a ") + images->type_name() + ", not an array");
         res.images.resize(images->size());
         for (size_t i = 0; i < images->size(); ++i) {
             std::string w = "images[" + std::to_string(i) + "]";
