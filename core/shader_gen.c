@@ -32,6 +32,8 @@ static const feature_define mesh_defines[] = {
     {MVR_FEATURE_SHADOWS, "MVR_SHADOWS"},
     {MVR_FEATURE_LIGHT_MASKS, "MVR_LIGHT_MASKS"},
     {MVR_FEATURE_SHADOW_CASTER, "MVR_SHADOW_CASTER"},
+    {MVR_FEATURE_IBL, "MVR_IBL"},
+    {MVR_FEATURE_IBL_REFERENCE, "MVR_IBL_REFERENCE"},
 };
 
 static const feature_define composite_defines[] = {
@@ -44,9 +46,18 @@ static const feature_define composite_defines[] = {
     {MVR_FEATURE_LOG_LUMINANCE, "MVR_LOG_LUMINANCE"},
 };
 
+static const feature_define environment_defines[] = {
+    {MVR_FEATURE_ENV_GGX, "MVR_ENV_GGX"},
+};
+
+static const feature_define background_defines[] = {
+    {MVR_FEATURE_BACKGROUND_SRGB_OUTPUT, "MVR_SRGB_OUTPUT"},
+};
+
 typedef struct program_files {
     const char *shared[2];   /* prepended to both stages, in order (NULL = none) */
     const char *vertex_shared; /* prepended to the vertex stage only */
+    const char *fragment_shared[2]; /* prepended to the fragment stage only, in order (NULL = none) */
     const char *stage[MVR_SHADER_STAGE_COUNT];
 } program_files;
 
@@ -59,6 +70,12 @@ static const feature_define *program_defines(mvr_program_kind program, size_t *c
     case MVR_PROGRAM_COMPOSITE:
         *count = MVR_ARRAY_COUNT(composite_defines);
         return composite_defines;
+    case MVR_PROGRAM_ENVIRONMENT:
+        *count = MVR_ARRAY_COUNT(environment_defines);
+        return environment_defines;
+    case MVR_PROGRAM_BACKGROUND:
+        *count = MVR_ARRAY_COUNT(background_defines);
+        return background_defines;
     case MVR_PROGRAM_KIND_COUNT:
         break;
     }
@@ -73,12 +90,25 @@ static bool program_files_of(mvr_program_kind program, program_files *out)
     switch (program) {
     case MVR_PROGRAM_MESH:
         out->shared[1] = "views.glsl";
+        out->fragment_shared[0] = "output.glsl";
+        out->fragment_shared[1] = "environment.glsl";
         out->stage[MVR_SHADER_STAGE_VERTEX] = "mesh.vert.glsl";
         out->stage[MVR_SHADER_STAGE_FRAGMENT] = "mesh.frag.glsl";
         return true;
     case MVR_PROGRAM_COMPOSITE:
         out->stage[MVR_SHADER_STAGE_VERTEX] = "composite.vert.glsl";
         out->stage[MVR_SHADER_STAGE_FRAGMENT] = "composite.frag.glsl";
+        return true;
+    case MVR_PROGRAM_ENVIRONMENT:
+        out->fragment_shared[0] = "environment.glsl";
+        out->stage[MVR_SHADER_STAGE_VERTEX] = "env_faces.vert.glsl";
+        out->stage[MVR_SHADER_STAGE_FRAGMENT] = "env_prefilter.frag.glsl";
+        return true;
+    case MVR_PROGRAM_BACKGROUND:
+        out->shared[1] = "views.glsl";
+        out->fragment_shared[0] = "output.glsl";
+        out->stage[MVR_SHADER_STAGE_VERTEX] = "background.vert.glsl";
+        out->stage[MVR_SHADER_STAGE_FRAGMENT] = "background.frag.glsl";
         return true;
     case MVR_PROGRAM_KIND_COUNT:
         break;
@@ -99,6 +129,8 @@ const char *mvr_program_kind_name(mvr_program_kind kind)
     switch (kind) {
     case MVR_PROGRAM_MESH: return "mesh";
     case MVR_PROGRAM_COMPOSITE: return "composite";
+    case MVR_PROGRAM_ENVIRONMENT: return "environment";
+    case MVR_PROGRAM_BACKGROUND: return "background";
     case MVR_PROGRAM_KIND_COUNT: break;
     }
     return NULL;
@@ -262,6 +294,9 @@ bool mvr_shader_source(const mvr_shader_variant *v, mvr_shader_stage stage, mvr_
     if (stage == MVR_SHADER_STAGE_VERTEX && files.vertex_shared &&
         !append_file(out, files.vertex_shared, why, why_size))
         return false;
+    for (size_t i = 0; stage == MVR_SHADER_STAGE_FRAGMENT && i < MVR_ARRAY_COUNT(files.fragment_shared); ++i)
+        if (files.fragment_shared[i] && !append_file(out, files.fragment_shared[i], why, why_size))
+            return false;
     if (!append_file(out, files.stage[stage], why, why_size))
         return false;
     if (out->failed) {
@@ -296,7 +331,7 @@ static uint32_t all_compatible_features(mvr_program_kind program)
     uint32_t mask = mvr_shader_feature_mask(program);
     if (program == MVR_PROGRAM_MESH)
         mask &= ~(uint32_t)(MVR_FEATURE_ALPHA_BLEND | MVR_FEATURE_SHADOW_CASTER);
-    else
+    else if (program == MVR_PROGRAM_COMPOSITE)
         mask &= ~(uint32_t)MVR_FEATURE_POST_PBR_NEUTRAL;
     return mask;
 }
@@ -313,7 +348,8 @@ bool mvr_shader_variant_enumerate(unsigned index, uint32_t max_views, mvr_shader
         /* feature sets: none, each alone, and (where a program has more than
          * one feature) all compatible ones together, plus (mesh) all with blend
          * instead of mask */
-        unsigned feature_sets = 1u + (unsigned)define_count + (define_count > 1 ? 1u : 0u) + 1u;
+        bool exclusive = program == MVR_PROGRAM_MESH || program == MVR_PROGRAM_COMPOSITE;
+        unsigned feature_sets = 1u + (unsigned)define_count + (define_count > 1 ? 1u : 0u) + (exclusive ? 1u : 0u);
         unsigned light_sets = program == MVR_PROGRAM_MESH ? 2u : 1u;
         unsigned per_program = feature_sets * view_count * light_sets;
         if (index >= per_program) {

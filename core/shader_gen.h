@@ -22,6 +22,8 @@ typedef enum mvr_shader_stage {
 typedef enum mvr_program_kind {
     MVR_PROGRAM_MESH = 0,   /* scene geometry, metallic-roughness PBR */
     MVR_PROGRAM_COMPOSITE,  /* full-screen copy of one array layer per view */
+    MVR_PROGRAM_ENVIRONMENT, /* environment prefiltering: a cube map level, six faces as six views */
+    MVR_PROGRAM_BACKGROUND, /* the environment behind the scene, per view, at the far plane */
     MVR_PROGRAM_KIND_COUNT
 } mvr_program_kind;
 
@@ -47,7 +49,9 @@ typedef enum mvr_mesh_feature {
     MVR_FEATURE_SHADOWS = 1u << 17,         /* lights read shadow map layers (PCF) */
     MVR_FEATURE_LIGHT_MASKS = 1u << 18,     /* per-view light masks (render layers) */
     MVR_FEATURE_SHADOW_CASTER = 1u << 19,   /* depth only: the shadow map pass (alpha test at most) */
-    MVR_MESH_FEATURE_ALL_ = (1u << 20) - 1u
+    MVR_FEATURE_IBL = 1u << 20,             /* image-based lighting from a prefiltered environment */
+    MVR_FEATURE_IBL_REFERENCE = 1u << 21,   /* with IBL: the environment integrated per pixel (ground truth) */
+    MVR_MESH_FEATURE_ALL_ = (1u << 22) - 1u
 } mvr_mesh_feature;
 
 #define MVR_TEXTURE_FEATURES                                                                        \
@@ -66,12 +70,25 @@ typedef enum mvr_composite_feature {
     MVR_COMPOSITE_FEATURE_ALL_ = (1u << 7) - 1u
 } mvr_composite_feature;
 
+/* Feature bits of the environment program (none: equirectangular image ->
+ * cube map faces). */
+typedef enum mvr_environment_feature {
+    MVR_FEATURE_ENV_GGX = 1u << 0,          /* GGX prefilter of the source cube map (one roughness) */
+    MVR_ENVIRONMENT_FEATURE_ALL_ = (1u << 1) - 1u
+} mvr_environment_feature;
+
+/* Feature bits of the background program. */
+typedef enum mvr_background_feature {
+    MVR_FEATURE_BACKGROUND_SRGB_OUTPUT = 1u << 0, /* shader encodes sRGB (UNORM targets), as the mesh's */
+    MVR_BACKGROUND_FEATURE_ALL_ = (1u << 1) - 1u
+} mvr_background_feature;
+
 #define MVR_SHADER_MAX_LIGHTS_PER_TYPE 8
 #define MVR_SHADER_MAX_SHADOW_LAYERS 16
 
 typedef struct mvr_shader_variant {
     mvr_program_kind program;
-    uint32_t features;      /* mvr_mesh_feature or mvr_composite_feature bits */
+    uint32_t features;      /* the program's feature bits (mvr_mesh_feature, mvr_composite_feature, ...) */
     uint32_t num_views;     /* 0: loop path (view index uniform); n >= 1: multiview, num_views = n */
     uint8_t directional_lights, point_lights, spot_lights;  /* mesh only */
     uint16_t material_capacity; /* materials per table block (mesh); 0 = 64 */

@@ -427,6 +427,8 @@ static mvr_result bind_program(pass_context *pc, uint32_t features)
     if (e->frame_serial != r->frame_serial) {
         gl->Uniform3fv(e->loc_ambient, 1, pc->scene->ambient);
         gl->Uniform1f(e->loc_exposure, pc->mesh_exposure);
+        if (e->variant.features & MVR_FEATURE_IBL)
+            mvr_environment_set_uniforms(r, e, pc->desc->environment, pc->desc->environment_samples);
         e->frame_serial = r->frame_serial;
     }
     return MVR_OK;
@@ -702,6 +704,11 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
         pc.output_features |= MVR_FEATURE_SHADOWS;
     if (r->shadows.plan.masked)
         pc.output_features |= MVR_FEATURE_LIGHT_MASKS;
+    /* image-based lighting: the environment, prefiltered before the frame
+     * (mvr_environment_sync), is read by every lit draw of every pass */
+    if (desc->environment)
+        pc.output_features |= MVR_FEATURE_IBL | (desc->environment_samples ? MVR_FEATURE_IBL_REFERENCE : 0u);
+    bool background = desc->background != MVR_BACKGROUND_COLOR;
 
     mvr_state_cache *st = &r->state;
     if (r->force_inert_features) /* what a forced COLOR_0 reads where a primitive has none */
@@ -779,6 +786,8 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
         if (light_total)
             mvr_state_ubo_range(st, MVR_BLOCK_LIGHTS, r->ring.buffer, lay.lights, lay.lights_size);
         mvr_shadows_bind(r, lay.shadow_block);
+        if (desc->environment)
+            mvr_environment_bind(r, desc->environment_samples > 0);
         pc.num_views = mv_pass ? ch->count : 0;
         pc.first_view = ch->base;
         pc.views = ch->count;
@@ -797,9 +806,16 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
             r->stats.blend_diverged_chunks += diverged;
             split_blend = diverged || r->blend_policy == MVR_TRANSPARENCY_ORDER_PER_VIEW;
         }
-        for (int k = 0; k < MVR_PASS_KIND_COUNT && res == MVR_OK; ++k)
-            if (!(split_blend && k == MVR_PASS_BLEND))
+        for (int k = 0; k < MVR_PASS_KIND_COUNT && res == MVR_OK; ++k) {
+            /* the background after the opaque and masked geometry, before
+             * the blended: only uncovered pixels pass its depth test, and
+             * what is transparent blends over it */
+            if (background && k == MVR_PASS_BLEND)
+                res = mvr_environment_draw_background(r, desc, pc.num_views, pc.view_base, encode_in_mesh,
+                                                      pc.mesh_exposure);
+            if (res == MVR_OK && !(split_blend && k == MVR_PASS_BLEND))
                 res = draw_list(&pc, (mvr_pass_kind)k);
+        }
         /* the views' own blend passes, into their layers and depth: after the
          * multiview pass, as a loop pass would draw them */
         for (uint32_t v = ch->base; split_blend && res == MVR_OK && v < ch->base + ch->count; ++v) {

@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "environment.h"
 #include "renderer_internal.h"
 
 #define POST_VIEWS 32 /* MVR_POST_VIEWS of composite.frag.glsl */
@@ -59,6 +60,9 @@ static double guess_auto_exposure(const mvr_renderer *r, const mvr_render_desc *
             lux += intensity / fmax(mvr_dvec3_dot(f->lights[i].position, f->lights[i].position), 1.0);
     }
     double luminance = fmax(lux * 0.18 / 3.14159265358979323846, 1e-3);
+    /* an environment: a grey card under its average diffuse light */
+    if (d->environment)
+        luminance += 0.18 * mvr_environment_average_diffuse(d->environment);
     return exposure_key(d) / luminance;
 }
 

@@ -212,6 +212,11 @@ mvr_result mvr_gl_program_build_cached(mvr_context *ctx, const mvr_shader_varian
     bind_sampler(gl, program, "mvr_shadow_map", MVR_UNIT_SHADOW_MAP);
     bind_sampler(gl, program, "mvr_source", MVR_UNIT_COMPOSITE_SOURCE);
     bind_sampler(gl, program, "mvr_depth", MVR_UNIT_COMPOSITE_DEPTH);
+    bind_sampler(gl, program, "mvr_env_specular", MVR_UNIT_ENV_SPECULAR);
+    bind_sampler(gl, program, "mvr_env_dfg", MVR_UNIT_ENV_DFG);
+    bind_sampler(gl, program, "mvr_env_background", MVR_UNIT_ENV_BACKGROUND);
+    bind_sampler(gl, program, "mvr_env_source", MVR_UNIT_ENV_INPUT);
+    bind_sampler(gl, program, "mvr_env_equirect", MVR_UNIT_ENV_INPUT);
     r = mvr_gl_check(ctx, "mvr_gl_program_build", false);
     if (r != MVR_OK) {
         gl->DeleteProgram(program);

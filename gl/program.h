@@ -22,8 +22,13 @@ enum {
     MVR_UNIT_OCCLUSION = 3,
     MVR_UNIT_EMISSIVE = 4,
     MVR_UNIT_SHADOW_MAP = 5,
+    MVR_UNIT_ENV_SPECULAR = 6,   /* mesh: the prefiltered cube map */
+    MVR_UNIT_ENV_DFG = 7,        /* mesh: the DFG table */
+    MVR_UNIT_ENV_BACKGROUND = 8, /* background: the cube map it shows (its own unit: the
+                                    mesh draws after it in the pass keep theirs) */
     MVR_UNIT_COMPOSITE_SOURCE = 0,
-    MVR_UNIT_COMPOSITE_DEPTH = 1
+    MVR_UNIT_COMPOSITE_DEPTH = 1,
+    MVR_UNIT_ENV_INPUT = 0       /* environment program: the equirect image or the source cube */
 };
 
 /* Builds the variant into a linked program with its blocks and samplers bound.

@@ -315,6 +315,7 @@ static void release_gl(mvr_renderer *r)
         t->renderer = NULL;
     }
     mvr_shadows_release(r);
+    mvr_environment_release(r);
     mvr_renderer_delete(r, MVR_GL_SAMPLER, &r->nearest_sampler);
     mvr_gpu_scene_release(r);
     for (uint32_t i = 0; i < r->program_count; ++i)
@@ -425,6 +426,24 @@ mvr_result mvr_renderer_program(mvr_renderer *r, const mvr_shader_variant *v, mv
     e->loc_factor = r->gl->GetUniformLocation(program, "mvr_factor");
     e->loc_post_exposure = r->gl->GetUniformLocation(program, "mvr_post_exposure");
     e->loc_clear_depth = r->gl->GetUniformLocation(program, "mvr_clear_depth");
+    static const struct { size_t offset; const char *name; } env_uniforms[] = {
+        {offsetof(mvr_program_entry, loc_env_sh), "mvr_env_sh"},
+        {offsetof(mvr_program_entry, loc_env_rotation), "mvr_env_rotation"},
+        {offsetof(mvr_program_entry, loc_env_intensity), "mvr_env_intensity"},
+        {offsetof(mvr_program_entry, loc_env_max_lod), "mvr_env_max_lod"},
+        {offsetof(mvr_program_entry, loc_face_base), "mvr_face_base"},
+        {offsetof(mvr_program_entry, loc_face_size), "mvr_face_size"},
+        {offsetof(mvr_program_entry, loc_equirect_lod), "mvr_equirect_lod"},
+        {offsetof(mvr_program_entry, loc_roughness), "mvr_roughness"},
+        {offsetof(mvr_program_entry, loc_samples), "mvr_samples"},
+        {offsetof(mvr_program_entry, loc_source_size), "mvr_source_size"},
+        {offsetof(mvr_program_entry, loc_source_max_lod), "mvr_source_max_lod"},
+        {offsetof(mvr_program_entry, loc_depth_range), "mvr_depth_range"},
+        {offsetof(mvr_program_entry, loc_background_lod), "mvr_background_lod"},
+        {offsetof(mvr_program_entry, loc_env_samples), "mvr_env_samples"},
+    };
+    for (size_t i = 0; i < MVR_ARRAY_COUNT(env_uniforms); ++i)
+        *(GLint *)((char *)e + env_uniforms[i].offset) = r->gl->GetUniformLocation(program, env_uniforms[i].name);
     e->view_base = INT32_MIN;
     e->from_binary = info.from_binary;
     if (info.from_binary)
@@ -606,6 +625,18 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
                                  "(at most 16384), distance and biases >= 0 and finite",
                                  (int)sd->mode, sd->cascades, MVR_SHADOW_MAX_CASCADES, sd->map_size);
 
+    if (!mvr_background_name(d.background) || !(d.background_blur >= 0.0f && d.background_blur <= 1.0f) ||
+        d.environment_samples > 65536u)
+        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT,
+                                 "mvr_renderer_render: background %d with blur %g (a roughness, 0..1), "
+                                 "environment samples %u (at most 65536)",
+                                 (int)d.background, (double)d.background_blur, d.environment_samples);
+    if (d.background != MVR_BACKGROUND_COLOR && !d.environment)
+        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT,
+                                 "mvr_renderer_render: background '%s' needs an environment (render desc "
+                                 "environment is NULL)",
+                                 mvr_background_name(d.background));
+
     /* multiview where it works for this target: a mip level other than 0
      * cannot be attached with multiview on some drivers (bugs struct) */
     bool level_ok = t_level_ok(r, target);
@@ -646,6 +677,8 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
     }
     uint32_t failures = r->failures;
     res = mvr_gpu_scene_sync(r, scene);
+    if (res == MVR_OK)
+        res = mvr_environment_sync(r, d.environment);
     if (res == MVR_OK)
         res = mvr_renderer_draw_frame(r, scene, views, target, &d, path);
     if (r->timer.timestamps) {

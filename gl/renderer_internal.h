@@ -17,6 +17,11 @@ typedef struct mvr_program_entry {
     GLuint program;
     GLint loc_view_base, loc_ambient, loc_exposure;
     GLint loc_layer_base, loc_factor, loc_post_exposure, loc_clear_depth;  /* composite programs */
+    GLint loc_env_sh, loc_env_rotation, loc_env_intensity, loc_env_max_lod; /* mesh (IBL), background */
+    GLint loc_face_base, loc_face_size, loc_equirect_lod, loc_roughness, loc_samples, loc_source_size,
+        loc_source_max_lod;      /* environment programs */
+    GLint loc_depth_range, loc_background_lod; /* background programs */
+    GLint loc_env_samples;       /* mesh, the IBL reference */
     int32_t view_base;           /* last value set (INT32_MIN = unknown) */
     uint64_t frame_serial;       /* frame whose per-frame uniforms are set */
     bool from_binary;            /* linked from the binary cache */
@@ -151,6 +156,19 @@ typedef struct mvr_shadow_maps {
     mvr_shadow_plan plan;        /* this frame's */
 } mvr_shadow_maps;
 
+/* An environment prefiltered for this renderer (gl/environment.c): made
+ * when a render meets an environment whose serial differs, kept until then. */
+typedef struct mvr_gpu_environment {
+    uint64_t serial;             /* the environment's pixels these are of; 0 = none */
+    GLuint source;               /* cube map RGBA16F with mips: the sharp background, the prefilter's input */
+    uint32_t source_size, source_levels;
+    GLuint specular;             /* cube map RGBA16F: level k = GGX of roughness k / (levels - 1) */
+    uint32_t specular_size, specular_levels;
+    GLuint cube_sampler;         /* trilinear, clamped */
+    GLuint dfg;                  /* the DFG table, RG16F, once per renderer */
+    GLuint dfg_sampler;
+} mvr_gpu_environment;
+
 struct mvr_renderer {
     mvr_context *ctx;            /* NULL once the context is destroyed: calls fail, destroy frees */
     const mvr_gl_api_table *gl;  /* &ctx->gl */
@@ -207,6 +225,7 @@ struct mvr_renderer {
     GLuint empty_vao;            /* for attributeless full-screen passes */
     mvr_shadow_maps shadows;
     GLuint nearest_sampler;      /* texel reads of depth (auto-exposure metering) */
+    mvr_gpu_environment env;
 };
 
 mvr_result mvr_renderer_fail(mvr_renderer *r, mvr_result result, const char *fmt, ...) MVR_PRINTF(3, 4);
@@ -271,6 +290,21 @@ mvr_result mvr_shadows_draw(mvr_renderer *r, GLintptr views_at, GLintptr draws_a
 /* Binds the maps and the receiver block (at block_at) for the view passes. */
 void mvr_shadows_bind(mvr_renderer *r, GLintptr block_at);
 void mvr_shadows_release(mvr_renderer *r);
+
+/* environment.c: prefilters a new environment (nothing when it is the one
+ * already prefiltered, or NULL); binds its maps for the mesh programs; sets
+ * a program's environment uniforms; draws the background of one pass (its
+ * views: num_views multiview, 0 = one view at view_base) after the opaque
+ * geometry; releases the maps. */
+mvr_result mvr_environment_sync(mvr_renderer *r, const mvr_environment *env);
+void mvr_environment_bind(mvr_renderer *r, bool reference);
+void mvr_environment_set_uniforms(mvr_renderer *r, const mvr_program_entry *e, const mvr_environment *env,
+                                  uint32_t samples);
+mvr_result mvr_environment_draw_background(mvr_renderer *r, const mvr_render_desc *desc, uint32_t num_views,
+                                           int32_t view_base, bool srgb_output, float exposure);
+void mvr_environment_release(mvr_renderer *r);
+/* The luminance of a white Lambertian surface, averaged over directions. */
+double mvr_environment_average_diffuse(const mvr_environment *env);
 
 /* A pass's views: consecutive layers sharing one viewport (passes.c
  * splits the view set into these; a loop-path chunk is one view). */

@@ -9,6 +9,7 @@ precision highp int;
 precision highp sampler2D;
 precision highp sampler2DArray;
 precision highp sampler2DArrayShadow;
+precision highp samplerCube;
 
 const float MVR_PI = 3.14159265358979323846;
 

@@ -500,6 +500,76 @@ mvr_result mvr_view_set_update(mvr_view_set *set, uint32_t index, const mvr_view
 uint32_t mvr_view_set_count(const mvr_view_set *set);
 const char *mvr_view_set_last_error(const mvr_view_set *set);
 
+
+/* ------------------------------------------------------------------ environments
+ *
+ * Image-based lighting: radiance arriving from every direction, as an
+ * equirectangular image (latitude-longitude, linear RGB radiance), the
+ * built-in neutral studio, or one uniform radiance. An environment is CPU
+ * data (no GL): a renderer prefilters it on the GPU once, the first time it
+ * renders with it (and again only when its pixels change), and every view of
+ * every later frame reads the same maps (mvr_frame_stats.env_prefilter_passes
+ * is 0 on those frames).
+ *
+ * Directions: glTF's world, +Y up. The image's top row is +Y, its bottom
+ * row -Y; its centre column looks along -Z (what a glTF camera with no
+ * rotation sees), its right quarter along +X: a direction d maps to
+ * u = 0.5 + atan2(d.x, -d.z) / (2 pi), v = acos(d.y) / pi (v = 0: top row).
+ * rotation turns the environment about +Y, counter-clockwise seen from
+ * above (so +90 brings what was at -Z to -X).
+ *
+ * Diffuse light is the irradiance of the environment in third-order
+ * spherical harmonics (9 coefficients per channel, Ramamoorthi and
+ * Hanrahan 2001), projected on the CPU in double precision when the
+ * environment is created; specular light is the split-sum approximation
+ * (Karis 2013): a GGX-prefiltered cube map chain (one roughness per level,
+ * the Khronos glTF Sample Renderer's mapping lod = roughness * (levels - 1))
+ * and a DFG lookup table computed once per renderer.
+ */
+typedef struct mvr_environment mvr_environment;
+
+typedef enum mvr_environment_source {
+    MVR_ENVIRONMENT_NEUTRAL = 0, /* the built-in studio: procedural, deterministic, no data shipped */
+    MVR_ENVIRONMENT_PIXELS,      /* an equirectangular image in memory */
+    MVR_ENVIRONMENT_UNIFORM      /* one radiance from every direction (the white furnace) */
+} mvr_environment_source;
+const char *mvr_environment_source_name(mvr_environment_source source);
+
+typedef struct mvr_environment_desc {
+    mvr_environment_source source;
+    /* PIXELS: width * height RGBA floats, linear radiance, rows top first
+     * (alpha ignored). Copied: the caller keeps its memory. Images larger
+     * than 2048 either way are box-filtered (in linear light, exact area
+     * weights) to fit 2048 x 2048, keeping their aspect (4096 x 2048 ->
+     * 2048 x 1024). NaN, infinite and negative values become 0 (a warning). */
+    const float *pixels;
+    uint32_t width, height;
+    float color[3];              /* UNIFORM: radiance; all 0 = (1, 1, 1) */
+    float intensity;             /* multiplies the radiance; 0 = 1 */
+    float rotation;              /* degrees about +Y */
+    uint32_t specular_size;      /* prefiltered cube face size, a power of two 16..1024; 0 = 128 */
+    uint32_t specular_samples;   /* GGX samples per texel of the prefilter, 1..4096; 0 = 64 */
+    mvr_logger logger;
+} mvr_environment_desc;
+
+mvr_result mvr_environment_create(const mvr_environment_desc *desc, mvr_environment **out, mvr_error *out_error);
+/* NULL is fine. A renderer that used it keeps its maps until it renders
+ * with another environment or is destroyed. */
+void mvr_environment_destroy(mvr_environment *environment);
+/* Intensity (0 = 1) and rotation (degrees) change without prefiltering again. */
+void mvr_environment_set_intensity(mvr_environment *environment, float intensity);
+void mvr_environment_set_rotation(mvr_environment *environment, float degrees);
+float mvr_environment_intensity(const mvr_environment *environment);
+float mvr_environment_rotation(const mvr_environment *environment);
+
+/* The irradiance the spherical harmonics give a surface facing world
+ * direction n, divided by pi (so a white Lambertian surface's radiance),
+ * intensity and rotation applied. */
+void mvr_environment_diffuse(const mvr_environment *environment, const double n[3], double out_rgb[3]);
+/* The radiance arriving from world direction d (bilinear in the stored
+ * image), intensity and rotation applied. */
+void mvr_environment_radiance(const mvr_environment *environment, const double d[3], double out_rgb[3]);
+
 /* ------------------------------------------------------------------ renderer */
 
 typedef struct mvr_renderer mvr_renderer;
@@ -747,6 +817,17 @@ typedef enum mvr_exposure_mode {
 } mvr_exposure_mode;
 const char *mvr_exposure_mode_name(mvr_exposure_mode mode);
 
+/* What pixels no geometry covers show: the clear colour, or the
+ * environment (sharp, from the source cube map, or blurred, from a
+ * prefiltered level), drawn per view in the same pass as the scene after
+ * the opaque geometry, with the depth test, so only uncovered pixels pay. */
+typedef enum mvr_background {
+    MVR_BACKGROUND_COLOR = 0,    /* clear_color */
+    MVR_BACKGROUND_ENVIRONMENT,  /* the environment as seen (needs one) */
+    MVR_BACKGROUND_BLUR          /* the environment's prefiltered level of background_blur */
+} mvr_background;
+const char *mvr_background_name(mvr_background background);
+
 typedef struct mvr_render_desc {
     float clear_color[4];        /* linear RGBA */
     float exposure;              /* LINEAR: multiplies the lit color; 0 = 1 */
@@ -763,6 +844,17 @@ typedef struct mvr_render_desc {
     bool exposure_per_view;      /* AUTO: each view its own EV100 (default: one shared, so two
                                     eyes never disagree) */
     bool dither;                 /* +-1 step of triangular noise before 8-bit storage (HDR frames) */
+    /* Image-based lighting (NULL = none: no IBL code is compiled, the
+     * scene's ambient term is all there is). Added to punctual lights;
+     * occlusion textures darken it, never the punctual lights. */
+    const mvr_environment *environment;
+    mvr_background background;   /* what uncovered pixels show */
+    float background_blur;       /* BLUR: the roughness whose prefiltered level is shown; 0 = 0.5 */
+    /* 0: the prefiltered maps (split sum, spherical harmonics). N (1..65536):
+     * the reference instead: each pixel integrates the environment with N
+     * importance samples per lobe (diffuse and GGX) from the unfiltered cube
+     * map: slow ground truth to measure the maps' error against. */
+    uint32_t environment_samples;
 } mvr_render_desc;
 
 /* The photometric exposure of an EV100 (see mvr_exposure_mode): the
@@ -837,6 +929,15 @@ typedef struct mvr_frame_stats {
     uint32_t post_passes;        /* final full-screen passes (1 per multiview chunk, 1 per view on
                                     the loop path; 0 without an HDR frame) */
     uint32_t luminance_passes;   /* auto-exposure log-luminance passes */
+    /* Environment prefiltering (view-independent: only in the render that
+     * first meets an environment or its new pixels; 0 on every later frame
+     * whatever the view count): passes drawn (one per cube level: the six
+     * faces are six views of one multiview pass, else six passes), and
+     * their time on the submitting thread with the GL finished (ms; 0 when
+     * none ran). */
+    uint32_t env_prefilter_passes;
+    double env_prefilter_ms;
+    uint32_t background_draws;   /* environment background draws (one per pass that drew one) */
     double cpu_ms;               /* submitting thread, render call */
     double gpu_ms;               /* timer queries; < 0 when not available */
     uint32_t images_downscaled;  /* scene images stored smaller than given: too large for the GL
@@ -891,8 +992,10 @@ bool mvr_renderer_get_pass_stats(const mvr_renderer *renderer, uint32_t index, m
 
 /* ------------------------------------------------------------------ framing
  *
- * Views laid out around a scene's bounding sphere, for files without cameras
- * (or when the caller wants a layout instead of the file's camera).
+ * How a scene is shown by default: views laid out around its bounding
+ * sphere, for files without cameras (or when the caller wants a layout
+ * instead of the file's camera); views from a camera of the file; the
+ * exposure its lights call for.
  */
 typedef enum mvr_view_layout {
     MVR_LAYOUT_STEREO = 0,       /* a row of eyes ipd apart in front of the scene, parallel axes */

@@ -99,16 +99,13 @@ static void enumeration_covers_each_feature_and_view_path(mvr_test_state *t)
 {
     mvr_shader_variant v;
     unsigned n = 0;
-    uint32_t seen_mesh_bits = 0, seen_composite_bits = 0;
+    uint32_t seen_bits[MVR_PROGRAM_KIND_COUNT] = {0};
     int seen_loop = 0, seen_mv6 = 0, seen_lights = 0;
     char names[400][96];
     while (mvr_shader_variant_enumerate(n, 6, &v)) {
         char why[256];
         CHECK_MSG(t, mvr_shader_variant_valid(&v, why, sizeof why), "variant %u: %s", n, why);
-        if (v.program == MVR_PROGRAM_MESH)
-            seen_mesh_bits |= v.features;
-        else
-            seen_composite_bits |= v.features;
+        seen_bits[v.program] |= v.features;
         seen_loop |= v.num_views == 0;
         seen_mv6 |= v.num_views == 6;
         seen_lights |= v.point_lights > 0;
@@ -120,8 +117,10 @@ static void enumeration_covers_each_feature_and_view_path(mvr_test_state *t)
         ++n;
     }
     CHECK(t, n > 20 && n < 400);
-    CHECK_EQ_INT(t, seen_mesh_bits, mvr_shader_feature_mask(MVR_PROGRAM_MESH));
-    CHECK_EQ_INT(t, seen_composite_bits, mvr_shader_feature_mask(MVR_PROGRAM_COMPOSITE));
+    for (int p = 0; p < MVR_PROGRAM_KIND_COUNT; ++p)
+        CHECK_MSG(t, seen_bits[p] == mvr_shader_feature_mask((mvr_program_kind)p), "%s: features 0x%x of 0x%x seen",
+                  mvr_program_kind_name((mvr_program_kind)p), seen_bits[p],
+                  mvr_shader_feature_mask((mvr_program_kind)p));
     CHECK(t, seen_loop && seen_mv6 && seen_lights);
     /* with max_views 2 the list is shorter, never longer */
     unsigned n2 = 0;
