@@ -45,3 +45,19 @@ const char *mvr_tone_map_name(mvr_tone_map tone_map)
     }
     return NULL;
 }
+
+void mvr_render_desc_choose_exposure(const mvr_scene *scene, mvr_render_desc *desc)
+{
+    if (!desc)
+        return;
+    if (scene && mvr_scene_lights_physical(scene)) {
+        /* a sun of thousands of lux is a white frame at exposure 1: expose
+         * it as a camera would, and roll the highlights off */
+        desc->exposure_mode = MVR_EXPOSURE_AUTO;
+        desc->tone_map = MVR_TONE_MAP_KHR_PBR_NEUTRAL;
+    } else {
+        /* lights authored for a linear multiplier: the values as they are */
+        desc->exposure_mode = MVR_EXPOSURE_LINEAR;
+        desc->tone_map = MVR_TONE_MAP_NONE;
+    }
+}

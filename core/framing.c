@@ -1,4 +1,5 @@
-/* Views laid out around a scene's bounding sphere (mvr_view_set_frame_scene). */
+/* Views laid out around a scene's bounding sphere (mvr_view_set_frame_scene),
+ * or a row of eyes on a camera node of the scene (mvr_view_set_from_camera). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,6 +22,28 @@ const char *mvr_view_layout_name(mvr_view_layout layout)
 double mvr_stereo_default_ipd(double viewing_distance)
 {
     return viewing_distance > 0 && isfinite(viewing_distance) ? viewing_distance / 30.0 : 0.064;
+}
+
+/* The centre of the scene's bounding sphere and its radius (the origin and
+ * 1 for a scene that draws nothing). */
+static void bounding_sphere(const mvr_scene *scene, double c[3], double *radius)
+{
+    mvr_scene_info info;
+    mvr_scene_get_info(scene, &info);
+    c[0] = c[1] = c[2] = 0;
+    double r = 1.0;
+    if (info.bounds_min[0] <= info.bounds_max[0]) {
+        double ext2 = 0;
+        for (int i = 0; i < 3; ++i) {
+            c[i] = 0.5 * (info.bounds_min[i] + info.bounds_max[i]);
+            double e = 0.5 * (info.bounds_max[i] - info.bounds_min[i]);
+            ext2 += e * e;
+        }
+        r = sqrt(ext2);
+        if (!(r > 1e-9) || !isfinite(r))
+            r = 1.0;
+    }
+    *radius = r;
 }
 
 static void look(mvr_view_desc *v, const double eye[3], const double target[3], const double up[3])
@@ -48,20 +71,8 @@ mvr_result mvr_view_set_frame_scene(const mvr_scene *scene, const mvr_framing_de
         return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_view_set_frame_scene: %u views (at most 1024)", n);
     double aspect = d.aspect > 0 ? d.aspect : 1.0;
 
-    mvr_scene_info info;
-    mvr_scene_get_info(scene, &info);
-    double c[3] = {0, 0, 0}, r = 1.0;
-    if (info.bounds_min[0] <= info.bounds_max[0]) {
-        double ext2 = 0;
-        for (int i = 0; i < 3; ++i) {
-            c[i] = 0.5 * (info.bounds_min[i] + info.bounds_max[i]);
-            double e = 0.5 * (info.bounds_max[i] - info.bounds_min[i]);
-            ext2 += e * e;
-        }
-        r = sqrt(ext2);
-        if (!(r > 1e-9) || !isfinite(r))
-            r = 1.0;
-    }
+    double c[3], r;
+    bounding_sphere(scene, c, &r);
     /* vertical field of view 50 degrees; far enough that the sphere fits
      * the narrower of the two directions, with a margin */
     double yfov = 50.0 * PI / 180.0;
@@ -126,5 +137,57 @@ mvr_result mvr_view_set_frame_scene(const mvr_scene *scene, const mvr_framing_de
     memcpy(vd.origin, c, sizeof c);
     mvr_result res = mvr_view_set_create(&vd, out, error);
     free(views);
+    return res;
+}
+
+mvr_result mvr_view_set_from_camera(const mvr_scene *scene, mvr_node_id camera_node, uint32_t views, double ipd,
+                                    mvr_view_set **out, mvr_error *error)
+{
+    if (!scene || !out)
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_view_set_from_camera: NULL argument");
+    *out = NULL;
+    uint32_t n = views ? views : 2;
+    if (n > 1024)
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_view_set_from_camera: %u views (at most 1024)",
+                             n);
+    if (!(ipd >= 0) || !isfinite(ipd))
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
+                             "mvr_view_set_from_camera: ipd %g (a distance >= 0; 0 = scaled to the scene)", ipd);
+    mvr_view_desc base;
+    mvr_result got = mvr_scene_camera_view(scene, camera_node, &base);
+    if (got == MVR_ERROR_OUT_OF_MEMORY)
+        return mvr_error_set(error, got, "mvr_view_set_from_camera: out of memory");
+    if (got != MVR_OK)
+        return mvr_error_set(error, got, "mvr_view_set_from_camera: node %u is not a camera node (the scene has %u)",
+                             camera_node.id, mvr_scene_camera_node_count(scene));
+    if (!(ipd > 0)) {
+        /* the stereo rule of mvr_stereo_default_ipd (1/30 of the distance to
+         * the subject), the subject being the scene's bounding sphere */
+        double c[3], r, d2 = 0;
+        bounding_sphere(scene, c, &r);
+        for (int i = 0; i < 3; ++i)
+            d2 += (c[i] - base.position[i]) * (c[i] - base.position[i]);
+        ipd = mvr_stereo_default_ipd(sqrt(d2));
+    }
+    mvr_view_desc *v = calloc(n, sizeof *v);
+    if (!v)
+        return mvr_error_set(error, MVR_ERROR_OUT_OF_MEMORY, "mvr_view_set_from_camera: out of memory");
+    /* the camera's x axis: its orientation applied to +X */
+    double x = base.orientation[0], y = base.orientation[1], z = base.orientation[2], w = base.orientation[3];
+    double right[3] = {1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y)};
+    for (uint32_t i = 0; i < n; ++i) {
+        double offset = ((double)i - (double)(n - 1) * 0.5) * ipd;
+        v[i] = base; /* same orientation and projection: parallel axes */
+        for (int k = 0; k < 3; ++k)
+            v[i].position[k] += right[k] * offset;
+    }
+    mvr_view_set_desc vd;
+    memset(&vd, 0, sizeof vd);
+    vd.view_count = n;
+    vd.views = v;
+    vd.origin_set = true; /* the camera: every eye is near it */
+    memcpy(vd.origin, base.position, sizeof vd.origin);
+    mvr_result res = mvr_view_set_create(&vd, out, error);
+    free(v);
     return res;
 }

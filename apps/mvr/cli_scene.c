@@ -9,48 +9,6 @@
 #include "commands.h"
 #include "mvr/mvr_gltf.h"
 
-/* Views from a camera node of the file: N eyes ipd apart along its right axis
- * (ipd 0: scaled to the camera's distance to the scene). */
-static mvr_result camera_views(const mvr_scene *scene, uint32_t k, uint32_t n, double ipd, mvr_view_set **out,
-                               mvr_error *err)
-{
-    mvr_node_id node = mvr_scene_camera_node(scene, k);
-    mvr_view_desc base;
-    if (!node.id || mvr_scene_camera_view(scene, node, &base) != MVR_OK) {
-        err->result = MVR_ERROR_INVALID_ARGUMENT;
-        snprintf(err->message, sizeof err->message, "the file has %u camera nodes; --camera %u is not one",
-                 mvr_scene_camera_node_count(scene), k);
-        return err->result;
-    }
-    if (!(ipd > 0)) {
-        /* scaled to the scene: the camera's distance to the scene's centre */
-        mvr_scene_info info;
-        mvr_scene_get_info(scene, &info);
-        double d2 = 0;
-        for (int c = 0; c < 3; ++c) {
-            double mid = info.bounds_min[c] <= info.bounds_max[c] ? 0.5 * (info.bounds_min[c] + info.bounds_max[c]) : 0;
-            d2 += (mid - base.position[c]) * (mid - base.position[c]);
-        }
-        ipd = mvr_stereo_default_ipd(sqrt(d2));
-    }
-    mvr_view_desc *v = calloc(n, sizeof *v);
-    if (!v)
-        return MVR_ERROR_OUT_OF_MEMORY;
-    /* the camera's right axis: its orientation applied to +X */
-    double x = base.orientation[0], y = base.orientation[1], z = base.orientation[2], w = base.orientation[3];
-    double right[3] = {1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y)};
-    for (uint32_t i = 0; i < n; ++i) {
-        double offset = ((double)i - (double)(n - 1) * 0.5) * ipd;
-        v[i] = base;
-        for (int c = 0; c < 3; ++c)
-            v[i].position[c] += right[c] * offset;
-    }
-    mvr_view_set_desc vd = {n, v, false, {0, 0, 0}};
-    mvr_result r = mvr_view_set_create(&vd, out, err);
-    free(v);
-    return r;
-}
-
 static int load_scene_file(const char *command, const cli_scene_options *o, mvr_scene **scene, mvr_view_set **views)
 {
     mvr_gltf_options go;
@@ -70,8 +28,16 @@ static int load_scene_file(const char *command, const cli_scene_options *o, mvr_
     }
     mvr_result r;
     if (o->camera >= 0 || (o->camera == CLI_CAMERA_IF_ANY && mvr_scene_camera_node_count(*scene) > 0)) {
+        /* N eyes ipd apart along the camera's x axis (ipd 0: scaled to the
+         * camera's distance to the scene) */
         uint32_t k = o->camera >= 0 ? (uint32_t)o->camera : 0;
-        r = camera_views(*scene, k, o->views ? o->views : 2, o->ipd, views, &err);
+        mvr_node_id node = mvr_scene_camera_node(*scene, k);
+        if (!node.id) {
+            fprintf(stderr, "%s: %s: the file has %u camera nodes; --camera %u is not one\n", command, o->scene_file,
+                    mvr_scene_camera_node_count(*scene), k);
+            return MVR_EXIT_FAILURE;
+        }
+        r = mvr_view_set_from_camera(*scene, node, o->views ? o->views : 2, o->ipd, views, &err);
     } else {
         /* ipd 0: the library's, scaled to the framing distance */
         mvr_framing_desc fd = {o->layout, o->views, o->ipd, (double)o->width / (double)o->height};
@@ -82,6 +48,15 @@ static int load_scene_file(const char *command, const cli_scene_options *o, mvr_
         return MVR_EXIT_FAILURE;
     }
     return MVR_EXIT_OK;
+}
+
+void cli_render_desc_defaults(mvr_render_desc *desc)
+{
+    memset(desc, 0, sizeof *desc);
+    desc->exposure = 1.0f;
+    /* an opaque dark sky: the library's default clear is transparent black */
+    const float sky[4] = {0.02f, 0.025f, 0.035f, 1.0f};
+    memcpy(desc->clear_color, sky, sizeof sky);
 }
 
 int cli_load_scene(const char *command, const cli_scene_options *o, mvr_scene **scene, mvr_view_set **views)

@@ -24,9 +24,16 @@ typedef struct cli_scene_options {
     struct mvr_gltf_info *gltf_info; /* optional: what the glTF load reports */
 } cli_scene_options;
 
-/* A demo or a glTF file and its views; prints what failed (prefixed with
- * command) and returns an MVR_EXIT_ code. */
+/* A demo or a glTF file and its views (a file's camera through
+ * mvr_view_set_from_camera, a layout through mvr_view_set_frame_scene);
+ * prints what failed (prefixed with command, e.g. "mvr render") and returns
+ * an MVR_EXIT_ code. mvr render and mvr-viewer both load through it, so
+ * they show a file alike. */
 int cli_load_scene(const char *command, const cli_scene_options *o, mvr_scene **scene, mvr_view_set **views);
+
+/* The render desc mvr render and mvr-viewer start from: an opaque dark sky
+ * as the clear colour, exposure 1; everything else the library's default. */
+void cli_render_desc_defaults(mvr_render_desc *desc);
 
 /* Exact sRGB encode of linear RGBA floats (alpha kept linear) into bytes. */
 void cli_encode_srgb(const float *in, uint8_t *out, size_t pixels);

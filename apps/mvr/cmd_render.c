@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 
 #include "cli_common.h"
+#include "cli_env.h"
 #include "cli_scene.h"
 #include "commands.h"
 #include "json.h"
@@ -33,6 +34,8 @@ typedef struct render_options {
     uint32_t msaa;               /* multisample count; 0 = none */
     mvr_anti_aliasing aa;        /* --aa: the library's anti-aliasing choice */
     bool exposure_set, tone_map_set, layout_set;
+    mvr_tone_map tone_map;       /* --tone-map, when tone_map_set */
+    cli_env_options env;
     bool reference;
     mvr_color_format format;
     bool format_set;
@@ -103,6 +106,7 @@ static void render_usage(FILE *out)
             "  --clear R,G,B[,A]   linear clear color (default: a dark opaque sky)\n"
             "  --tone-map T        none | aces | pbr-neutral (default: pbr-neutral with auto\n"
             "                      exposure, none otherwise)\n"
+            CLI_ENV_HELP
             "  --frames N          render N frames (the last is written; default: 1)\n"
             "  --stats FILE.json   write the last frame's stats as JSON\n"
             "  --strict            a glTF image that is missing or cannot be decoded fails the\n"
@@ -123,15 +127,17 @@ static int parse(int argc, char **argv, render_options *o)
     o->height = 480;
     o->frames = 1;
     o->out_dir = "out";
-    o->render.exposure = 1.0f;
     o->camera = -1;
-    /* an opaque dark sky: the library's default clear is transparent black */
-    const float sky[4] = {0.02f, 0.025f, 0.035f, 1.0f};
-    memcpy(o->render.clear_color, sky, sizeof sky);
+    cli_render_desc_defaults(&o->render); /* as mvr-viewer starts */
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
         int c = cli_context_option("render", argc, argv, &i, &o->context);
+        if (c < 0)
+            return MVR_EXIT_USAGE;
+        if (c > 0)
+            continue;
+        c = cli_env_option("mvr render", argc, argv, &i, &o->env);
         if (c < 0)
             return MVR_EXIT_USAGE;
         if (c > 0)
@@ -392,11 +398,11 @@ static int parse(int argc, char **argv, render_options *o)
             if (!v)
                 v = "";
             if (strcmp(v, "none") == 0)
-                o->render.tone_map = MVR_TONE_MAP_NONE;
+                o->tone_map = MVR_TONE_MAP_NONE;
             else if (strcmp(v, "aces") == 0)
-                o->render.tone_map = MVR_TONE_MAP_ACES;
+                o->tone_map = MVR_TONE_MAP_ACES;
             else if (strcmp(v, "pbr-neutral") == 0)
-                o->render.tone_map = MVR_TONE_MAP_KHR_PBR_NEUTRAL;
+                o->tone_map = MVR_TONE_MAP_KHR_PBR_NEUTRAL;
             else {
                 fprintf(stderr, "mvr render: --tone-map takes none, aces or pbr-neutral\n");
                 return MVR_EXIT_USAGE;
@@ -424,6 +430,8 @@ static int parse(int argc, char **argv, render_options *o)
     if (o->scene_file && o->camera < 0 && !o->layout_set)
         o->camera = CLI_CAMERA_IF_ANY;
     if (!cli_context_check("render", &o->context))
+        return MVR_EXIT_USAGE;
+    if (!cli_env_check("mvr render", &o->env, o->scene_file != NULL))
         return MVR_EXIT_USAGE;
     if (o->exr && !o->format_set)
         o->format = MVR_COLOR_FORMAT_RGBA16F; /* linear HDR values for EXR */
@@ -477,7 +485,8 @@ static const char *program_cache_dir(const render_options *o, char *buf, size_t 
 }
 
 static void write_stats_json(FILE *f, const mvr_renderer *r, const mvr_frame_stats *s, const char *demo, uint32_t w,
-                             uint32_t h, uint32_t supersample, const mvr_gltf_info *load)
+                             uint32_t h, uint32_t supersample, const mvr_gltf_info *load, const cli_env_used *env,
+                             const mvr_render_desc *rd)
 {
     json_writer jw = {f, 0, {false}, {0}};
     json_begin_object(&jw, NULL);
@@ -521,6 +530,34 @@ static void write_stats_json(FILE *f, const mvr_renderer *r, const mvr_frame_sta
     json_string(&jw, "tone_mapper", mvr_tone_map_name(s->tone_mapper));
     json_int(&jw, "post_passes", s->post_passes);
     json_int(&jw, "luminance_passes", s->luminance_passes);
+    /* the environment the frame was lit with (source "none": no IBL) */
+    json_begin_object(&jw, "environment");
+    json_string(&jw, "source", env->present ? mvr_environment_source_name(env->source) : "none");
+    if (env->file)
+        json_string(&jw, "file", env->file);
+    else
+        json_null(&jw, "file");
+    if (env->present) {
+        if (env->file) {
+            json_int(&jw, "width", env->width);
+            json_int(&jw, "height", env->height);
+        }
+        if (env->source == MVR_ENVIRONMENT_UNIFORM) {
+            json_begin_array(&jw, "color");
+            for (int c = 0; c < 3; ++c)
+                json_double(&jw, NULL, env->color[c]);
+            json_end_array(&jw);
+        }
+        json_double(&jw, "intensity", env->intensity);
+        json_double(&jw, "rotation", env->rotation);
+    }
+    json_string(&jw, "background", mvr_background_name(rd->background));
+    if (rd->background == MVR_BACKGROUND_BLUR)
+        json_double(&jw, "background_blur", rd->background_blur > 0.0f ? rd->background_blur : 0.5);
+    json_end_object(&jw);
+    json_int(&jw, "env_prefilter_passes", s->env_prefilter_passes);
+    json_double(&jw, "env_prefilter_ms", s->env_prefilter_ms);
+    json_int(&jw, "background_draws", s->background_draws);
     json_int(&jw, "shadow_passes", s->shadow_passes);
     json_int(&jw, "shadow_layers", s->shadow_layers);
     json_int(&jw, "shadow_draws", s->shadow_draws);
@@ -624,6 +661,9 @@ int mvr_cmd_render(int argc, char **argv)
     mvr_view_set *views = NULL;
     mvr_renderer *renderer = NULL;
     mvr_target *target = NULL;
+    mvr_environment *env = NULL;
+    cli_env_used env_used;
+    memset(&env_used, 0, sizeof env_used);
     uint8_t **layers = NULL;
     rc = MVR_EXIT_FAILURE;
     if (mvr_context_create(&o.context, &ctx, &err) != MVR_OK) {
@@ -639,16 +679,17 @@ int mvr_cmd_render(int argc, char **argv)
     rc = cli_load_scene("mvr render", &so, &scene, &views);
     if (rc != MVR_EXIT_OK)
         goto done;
-    /* a file lit in physical units (a sun of thousands of lux) is a white
-     * image at exposure 1: expose it automatically and tone map it, as a
-     * camera would */
-    if (!o.exposure_set && mvr_scene_lights_physical(scene)) {
-        o.render.exposure_mode = MVR_EXPOSURE_AUTO;
-        if (!o.tone_map_set)
-            o.render.tone_map = MVR_TONE_MAP_KHR_PBR_NEUTRAL;
-    } else if (!o.tone_map_set && o.render.exposure_mode == MVR_EXPOSURE_AUTO) {
+    /* the library's choice for the scene (auto exposure and PBR Neutral for
+     * lights in physical units, as mvr-viewer shows it); options given win */
+    if (!o.exposure_set)
+        mvr_render_desc_choose_exposure(scene, &o.render);
+    else if (o.render.exposure_mode == MVR_EXPOSURE_AUTO)
         o.render.tone_map = MVR_TONE_MAP_KHR_PBR_NEUTRAL;
-    }
+    if (o.tone_map_set)
+        o.render.tone_map = o.tone_map;
+    rc = cli_env_create("mvr render", &o.env, o.scene_file != NULL, &o.render, &env, &env_used);
+    if (rc != MVR_EXIT_OK)
+        goto done;
     rc = MVR_EXIT_FAILURE;
     char cache_buf[4096];
     mvr_renderer_desc rd = {.context = ctx, .view_path = o.view_path, .logger = o.context.logger,
@@ -715,7 +756,7 @@ int mvr_cmd_render(int argc, char **argv)
             goto done;
         }
         write_stats_json(f, renderer, &st, o.scene_file ? o.scene_file : o.demo, o.width, o.height, ss,
-                         o.scene_file ? &gltf_info : NULL);
+                         o.scene_file ? &gltf_info : NULL, &env_used, &o.render);
         fclose(f);
     }
     if (!o.quiet) {
@@ -737,6 +778,19 @@ int mvr_cmd_render(int argc, char **argv)
                    mvr_exposure_mode_name(st.exposure_mode), st.exposure_ev100, mvr_tone_map_name(st.tone_mapper),
                    st.post_passes, st.post_passes == 1 ? "" : "es", st.luminance_passes,
                    st.luminance_passes == 1 ? "" : "es");
+        if (env_used.present && env_used.file)
+            printf("  environment %s (%ux%u), intensity %g, rotation %g, background %s\n", env_used.file,
+                   env_used.width, env_used.height, env_used.intensity, env_used.rotation,
+                   mvr_background_name(o.render.background));
+        else if (env_used.present)
+            printf("  environment %s, intensity %g, rotation %g, background %s\n",
+                   mvr_environment_source_name(env_used.source), env_used.intensity, env_used.rotation,
+                   mvr_background_name(o.render.background));
+        else
+            printf("  environment none\n");
+        if (st.env_prefilter_passes)
+            printf("  prefilter   %u pass%s, %.2f ms (once per environment)\n", st.env_prefilter_passes,
+                   st.env_prefilter_passes == 1 ? "" : "es", st.env_prefilter_ms);
         if (st.shadow_layers)
             printf("  shadows     %u layer%s in %u pass%s, %u caster draws\n", st.shadow_layers,
                    st.shadow_layers == 1 ? "" : "s", st.shadow_passes, st.shadow_passes == 1 ? "" : "es",
@@ -770,6 +824,7 @@ done:
     mvr_renderer_destroy(renderer);
     mvr_view_set_destroy(views);
     mvr_scene_destroy(scene);
+    mvr_environment_destroy(env);
     mvr_context_destroy(ctx);
     return rc;
 }

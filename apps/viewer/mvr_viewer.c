@@ -2,7 +2,9 @@
  * through the EXTERNAL context provider: stereo side by side, a grid, a
  * red/cyan anaglyph, or one view. Views reach the window by a draw per
  * layer that reads the layer as a texture (never out of a multiview
- * framebuffer).
+ * framebuffer). A scene opens as mvr render shows it (the same code:
+ * apps/mvr/cli_scene.c and cli_env.c): a file from its camera or framed by
+ * its size, exposed for its lights, lit by the same environment.
  *
  * mouse: left drag orbits, right drag pans, wheel zooms
  * keys:  [ ] IPD   + - views   P view path   M material path   D display
@@ -17,8 +19,10 @@
 #include <GLFW/glfw3.h>
 #include <GLES3/gl3.h>
 
+#include "cli_env.h"
+#include "cli_scene.h"
+#include "commands.h"
 #include "mvr/mvr.h"
-#include "mvr/mvr_gltf.h"
 #include "mvr/mvr_image.h"
 
 typedef enum display_mode { DISPLAY_STEREO, DISPLAY_GRID, DISPLAY_ANAGLYPH, DISPLAY_SINGLE, DISPLAY_COUNT } display_mode;
@@ -65,11 +69,17 @@ typedef struct viewer {
     mvr_target *target;
     mvr_scene *scene;
     mvr_view_set *views;
+    mvr_render_desc render;      /* as mvr render's defaults give it for the scene */
+    cli_env_options env_options;
+    mvr_environment *env;
     GLuint program, vao;
     GLint loc_layers, loc_origin, loc_mode;
-    /* camera: orbit around a target */
-    double center[3], distance, yaw, pitch, radius;
+    /* camera: orbit around a target, from home (where the scene opened) */
+    double center[3], distance, yaw, pitch, yfov;
     double ipd;
+    struct {
+        double center[3], distance, yaw, pitch, ipd;
+    } home;                      /* the orbit where the scene opened (R returns there) */
     uint32_t view_count, single;
     display_mode display;
     mvr_view_path view_path;
@@ -183,7 +193,7 @@ static bool make_views(viewer *v)
         }
         const double up[3] = {0, 1, 0};
         mvr_view_look_at(&views[i], eye, look, up);
-        views[i].projection.yfov = 0.9;
+        views[i].projection.yfov = v->yfov;
         views[i].projection.aspect = aspect;
         views[i].projection.znear = fmax(v->distance * 1e-3, 1e-4);
     }
@@ -224,65 +234,110 @@ static bool make_renderer(viewer *v)
     return true;
 }
 
-/* The orbit starts where the scene's own views are: around the bounds. */
-static void frame_scene(viewer *v)
+static void go_home(viewer *v)
+{
+    memcpy(v->center, v->home.center, sizeof v->center);
+    v->distance = v->home.distance;
+    v->yaw = v->home.yaw;
+    v->pitch = v->home.pitch;
+    v->ipd = v->home.ipd;
+}
+
+/* The orbit starts where the scene's own views are, so the first drag
+ * moves on from the picture shown: a file's camera (cli_load_scene took its
+ * first one) gives the orbit's eye, direction and field of view, its target
+ * where the view axis passes the scene's centre; a file without one is
+ * framed straight along -Z at the distance mvr_view_set_frame_scene takes
+ * (50 degrees, the bounding sphere filling the narrower side). A demo's
+ * views may look anywhere (the cube's six from the centre): the orbit looks
+ * at its bounds from above. Eyes ipd apart: mvr_stereo_default_ipd of the
+ * distance, as the library's views have. */
+static void set_home(viewer *v, bool file)
 {
     mvr_scene_info info;
     mvr_scene_get_info(v->scene, &info);
-    v->radius = 0;
-    for (int c = 0; c < 3; ++c) {
-        v->center[c] = 0.5 * (info.bounds_min[c] + info.bounds_max[c]);
-        double half = 0.5 * (info.bounds_max[c] - info.bounds_min[c]);
-        v->radius += half * half;
+    double c[3] = {0, 0, 0}, radius = 0;
+    for (int k = 0; k < 3; ++k) {
+        c[k] = 0.5 * (info.bounds_min[k] + info.bounds_max[k]);
+        double half = 0.5 * (info.bounds_max[k] - info.bounds_min[k]);
+        radius += half * half;
     }
-    v->radius = sqrt(v->radius);
-    if (!(v->radius > 0) || !isfinite(v->radius)) {
-        v->radius = 1;
-        v->center[0] = v->center[1] = v->center[2] = 0;
+    radius = sqrt(radius);
+    if (!(radius > 0) || !isfinite(radius)) {
+        radius = 1;
+        c[0] = c[1] = c[2] = 0;
     }
-    v->distance = v->radius * 2.5;
-    v->yaw = 0.0;
-    v->pitch = 0.25;
-    v->ipd = mvr_stereo_default_ipd(v->distance); /* each scene its own; [ and ] scale it */
+    double distance = radius * 2.5, yaw = 0.0, pitch = 0.25, yfov = 0.9, ipd = 0;
+    double center[3] = {c[0], c[1], c[2]};
+    mvr_view_desc cam;
+    if (file && mvr_scene_camera_node_count(v->scene) > 0 &&
+        mvr_scene_camera_view(v->scene, mvr_scene_camera_node(v->scene, 0), &cam) == MVR_OK) {
+        double x = cam.orientation[0], y = cam.orientation[1], z = cam.orientation[2], w = cam.orientation[3];
+        double f[3] = {-2 * (x * z + w * y), -2 * (y * z - w * x), -(1 - 2 * (x * x + y * y))}; /* its -Z */
+        double along = 0, d2 = 0;
+        for (int k = 0; k < 3; ++k) {
+            along += (c[k] - cam.position[k]) * f[k];
+            d2 += (c[k] - cam.position[k]) * (c[k] - cam.position[k]);
+        }
+        distance = along > radius * 1e-3 && isfinite(along) ? along : radius * 2.5;
+        for (int k = 0; k < 3; ++k)
+            center[k] = cam.position[k] + f[k] * distance;
+        pitch = asin(fmax(-1.0, fmin(1.0, -f[1])));
+        yaw = atan2(-f[0], -f[2]);
+        ipd = mvr_stereo_default_ipd(sqrt(d2)); /* as mvr_view_set_from_camera's */
+        if (cam.projection.type == MVR_PROJECTION_PERSPECTIVE && cam.projection.yfov > 0)
+            yfov = cam.projection.yfov;
+    } else if (file) {
+        double aspect = (double)v->layer_w / (double)v->layer_h;
+        yfov = 50.0 * 3.14159265358979323846 / 180.0;
+        distance = radius / sin(fmin(yfov * 0.5, atan(tan(yfov * 0.5) * aspect))) * 1.05;
+        pitch = 0.0;
+    }
+    v->yfov = yfov;
+    memcpy(v->home.center, center, sizeof center);
+    v->home.distance = distance;
+    v->home.yaw = yaw;
+    v->home.pitch = pitch;
+    v->home.ipd = ipd > 0 ? ipd : mvr_stereo_default_ipd(distance); /* each scene its own; [ and ] scale it */
+    go_home(v);
 }
 
-/* A demo keeps its own views (as mvr render draws them) and a file gets the
- * stereo layout mvr render gives it, until the mouse moves the camera. */
+/* Opens a file or a demo as mvr render shows it: the same scene and views
+ * (cli_load_scene: a file's first camera, else the stereo framing), the
+ * same render defaults, exposure (mvr_render_desc_choose_exposure) and
+ * environment (cli_env_create: neutral for files, none for demos unless
+ * --env says). On failure the scene shown stays. */
 static bool open_scene(viewer *v, const char *file, const char *demo)
 {
     mvr_scene *scene = NULL;
     mvr_view_set *views = NULL;
-    mvr_error err;
-    if (file) {
-        mvr_gltf_options go;
-        memset(&go, 0, sizeof go);
-        mvr_gltf_info info;
-        if (mvr_gltf_load_file(file, &go, &scene, &info, &err) != MVR_OK) {
-            fprintf(stderr, "mvr-viewer: %s\n", err.message);
-            return false;
-        }
-        mvr_framing_desc fd = {MVR_LAYOUT_STEREO, v->view_count, 0.0, (double)v->layer_w / (double)v->layer_h};
-        if (mvr_view_set_frame_scene(scene, &fd, &views, &err) != MVR_OK) {
-            fprintf(stderr, "mvr-viewer: %s: %s\n", file, err.message);
-            mvr_scene_destroy(scene);
-            return false;
-        }
-        snprintf(v->scene_name, sizeof v->scene_name, "%s", file);
-    } else {
-        mvr_demo_desc dd = {v->view_count, v->layer_w, v->layer_h, {0}};
-        if (mvr_demo_create(demo, &dd, &scene, &views, &err) != MVR_OK) {
-            fprintf(stderr, "mvr-viewer: %s\n", err.message);
-            return false;
-        }
-        snprintf(v->scene_name, sizeof v->scene_name, "%s", demo);
+    cli_scene_options so = {.demo = demo, .scene_file = file, .camera = file ? CLI_CAMERA_IF_ANY : -1,
+                            .layout = MVR_LAYOUT_STEREO, .views = v->view_count, .width = v->layer_w,
+                            .height = v->layer_h};
+    so.logger.fn = log_fn;
+    if (cli_load_scene("mvr-viewer", &so, &scene, &views) != MVR_EXIT_OK)
+        return false;
+    mvr_render_desc render;
+    cli_render_desc_defaults(&render);
+    mvr_render_desc_choose_exposure(scene, &render);
+    mvr_environment *env = NULL;
+    if (cli_env_create("mvr-viewer", &v->env_options, file != NULL, &render, &env, NULL) != MVR_EXIT_OK) {
+        mvr_view_set_destroy(views);
+        mvr_scene_destroy(scene);
+        return false;
     }
+    snprintf(v->scene_name, sizeof v->scene_name, "%s", file ? file : demo);
     mvr_scene_destroy(v->scene);
     mvr_view_set_destroy(v->views);
+    mvr_environment_destroy(v->env);
     v->scene = scene;
     v->views = views;
+    v->env = env;
+    v->render = render;
     v->view_count = mvr_view_set_count(views);
-    frame_scene(v);
-    v->dirty_renderer = true; /* the layer count may have changed */
+    set_home(v, file != NULL);
+    v->dirty_views = false;    /* the scene's own views until the camera moves */
+    v->dirty_renderer = true;  /* the layer count may have changed */
     return true;
 }
 
@@ -535,7 +590,7 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
         v->dirty_renderer = v->dirty_views = true;
         break;
     case GLFW_KEY_TAB: v->single++; break;
-    case GLFW_KEY_R: frame_scene(v); v->dirty_views = true; break;
+    case GLFW_KEY_R: go_home(v); v->dirty_views = true; break;
     default: break;
     }
 }
@@ -561,6 +616,11 @@ static void usage(FILE *out)
             "  --view-path P        auto | multiview | loop (default auto)\n"
             "  --frames N           render N frames, then exit (with --screenshot: save the last)\n"
             "  --screenshot FILE    the window's contents after the last frame (PNG)\n"
+            CLI_ENV_HELP
+            "\n"
+            "A file opens as mvr render shows it: from its first camera (else framed by its\n"
+            "size), auto-exposed when its lights are in physical units, lit by the same\n"
+            "environment (--env ... as mvr render takes them).\n"
             "\n"
             "mouse: left drag orbits, right drag pans, wheel zooms; keys: [ ] IPD, + - views,\n"
             "P view path, M material path, D display, Tab next single view, R reset, Esc quit;\n"
@@ -585,6 +645,11 @@ int main(int argc, char **argv)
             file = a;
             continue;
         }
+        int env_option = cli_env_option("mvr-viewer", argc, argv, &i, &v.env_options);
+        if (env_option < 0)
+            return 2;
+        if (env_option > 0)
+            continue;
         if (!val) {
             fprintf(stderr, "mvr-viewer: %s needs a value\n", a);
             return 2;
@@ -625,6 +690,8 @@ int main(int argc, char **argv)
             return 2;
         }
     }
+    if (!cli_env_check("mvr-viewer", &v.env_options, file != NULL))
+        return 2;
     if (!glfwInit()) {
         fprintf(stderr, "mvr-viewer: glfwInit failed (no display?)\n");
         return 1;
@@ -675,7 +742,6 @@ int main(int argc, char **argv)
     glfwSetScrollCallback(v.window, on_scroll);
     glfwSetKeyCallback(v.window, on_key);
     glfwSetDropCallback(v.window, on_drop);
-    v.dirty_views = false; /* the scene's own views until the camera moves */
     v.dirty_renderer = true;
     for (unsigned f = 0; !glfwWindowShouldClose(v.window) && (frames == 0 || f < frames); ++f) {
         if (v.dirty_renderer) {
@@ -689,7 +755,7 @@ int main(int argc, char **argv)
             v.dirty_views = false;
         }
         double t0 = glfwGetTime();
-        if (mvr_renderer_render(v.renderer, v.scene, v.views, v.target, NULL) != MVR_OK) {
+        if (mvr_renderer_render(v.renderer, v.scene, v.views, v.target, &v.render) != MVR_OK) {
             fprintf(stderr, "mvr-viewer: %s\n", mvr_renderer_last_error(v.renderer));
             goto done;
         }
@@ -711,6 +777,7 @@ done:
     mvr_renderer_destroy(v.renderer);
     mvr_view_set_destroy(v.views);
     mvr_scene_destroy(v.scene);
+    mvr_environment_destroy(v.env);
     mvr_context_destroy(v.ctx);
     glfwDestroyWindow(v.window);
     glfwTerminate();

@@ -1020,6 +1020,27 @@ const char *mvr_view_layout_name(mvr_view_layout layout);
 mvr_result mvr_view_set_frame_scene(const mvr_scene *scene, const mvr_framing_desc *desc, mvr_view_set **out,
                                     mvr_error *out_error);
 
+/* Views from a camera node of the scene (a file's camera): its world pose
+ * and projection (mvr_scene_camera_view) as the centre of a row of `views`
+ * eyes (0 = 2, a stereo pair; 1 = the camera itself) along the camera's x
+ * axis, ipd apart, with parallel axes and the camera's projection each.
+ * ipd 0 = mvr_stereo_default_ipd of the camera's distance to the centre of
+ * the scene's bounding sphere (the project's stereo rule, the 1/30 rule,
+ * as mvr_view_set_frame_scene applies it to its framing distance); NaN,
+ * infinite or negative is refused. The view set's origin is the camera. */
+mvr_result mvr_view_set_from_camera(const mvr_scene *scene, mvr_node_id camera_node, uint32_t views, double ipd,
+                                    mvr_view_set **out, mvr_error *out_error);
+
+/* The exposure a scene is shown with by default (mvr render and mvr-viewer
+ * both use it): lights in physical units (mvr_scene_lights_physical: a sun
+ * of thousands of lux, as exporters write KHR_lights_punctual) give
+ * MVR_EXPOSURE_AUTO with MVR_TONE_MAP_KHR_PBR_NEUTRAL, as a camera would
+ * expose them; any other scene MVR_EXPOSURE_LINEAR with no tone map (the
+ * light values as authored, `exposure` as the multiplier). Writes only
+ * exposure_mode and tone_map: an application whose user chose an exposure
+ * or a tone map applies that choice after this call. */
+void mvr_render_desc_choose_exposure(const mvr_scene *scene, mvr_render_desc *desc);
+
 /* ------------------------------------------------------------------ demo scenes
  *
  * Scenes generated in code (no files), with views to match: the default for

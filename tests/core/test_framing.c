@@ -1,8 +1,11 @@
 /* core: stereo framing scaled to the scene (mvr_view_set_frame_scene,
  * mvr_stereo_default_ipd). A 2 cm model and a 100 m scene get eyes 1/30 of
  * the viewing distance apart, so each eye sees the whole bounding sphere;
- * with a fixed 0.064 a 2 cm model left one eye's frame. */
+ * with a fixed 0.064 a 2 cm model left one eye's frame. Eyes on a file's
+ * camera (mvr_view_set_from_camera) and the default exposure of a scene
+ * (mvr_render_desc_choose_exposure). */
 #include <math.h>
+#include <string.h>
 
 #include "mvr_test.h"
 #include "view_set.h"
@@ -85,4 +88,144 @@ static void eyes_scale_with_the_scene(mvr_test_state *t)
     CHECK(t, mvr_stereo_default_ipd(0.0) == 0.064 && mvr_stereo_default_ipd(NAN) == 0.064);
 }
 
-MVR_TEST_MAIN(TEST(eyes_scale_with_the_scene))
+/* A camera node at pos turned by yaw radians about +Y (looking along
+ * (-sin yaw, 0, -cos yaw)); its x axis is (cos yaw, 0, -sin yaw). */
+static mvr_node_id add_camera(mvr_scene *s, const double pos[3], double yaw)
+{
+    mvr_projection p = {0};
+    p.yfov = 0.7;
+    p.znear = 0.01;
+    mvr_camera_id cam;
+    mvr_node_desc n = {0};
+    memcpy(n.translation, pos, sizeof n.translation);
+    n.rotation[1] = sin(yaw * 0.5);
+    n.rotation[3] = cos(yaw * 0.5);
+    mvr_node_id node = {0};
+    if (mvr_scene_add_camera(s, &p, &cam) == MVR_OK) {
+        n.camera = cam;
+        mvr_scene_add_node(s, &n, &node);
+    }
+    return node;
+}
+
+static double dist3(const double a[3], const double b[3])
+{
+    return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+static void eyes_on_a_camera(mvr_test_state *t)
+{
+    const double radii[] = {0.01, 1.0, 100.0};
+    for (int k = 0; k < 3; ++k) {
+        double r = radii[k];
+        mvr_scene *s = scene_of_radius(r); /* centred on (5r, 0, 0) */
+        CHECK(t, s != NULL);
+        if (!s)
+            return;
+        /* 7r from the centre, turned 30 degrees: not along an axis */
+        double yaw = 0.5235987755982988, pos[3] = {5.0 * r + 7.0 * r * sin(yaw), 0.0, 7.0 * r * cos(yaw)};
+        const double centre[3] = {5.0 * r, 0, 0};
+        mvr_node_id node = add_camera(s, pos, yaw);
+        CHECK(t, node.id != 0);
+        mvr_view_desc cam;
+        CHECK(t, mvr_scene_camera_view(s, node, &cam) == MVR_OK);
+        const double x_axis[3] = {cos(yaw), 0, -sin(yaw)};
+        for (uint32_t n = 1; n <= 4; ++n) {
+            for (int explicit_ipd = 0; explicit_ipd < 2; ++explicit_ipd) {
+                double ipd = explicit_ipd ? 0.25 * r : 0.0;
+                /* the default: 1/30 of the camera's distance to the scene's centre */
+                double want = explicit_ipd ? ipd : dist3(pos, centre) / 30.0;
+                mvr_view_set *vs = NULL;
+                mvr_error err;
+                CHECK_MSG(t, mvr_view_set_from_camera(s, node, n, ipd, &vs, &err) == MVR_OK, "%s", err.message);
+                if (!vs)
+                    continue;
+                CHECK(t, vs->count == n);
+                double mean[3] = {0, 0, 0};
+                for (uint32_t i = 0; i < vs->count; ++i) {
+                    const mvr_view_desc *v = &vs->views[i];
+                    /* parallel: the camera's own orientation and projection */
+                    CHECK(t, memcmp(v->orientation, cam.orientation, sizeof cam.orientation) == 0);
+                    CHECK(t, v->projection.type == cam.projection.type && v->projection.yfov == 0.7 &&
+                                 v->projection.znear == 0.01 && v->projection.aspect == cam.projection.aspect);
+                    for (int c = 0; c < 3; ++c)
+                        mean[c] += v->position[c] / n;
+                    if (i == 0)
+                        continue;
+                    /* the step from the previous eye: ipd along the camera's x axis */
+                    const double *a = vs->views[i - 1].position, *b = v->position;
+                    for (int c = 0; c < 3; ++c)
+                        CHECK_MSG(t, fabs(b[c] - a[c] - x_axis[c] * want) <= 1e-12 * (r + 1), "r %g n %u eye %u axis %d",
+                                  r, n, i, c);
+                }
+                /* centred on the camera */
+                CHECK_MSG(t, dist3(mean, pos) <= 1e-12 * (r + 1), "r %g n %u: eyes centred %g from the camera", r, n,
+                          dist3(mean, pos));
+                if (n == 1)
+                    CHECK(t, memcmp(vs->views[0].position, cam.position, sizeof cam.position) == 0);
+                mvr_view_set_destroy(vs);
+            }
+        }
+        /* 0 views: a stereo pair */
+        mvr_view_set *vs = NULL;
+        CHECK(t, mvr_view_set_from_camera(s, node, 0, 0.0, &vs, NULL) == MVR_OK && vs && vs->count == 2);
+        mvr_view_set_destroy(vs);
+        /* refused, each with a message naming what is wrong */
+        mvr_error err;
+        vs = NULL;
+        mvr_node_id mesh_node = {1};
+        CHECK(t, mvr_view_set_from_camera(s, mesh_node, 2, 0.0, &vs, &err) == MVR_ERROR_INVALID_ARGUMENT && !vs);
+        CHECK_MSG(t, strstr(err.message, "not a camera node") != NULL, "%s", err.message);
+        const double bad[] = {-1.0, NAN, INFINITY};
+        for (int b = 0; b < 3; ++b) {
+            CHECK(t, mvr_view_set_from_camera(s, node, 2, bad[b], &vs, &err) == MVR_ERROR_INVALID_ARGUMENT && !vs);
+            CHECK_MSG(t, strstr(err.message, "ipd") != NULL, "%s", err.message);
+        }
+        CHECK(t, mvr_view_set_from_camera(s, node, 1025, 0.0, &vs, &err) == MVR_ERROR_INVALID_ARGUMENT && !vs);
+        CHECK(t, mvr_view_set_from_camera(NULL, node, 2, 0.0, &vs, &err) == MVR_ERROR_INVALID_ARGUMENT);
+        mvr_scene_destroy(s);
+    }
+}
+
+/* A directional light of the given lux in an otherwise empty scene. */
+static mvr_scene *scene_with_sun(float lux)
+{
+    mvr_scene *s = NULL;
+    if (mvr_scene_create(NULL, &s, NULL) != MVR_OK)
+        return NULL;
+    mvr_light_desc ld = {0};
+    ld.type = MVR_LIGHT_DIRECTIONAL;
+    ld.intensity = lux;
+    mvr_light_id light;
+    mvr_node_desc n = {0};
+    mvr_node_id node;
+    if (mvr_scene_add_light(s, &ld, &light) != MVR_OK || (n.light = light, mvr_scene_add_node(s, &n, &node)) != MVR_OK) {
+        mvr_scene_destroy(s);
+        return NULL;
+    }
+    return s;
+}
+
+static void exposure_follows_the_light_units(mvr_test_state *t)
+{
+    mvr_scene *sun = scene_with_sun(2049.0f), *lamp = scene_with_sun(3.0f);
+    CHECK(t, sun && lamp);
+    if (!sun || !lamp) {
+        mvr_scene_destroy(sun);
+        mvr_scene_destroy(lamp);
+        return;
+    }
+    mvr_render_desc d;
+    memset(&d, 0, sizeof d);
+    d.exposure = 2.0f;
+    mvr_render_desc_choose_exposure(sun, &d);
+    CHECK(t, d.exposure_mode == MVR_EXPOSURE_AUTO && d.tone_map == MVR_TONE_MAP_KHR_PBR_NEUTRAL);
+    mvr_render_desc_choose_exposure(lamp, &d);
+    CHECK(t, d.exposure_mode == MVR_EXPOSURE_LINEAR && d.tone_map == MVR_TONE_MAP_NONE);
+    CHECK(t, d.exposure == 2.0f); /* the multiplier is the caller's */
+    mvr_render_desc_choose_exposure(NULL, NULL); /* no crash */
+    mvr_scene_destroy(sun);
+    mvr_scene_destroy(lamp);
+}
+
+MVR_TEST_MAIN(TEST(eyes_scale_with_the_scene), TEST(eyes_on_a_camera), TEST(exposure_follows_the_light_units))

@@ -1,0 +1,67 @@
+/* The environment (image-based lighting) and background options that
+ * mvr render and mvr-viewer share: parsed, checked and turned into an
+ * mvr_environment and the render desc's environment fields in one place. */
+#ifndef MVR_CLI_ENV_H
+#define MVR_CLI_ENV_H
+
+#include <stdbool.h>
+
+#include "mvr/mvr.h"
+
+typedef struct cli_env_options {
+    const char *env;             /* --env: FILE | neutral | uniform[:R,G,B] | none; NULL = the default */
+    float uniform[3];            /* --env uniform:R,G,B (all 0 = 1, 1, 1) */
+    float intensity;             /* --env-intensity (> 0); 0 = 1 */
+    float rotation;              /* --env-rotation, degrees */
+    mvr_background background;   /* --background (default: color) */
+    float background_blur;       /* --background-blur, roughness 0..1 */
+    bool intensity_set, rotation_set, background_set, blur_set;
+} cli_env_options;
+
+/* What a render used, for the stats and the summary. */
+typedef struct cli_env_used {
+    bool present;                /* false: --env none (no environment) */
+    mvr_environment_source source;
+    const char *file;            /* PIXELS: the image's path */
+    uint32_t width, height;      /* PIXELS: the image's size as read */
+    float color[3];              /* UNIFORM: the radiance */
+    float intensity, rotation;
+} cli_env_used;
+
+/* Parses --env, --env-intensity, --env-rotation, --background or
+ * --background-blur at argv[*i]. Returns 1 if consumed (advancing *i past
+ * the value), 0 if not one of them, -1 on a bad value (message printed,
+ * prefixed with command, e.g. "mvr render"). */
+int cli_env_option(const char *command, int argc, char **argv, int *i, cli_env_options *o);
+
+/* Checks the options together for a glTF file (scene_file) or a demo: an
+ * intensity, rotation or environment background without an environment,
+ * --background-blur with another background. Prints what is wrong and
+ * returns false. (cli_env_create checks too.) */
+bool cli_env_check(const char *command, const cli_env_options *o, bool scene_file);
+
+/* Creates the environment the options ask for, with the default for the
+ * scene when --env was not given: the built-in neutral studio for a glTF
+ * file (most real files ship without lights: peers light them with an
+ * environment), none for a built-in demo (closed rooms lit by their own
+ * lights, which an environment at infinity would light through the walls).
+ * Sets desc->environment (*env, NULL for none), background and
+ * background_blur; *env is the caller's to destroy after the renders.
+ * Prints what failed and returns an MVR_EXIT_ code. used is optional. */
+int cli_env_create(const char *command, const cli_env_options *o, bool scene_file, mvr_render_desc *desc,
+                   mvr_environment **env, cli_env_used *used);
+
+#define CLI_ENV_HELP \
+    "  --env E             image-based lighting: FILE (an equirectangular .hdr or .exr,\n" \
+    "                      linear radiance) | neutral (the built-in studio) | uniform\n" \
+    "                      (radiance 1 from everywhere; uniform:R,G,B for a colour) |\n" \
+    "                      none (default: neutral for a glTF file; none for the demos,\n" \
+    "                      closed rooms with their own lights)\n" \
+    "  --env-intensity X   multiplies the environment's radiance (> 0; default: 1)\n" \
+    "  --env-rotation DEG  turns the environment about +Y (default: 0)\n" \
+    "  --background B      color (--clear) | env (the environment) | blur (the\n" \
+    "                      environment blurred) (default: color)\n" \
+    "  --background-blur R the blurred background's roughness, 0..1 (0: sharp;\n" \
+    "                      default: 0.5); implies --background blur\n"
+
+#endif
