@@ -1,0 +1,82 @@
+#!/usr/bin/env bash
+# scripts/peers/render_khronos.sh: renders tests/data/peers/khronos_*.png and manifest.json with the
+# Khronos glTF Sample Renderer (npm @khronosgroup/gltf-viewer) in Debian's headless Chromium, through
+# ANGLE on Mesa's EGL (llvmpipe: the same GL that mvr's tests run on). See tests/data/peers/README.md.
+#
+#   scripts/peers/render_khronos.sh [--assets] [--precision highp|as-is] [--out DIR]
+#
+#   --assets       first regenerate the test assets (scripts/peers/make_assets.py; textured.gltf with
+#                  Blender's glTF exporter: needs Debian's blender and python3-numpy)
+#   --precision    highp (default): the renderer's shaders get highp int/sampler precision, without
+#                  which llvmpipe collapses its IBL prefilter; as-is: unchanged (for the record)
+#   --out DIR      write the PNGs and manifest.json there instead of tests/data/peers
+#
+# Needs chromium, node and npm (scripts/setup --peers installs them). The npm packages go to
+# ${MVR_PEERS_DIR:-$HOME/.cache/mvr-peers}, never into the repository.
+set -euo pipefail
+
+KHRONOS_VERSION=1.1.0        # @khronosgroup/gltf-viewer
+PLAYWRIGHT_VERSION=1.65.1    # playwright-core (drives Debian's chromium; downloads no browser)
+
+log() { printf 'render_khronos: %s\n' "$*"; }
+die() { printf 'render_khronos: error: %s\n' "$*" >&2; exit 1; }
+
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+root=$(cd "$here/../.." && pwd)
+data=$root/tests/data/peers
+cache=${MVR_PEERS_DIR:-$HOME/.cache/mvr-peers}
+command_line="scripts/peers/render_khronos.sh${*:+ $*}"
+
+assets=0
+precision=highp
+out=$data
+while [ $# -gt 0 ]; do
+    case $1 in
+        --assets) assets=1 ;;
+        --precision) shift; precision=${1:-} ;;
+        --precision=*) precision=${1#--precision=} ;;
+        --out) shift; out=${1:-}; [ -n "$out" ] || die "--out DIR" ;;
+        -h|--help) sed -n '2,15p' "${BASH_SOURCE[0]}"; exit 0 ;;
+        *) die "unknown argument '$1'" ;;
+    esac
+    shift
+done
+case $precision in highp|as-is) ;; *) die "--precision highp|as-is" ;; esac
+
+chromium_bin=${CHROMIUM:-}
+if [ -z "$chromium_bin" ]; then
+    # Debian's real binary (its /usr/bin/chromium is a shell wrapper)
+    if [ -x /usr/lib/chromium/chromium ]; then chromium_bin=/usr/lib/chromium/chromium
+    else chromium_bin=$(command -v chromium || true); fi
+fi
+[ -n "$chromium_bin" ] && [ -x "$chromium_bin" ] || die "no chromium: run scripts/setup --peers"
+command -v node >/dev/null 2>&1 || die "no node: run scripts/setup --peers"
+command -v npm >/dev/null 2>&1 || die "no npm: run scripts/setup --peers"
+
+# npm packages, outside the repository, pinned
+installed() { node -p "require('$cache/node_modules/$1/package.json').version" 2>/dev/null || true; }
+if [ "$(installed @khronosgroup/gltf-viewer)" != "$KHRONOS_VERSION" ] || [ "$(installed playwright-core)" != "$PLAYWRIGHT_VERSION" ]; then
+    log "installing @khronosgroup/gltf-viewer@$KHRONOS_VERSION and playwright-core@$PLAYWRIGHT_VERSION into $cache"
+    mkdir -p "$cache"
+    [ -f "$cache/package.json" ] || printf '{ "name": "mvr-peers", "private": true }\n' > "$cache/package.json"
+    (cd "$cache" && npm install --no-audit --no-fund --loglevel=error \
+        "@khronosgroup/gltf-viewer@$KHRONOS_VERSION" "playwright-core@$PLAYWRIGHT_VERSION")
+fi
+
+if [ $assets -eq 1 ]; then
+    log "regenerating the assets"
+    python3 "$here/make_assets.py" "$data"
+    command -v blender >/dev/null 2>&1 || die "textured.gltf needs Blender's glTF exporter: apt-get install blender python3-numpy"
+    tmp=$(mktemp -d)
+    trap 'rm -rf "$tmp"' EXIT
+    blender -b --factory-startup --python "$here/blender_textured.py" -- "$data" "$tmp" >"$tmp/blender.log" 2>&1 \
+        || { cat "$tmp/blender.log" >&2; die "blender failed"; }
+    grep -q 'wrote .*textured.gltf' "$tmp/blender.log" || { cat "$tmp/blender.log" >&2; die "blender wrote no textured.gltf"; }
+fi
+
+log "rendering with $("$chromium_bin" --version 2>/dev/null | head -n 1)"
+start=$(date +%s)
+mkdir -p "$out"
+node "$here/render_khronos.mjs" --data "$data" --out "$out" --modules "$cache/node_modules" --chromium "$chromium_bin" \
+    --precision "$precision" --command "$command_line"
+log "done in $(( $(date +%s) - start )) s"
