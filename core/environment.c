@@ -454,9 +454,9 @@ mvr_result mvr_environment_create(const mvr_environment_desc *desc, mvr_environm
     if (spec_size < 16u || spec_size > 1024u || (spec_size & (spec_size - 1u)) != 0)
         return fail(error, log, MVR_ERROR_INVALID_ARGUMENT,
                     "%s: specular_size %u is not a power of two in 16..1024 (0 = 128)", fn, d.specular_size);
-    uint32_t spec_samples = d.specular_samples ? d.specular_samples : 64u;
+    uint32_t spec_samples = d.specular_samples ? d.specular_samples : 256u;
     if (spec_samples > 4096u)
-        return fail(error, log, MVR_ERROR_INVALID_ARGUMENT, "%s: specular_samples %u is not in 1..4096 (0 = 64)",
+        return fail(error, log, MVR_ERROR_INVALID_ARGUMENT, "%s: specular_samples %u is not in 1..4096 (0 = 256)",
                     fn, d.specular_samples);
 
     float color[3] = {1.0f, 1.0f, 1.0f};

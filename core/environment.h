@@ -26,7 +26,7 @@ struct mvr_environment {
                                    irradiance / pi, intensity NOT applied, e in environment space (unrotated) */
     float intensity;            /* resolved: never 0 */
     float rotation;             /* degrees */
-    uint32_t specular_size, specular_samples; /* resolved defaults (128, 64) */
+    uint32_t specular_size, specular_samples; /* resolved defaults (128, 256) */
     uint64_t serial;            /* a new value for every environment created (process-unique) */
     mvr_logger logger;
 };

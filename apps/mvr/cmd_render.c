@@ -85,7 +85,8 @@ static void render_usage(FILE *out)
             "                      (msaa 4x, supersample 2x2 on the GPU; auto: 4x MSAA, in the\n"
             "                      multiview passes where the GL has multisampled multiview)\n"
             "  --reference         ground truth, slow: --view-path loop --transparency per_view\n"
-            "                      --supersample 4\n"
+            "                      --supersample 4, and the environment integrated per pixel\n"
+            "                      (1024 samples per lobe) instead of its prefiltered maps\n"
             "  --format F          png (8-bit sRGB) | exr (half float, linear) (default: png)\n"
             "  --target-format F   srgb8 | rgba8 | rgba16f (default: srgb8; rgba16f for exr)\n"
             "  --shadows S         default | all | off: shadow maps for the lights that ask\n"
@@ -439,6 +440,7 @@ static int parse(int argc, char **argv, render_options *o)
         o->view_path = MVR_VIEW_PATH_LOOP;
         o->transparency = MVR_TRANSPARENCY_ORDER_PER_VIEW;
         o->supersample = 4;
+        o->render.environment_samples = 1024;
     }
     if (o->supersample == 0)
         o->supersample = 1;

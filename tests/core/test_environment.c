@@ -64,7 +64,7 @@ static void defaults_are_resolved(mvr_test_state *t)
         CHECK_EQ_INT(t, a->width, 512);
         CHECK_EQ_INT(t, a->height, 256);
         CHECK_EQ_INT(t, a->specular_size, 128);
-        CHECK_EQ_INT(t, a->specular_samples, 64);
+        CHECK_EQ_INT(t, a->specular_samples, 256);
         CHECK(t, a->intensity == 1.0f && mvr_environment_intensity(a) == 1.0f);
         CHECK(t, a->rotation == 0.0f && mvr_environment_rotation(a) == 0.0f);
         CHECK(t, a->serial != 0 && b->serial != 0 && a->serial != b->serial);
