@@ -56,8 +56,13 @@ void mvr_render_desc_choose_exposure(const mvr_scene *scene, mvr_render_desc *de
         desc->exposure_mode = MVR_EXPOSURE_AUTO;
         desc->tone_map = MVR_TONE_MAP_KHR_PBR_NEUTRAL;
     } else {
-        /* lights authored for a linear multiplier: the values as they are */
+        /* lights authored for a linear multiplier: the values as they are;
+         * under an environment, whose light adds to theirs and whose
+         * highlights reach far above 1, rolled off by Khronos PBR Neutral
+         * (the identity below 0.76 (its start of compression), hue kept
+         * above; the Khronos glTF Sample Viewer's default) instead of
+         * clipped */
         desc->exposure_mode = MVR_EXPOSURE_LINEAR;
-        desc->tone_map = MVR_TONE_MAP_NONE;
+        desc->tone_map = desc->environment ? MVR_TONE_MAP_KHR_PBR_NEUTRAL : MVR_TONE_MAP_NONE;
     }
 }

@@ -681,17 +681,18 @@ int mvr_cmd_render(int argc, char **argv)
     rc = cli_load_scene("mvr render", &so, &scene, &views);
     if (rc != MVR_EXIT_OK)
         goto done;
-    /* the library's choice for the scene (auto exposure and PBR Neutral for
-     * lights in physical units, as mvr-viewer shows it); options given win */
+    rc = cli_env_create("mvr render", &o.env, o.scene_file != NULL, &o.render, &env, &env_used);
+    if (rc != MVR_EXIT_OK)
+        goto done;
+    /* the library's choice for the scene and its environment (auto exposure
+     * and PBR Neutral for lights in physical units, PBR Neutral under an
+     * environment, as mvr-viewer shows it); options given win */
     if (!o.exposure_set)
         mvr_render_desc_choose_exposure(scene, &o.render);
     else if (o.render.exposure_mode == MVR_EXPOSURE_AUTO)
         o.render.tone_map = MVR_TONE_MAP_KHR_PBR_NEUTRAL;
     if (o.tone_map_set)
         o.render.tone_map = o.tone_map;
-    rc = cli_env_create("mvr render", &o.env, o.scene_file != NULL, &o.render, &env, &env_used);
-    if (rc != MVR_EXIT_OK)
-        goto done;
     rc = MVR_EXIT_FAILURE;
     char cache_buf[4096];
     mvr_renderer_desc rd = {.context = ctx, .view_path = o.view_path, .logger = o.context.logger,

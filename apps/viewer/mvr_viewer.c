@@ -319,13 +319,13 @@ static bool open_scene(viewer *v, const char *file, const char *demo)
         return false;
     mvr_render_desc render;
     cli_render_desc_defaults(&render);
-    mvr_render_desc_choose_exposure(scene, &render);
     mvr_environment *env = NULL;
     if (cli_env_create("mvr-viewer", &v->env_options, file != NULL, &render, &env, NULL) != MVR_EXIT_OK) {
         mvr_view_set_destroy(views);
         mvr_scene_destroy(scene);
         return false;
     }
+    mvr_render_desc_choose_exposure(scene, &render); /* after the environment: it weighs in */
     snprintf(v->scene_name, sizeof v->scene_name, "%s", file ? file : demo);
     mvr_scene_destroy(v->scene);
     mvr_view_set_destroy(v->views);

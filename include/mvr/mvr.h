@@ -1039,10 +1039,13 @@ mvr_result mvr_view_set_from_camera(const mvr_scene *scene, mvr_node_id camera_n
  * both use it): lights in physical units (mvr_scene_lights_physical: a sun
  * of thousands of lux, as exporters write KHR_lights_punctual) give
  * MVR_EXPOSURE_AUTO with MVR_TONE_MAP_KHR_PBR_NEUTRAL, as a camera would
- * expose them; any other scene MVR_EXPOSURE_LINEAR with no tone map (the
- * light values as authored, `exposure` as the multiplier). Writes only
- * exposure_mode and tone_map: an application whose user chose an exposure
- * or a tone map applies that choice after this call. */
+ * expose them; any other scene MVR_EXPOSURE_LINEAR (the light values as
+ * authored, `exposure` as the multiplier), with no tone map, or, when
+ * desc->environment is set (set it first), Khronos PBR Neutral (the
+ * identity below 0.76, highlights rolled off instead of clipped: the
+ * Khronos glTF Sample Viewer's default). Writes only exposure_mode and
+ * tone_map: an application whose user chose an exposure or a tone map
+ * applies that choice after this call. */
 void mvr_render_desc_choose_exposure(const mvr_scene *scene, mvr_render_desc *desc);
 
 /* ------------------------------------------------------------------ demo scenes

@@ -223,6 +223,15 @@ static void exposure_follows_the_light_units(mvr_test_state *t)
     mvr_render_desc_choose_exposure(lamp, &d);
     CHECK(t, d.exposure_mode == MVR_EXPOSURE_LINEAR && d.tone_map == MVR_TONE_MAP_NONE);
     CHECK(t, d.exposure == 2.0f); /* the multiplier is the caller's */
+    /* under an environment: highlights rolled off, the exposure still linear */
+    mvr_environment *env = NULL;
+    CHECK(t, mvr_environment_create(NULL, &env, NULL) == MVR_OK);
+    d.environment = env;
+    mvr_render_desc_choose_exposure(lamp, &d);
+    CHECK(t, d.exposure_mode == MVR_EXPOSURE_LINEAR && d.tone_map == MVR_TONE_MAP_KHR_PBR_NEUTRAL);
+    mvr_render_desc_choose_exposure(sun, &d);
+    CHECK(t, d.exposure_mode == MVR_EXPOSURE_AUTO && d.tone_map == MVR_TONE_MAP_KHR_PBR_NEUTRAL);
+    mvr_environment_destroy(env);
     mvr_render_desc_choose_exposure(NULL, NULL); /* no crash */
     mvr_scene_destroy(sun);
     mvr_scene_destroy(lamp);
