@@ -72,20 +72,6 @@ void mvr_environment_release(mvr_renderer *r)
     mvr_renderer_delete(r, MVR_GL_SAMPLER, &r->env.dfg_sampler);
 }
 
-/* The state of a full-screen pass into a cube level. */
-static void prefilter_state(mvr_renderer *r)
-{
-    mvr_state_cache *st = &r->state;
-    if (!r->empty_vao)
-        r->gl->GenVertexArrays(1, &r->empty_vao);
-    mvr_state_depth(st, false, GL_ALWAYS, GL_FALSE);
-    mvr_state_blend(st, false, GL_ONE, GL_ZERO, GL_ONE, GL_ZERO);
-    mvr_state_cull(st, false, GL_CCW);
-    mvr_state_color_mask(st, true);
-    mvr_state_scissor_test(st, false);
-    mvr_state_vao(st, r->empty_vao);
-}
-
 static mvr_result check_fbo(mvr_renderer *r, const char *where)
 {
     mvr_result res = mvr_gl_check(r->ctx, where, true);
@@ -274,7 +260,7 @@ static mvr_result prefilter(mvr_renderer *r, const mvr_environment *env)
      * angle (2 pi / width) matches a face texel's at its centre (pi/2 / size) */
     mvr_program_entry *e = NULL;
     if (res == MVR_OK) {
-        prefilter_state(r);
+        mvr_full_screen_state(r);
         res = environment_program(r, 0u, multiview, &e);
     }
     if (res == MVR_OK) {

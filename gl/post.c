@@ -89,18 +89,23 @@ static uint32_t post_features(const mvr_target *t, const mvr_render_desc *d)
     return f;
 }
 
-static void full_screen_state(mvr_renderer *r, GLuint source)
+void mvr_full_screen_state(mvr_renderer *r)
 {
-    const mvr_gl_api_table *gl = r->gl;
     mvr_state_cache *st = &r->state;
     if (!r->empty_vao)
-        gl->GenVertexArrays(1, &r->empty_vao); /* attributeless draws still need one (core GL) */
+        r->gl->GenVertexArrays(1, &r->empty_vao); /* attributeless draws still need one (core GL) */
     mvr_state_depth(st, false, GL_ALWAYS, GL_FALSE);
     mvr_state_blend(st, false, GL_ONE, GL_ZERO, GL_ONE, GL_ZERO);
     mvr_state_cull(st, false, GL_CCW);
     mvr_state_color_mask(st, true);
     mvr_state_scissor_test(st, false);
     mvr_state_vao(st, r->empty_vao);
+}
+
+static void full_screen_state(mvr_renderer *r, GLuint source)
+{
+    mvr_state_cache *st = &r->state;
+    mvr_full_screen_state(r);
     mvr_state_texture(st, MVR_UNIT_COMPOSITE_SOURCE, GL_TEXTURE_2D_ARRAY, source);
     mvr_state_sampler(st, MVR_UNIT_COMPOSITE_SOURCE, 0);
 }

@@ -322,6 +322,9 @@ typedef struct mvr_view_chunk {
 mvr_result mvr_full_screen_passes(mvr_renderer *r, mvr_target *t, GLuint source, const mvr_view_chunk *chunks,
                                   uint32_t chunk_count, bool multiview, uint32_t features, const float *post_mul,
                                   bool luminance, uint32_t *passes);
+/* The state of an attributeless full-screen triangle: no depth, blend,
+ * culling or scissor, all colour channels, the empty vertex array. */
+void mvr_full_screen_state(mvr_renderer *r);
 /* The HDR frame's final passes (exposure, tone map, encode), with
  * auto-exposure's luminance reduction first. chunks: as the views' passes. */
 bool mvr_post_needed(const mvr_render_desc *desc);
