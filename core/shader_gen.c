@@ -267,6 +267,8 @@ bool mvr_shader_source(const mvr_shader_variant *v, mvr_shader_stage stage, mvr_
         mvr_sb_append(out, "#define MVR_NUM_VIEWS 1\n");
     }
     mvr_sb_appendf(out, "#define MVR_MAX_VIEWS %d\n", MVR_SHADER_MAX_VIEWS);
+    if (stage == MVR_SHADER_STAGE_VERTEX)
+        mvr_sb_append(out, "#define MVR_VERTEX_STAGE 1\n");
     if (v->program == MVR_PROGRAM_MESH) {
         mvr_sb_appendf(out, "#define MVR_MAX_MATERIALS %u\n",
                        v->material_capacity ? (unsigned)v->material_capacity

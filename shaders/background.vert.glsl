@@ -10,7 +10,7 @@ uniform vec2 mvr_depth_range;   // x: clip z of the near plane, y: the far plane
 
 void main()
 {
-    vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2)) * 2.0 - 1.0;
+    vec2 p = mvr_full_screen_corner() * 2.0 - 1.0;
     mat4 inv = inverse(mvr_view_proj[mvr_view_index()]);
     vec4 a = inv * vec4(p, mvr_depth_range.x, 1.0);
     vec4 b = inv * vec4(p, 0.5 * (mvr_depth_range.x + mvr_depth_range.y), 1.0);

@@ -31,3 +31,13 @@ vec3 mvr_linear_to_srgb(vec3 c)
     vec3 hi = 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055;
     return mix(hi, lo, vec3(lessThanEqual(c, vec3(0.0031308))));
 }
+
+#ifdef MVR_VERTEX_STAGE
+// A corner of the full-screen triangle of an attributeless draw of 3
+// vertices: (0, 0), (2, 0), (0, 2), in units of the viewport (so the
+// triangle covers [0, 1]^2).
+vec2 mvr_full_screen_corner()
+{
+    return vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+}
+#endif

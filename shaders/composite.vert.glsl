@@ -6,7 +6,7 @@ uniform int mvr_layer_base;  // source layer of view 0 of this pass
 
 void main()
 {
-    vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+    vec2 p = mvr_full_screen_corner();
     v_uv = p;
 #ifdef MVR_MULTIVIEW
     v_layer = mvr_layer_base + int(gl_ViewID_OVR);

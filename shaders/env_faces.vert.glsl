@@ -7,7 +7,7 @@ uniform int mvr_face_base;   // the face of view 0 of this pass
 
 void main()
 {
-    vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+    vec2 p = mvr_full_screen_corner();
 #ifdef MVR_MULTIVIEW
     v_face = mvr_face_base + int(gl_ViewID_OVR);
 #else
