@@ -5,8 +5,9 @@
 //
 // Asserted, for each feature file: it loads with MVR_OK; three frames render
 // with MVR_OK (the default view path into a float target with every light
-// casting shadows; the loop path with auto-exposure and tone mapping; an
-// anti-aliased half-float frame with per-view transparency order); no pixel
+// casting shadows; the loop path with auto-exposure and tone mapping, lit by
+// the neutral studio environment too; an anti-aliased half-float frame with
+// per-view transparency order); no pixel
 // of any is NaN or infinite; something is drawn (stats) and pixels other
 // than the clear colour land in the image. For each file with nothing to
 // draw: the same, except that no draw is made (where the scene holds no
@@ -96,7 +97,8 @@ static census count(const std::vector<float> &px)
 
 enum class style {
     plain,  // default view path, float target, linear exposure, every light casts shadows
-    post,   // loop path, auto-exposure and the PBR Neutral tone mapper (an HDR frame and its post pass)
+    post,   // loop path, auto-exposure and the PBR Neutral tone mapper (an HDR frame and its post pass),
+            // lit by the neutral studio environment too (image-based lighting on every material)
     aa      // default view path, half-float target, anti-aliasing (auto), per-view transparency order
 };
 static const char *style_name(style st)
@@ -135,6 +137,12 @@ static frame render(mvr_test_state *t, mvr_context *ctx, mvr_scene *scene, style
         desc.exposure_mode = MVR_EXPOSURE_AUTO;
         desc.tone_map = MVR_TONE_MAP_KHR_PBR_NEUTRAL;
     }
+    mvr_environment *env = nullptr;
+    if (st == style::post) {
+        bool made = mvr_environment_create(nullptr, &env, &err) == MVR_OK;
+        CHECK_MSG(t, made, "%s: environment: %s", what.c_str(), err.message);
+        desc.environment = env;
+    }
     mvr_renderer *r = nullptr;
     mvr_target *target = nullptr;
     bool ok = mvr_renderer_create(&rd, &r, &err) == MVR_OK;
@@ -162,6 +170,7 @@ static frame render(mvr_test_state *t, mvr_context *ctx, mvr_scene *scene, style
     out.ok = ok;
     mvr_target_destroy(target);
     mvr_renderer_destroy(r);
+    mvr_environment_destroy(env);
     mvr_view_set_destroy(views);
     return out;
 }
