@@ -4,8 +4,33 @@
 
 #include <stdbool.h>
 #include <stdint.h>
+#include <stdio.h>
+#include <time.h>
 
+#include "cli_env.h"
+#include "cli_scene.h"
 #include "mvr/mvr.h"
+
+typedef struct bench_options {
+    mvr_context_desc context;
+    cli_scene_options scene;
+    uint32_t frames, warmup;
+    bool full;
+    const char *out_dir;
+    bool callgrind;
+    int only;                    /* internal: run one configuration (the callgrind child) */
+    bool quiet;
+    /* --env-axes */
+    bool env_axes;
+    cli_env_options env;
+    const char *env_option;              /* the last option only --env-axes takes, if any */
+    bool demo_set, frames_set, warmup_set, matrix_set;
+    uint32_t sizes[8], n_sizes;          /* --specular-sizes */
+    uint32_t samples[8], n_samples;      /* --specular-samples */
+    uint32_t reference_samples;          /* --reference-samples */
+} bench_options;
+
+#define BENCH_MAX_CONFIGS 80
 
 typedef struct bench_config {
     char name[48];
@@ -18,6 +43,10 @@ typedef struct bench_config {
     /* Configurations of one group must give the same pixels (they differ
      * only in view or material path): the report checks it. */
     char group[32];
+    /* --env-axes: the environment's prefilter (mvr_environment_desc's
+     * specular_size and specular_samples); 0 on the frame axes */
+    uint32_t specular_size, specular_samples;
+    bool converged;              /* --env-axes: the maps at the largest size and 4096 samples */
 } bench_config;
 
 typedef struct bench_result {
@@ -36,7 +65,20 @@ typedef struct bench_result {
     const char *view_path_ran;
     const char *material_path_ran;
     uint32_t draws, draw_calls, passes, program_binds, texture_binds, ubo_range_binds;
-    bool pareto;                 /* no other is both faster and more accurate */
+    bool pareto;                 /* no other is both faster and more accurate (--env-axes: the
+                                    prefilter's median time is the time; the reference is left out) */
+    /* --env-axes: env_prefilter_ms of the first frame with a fresh
+     * environment (ms, over the repeats), its passes, and whether its pixels
+     * are those of the library's default prefilter (the environment
+     * mvr render would make: specular fields 0) */
+    double prefilter_median, prefilter_min, prefilter_max;
+    uint32_t prefilter_passes;
+    bool library_default;
+    /* --env-axes: the error against the converged maps instead (the
+     * prefilter's own error, without the split sum's and the spherical
+     * harmonics'), and the Pareto front over it */
+    double maps_rmse, maps_psnr_db, maps_max_abs;
+    bool maps_pareto;
     uint8_t *display;            /* views x w x h x RGBA8, sRGB-encoded */
 } bench_result;
 
@@ -45,12 +87,19 @@ typedef struct bench_run {
     const char *out_dir;
     const char *command_line;
     const char *renderer;        /* GL_RENDERER */
-    uint32_t views, width, height, frames;
+    uint32_t views, width, height, frames; /* --env-axes: frames = prefilter repeats per configuration */
     uint32_t count;
     bench_config *configs;
     bench_result *results;
     uint32_t reference;          /* index of the reference */
     const char *omitted;         /* configurations left out, and why ("" = none) */
+    /* --env-axes: the environment prefilter axes instead of the frame
+     * matrix. Errors are over the pixels the scene covers (the reference's
+     * alpha > 0), compared_pixels of them, every view. */
+    bool env_axes;
+    const char *environment;     /* neutral | uniform | the image's path */
+    uint32_t reference_samples;  /* the reference's mvr_render_desc.environment_samples */
+    uint64_t compared_pixels;
 } bench_run;
 
 /* bench_report.c: the terminal table, results.csv / results.json, the
@@ -60,8 +109,22 @@ void bench_print_table(const bench_run *run, FILE *out);
 bool bench_write_csv(const bench_run *run, const char *path);
 bool bench_write_json(const bench_run *run, const char *path);
 bool bench_write_images(const bench_run *run);
-/* Writes plot.gp and runs gnuplot for plot.png and plot.svg; false (with a
- * message) when gnuplot is missing or fails. */
+/* Writes plot.gp and runs gnuplot for plot.png and plot.svg (--env-axes:
+ * plot_env.gp, plot_env.png and plot_env.svg, prefilter time against error);
+ * false (with a message) when gnuplot is missing or fails. */
 bool bench_plot(const bench_run *run);
+
+
+/* cmd_bench.c, shared with bench_env.c */
+double bench_now_ms(clockid_t clock);
+double bench_median(double *v, uint32_t n); /* sorts v */
+/* RMSE, PSNR, max and % over 2/255 of img against ref (RGBA8), over every
+ * pixel or (covered) only those the reference covers (alpha > 0); returns
+ * the pixels compared. */
+size_t bench_compare(const uint8_t *ref, const uint8_t *img, size_t pixels, bool covered, bench_result *res);
+void bench_progress(const bench_options *o, uint32_t done, uint32_t total, const char *what);
+
+/* bench_env.c: mvr bench --env-axes (after the options are parsed and the context made). */
+int bench_run_env_axes(int argc, char **argv, const bench_options *o, mvr_context *ctx);
 
 #endif

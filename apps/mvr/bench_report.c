@@ -21,8 +21,49 @@ static const char *fmt_gpu(double ms, char *buf, size_t size)
     return buf;
 }
 
+/* --env-axes: the prefilter's time against the error. */
+static void print_env_table(const bench_run *run, FILE *out)
+{
+    fprintf(out, "mvr bench --env-axes: %s under %s, %u views of %ux%u, prefilter timed %u times each, on %s\n",
+            run->scene_name, run->environment, run->views, run->width, run->height, run->frames, run->renderer);
+    fprintf(out, "%-28s %5s %7s %10s %15s %6s %9s %8s %6s %4s %7s %9s %5s\n", "configuration", "size", "samples",
+            "prefilter", "min..max", "passes", "1st frame", "RMSE", "PSNR", "max", ">2/255", "maps RMSE", "max");
+    for (uint32_t k = 0; k < run->count; ++k) {
+        const bench_config *c = &run->configs[k];
+        const bench_result *r = &run->results[k];
+        if (!r->ran) {
+            fprintf(out, "%-28s skipped: %s\n", c->name, r->skipped);
+            continue;
+        }
+        char psnr[16], range[48], name[64];
+        if (isinf(r->psnr_db))
+            snprintf(psnr, sizeof psnr, "inf");
+        else
+            snprintf(psnr, sizeof psnr, "%.1f", r->psnr_db);
+        snprintf(range, sizeof range, "%.1f..%.1f", r->prefilter_min, r->prefilter_max);
+        snprintf(name, sizeof name, "%s%s%s%s", c->name, r->pareto ? "*" : "", r->maps_pareto ? "+" : "",
+                 r->library_default ? " default" : "");
+        fprintf(out, "%-28s %5u %7u %10.1f %15s %6u %9.1f %8.5f %6s %4.0f %6.2f%% %9.5f %5.0f\n", name,
+                c->specular_size, c->specular_samples, r->prefilter_median, range, r->prefilter_passes,
+                r->wall_median, r->rmse, psnr, r->max_abs, r->over_2, r->maps_rmse, r->maps_max_abs);
+    }
+    fprintf(out, "prefilter: median env_prefilter_ms of the first frame with a fresh environment (ms); 1st frame:\n"
+                 "  that frame's wall ms. RMSE (0..1), PSNR, max (1/255 steps) and >2/255 are against the\n"
+                 "  reference (the environment integrated per pixel, environment_samples %u, loop path), over\n"
+                 "  the %llu pixels the scene covers (every view), neither side anti-aliased; maps RMSE and\n"
+                 "  max against the converged maps instead (the prefilter's own error). The reference and the\n"
+                 "  converged maps ran once, programs compiled in that frame. * Pareto front over (prefilter\n"
+                 "  time, RMSE), + over (prefilter time, maps RMSE); default: the same pixels as the library's\n"
+                 "  default prefilter.\n",
+            run->reference_samples, (unsigned long long)run->compared_pixels);
+}
+
 void bench_print_table(const bench_run *run, FILE *out)
 {
+    if (run->env_axes) {
+        print_env_table(run, out);
+        return;
+    }
     fprintf(out, "mvr bench: %s, %u views of %ux%u, %u frames each, on %s\n", run->scene_name, run->views,
             run->width, run->height, run->frames, run->renderer);
     fprintf(out, "%-34s %-9s %9s %17s %8s %8s %8s %8s %7s %5s %7s %5s %6s %5s %6s\n", "configuration", "ran",
@@ -68,7 +109,28 @@ static const char *csv_header =
     "config,view_path,material_path,supersample,msaa,transparency_order,reference,ran,skipped,view_path_ran,"
     "wall_ms_median,wall_ms_min,wall_ms_max,cpu_ms_median,gpu_ms_median,instructions_per_frame,"
     "rmse,psnr_db,max_abs_255,pct_over_2_255,group,same_as_group_max_diff,draws,draw_calls,passes,"
-    "program_binds,texture_binds,ubo_range_binds,pareto\n";
+    "program_binds,texture_binds,ubo_range_binds,pareto,"
+    "axis,specular_size,specular_samples,reference_env_samples,prefilter_ms_median,prefilter_ms_min,"
+    "prefilter_ms_max,prefilter_passes,library_default,maps_rmse,maps_psnr_db,maps_max_abs_255,maps_pareto\n";
+
+/* The environment axes' columns (empty on the frame axes), and the line's end. */
+static void csv_env_columns(FILE *f, const bench_run *run, const bench_config *c, const bench_result *r)
+{
+    if (!run->env_axes) {
+        fprintf(f, ",frame,,,,,,,,,,,,\n");
+        return;
+    }
+    fprintf(f, ",environment,%u,%u,%u,", c->specular_size, c->specular_samples, run->reference_samples);
+    if (!r->ran) {
+        fprintf(f, ",,,,0,,,,0\n");
+        return;
+    }
+    char psnr[32] = "inf";
+    if (!isinf(r->maps_psnr_db))
+        snprintf(psnr, sizeof psnr, "%.4f", r->maps_psnr_db);
+    fprintf(f, "%.4f,%.4f,%.4f,%u,%d,%.6f,%s,%.0f,%d\n", r->prefilter_median, r->prefilter_min, r->prefilter_max,
+            r->prefilter_passes, r->library_default, r->maps_rmse, psnr, r->maps_max_abs, r->maps_pareto);
+}
 
 bool bench_write_csv(const bench_run *run, const char *path)
 {
@@ -85,7 +147,8 @@ bool bench_write_csv(const bench_run *run, const char *path)
                 mvr_material_path_name(c->material_path), c->supersample, c->msaa, mvr_transparency_order_name(c->order),
                 c->reference, r->ran, r->skipped);
         if (!r->ran) {
-            fprintf(f, ",,,,,,,,,,,%s,,,,,,,,0\n", c->group);
+            fprintf(f, ",,,,,,,,,,,%s,,,,,,,,0", c->group);
+            csv_env_columns(f, run, c, r);
             continue;
         }
         char gpu[32] = "", instr[32] = "", psnr[32] = "inf";
@@ -95,10 +158,11 @@ bool bench_write_csv(const bench_run *run, const char *path)
             snprintf(instr, sizeof instr, "%llu", (unsigned long long)r->instructions);
         if (!isinf(r->psnr_db))
             snprintf(psnr, sizeof psnr, "%.4f", r->psnr_db);
-        fprintf(f, "%s,%.4f,%.4f,%.4f,%.4f,%s,%s,%.6f,%s,%.0f,%.4f,%s,%d,%u,%u,%u,%u,%u,%u,%d\n", r->view_path_ran,
+        fprintf(f, "%s,%.4f,%.4f,%.4f,%.4f,%s,%s,%.6f,%s,%.0f,%.4f,%s,%d,%u,%u,%u,%u,%u,%u,%d", r->view_path_ran,
                 r->wall_median, r->wall_min, r->wall_max, r->cpu_median, gpu, instr, r->rmse, psnr, r->max_abs,
                 r->over_2, c->group, r->group_diff, r->draws, r->draw_calls, r->passes, r->program_binds,
                 r->texture_binds, r->ubo_range_binds, r->pareto);
+        csv_env_columns(f, run, c, r);
     }
     bool ok = fclose(f) == 0;
     if (!ok)
@@ -123,6 +187,14 @@ bool bench_write_json(const bench_run *run, const char *path)
     json_int(&jw, "height", run->height);
     json_int(&jw, "frames", run->frames);
     json_string(&jw, "omitted", run->omitted);
+    json_string(&jw, "axis", run->env_axes ? "environment" : "frame");
+    if (run->env_axes) {
+        /* errors over the covered pixels; times: the prefilter's */
+        json_string(&jw, "environment", run->environment);
+        json_int(&jw, "reference_env_samples", run->reference_samples);
+        json_int(&jw, "prefilter_repeats", run->frames);
+        json_int(&jw, "compared_pixels", (long long)run->compared_pixels);
+    }
     json_begin_array(&jw, "configurations");
     for (uint32_t k = 0; k < run->count; ++k) {
         const bench_config *c = &run->configs[k];
@@ -136,6 +208,10 @@ bool bench_write_json(const bench_run *run, const char *path)
         json_string(&jw, "transparency_order", mvr_transparency_order_name(c->order));
         json_bool(&jw, "reference", c->reference);
         json_string(&jw, "group", c->group);
+        if (run->env_axes) {
+            json_int(&jw, "specular_size", c->specular_size);
+            json_int(&jw, "specular_samples", c->specular_samples);
+        }
         json_bool(&jw, "ran", r->ran);
         if (!r->ran) {
             json_string(&jw, "skipped", r->skipped);
@@ -170,6 +246,21 @@ bool bench_write_json(const bench_run *run, const char *path)
         json_int(&jw, "texture_binds", r->texture_binds);
         json_int(&jw, "ubo_range_binds", r->ubo_range_binds);
         json_bool(&jw, "pareto", r->pareto);
+        if (run->env_axes) {
+            json_double(&jw, "prefilter_ms_median", r->prefilter_median);
+            json_double(&jw, "prefilter_ms_min", r->prefilter_min);
+            json_double(&jw, "prefilter_ms_max", r->prefilter_max);
+            json_int(&jw, "prefilter_passes", r->prefilter_passes);
+            json_bool(&jw, "library_default", r->library_default);
+            json_bool(&jw, "converged", c->converged);
+            json_double(&jw, "maps_rmse", r->maps_rmse);
+            if (isinf(r->maps_psnr_db))
+                json_null(&jw, "maps_psnr_db");
+            else
+                json_double(&jw, "maps_psnr_db", r->maps_psnr_db);
+            json_double(&jw, "maps_max_abs_255", r->maps_max_abs);
+            json_bool(&jw, "maps_pareto", r->maps_pareto);
+        }
         json_end_object(&jw);
     }
     json_end_array(&jw);
@@ -233,8 +324,133 @@ bool bench_write_images(const bench_run *run)
     return ok;
 }
 
+/* Runs gnuplot on `script` in the output directory. */
+static bool run_gnuplot(const bench_run *run, const char *script, const char *rerun)
+{
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid == 0) {
+        if (chdir(run->out_dir) != 0)
+            _exit(126);
+        freopen("/dev/null", "w", stdout);
+        execlp("gnuplot", "gnuplot", script, (char *)NULL);
+        _exit(127);
+    }
+    int status = 0;
+    bool ok = pid > 0 && waitpid(pid, &status, 0) == pid && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    if (!ok)
+        fprintf(stderr, "mvr bench: gnuplot failed (status %d; is gnuplot installed? scripts/setup installs it); "
+                        "%s is left for a rerun\n", status, rerun);
+    return ok;
+}
+
+/* The front, by time: name, time (ms), rmse. time: the prefilter's under
+ * --env-axes, else the frame's; maps: the front over the error against the
+ * converged maps. */
+static bool write_front(const bench_run *run, const char *path, bool maps)
+{
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        fprintf(stderr, "mvr bench: cannot write %s: %s\n", path, strerror(errno));
+        return false;
+    }
+    bool *done = calloc(run->count, sizeof *done);
+    for (uint32_t i = 0; done && i < run->count; ++i) {
+        int next = -1;
+        double next_ms = 0.0;
+        for (uint32_t k = 0; k < run->count; ++k) {
+            const bench_result *r = &run->results[k];
+            double ms = run->env_axes ? r->prefilter_median : r->wall_median;
+            if (r->ran && (maps ? r->maps_pareto : r->pareto) && !done[k] && (next < 0 || ms < next_ms)) {
+                next = (int)k;
+                next_ms = ms;
+            }
+        }
+        if (next < 0)
+            break;
+        done[next] = true;
+        fprintf(f, "%s,%.4f,%.6f\n", run->configs[next].name, next_ms,
+                maps ? run->results[next].maps_rmse : run->results[next].rmse);
+    }
+    bool ok = done != NULL;
+    free(done);
+    ok = fclose(f) == 0 && ok;
+    if (!ok)
+        fprintf(stderr, "mvr bench: cannot write %s\n", path);
+    return ok;
+}
+
+/* --env-axes: plot_env.gp, plot_env.png and plot_env.svg: against the
+ * reference on the left, against the converged maps on the right. */
+static bool env_plot(const bench_run *run)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s/plot_env.gp", run->out_dir);
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        fprintf(stderr, "mvr bench: cannot write %s: %s\n", path, strerror(errno));
+        return false;
+    }
+    /* columns of results.csv: 8 ran, 17 rmse, 21 group, 31 specular size,
+     * 32 specular samples, 34 prefilter ms median, 38 library default,
+     * 39 maps rmse */
+    fprintf(f,
+            "# mvr bench --env-axes: median prefilter time against RMSE, to the reference (left) and to\n"
+            "# the converged maps (right), from results.csv; pareto_env.dat and pareto_env_maps.dat hold\n"
+            "# the fronts, sorted by time\n"
+            "set datafile separator ','\n"
+            "set key top right\n"
+            "set grid\n"
+            "set logscale x 2\n"
+            "set yrange [0:*]\n"
+            "set offsets graph 0.05, graph 0.12, graph 0.15, 0\n"
+            "set style line 1 pt 7 ps 1.2 lc rgb '#3060c0'\n"
+            "set style line 2 pt 6 ps 2.2 lw 2 lc rgb '#d04020'\n"
+            "set style line 3 pt 4 ps 2.6 lw 2 lc rgb '#20a040'\n"
+            "set style line 4 pt 9 ps 1.6 lc rgb '#808080'\n"
+            "axes(c) = (column(8) == 1 && strcol(21) eq 'environment' ? c : 1/0)\n"
+            "conv(c) = (column(8) == 1 && strcol(21) eq 'converged' ? c : 1/0)\n"
+            "dflt(c) = (column(8) == 1 && column(38) == 1 ? c : 1/0)\n"
+            "label(c) = sprintf('%%d/%%d', column(31), column(32))\n"
+            "set xlabel 'median prefilter time (ms, env_prefilter_ms of the first frame; log scale)'\n"
+            "left = \"set title 'against the reference (environment_samples %u)'; set ylabel 'RMSE (0..1, covered "
+            "pixels)'; plot 'results.csv' skip 1 using (axes($34)):(axes($17)) with points ls 1 title "
+            "'size/samples', 'results.csv' skip 1 using (conv($34)):(conv($17)) with points ls 4 title "
+            "'converged maps (limit)', 'results.csv' skip 1 using (dflt($34)):(dflt($17)) with points ls 3 title "
+            "'library default', 'pareto_env.dat' using 2:3 with linespoints ls 2 title 'Pareto front', "
+            "'results.csv' skip 1 using (axes($34)):(axes($17)):(label(0)) with labels offset 1,0.8 left font ',9' "
+            "notitle\"\n"
+            "right = \"set title 'against the converged maps (the prefilter alone)'; set ylabel 'RMSE (0..1, "
+            "covered pixels)'; plot 'results.csv' skip 1 using (axes($34)):(axes($39)) with points ls 1 title "
+            "'size/samples', 'results.csv' skip 1 using (dflt($34)):(dflt($39)) with points ls 3 title "
+            "'library default', 'pareto_env_maps.dat' using 2:3 with linespoints ls 2 title 'Pareto front', "
+            "'results.csv' skip 1 using (axes($34)):(axes($39)):(label(0)) with labels offset 1,0.8 left font ',9' "
+            "notitle\"\n"
+            "plot_it = \"set multiplot layout 1,2 title '%s under %s, %u views of %ux%u on %s'; eval left; "
+            "eval right; unset multiplot\"\n"
+            "set terminal png size 1500,650 noenhanced\n"
+            "set output 'plot_env.png'\n"
+            "eval plot_it\n"
+            "set terminal svg size 1500,650 noenhanced\n"
+            "set output 'plot_env.svg'\n"
+            "eval plot_it\n",
+            run->reference_samples, run->scene_name, run->environment, run->views, run->width, run->height,
+            run->renderer);
+    fclose(f);
+    snprintf(path, sizeof path, "%s/pareto_env.dat", run->out_dir);
+    if (!write_front(run, path, false))
+        return false;
+    snprintf(path, sizeof path, "%s/pareto_env_maps.dat", run->out_dir);
+    if (!write_front(run, path, true))
+        return false;
+    snprintf(path, sizeof path, "%s/plot_env.gp", run->out_dir);
+    return run_gnuplot(run, "plot_env.gp", path);
+}
+
 bool bench_plot(const bench_run *run)
 {
+    if (run->env_axes)
+        return env_plot(run);
     char path[4096];
     snprintf(path, sizeof path, "%s/plot.gp", run->out_dir);
     FILE *f = fopen(path, "w");
@@ -269,41 +485,9 @@ bool bench_plot(const bench_run *run)
             "eval plot_it\n",
             run->scene_name, run->views, run->width, run->height, run->renderer);
     fclose(f);
-    /* the front, by time: name, wall ms, rmse */
     snprintf(path, sizeof path, "%s/pareto.dat", run->out_dir);
-    f = fopen(path, "w");
-    if (!f) {
-        fprintf(stderr, "mvr bench: cannot write %s: %s\n", path, strerror(errno));
+    if (!write_front(run, path, false))
         return false;
-    }
-    bool *done = calloc(run->count, sizeof *done);
-    for (uint32_t i = 0; done && i < run->count; ++i) {
-        int next = -1;
-        for (uint32_t k = 0; k < run->count; ++k)
-            if (run->results[k].ran && run->results[k].pareto && !done[k] &&
-                (next < 0 || run->results[k].wall_median < run->results[next].wall_median))
-                next = (int)k;
-        if (next < 0)
-            break;
-        done[next] = true;
-        fprintf(f, "%s,%.4f,%.6f\n", run->configs[next].name, run->results[next].wall_median,
-                run->results[next].rmse);
-    }
-    free(done);
-    fclose(f);
-    fflush(NULL);
-    pid_t pid = fork();
-    if (pid == 0) {
-        if (chdir(run->out_dir) != 0)
-            _exit(126);
-        freopen("/dev/null", "w", stdout);
-        execlp("gnuplot", "gnuplot", "plot.gp", (char *)NULL);
-        _exit(127);
-    }
-    int status = 0;
-    bool ok = pid > 0 && waitpid(pid, &status, 0) == pid && WIFEXITED(status) && WEXITSTATUS(status) == 0;
-    if (!ok)
-        fprintf(stderr, "mvr bench: gnuplot failed (status %d; is gnuplot installed? scripts/setup installs it); "
-                        "%s is left for a rerun\n", status, path);
-    return ok;
+    snprintf(path, sizeof path, "%s/plot.gp", run->out_dir);
+    return run_gnuplot(run, "plot.gp", path);
 }

@@ -1,6 +1,9 @@
 /* mvr bench: one scene under a matrix of configurations (view path,
  * material path, anti-aliasing, transparency order, and the reference),
- * each timed over F frames and compared with the reference render. */
+ * each timed over F frames and compared with the reference render; or,
+ * with --env-axes, the environment prefilter's axes (specular map size x
+ * GGX samples per texel), each timed by its prefilter and compared with the
+ * environment integrated per pixel. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -12,8 +15,10 @@
 
 #include "bench.h"
 #include "cli_common.h"
+#include "cli_env.h"
 #include "cli_scene.h"
 #include "commands.h"
+#include "mvr/mvr_image.h"
 
 #if defined(__has_include)
 #if __has_include(<valgrind/callgrind.h>)
@@ -26,16 +31,6 @@
 #define CALLGRIND_TOGGLE_COLLECT
 #endif
 
-typedef struct bench_options {
-    mvr_context_desc context;
-    cli_scene_options scene;
-    uint32_t frames, warmup;
-    bool full;
-    const char *out_dir;
-    bool callgrind;
-    int only;                    /* internal: run one configuration (the callgrind child) */
-    bool quiet;
-} bench_options;
 
 static void bench_usage(FILE *out)
 {
@@ -61,8 +56,50 @@ static void bench_usage(FILE *out)
             "  --callgrind         also count the submitting thread's instructions per frame\n"
             "                      under valgrind --tool=callgrind (repeatable to < 1%% on a\n"
             "                      shared machine, unlike wall time; slow)\n"
-            "  --quiet             no progress bar\n" CLI_CONTEXT_HELP
+            "  --quiet             no progress bar\n"
+            "\n"
+            "environment prefilter axes:\n"
+            "  --env-axes          instead of the matrix above: the image-based lighting's\n"
+            "                      prefilter, specular map size x GGX samples per texel\n"
+            "                      (mvr_environment_desc.specular_size, .specular_samples),\n"
+            "                      on a grid of spheres of 8 roughnesses, dielectric and\n"
+            "                      metal, under --env (default: neutral); or SCENE.gltf, or\n"
+            "                      --demo NAME with --env. Each is timed by its prefilter\n"
+            "                      (env_prefilter_ms of the first frame with a fresh\n"
+            "                      environment: median of --frames runs, default 5, after\n"
+            "                      --warmup untimed ones, default 1) and compared, over the\n"
+            "                      pixels the scene covers, neither side anti-aliased, with\n"
+            "                      the reference (the environment integrated per pixel, loop\n"
+            "                      path) and with the converged maps (the largest size, 4096\n"
+            "                      samples: the prefilter's own error). Marks the one with the\n"
+            "                      library default's pixels. Writes results.csv, results.json,\n"
+            "                      plot_env.png, plot_env.svg, reference.png, worst_diff.png\n"
+            "  --specular-sizes L  face sizes, powers of two 16..1024 (default: 32,64,128,256)\n"
+            "  --specular-samples L samples per texel, 1..4096 (default: 16,64,256)\n"
+            "  --reference-samples N samples per lobe of the reference (default: 1024)\n"
+            CLI_ENV_HELP CLI_CONTEXT_HELP
             "  -h, --help          this text\n");
+}
+
+/* "32,64,128": up to 8 distinct values in lo..hi (powers of two if pow2),
+ * kept in the order given. */
+static bool parse_list(const char *v, uint32_t lo, uint32_t hi, bool pow2, uint32_t *out, uint32_t *n)
+{
+    char buf[256];
+    if (strlen(v) >= sizeof buf)
+        return false;
+    strcpy(buf, v);
+    *n = 0;
+    for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+        uint32_t x = 0;
+        if (*n == 8 || !cli_parse_u32(tok, lo, hi, &x) || (pow2 && (x & (x - 1u)) != 0))
+            return false;
+        for (uint32_t k = 0; k < *n; ++k)
+            if (out[k] == x)
+                return false;
+        out[(*n)++] = x;
+    }
+    return *n > 0 && v[0] != ',' && v[strlen(v) - 1] != ',' && !strstr(v, ",,");
 }
 
 static int parse(int argc, char **argv, bench_options *o)
@@ -75,6 +112,7 @@ static int parse(int argc, char **argv, bench_options *o)
     o->warmup = 2;
     o->out_dir = "bench-out";
     o->only = -1;
+    o->reference_samples = 1024;
     bool verbose = false;
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
@@ -84,6 +122,17 @@ static int parse(int argc, char **argv, bench_options *o)
             return MVR_EXIT_USAGE;
         if (c > 0)
             continue;
+        c = cli_env_option("mvr bench", argc, argv, &i, &o->env);
+        if (c < 0)
+            return MVR_EXIT_USAGE;
+        if (c > 0) {
+            o->env_option = a;
+            continue;
+        }
+        if (strcmp(a, "--env-axes") == 0) {
+            o->env_axes = true;
+            continue;
+        }
         if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
             bench_usage(stdout);
             return -1;
@@ -109,21 +158,34 @@ static int parse(int argc, char **argv, bench_options *o)
             return MVR_EXIT_USAGE;
         }
         bool ok = true;
-        if (strcmp(a, "--demo") == 0)
+        if (strcmp(a, "--demo") == 0) {
             o->scene.demo = v;
-        else if (strcmp(a, "--views") == 0)
+            o->demo_set = true;
+        } else if (strcmp(a, "--views") == 0)
             ok = cli_parse_u32(v, 1, 64, &o->scene.views);
-        else if (strcmp(a, "--frames") == 0)
+        else if (strcmp(a, "--frames") == 0) {
             ok = cli_parse_u32(v, 1, 1000, &o->frames);
-        else if (strcmp(a, "--warmup") == 0)
+            o->frames_set = true;
+        } else if (strcmp(a, "--warmup") == 0) {
             ok = cli_parse_u32(v, 0, 1000, &o->warmup);
-        else if (strcmp(a, "--out") == 0)
+            o->warmup_set = true;
+        } else if (strcmp(a, "--specular-sizes") == 0) {
+            ok = parse_list(v, 16, 1024, true, o->sizes, &o->n_sizes);
+            o->env_option = a;
+        } else if (strcmp(a, "--specular-samples") == 0) {
+            ok = parse_list(v, 1, 4096, false, o->samples, &o->n_samples);
+            o->env_option = a;
+        } else if (strcmp(a, "--reference-samples") == 0) {
+            ok = cli_parse_u32(v, 1, 65536, &o->reference_samples);
+            o->env_option = a;
+        } else if (strcmp(a, "--out") == 0)
             o->out_dir = v;
         else if (strcmp(a, "--only") == 0) {
             uint32_t k = 0;
             ok = cli_parse_u32(v, 0, 1000, &k);
             o->only = (int)k;
         } else if (strcmp(a, "--matrix") == 0) {
+            o->matrix_set = true;
             ok = strcmp(v, "quick") == 0 || strcmp(v, "full") == 0;
             o->full = strcmp(v, "full") == 0;
         } else if (strcmp(a, "--size") == 0) {
@@ -144,6 +206,40 @@ static int parse(int argc, char **argv, bench_options *o)
     }
     if (!cli_context_check("mvr bench", &o->context))
         return MVR_EXIT_USAGE;
+    if (!o->env_axes) {
+        if (o->env_option) {
+            fprintf(stderr, "mvr bench: %s is for --env-axes (the frame matrix renders without an environment)\n",
+                    o->env_option);
+            return MVR_EXIT_USAGE;
+        }
+    } else {
+        if (o->callgrind || o->matrix_set) {
+            fprintf(stderr, "mvr bench: --env-axes times the prefilter, not frames: %s is for the frame matrix\n",
+                    o->callgrind ? "--callgrind" : "--matrix");
+            return MVR_EXIT_USAGE;
+        }
+        if (!cli_env_check("mvr bench", &o->env, !o->demo_set))
+            return MVR_EXIT_USAGE;
+        if (o->env.env ? strcmp(o->env.env, "none") == 0 : o->demo_set && !o->scene.scene_file) {
+            fprintf(stderr, "mvr bench: --env-axes needs an environment (--env FILE|neutral|uniform; %s)\n",
+                    o->env.env ? "not none" : "the demos have none of their own");
+            return MVR_EXIT_USAGE;
+        }
+        if (!o->n_sizes) {
+            const uint32_t sizes[4] = {32, 64, 128, 256};
+            memcpy(o->sizes, sizes, sizeof sizes);
+            o->n_sizes = 4;
+        }
+        if (!o->n_samples) {
+            const uint32_t samples[3] = {16, 64, 256};
+            memcpy(o->samples, samples, sizeof samples);
+            o->n_samples = 3;
+        }
+        if (!o->frames_set)
+            o->frames = 5;
+        if (!o->warmup_set)
+            o->warmup = 1;
+    }
     cli_logger(&o->context.logger, "mvr bench", verbose);
     o->scene.logger = o->context.logger;
     return MVR_EXIT_OK;
@@ -209,7 +305,7 @@ static uint32_t make_matrix(bool full, bench_config *out)
     return n;
 }
 
-static double now_ms(clockid_t clock)
+double bench_now_ms(clockid_t clock)
 {
     struct timespec ts;
     clock_gettime(clock, &ts);
@@ -222,7 +318,7 @@ static int compare_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-static double median(double *v, uint32_t n)
+double bench_median(double *v, uint32_t n)
 {
     qsort(v, n, sizeof *v, compare_double);
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
@@ -237,10 +333,10 @@ __attribute__((noinline)) static bool measured_frames(mvr_renderer *r, mvr_scene
     CALLGRIND_START_INSTRUMENTATION;
     CALLGRIND_TOGGLE_COLLECT;
     for (uint32_t f = 0; f < frames && ok; ++f) {
-        double w0 = now_ms(CLOCK_MONOTONIC), c0 = now_ms(CLOCK_THREAD_CPUTIME_ID);
+        double w0 = bench_now_ms(CLOCK_MONOTONIC), c0 = bench_now_ms(CLOCK_THREAD_CPUTIME_ID);
         ok = mvr_renderer_render(r, s, vs, t, NULL) == MVR_OK && mvr_renderer_finish(r) == MVR_OK;
-        wall[f] = now_ms(CLOCK_MONOTONIC) - w0;
-        cpu[f] = now_ms(CLOCK_THREAD_CPUTIME_ID) - c0;
+        wall[f] = bench_now_ms(CLOCK_MONOTONIC) - w0;
+        cpu[f] = bench_now_ms(CLOCK_THREAD_CPUTIME_ID) - c0;
         mvr_frame_stats st;
         mvr_renderer_get_stats(r, &st);
         gpu[f] = st.gpu_ms;
@@ -298,9 +394,9 @@ static bool run_config(const bench_options *o, mvr_context *ctx, mvr_scene *scen
             res->wall_min = fmin(res->wall_min, wall[f]);
             res->wall_max = fmax(res->wall_max, wall[f]);
         }
-        res->wall_median = median(wall, o->frames);
-        res->cpu_median = median(cpu, o->frames);
-        res->gpu_median = gpu[0] < 0 ? -1.0 : median(gpu, o->frames);
+        res->wall_median = bench_median(wall, o->frames);
+        res->cpu_median = bench_median(cpu, o->frames);
+        res->gpu_median = gpu[0] < 0 ? -1.0 : bench_median(gpu, o->frames);
         size_t layer = (size_t)w * h * 4;
         res->display = malloc(layer * n);
         ok = res->display != NULL;
@@ -316,13 +412,18 @@ static bool run_config(const bench_options *o, mvr_context *ctx, mvr_scene *scen
     return ok;
 }
 
-/* Error of a display image against the reference: RGB channels. */
-static void compare(const uint8_t *ref, const uint8_t *img, size_t pixels, bench_result *res)
+/* Error of a display image against the reference: RGB channels; covered:
+ * only the pixels the reference covers (alpha > 0). Returns the pixels
+ * compared. */
+size_t bench_compare(const uint8_t *ref, const uint8_t *img, size_t pixels, bool covered, bench_result *res)
 {
     double sum2 = 0;
     unsigned max = 0;
-    size_t over = 0;
+    size_t over = 0, n = 0;
     for (size_t i = 0; i < pixels; ++i) {
+        if (covered && ref[i * 4 + 3] == 0)
+            continue;
+        ++n;
         bool off = false;
         for (size_t c = 0; c < 3; ++c) {
             int d = abs((int)img[i * 4 + c] - (int)ref[i * 4 + c]);
@@ -332,11 +433,12 @@ static void compare(const uint8_t *ref, const uint8_t *img, size_t pixels, bench
         }
         over += off;
     }
-    double mse = sum2 / (3.0 * (double)pixels) / (255.0 * 255.0);
+    double mse = n ? sum2 / (3.0 * (double)n) / (255.0 * 255.0) : 0.0;
     res->rmse = sqrt(mse);
     res->psnr_db = mse > 0 ? 10.0 * log10(1.0 / mse) : INFINITY;
     res->max_abs = max;
-    res->over_2 = 100.0 * (double)over / (double)pixels;
+    res->over_2 = n ? 100.0 * (double)over / (double)n : 0.0;
+    return n;
 }
 
 static int max_byte_diff(const uint8_t *a, const uint8_t *b, size_t bytes)
@@ -418,7 +520,7 @@ static bool count_instructions(int argc, char **argv, const bench_options *o, ui
     return total > 0;
 }
 
-static void progress(const bench_options *o, uint32_t done, uint32_t total, const char *what)
+void bench_progress(const bench_options *o, uint32_t done, uint32_t total, const char *what)
 {
     if (o->quiet)
         return;
@@ -448,13 +550,17 @@ int mvr_cmd_bench(int argc, char **argv)
     mvr_context *ctx = NULL;
     mvr_scene *scene = NULL;
     mvr_view_set *vs = NULL;
-    bench_config configs[64];
-    bench_result results[64];
+    bench_config configs[BENCH_MAX_CONFIGS];
+    bench_result results[BENCH_MAX_CONFIGS];
     memset(results, 0, sizeof results);
-    uint32_t count = make_matrix(o.full, configs);
+    uint32_t count = o.env_axes ? 0 : make_matrix(o.full, configs);
     rc = MVR_EXIT_FAILURE;
     if (mvr_context_create(&o.context, &ctx, &err) != MVR_OK) {
         fprintf(stderr, "mvr bench: %s\n", err.message);
+        goto done;
+    }
+    if (o.env_axes) {
+        rc = bench_run_env_axes(argc, argv, &o, ctx);
         goto done;
     }
     rc = cli_load_scene("mvr bench", &o.scene, &scene, &vs);
@@ -513,11 +619,11 @@ int mvr_cmd_bench(int argc, char **argv)
         const bench_config *c = &configs[k];
         bench_result *res = &results[k];
         res->group_diff = -1;
-        progress(&o, k, count, c->name);
+        bench_progress(&o, k, count, c->name);
         if (!run_config(&o, ctx, scene, vs, c, res))
             goto done;
         if (res->ran) {
-            compare(results[0].display, res->display, pixels, res);
+            bench_compare(results[0].display, res->display, pixels, false, res);
             for (uint32_t j = 0; j < k; ++j)
                 if (results[j].ran && strcmp(configs[j].group, c->group) == 0) {
                     res->group_diff = max_byte_diff(results[j].display, res->display, pixels * 4);
@@ -527,7 +633,7 @@ int mvr_cmd_bench(int argc, char **argv)
         if (o.callgrind && res->ran && !count_instructions(argc, argv, &o, k, &res->instructions))
             goto done;
     }
-    progress(&o, count, count, "done");
+    bench_progress(&o, count, count, "done");
     /* Pareto front over (median wall time, RMSE) */
     for (uint32_t k = 0; k < count; ++k) {
         if (!results[k].ran)
@@ -546,7 +652,7 @@ int mvr_cmd_bench(int argc, char **argv)
     }
     bench_run run = {o.scene.scene_file ? o.scene.scene_file : o.scene.demo, o.out_dir, cmdline,
                      mvr_context_caps(ctx)->renderer, n_views, o.scene.width, o.scene.height, o.frames, count,
-                     configs, results, 0, omitted};
+                     configs, results, 0, omitted, false, NULL, 0, pixels};
     bench_print_table(&run, stdout);
     char path[4096];
     snprintf(path, sizeof path, "%s/results.csv", o.out_dir);

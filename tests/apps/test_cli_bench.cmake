@@ -1,7 +1,10 @@
 # ctest script: `mvr bench` on a tiny scene. Asserts the files and columns
 # exist, that every configuration that ran has a time and a finite error,
 # and that configurations which must agree (view path, material path) show
-# no difference. No assertion on times.
+# no difference. Then `mvr bench --env-axes` on a tiny sphere grid with two
+# prefilter configurations: its columns and keys, finite errors, the
+# reference and the converged maps at error 0 against themselves, and more
+# samples no worse against the converged maps. No assertion on times.
 # cmake -DMVR=path/to/mvr -DOUT=dir -P test_cli_bench.cmake
 include(${CMAKE_CURRENT_LIST_DIR}/cli_expect.cmake)
 file(REMOVE_RECURSE ${OUT})
@@ -20,7 +23,7 @@ if(EXISTS ${OUT}/results.csv)
   file(STRINGS ${OUT}/results.csv lines)
   list(GET lines 0 header)
   foreach(col config wall_ms_median cpu_ms_median gpu_ms_median rmse psnr_db max_abs_255 pct_over_2_255
-              same_as_group_max_diff draws draw_calls passes texture_binds pareto)
+              same_as_group_max_diff draws draw_calls passes texture_binds pareto axis)
     expect("results.csv has column ${col}" header MATCHES "(^|,)${col}(,|$)")
   endforeach()
 endif()
@@ -43,7 +46,7 @@ if(EXISTS ${OUT}/results.json)
     foreach(key wall_ms_median cpu_ms_median rmse max_abs_255 pct_over_2_255)
       string(JSON v ERROR_VARIABLE jerr GET "${json}" configurations ${i} ${key})
       # finite: a JSON number (the writer prints null for NaN or inf)
-      expect("${cfg}: ${key} is a finite number (${v} ${jerr})" v MATCHES "^-?[0-9]+(\\.[0-9]+)?([eE][-+]?[0-9]+)?$")
+      expect("${cfg}: ${key} is a finite number (${v} ${jerr})" v MATCHES "^-?[0-9]+([.][0-9]+)?([eE][-+]?[0-9]+)?$")
     endforeach()
     string(JSON ref GET "${json}" configurations ${i} reference)
     string(JSON rmse GET "${json}" configurations ${i} rmse)
@@ -63,5 +66,89 @@ endif()
 
 run(rc so se bench --matrix slow --out ${OUT}/bad)
 expect("--matrix slow is refused (got ${rc})" rc EQUAL 2)
+
+# --env-axes: the prefilter's axes on the sphere grid under the neutral studio
+set(E ${OUT}/env)
+run(rc so se bench --env-axes --views 2 --size 32x32 --specular-sizes 32 --specular-samples 16,256 --frames 1
+    --warmup 1 --out ${E} --quiet)
+expect("bench --env-axes exits 0 (got ${rc}): ${se}" rc EQUAL 0)
+expect("it prints the prefilter table: ${so}" so MATCHES "configuration.*prefilter.*RMSE.*maps RMSE")
+foreach(f results.csv results.json plot_env.png plot_env.svg plot_env.gp pareto_env.dat pareto_env_maps.dat
+          reference.png worst_diff.png)
+  expect("--env-axes: ${f} written" EXISTS ${E}/${f})
+endforeach()
+if(EXISTS ${E}/results.csv)
+  file(STRINGS ${E}/results.csv lines)
+  list(GET lines 0 header)
+  foreach(col config rmse psnr_db pareto axis specular_size specular_samples reference_env_samples
+              prefilter_ms_median prefilter_ms_min prefilter_ms_max prefilter_passes library_default maps_rmse
+              maps_psnr_db maps_max_abs_255 maps_pareto)
+    expect("--env-axes results.csv has column ${col}" header MATCHES "(^|,)${col}(,|$)")
+  endforeach()
+  list(LENGTH lines n_lines)
+  expect("--env-axes: reference, converged and 2 configurations in results.csv (${n_lines} lines)" n_lines EQUAL 5)
+endif()
+if(EXISTS ${E}/results.json)
+  file(READ ${E}/results.json json)
+  string(JSON axis GET "${json}" axis)
+  expect("--env-axes: results.json says axis environment (${axis})" axis STREQUAL "environment")
+  string(JSON env GET "${json}" environment)
+  expect("--env-axes: the sphere grid's default environment is the neutral studio (${env})" env STREQUAL "neutral")
+  string(JSON n LENGTH "${json}" configurations)
+  expect("--env-axes: 4 configurations (got ${n})" n EQUAL 4)
+  math(EXPR last "${n} - 1")
+  set(default_marked 0)
+  foreach(i RANGE ${last})
+    string(JSON cfg GET "${json}" configurations ${i} config)
+    string(JSON did GET "${json}" configurations ${i} ran)
+    expect("--env-axes: ${cfg} ran" did)
+    if(NOT did)
+      continue()
+    endif()
+    foreach(key prefilter_ms_median rmse maps_rmse max_abs_255 maps_max_abs_255 pct_over_2_255)
+      string(JSON v ERROR_VARIABLE jerr GET "${json}" configurations ${i} ${key})
+      expect("--env-axes: ${cfg}: ${key} is a finite number (${v} ${jerr})"
+             v MATCHES "^-?[0-9]+([.][0-9]+)?([eE][-+]?[0-9]+)?$")
+    endforeach()
+    string(JSON passes GET "${json}" configurations ${i} prefilter_passes)
+    expect("--env-axes: ${cfg}: the first frame with a fresh environment prefiltered (${passes} passes)"
+           passes GREATER 0)
+    string(JSON size GET "${json}" configurations ${i} specular_size)
+    string(JSON samples GET "${json}" configurations ${i} specular_samples)
+    string(JSON rmse GET "${json}" configurations ${i} rmse)
+    string(JSON maps GET "${json}" configurations ${i} maps_rmse)
+    string(JSON dflt GET "${json}" configurations ${i} library_default)
+    if(dflt)
+      math(EXPR default_marked "${default_marked} + 1")
+    endif()
+    if(cfg STREQUAL "reference")
+      expect("--env-axes: the reference has error 0 (${rmse})" rmse EQUAL 0)
+    elseif(cfg STREQUAL "converged")
+      expect("--env-axes: the converged maps have maps error 0 (${maps})" maps EQUAL 0)
+      expect("--env-axes: the converged maps are 32 x 4096 (${size} x ${samples})" size EQUAL 32 AND samples EQUAL 4096)
+      # the split sum and the spherical harmonics against the integral: a
+      # few /255 (measured 0.037 here); 0.1 would be a broken side
+      expect("--env-axes: the converged maps are near the reference (RMSE ${rmse})" rmse LESS 0.1)
+    else()
+      set(maps_${samples} ${maps})
+      expect("--env-axes: ${cfg} differs from the reference (RMSE ${rmse})" rmse GREATER 0)
+    endif()
+  endforeach()
+  # 32 x 16 and 32 x 256 are not the default (128 x 256): nothing marked
+  expect("--env-axes: no configuration has the default's pixels (${default_marked})" default_marked EQUAL 0)
+  # the prefilter converges: 256 samples no further from the converged maps
+  # than 16 (measured 0.003 against 0.022; deterministic, so no noise)
+  expect("--env-axes: 256 samples (${maps_256}) no worse than 16 (${maps_16}) against the converged maps"
+         DEFINED maps_256 AND DEFINED maps_16 AND maps_256 LESS_EQUAL maps_16)
+endif()
+
+run(rc so se bench --env neutral --out ${OUT}/bad)
+expect("--env without --env-axes is refused (got ${rc})" rc EQUAL 2)
+run(rc so se bench --env-axes --env none --out ${OUT}/bad)
+expect("--env-axes --env none is refused (got ${rc}): ${se}" rc EQUAL 2)
+run(rc so se bench --env-axes --specular-sizes 48 --out ${OUT}/bad)
+expect("--specular-sizes 48 is refused (got ${rc})" rc EQUAL 2)
+run(rc so se bench --env-axes --callgrind --out ${OUT}/bad)
+expect("--env-axes --callgrind is refused (got ${rc})" rc EQUAL 2)
 
 expect_summary("CLI bench")
