@@ -15,6 +15,7 @@ typedef struct bench_options {
     mvr_context_desc context;
     cli_scene_options scene;
     uint32_t frames, warmup;
+    uint32_t rounds;             /* --rounds: the frames are taken in this many rounds over all configurations */
     bool full;
     const char *out_dir;
     bool callgrind;
@@ -28,6 +29,8 @@ typedef struct bench_options {
     uint32_t sizes[8], n_sizes;          /* --specular-sizes */
     uint32_t samples[8], n_samples;      /* --specular-samples */
     uint32_t reference_samples;          /* --reference-samples */
+    /* the MVR_* variables (mvr_renderer_overrides_from_env), in every renderer desc */
+    mvr_renderer_overrides overrides;
 } bench_options;
 
 #define BENCH_MAX_CONFIGS 80
@@ -53,6 +56,7 @@ typedef struct bench_result {
     bool ran;
     char skipped[160];           /* why not, when !ran */
     double wall_median, wall_min, wall_max; /* ms per frame: render + finish */
+    double wall_q1, wall_q3;     /* its quartiles: the interquartile range is the noise the front allows */
     double cpu_median;           /* ms of the submitting thread */
     double gpu_median;           /* ms from timer queries; < 0 where there are none */
     uint64_t instructions;       /* per frame, submitting thread (--callgrind); 0 = not measured */
@@ -100,6 +104,7 @@ typedef struct bench_run {
     const char *environment;     /* neutral | uniform | the image's path */
     uint32_t reference_samples;  /* the reference's mvr_render_desc.environment_samples */
     uint64_t compared_pixels;
+    uint32_t rounds;             /* the frames were taken in this many interleaved rounds (frame axes) */
 } bench_run;
 
 /* bench_report.c: the terminal table, results.csv / results.json, the

@@ -105,7 +105,8 @@ static bool run_env_config(const bench_options *o, mvr_context *ctx, mvr_scene *
     /* per-view transparency order on both sides: a file's blended
      * surfaces add no sorting error to the prefilter's */
     mvr_renderer_desc rd = {.context = ctx, .view_path = reference ? MVR_VIEW_PATH_LOOP : MVR_VIEW_PATH_AUTO,
-                            .transparency_order = MVR_TRANSPARENCY_ORDER_PER_VIEW, .logger = o->context.logger};
+                            .transparency_order = MVR_TRANSPARENCY_ORDER_PER_VIEW, .logger = o->context.logger,
+                            .overrides = o->overrides};
     mvr_renderer *r = NULL;
     mvr_target *t = NULL;
     mvr_error err;
@@ -372,7 +373,7 @@ int bench_run_env_axes(int argc, char **argv, const bench_options *o, mvr_contex
                                                                   : mvr_environment_source_name(used.source);
     bench_run run = {scene_name, o->out_dir, cmdline, mvr_context_caps(ctx)->renderer, n_views, o->scene.width,
                      o->scene.height, o->frames, count, configs, results, 0, "", true, env_name,
-                     o->reference_samples, compared};
+                     o->reference_samples, compared, 0};
     bench_print_table(&run, stdout);
     char path[4096];
     snprintf(path, sizeof path, "%s/results.csv", o->out_dir);

@@ -64,10 +64,10 @@ void bench_print_table(const bench_run *run, FILE *out)
         print_env_table(run, out);
         return;
     }
-    fprintf(out, "mvr bench: %s, %u views of %ux%u, %u frames each, on %s\n", run->scene_name, run->views,
-            run->width, run->height, run->frames, run->renderer);
+    fprintf(out, "mvr bench: %s, %u views of %ux%u, %u frames each in %u interleaved rounds, on %s\n",
+            run->scene_name, run->views, run->width, run->height, run->frames, run->rounds, run->renderer);
     fprintf(out, "%-34s %-9s %9s %17s %8s %8s %8s %8s %7s %5s %7s %5s %6s %5s %6s\n", "configuration", "ran",
-            "wall ms", "min..max", "cpu ms", "gpu ms", "Minstr", "RMSE", "PSNR", "max", ">2/255", "same", "draws",
+            "wall ms", "q1..q3", "cpu ms", "gpu ms", "Minstr", "RMSE", "PSNR", "max", ">2/255", "same", "draws",
             "calls", "binds");
     for (uint32_t k = 0; k < run->count; ++k) {
         const bench_config *c = &run->configs[k];
@@ -85,7 +85,7 @@ void bench_print_table(const bench_run *run, FILE *out)
             snprintf(psnr, sizeof psnr, "inf");
         else
             snprintf(psnr, sizeof psnr, "%.1f", r->psnr_db);
-        snprintf(range, sizeof range, "%.1f..%.1f", r->wall_min, r->wall_max);
+        snprintf(range, sizeof range, "%.1f..%.1f", r->wall_q1, r->wall_q3);
         if (r->group_diff < 0)
             snprintf(same, sizeof same, "-");
         else
@@ -97,7 +97,12 @@ void bench_print_table(const bench_run *run, FILE *out)
     }
     if (run->omitted[0])
         fprintf(out, "(%s)\n", run->omitted);
-    fprintf(out, "* Pareto front (nothing else is both faster and closer to the reference). RMSE, PSNR, max\n"
+    fprintf(out, "wall ms: the median frame, q1..q3 its interquartile range (the noise), over frames taken in\n"
+                 "  rounds that visit every configuration in turn (so a load change hits all of them).\n"
+                 "* Pareto front: nothing else is at least as close to the reference and faster by more than\n"
+                 "  the noise (its q3 below this one's q1), or closer and not slower beyond the noise (its\n"
+                 "  median at most this one's q3). worst_diff_x8_<configuration>.png: |image - reference| x 8\n"
+                 "  of the configuration farthest from the reference, clamped at 255. RMSE, PSNR, max\n"
                  "  (in 1/255 steps) and >2/255 are against the reference; \"same\" is the largest byte\n"
                  "  difference to the first configuration with the same anti-aliasing and transparency\n"
                  "  order (view and material paths must not change pixels: 0). binds: program/texture/\n"
@@ -111,24 +116,29 @@ static const char *csv_header =
     "rmse,psnr_db,max_abs_255,pct_over_2_255,group,same_as_group_max_diff,draws,draw_calls,passes,"
     "program_binds,texture_binds,ubo_range_binds,pareto,"
     "axis,specular_size,specular_samples,reference_env_samples,prefilter_ms_median,prefilter_ms_min,"
-    "prefilter_ms_max,prefilter_passes,library_default,maps_rmse,maps_psnr_db,maps_max_abs_255,maps_pareto\n";
+    "prefilter_ms_max,prefilter_passes,library_default,maps_rmse,maps_psnr_db,maps_max_abs_255,maps_pareto,"
+    "wall_ms_q1,wall_ms_q3\n";
 
-/* The environment axes' columns (empty on the frame axes), and the line's end. */
+/* The environment axes' columns (empty on the frame axes), the frame
+ * time's quartiles (empty on the environment axes), and the line's end. */
 static void csv_env_columns(FILE *f, const bench_run *run, const bench_config *c, const bench_result *r)
 {
     if (!run->env_axes) {
-        fprintf(f, ",frame,,,,,,,,,,,,\n");
+        if (r->ran)
+            fprintf(f, ",frame,,,,,,,,,,,,,%.4f,%.4f\n", r->wall_q1, r->wall_q3);
+        else
+            fprintf(f, ",frame,,,,,,,,,,,,,,\n");
         return;
     }
     fprintf(f, ",environment,%u,%u,%u,", c->specular_size, c->specular_samples, run->reference_samples);
     if (!r->ran) {
-        fprintf(f, ",,,,0,,,,0\n");
+        fprintf(f, ",,,,0,,,,0,,\n");
         return;
     }
     char psnr[32] = "inf";
     if (!isinf(r->maps_psnr_db))
         snprintf(psnr, sizeof psnr, "%.4f", r->maps_psnr_db);
-    fprintf(f, "%.4f,%.4f,%.4f,%u,%d,%.6f,%s,%.0f,%d\n", r->prefilter_median, r->prefilter_min, r->prefilter_max,
+    fprintf(f, "%.4f,%.4f,%.4f,%u,%d,%.6f,%s,%.0f,%d,,\n", r->prefilter_median, r->prefilter_min, r->prefilter_max,
             r->prefilter_passes, r->library_default, r->maps_rmse, psnr, r->maps_max_abs, r->maps_pareto);
 }
 
@@ -222,6 +232,8 @@ bool bench_write_json(const bench_run *run, const char *path)
         json_double(&jw, "wall_ms_median", r->wall_median);
         json_double(&jw, "wall_ms_min", r->wall_min);
         json_double(&jw, "wall_ms_max", r->wall_max);
+        json_double(&jw, "wall_ms_q1", r->wall_q1);
+        json_double(&jw, "wall_ms_q3", r->wall_q3);
         json_double(&jw, "cpu_ms_median", r->cpu_median);
         if (r->gpu_median >= 0)
             json_double(&jw, "gpu_ms_median", r->gpu_median);
@@ -318,7 +330,12 @@ bool bench_write_images(const bench_run *run)
         }
         diff[i * 4 + 3] = 255;
     }
-    snprintf(path, sizeof path, "%s/worst_diff.png", run->out_dir);
+    char name[sizeof run->configs[worst].name];
+    snprintf(name, sizeof name, "%s", run->configs[worst].name);
+    for (char *p = name; *p; ++p) /* "multiview/arrays/noaa": one file name */
+        if (*p == '/')
+            *p = '-';
+    snprintf(path, sizeof path, "%s/worst_diff_x8_%s.png", run->out_dir, name);
     ok = write_strip(path, diff, run->views, run->width, run->height) && ok;
     free(diff);
     return ok;
@@ -447,6 +464,36 @@ static bool env_plot(const bench_run *run)
     return run_gnuplot(run, "plot_env.gp", path);
 }
 
+/* Every point's label (labels.dat, comma-separated as results.csv: time, height, name): points close
+ * together (configurations of the same error and about the same time) get
+ * their labels stacked upwards, so each stays readable. */
+static bool write_labels(const bench_run *run, const char *path)
+{
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        fprintf(stderr, "mvr bench: cannot write %s: %s\n", path, strerror(errno));
+        return false;
+    }
+    double t_max = 0, e_max = 0;
+    for (uint32_t k = 0; k < run->count; ++k)
+        if (run->results[k].ran) {
+            t_max = fmax(t_max, run->results[k].wall_median);
+            e_max = fmax(e_max, run->results[k].rmse);
+        }
+    double dt = 0.15 * (t_max > 0 ? t_max : 1), de = 0.04 * (e_max > 0 ? e_max : 1);
+    for (uint32_t k = 0; k < run->count; ++k) {
+        const bench_result *r = &run->results[k];
+        if (!r->ran)
+            continue;
+        uint32_t level = 0;
+        for (uint32_t j = 0; j < k; ++j)
+            level += run->results[j].ran && fabs(run->results[j].wall_median - r->wall_median) < dt &&
+                     fabs(run->results[j].rmse - r->rmse) < de;
+        fprintf(f, "%.4f,%.6f,%s\n", r->wall_median, r->rmse + level * de, run->configs[k].name);
+    }
+    return fclose(f) == 0;
+}
+
 bool bench_plot(const bench_run *run)
 {
     if (run->env_axes)
@@ -458,9 +505,9 @@ bool bench_plot(const bench_run *run)
         fprintf(stderr, "mvr bench: cannot write %s: %s\n", path, strerror(errno));
         return false;
     }
-    /* columns of results.csv: 1 config, 8 ran, 11 wall ms median, 17 rmse */
+    /* columns of results.csv: 1 config, 8 ran, 11 wall ms median, 17 rmse, 43/44 wall ms q1/q3 */
     fprintf(f,
-            "# mvr bench: median frame time against RMSE to the reference (from results.csv;\n"
+            "# mvr bench: median frame time (bars: q1..q3) against RMSE to the reference (from results.csv;\n"
             "# pareto.dat holds the front, sorted by time)\n"
             "set datafile separator ','\n"
             "set key top right\n"
@@ -474,9 +521,11 @@ bool bench_plot(const bench_run *run)
             "set style line 1 pt 7 ps 1.2 lc rgb '#3060c0'\n"
             "set style line 2 pt 6 ps 2.2 lw 2 lc rgb '#d04020'\n"
             "ran(c) = (column(8) == 1 ? c : 1/0)\n"
-            "plot_it = \"plot 'results.csv' skip 1 using (ran($11)):(ran($17)) with points ls 1 title 'configuration', "
+            "set style line 3 lw 1 lc rgb '#3060c0'\n"
+            "plot_it = \"plot 'results.csv' skip 1 using (ran($11)):(ran($17)):(ran($43)):(ran($44)) with xerrorbars "
+            "ls 3 pt 7 ps 1.2 title 'configuration (median, q1..q3)', "
             "'pareto.dat' using 2:3 with linespoints ls 2 title 'Pareto front', "
-            "'pareto.dat' using 2:3:1 with labels offset 1,0.8 left font ',9' notitle\"\n"
+            "'labels.dat' using 1:2:3 with labels offset 1,0.8 left font ',8' notitle\"\n"
             "set terminal png size 1000,700 noenhanced\n" /* underscores in names are not subscripts */
             "set output 'plot.png'\n"
             "eval plot_it\n"
@@ -487,6 +536,9 @@ bool bench_plot(const bench_run *run)
     fclose(f);
     snprintf(path, sizeof path, "%s/pareto.dat", run->out_dir);
     if (!write_front(run, path, false))
+        return false;
+    snprintf(path, sizeof path, "%s/labels.dat", run->out_dir);
+    if (!write_labels(run, path))
         return false;
     snprintf(path, sizeof path, "%s/plot.gp", run->out_dir);
     return run_gnuplot(run, "plot.gp", path);

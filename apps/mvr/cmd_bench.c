@@ -38,12 +38,14 @@ static void bench_usage(FILE *out)
             "usage: mvr bench [--demo NAME | SCENE.gltf | SCENE.glb] [options]\n"
             "\n"
             "Renders the scene under a matrix of configurations and reports, for each,\n"
-            "frame time (wall, median/min/max), CPU time of the submitting thread, GPU\n"
+            "frame time (wall: median and interquartile range, over frames taken in rounds\n"
+            "that visit every configuration in turn), CPU time of the submitting thread, GPU\n"
             "time where timer queries exist, and the error against the reference render\n"
             "(loop path, per-view transparency order, 4x4 supersampling): RMSE, PSNR, max\n"
             "abs, %% of pixels over 2/255. Writes results.csv, results.json, plot.png and\n"
-            "plot.svg (time against error, Pareto front marked), reference.png and\n"
-            "worst_diff.png into --out.\n"
+            "plot.svg (time against error, every point labelled with its q1..q3 bar; the\n"
+            "Pareto front counts only differences beyond that noise), reference.png and\n"
+            "worst_diff_x8_<configuration>.png (|image - reference| x 8) into --out.\n"
             "\n"
             "options:\n"
             "  --demo NAME         stereo | cube | city | ring (default: city)\n"
@@ -51,13 +53,16 @@ static void bench_usage(FILE *out)
             "  --size WxH          layer size (default: 256x256)\n"
             "  --frames F          measured frames per configuration (default: 10)\n"
             "  --warmup W          frames before measuring (default: 2)\n"
+            "  --rounds R          take the frames in R rounds over all configurations\n"
+            "                      (default: 5, at most F)\n"
             "  --matrix M          quick | full (default: quick)\n"
             "  --out DIR           output directory (default: bench-out)\n"
             "  --callgrind         also count the submitting thread's instructions per frame\n"
             "                      under valgrind --tool=callgrind (repeatable to < 1%% on a\n"
             "                      shared machine, unlike wall time; slow)\n"
             "  --quiet             no progress bar\n"
-            "\n"
+            "\n");
+    fprintf(out,
             "environment prefilter axes:\n"
             "  --env-axes          instead of the matrix above: the image-based lighting's\n"
             "                      prefilter, specular map size x GGX samples per texel\n"
@@ -73,7 +78,8 @@ static void bench_usage(FILE *out)
             "                      path) and with the converged maps (the largest size, 4096\n"
             "                      samples: the prefilter's own error). Marks the one with the\n"
             "                      library default's pixels. Writes results.csv, results.json,\n"
-            "                      plot_env.png, plot_env.svg, reference.png, worst_diff.png\n"
+            "                      plot_env.png, plot_env.svg, reference.png,\n"
+            "                      worst_diff_x8_<configuration>.png\n"
             "  --specular-sizes L  face sizes, powers of two 16..1024 (default: 32,64,128,256)\n"
             "  --specular-samples L samples per texel, 1..4096 (default: 16,64,256)\n"
             "  --reference-samples N samples per lobe of the reference (default: 1024)\n"
@@ -110,6 +116,7 @@ static int parse(int argc, char **argv, bench_options *o)
     o->scene.width = o->scene.height = 256;
     o->frames = 10;
     o->warmup = 2;
+    o->rounds = 5;
     o->out_dir = "bench-out";
     o->only = -1;
     o->reference_samples = 1024;
@@ -169,6 +176,8 @@ static int parse(int argc, char **argv, bench_options *o)
         } else if (strcmp(a, "--warmup") == 0) {
             ok = cli_parse_u32(v, 0, 1000, &o->warmup);
             o->warmup_set = true;
+        } else if (strcmp(a, "--rounds") == 0) {
+            ok = cli_parse_u32(v, 1, 100, &o->rounds);
         } else if (strcmp(a, "--specular-sizes") == 0) {
             ok = parse_list(v, 16, 1024, true, o->sizes, &o->n_sizes);
             o->env_option = a;
@@ -346,10 +355,31 @@ __attribute__((noinline)) static bool measured_frames(mvr_renderer *r, mvr_scene
     return ok;
 }
 
-/* Runs one configuration: warm-up, F measured frames, read-back. */
-static bool run_config(const bench_options *o, mvr_context *ctx, mvr_scene *scene, mvr_view_set *vs,
-                       const bench_config *c, bench_result *res)
+/* One configuration while it is measured: its renderer and target stay
+ * alive across the rounds, frames append to its time arrays. */
+typedef struct config_run {
+    mvr_renderer *r;
+    mvr_target *t;
+    double *times;               /* wall, cpu and gpu, o->frames each */
+    uint32_t measured;
+    uint32_t cpu_ss;
+} config_run;
+
+static void release_run(config_run *cr)
 {
+    free(cr->times);
+    mvr_target_destroy(cr->t);
+    mvr_renderer_destroy(cr->r);
+    memset(cr, 0, sizeof *cr);
+}
+
+/* Creates the configuration's renderer and target and warms it up; false
+ * on failure (printed). A configuration the GL cannot run is skipped (true,
+ * res->skipped set, nothing made). */
+static bool setup_config(const bench_options *o, mvr_context *ctx, mvr_scene *scene, mvr_view_set *vs,
+                         const bench_config *c, bench_result *res, config_run *cr)
+{
+    memset(cr, 0, sizeof *cr);
     const mvr_caps *caps = mvr_context_caps(ctx);
     if (c->view_path == MVR_VIEW_PATH_MULTIVIEW && !caps->ext.ovr_multiview2) {
         snprintf(res->skipped, sizeof res->skipped, "no GL_OVR_multiview2");
@@ -357,59 +387,104 @@ static bool run_config(const bench_options *o, mvr_context *ctx, mvr_scene *scen
     }
     uint32_t n = mvr_view_set_count(vs), w = o->scene.width, h = o->scene.height, ss = c->supersample;
     mvr_renderer_desc rd = {.context = ctx, .view_path = c->view_path, .material_path = c->material_path,
-                            .transparency_order = c->order, .logger = o->context.logger};
-    mvr_renderer *r = NULL;
-    mvr_target *t = NULL;
+                            .transparency_order = c->order, .logger = o->context.logger,
+                            .overrides = o->overrides};
     mvr_error err;
-    bool ok = mvr_renderer_create(&rd, &r, &err) == MVR_OK;
-    if (!ok) {
+    if (mvr_renderer_create(&rd, &cr->r, &err) != MVR_OK) {
         fprintf(stderr, "mvr bench: %s: %s\n", c->name, err.message);
         return false;
     }
     /* the reference resolves its 4x4 samples on the CPU, in double (an
      * independent check); other supersampled configurations use the
      * renderer's own resolve pass, which works on the multiview path too */
-    uint32_t cpu_ss = c->reference ? ss : 1;
-    mvr_target_desc td = {w * cpu_ss, h * cpu_ss, n, cpu_ss > 1 ? MVR_COLOR_FORMAT_RGBA32F : MVR_COLOR_FORMAT_DEFAULT,
+    cr->cpu_ss = c->reference ? ss : 1;
+    mvr_target_desc td = {w * cr->cpu_ss, h * cr->cpu_ss, n,
+                          cr->cpu_ss > 1 ? MVR_COLOR_FORMAT_RGBA32F : MVR_COLOR_FORMAT_DEFAULT,
                           0, 0, 0, c->msaa, c->reference ? 0 : (ss > 1 ? ss : 0), MVR_ANTI_ALIASING_DEFAULT};
-    double *times = calloc((size_t)o->frames * 3, sizeof *times);
-    ok = times && mvr_target_create(r, &td, &t) == MVR_OK;
+    cr->times = calloc((size_t)o->frames * 3, sizeof *cr->times);
+    bool ok = cr->times && mvr_target_create(cr->r, &td, &cr->t) == MVR_OK;
     for (uint32_t f = 0; ok && f < o->warmup; ++f)
-        ok = mvr_renderer_render(r, scene, vs, t, NULL) == MVR_OK;
-    ok = ok && measured_frames(r, scene, vs, t, o->frames, times, times + o->frames, times + 2 * o->frames);
-    if (ok) {
-        mvr_frame_stats st;
-        mvr_renderer_get_stats(r, &st);
-        res->view_path_ran = mvr_view_path_name(st.view_path);
-        res->material_path_ran = mvr_material_path_name(st.material_path);
-        res->draws = st.draws;
-        res->draw_calls = st.draw_calls;
-        res->passes = st.passes;
-        res->program_binds = st.program_binds;
-        res->texture_binds = st.texture_binds;
-        res->ubo_range_binds = st.ubo_range_binds;
-        double *wall = times, *cpu = times + o->frames, *gpu = times + 2 * o->frames;
-        res->wall_min = res->wall_max = wall[0];
-        for (uint32_t f = 1; f < o->frames; ++f) {
-            res->wall_min = fmin(res->wall_min, wall[f]);
-            res->wall_max = fmax(res->wall_max, wall[f]);
-        }
-        res->wall_median = bench_median(wall, o->frames);
-        res->cpu_median = bench_median(cpu, o->frames);
-        res->gpu_median = gpu[0] < 0 ? -1.0 : bench_median(gpu, o->frames);
-        size_t layer = (size_t)w * h * 4;
-        res->display = malloc(layer * n);
-        ok = res->display != NULL;
-        for (uint32_t k = 0; ok && k < n; ++k)
-            ok = cli_read_display_layer(r, t, k, w, h, cpu_ss, res->display + layer * k, NULL);
-        res->ran = ok;
+        ok = mvr_renderer_render(cr->r, scene, vs, cr->t, NULL) == MVR_OK;
+    if (!ok) {
+        fprintf(stderr, "mvr bench: %s: %s\n", c->name, mvr_renderer_last_error(cr->r));
+        release_run(cr);
     }
-    if (!ok)
-        fprintf(stderr, "mvr bench: %s: %s\n", c->name, mvr_renderer_last_error(r));
-    free(times);
-    mvr_target_destroy(t);
-    mvr_renderer_destroy(r);
     return ok;
+}
+
+/* `frames` more measured frames of a configuration set up. */
+static bool measure_config(const bench_options *o, mvr_scene *scene, mvr_view_set *vs, const bench_config *c,
+                           config_run *cr, uint32_t frames)
+{
+    if (frames > o->frames - cr->measured)
+        frames = o->frames - cr->measured;
+    double *wall = cr->times, *cpu = cr->times + o->frames, *gpu = cr->times + 2 * o->frames;
+    uint32_t at = cr->measured;
+    bool ok = measured_frames(cr->r, scene, vs, cr->t, frames, wall + at, cpu + at, gpu + at);
+    cr->measured += frames;
+    if (!ok)
+        fprintf(stderr, "mvr bench: %s: %s\n", c->name, mvr_renderer_last_error(cr->r));
+    return ok;
+}
+
+/* The value at fraction q of sorted v (linear between neighbours). */
+static double quantile(const double *v, uint32_t n, double q)
+{
+    double x = q * (double)(n - 1);
+    uint32_t i = (uint32_t)x;
+    return i + 1 < n ? v[i] + (x - i) * (v[i + 1] - v[i]) : v[n - 1];
+}
+
+/* Statistics of the measured frames and the read-back; releases the run. */
+static bool finish_config(const bench_options *o, mvr_view_set *vs, const bench_config *c, config_run *cr,
+                          bench_result *res)
+{
+    uint32_t n = mvr_view_set_count(vs), w = o->scene.width, h = o->scene.height, frames = cr->measured;
+    mvr_frame_stats st;
+    mvr_renderer_get_stats(cr->r, &st);
+    res->view_path_ran = mvr_view_path_name(st.view_path);
+    res->material_path_ran = mvr_material_path_name(st.material_path);
+    res->draws = st.draws;
+    res->draw_calls = st.draw_calls;
+    res->passes = st.passes;
+    res->program_binds = st.program_binds;
+    res->texture_binds = st.texture_binds;
+    res->ubo_range_binds = st.ubo_range_binds;
+    double *wall = cr->times, *cpu = cr->times + o->frames, *gpu = cr->times + 2 * o->frames;
+    res->wall_median = bench_median(wall, frames); /* sorts wall */
+    res->wall_min = wall[0];
+    res->wall_max = wall[frames - 1];
+    res->wall_q1 = quantile(wall, frames, 0.25);
+    res->wall_q3 = quantile(wall, frames, 0.75);
+    res->cpu_median = bench_median(cpu, frames);
+    res->gpu_median = gpu[0] < 0 ? -1.0 : bench_median(gpu, frames);
+    size_t layer = (size_t)w * h * 4;
+    res->display = malloc(layer * n);
+    bool ok = res->display != NULL;
+    for (uint32_t k = 0; ok && k < n; ++k)
+        ok = cli_read_display_layer(cr->r, cr->t, k, w, h, cr->cpu_ss, res->display + layer * k, NULL);
+    res->ran = ok;
+    if (!ok)
+        fprintf(stderr, "mvr bench: %s: %s\n", c->name, mvr_renderer_last_error(cr->r));
+    release_run(cr);
+    return ok;
+}
+
+/* Runs one configuration alone: warm-up, F measured frames, read-back (the
+ * callgrind child). */
+static bool run_config(const bench_options *o, mvr_context *ctx, mvr_scene *scene, mvr_view_set *vs,
+                       const bench_config *c, bench_result *res)
+{
+    config_run cr;
+    if (!setup_config(o, ctx, scene, vs, c, res, &cr))
+        return false;
+    if (!cr.r)
+        return true; /* skipped */
+    if (!measure_config(o, scene, vs, c, &cr, o->frames)) {
+        release_run(&cr);
+        return false;
+    }
+    return finish_config(o, vs, c, &cr, res);
 }
 
 /* Error of a display image against the reference: RGB channels; covered:
@@ -547,6 +622,11 @@ int mvr_cmd_bench(int argc, char **argv)
     if (!cli_make_dirs("mvr bench", o.out_dir))
         return MVR_EXIT_FAILURE;
     mvr_error err;
+    /* mvr bench reads the library's MVR_* debugging variables (docs/guide.md) */
+    if (mvr_renderer_overrides_from_env(&o.overrides, &err) != MVR_OK) {
+        fprintf(stderr, "mvr bench: %s\n", err.message);
+        return MVR_EXIT_USAGE;
+    }
     mvr_context *ctx = NULL;
     mvr_scene *scene = NULL;
     mvr_view_set *vs = NULL;
@@ -574,7 +654,7 @@ int mvr_cmd_bench(int argc, char **argv)
      * configurations are left out rather than listed without results. */
     bool has_blend = false;
     {
-        mvr_renderer_desc rd = {.context = ctx};
+        mvr_renderer_desc rd = {.context = ctx, .overrides = o.overrides};
         mvr_renderer *r = NULL;
         mvr_target *t = NULL;
         mvr_target_desc td = {16, 16, n_views, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT};
@@ -615,14 +695,34 @@ int mvr_cmd_bench(int argc, char **argv)
         rc = run_config(&o, ctx, scene, vs, &configs[o.only], &results[0]) ? MVR_EXIT_OK : MVR_EXIT_FAILURE;
         goto done;
     }
-    for (uint32_t k = 0; k < count; ++k) {
+    /* every configuration set up and warmed, then its frames taken in
+     * rounds that visit all of them in turn (starting one further each
+     * round), so a change of load on the machine falls on all alike */
+    config_run runs[BENCH_MAX_CONFIGS];
+    memset(runs, 0, sizeof runs);
+    bool all_ok = true;
+    for (uint32_t k = 0; k < count && all_ok; ++k) {
+        results[k].group_diff = -1;
+        bench_progress(&o, k, count * 2, configs[k].name);
+        all_ok = setup_config(&o, ctx, scene, vs, &configs[k], &results[k], &runs[k]);
+    }
+    uint32_t rounds = o.rounds < o.frames ? o.rounds : o.frames;
+    for (uint32_t round = 0; round < rounds && all_ok; ++round) {
+        /* frames of this round: the F frames spread as evenly as they go */
+        uint32_t per = o.frames * (round + 1) / rounds - o.frames * round / rounds;
+        for (uint32_t i = 0; i < count && all_ok; ++i) {
+            uint32_t k = (i + round) % count;
+            if (runs[k].r)
+                all_ok = measure_config(&o, scene, vs, &configs[k], &runs[k], per);
+        }
+        bench_progress(&o, count + (round + 1) * count / rounds, count * 2, "rounds");
+    }
+    for (uint32_t k = 0; k < count && all_ok; ++k) {
         const bench_config *c = &configs[k];
         bench_result *res = &results[k];
-        res->group_diff = -1;
-        bench_progress(&o, k, count, c->name);
-        if (!run_config(&o, ctx, scene, vs, c, res))
-            goto done;
-        if (res->ran) {
+        if (runs[k].r)
+            all_ok = finish_config(&o, vs, c, &runs[k], res);
+        if (all_ok && res->ran) {
             bench_compare(results[0].display, res->display, pixels, false, res);
             for (uint32_t j = 0; j < k; ++j)
                 if (results[j].ran && strcmp(configs[j].group, c->group) == 0) {
@@ -630,19 +730,30 @@ int mvr_cmd_bench(int argc, char **argv)
                     break;
                 }
         }
-        if (o.callgrind && res->ran && !count_instructions(argc, argv, &o, k, &res->instructions))
-            goto done;
+        if (all_ok && o.callgrind && res->ran && !count_instructions(argc, argv, &o, k, &res->instructions))
+            all_ok = false;
     }
+    for (uint32_t k = 0; k < count; ++k)
+        release_run(&runs[k]);
+    if (!all_ok)
+        goto done;
     bench_progress(&o, count, count, "done");
-    /* Pareto front over (median wall time, RMSE) */
+    /* Pareto front over (frame time, RMSE), the noise counted: k is
+     * dominated by a j at least as close to the reference that is faster by
+     * more than the noise (j's q3 below k's q1: the interquartile ranges
+     * apart), or by a j closer to it and not slower beyond the noise (j's
+     * median at most k's q3) */
     for (uint32_t k = 0; k < count; ++k) {
         if (!results[k].ran)
             continue;
+        const bench_result *rk = &results[k];
         bool dominated = false;
-        for (uint32_t j = 0; j < count && !dominated; ++j)
-            dominated = j != k && results[j].ran && results[j].wall_median <= results[k].wall_median &&
-                        results[j].rmse <= results[k].rmse &&
-                        (results[j].wall_median < results[k].wall_median || results[j].rmse < results[k].rmse);
+        for (uint32_t j = 0; j < count && !dominated; ++j) {
+            const bench_result *rj = &results[j];
+            if (j == k || !rj->ran || rj->rmse > rk->rmse)
+                continue;
+            dominated = rj->wall_q3 < rk->wall_q1 || (rj->rmse < rk->rmse && rj->wall_median <= rk->wall_q3);
+        }
         results[k].pareto = !dominated;
     }
     char cmdline[1024] = "mvr";
@@ -652,7 +763,7 @@ int mvr_cmd_bench(int argc, char **argv)
     }
     bench_run run = {o.scene.scene_file ? o.scene.scene_file : o.scene.demo, o.out_dir, cmdline,
                      mvr_context_caps(ctx)->renderer, n_views, o.scene.width, o.scene.height, o.frames, count,
-                     configs, results, 0, omitted, false, NULL, 0, pixels};
+                     configs, results, 0, omitted, false, NULL, 0, pixels, rounds};
     bench_print_table(&run, stdout);
     char path[4096];
     snprintf(path, sizeof path, "%s/results.csv", o.out_dir);
