@@ -153,17 +153,28 @@ static bool load_gl(viewer_gl *gl)
     return true;
 }
 
-/* Layers per window: the display decides how the window is split. */
-static void layer_size(const viewer *v, uint32_t *w, uint32_t *h)
+/* Columns of the grid display: the smallest square that holds count views. */
+static uint32_t grid_columns(uint32_t count)
+{
+    uint32_t cols = 1;
+    while (cols * cols < count)
+        cols++;
+    return cols;
+}
+
+/* Layers per window for count views: the display decides how the window is
+ * split. count 0 (a demo's own count, not known before it opens) sizes as
+ * for one view; open_scene sizes again for the count the scene brings. */
+static void layer_size(const viewer *v, uint32_t count, uint32_t *w, uint32_t *h)
 {
     uint32_t fw = (uint32_t)(v->fb_width > 0 ? v->fb_width : 1), fh = (uint32_t)(v->fb_height > 0 ? v->fb_height : 1);
+    if (count == 0)
+        count = 1;
     switch (v->display) {
     case DISPLAY_STEREO: *w = fw / 2 ? fw / 2 : 1; *h = fh; return;
     case DISPLAY_GRID: {
-        uint32_t cols = 1;
-        while (cols * cols < v->view_count)
-            cols++;
-        uint32_t rows = (v->view_count + cols - 1) / cols;
+        uint32_t cols = grid_columns(count);
+        uint32_t rows = (count + cols - 1) / cols;
         *w = fw / cols ? fw / cols : 1;
         *h = fh / rows ? fh / rows : 1;
         return;
@@ -306,17 +317,32 @@ static void set_home(viewer *v, bool file)
  * (cli_load_scene: a file's first camera, else the stereo framing), the
  * same render defaults, exposure (mvr_render_desc_choose_exposure) and
  * environment (cli_env_create: neutral for files, none for demos unless
- * --env says). On failure the scene shown stays. */
+ * --env says). The views' aspect is the layers' for the display and the
+ * view count: a demo opened with its own count (view_count 0) whose count
+ * changes the layer size (grid) is opened again with that count. On
+ * failure the scene shown stays. */
 static bool open_scene(viewer *v, const char *file, const char *demo)
 {
     mvr_scene *scene = NULL;
     mvr_view_set *views = NULL;
-    cli_scene_options so = {.demo = demo, .scene_file = file, .camera = file ? CLI_CAMERA_IF_ANY : -1,
-                            .layout = MVR_LAYOUT_STEREO, .views = v->view_count, .width = v->layer_w,
-                            .height = v->layer_h};
-    so.logger.fn = log_fn;
-    if (cli_load_scene("mvr-viewer", &so, &scene, &views) != MVR_EXIT_OK)
-        return false;
+    uint32_t count = v->view_count, layer_w, layer_h;
+    for (int attempt = 0;; ++attempt) {
+        layer_size(v, count, &layer_w, &layer_h);
+        cli_scene_options so = {.demo = demo, .scene_file = file, .camera = file ? CLI_CAMERA_IF_ANY : -1,
+                                .layout = MVR_LAYOUT_STEREO, .views = count, .width = layer_w, .height = layer_h};
+        so.logger.fn = log_fn;
+        if (cli_load_scene("mvr-viewer", &so, &scene, &views) != MVR_EXIT_OK)
+            return false;
+        uint32_t got = mvr_view_set_count(views), w = 0, h = 0;
+        layer_size(v, got, &w, &h);
+        if (attempt > 0 || (w == layer_w && h == layer_h))
+            break;
+        mvr_view_set_destroy(views);
+        mvr_scene_destroy(scene);
+        views = NULL;
+        scene = NULL;
+        count = got;
+    }
     mvr_render_desc render;
     cli_render_desc_defaults(&render);
     mvr_environment *env = NULL;
@@ -335,6 +361,8 @@ static bool open_scene(viewer *v, const char *file, const char *demo)
     v->env = env;
     v->render = render;
     v->view_count = mvr_view_set_count(views);
+    v->layer_w = layer_w;
+    v->layer_h = layer_h;
     set_home(v, file != NULL);
     v->dirty_views = false;    /* the scene's own views until the camera moves */
     v->dirty_renderer = true;  /* the layer count may have changed */
@@ -429,9 +457,7 @@ static void composite(viewer *v)
     gl->ActiveTexture(GL_TEXTURE0);
     gl->BindTexture(GL_TEXTURE_2D_ARRAY, mvr_target_color_texture(v->target));
     GLint w = (GLint)v->layer_w, h = (GLint)v->layer_h;
-    uint32_t cols = 1;
-    while (cols * cols < v->view_count)
-        cols++;
+    uint32_t cols = grid_columns(v->view_count);
     for (uint32_t k = 0; k < v->view_count; ++k) {
         GLint x = 0, y = 0, mode = 0, other = 0;
         switch (v->display) {
@@ -451,7 +477,7 @@ static void composite(viewer *v)
             other = v->view_count > 1 ? 1 : 0;
             break;
         case DISPLAY_SINGLE:
-            if (k != v->single % v->view_count)
+            if (k != v->single % v->view_count) /* k < view_count: not 0 here */
                 continue;
             break;
         case DISPLAY_COUNT:
@@ -731,7 +757,6 @@ int main(int argc, char **argv)
     }
     if (v.view_count == 0 && file)
         v.view_count = 2;
-    layer_size(&v, &v.layer_w, &v.layer_h);
     if (!open_scene(&v, file, demo))
         goto done;
     if (!make_composite(&v, gles))

@@ -13,12 +13,31 @@
 # physical_lights.gltf (a 2049 lux sun and a camera: auto-exposed and tone
 # mapped; the viewer used to show it white) and scene_graph.glb (two camera
 # nodes, lights in plain units: seen from the first camera, exposure 1).
+# Every display mode (stereo, grid, anaglyph, single) with a demo and with
+# a file, each screenshot compared tile by tile with mvr render's layers of
+# the same size: grid with the stereo demo (it died of SIGFPE: the layer
+# size divided by the rows of a view count not known before the demo
+# opened) and with the cube demo (its own 6 views: 3 x 2 tiles of the
+# window, the first row at the top), grid with a file's 4 views (2 x 2),
+# single (the whole window one view, --single K), anaglyph with a file.
+# Neighbouring views must differ (differs), so a tile in the wrong place, a
+# view repeated or a blank picture cannot pass.
 # usage: test_viewer.sh VIEWER MVR COMPARE OUT [CORPUS]
 set -u
 viewer=$1 mvr=$2 compare=$3 out=$4 corpus=${5:-}
 rm -rf "$out"; mkdir -p "$out"
 fail=0
-check() { if "$@"; then echo "ok: ${*: -1}"; else echo "FAIL: $*"; fail=1; fi; }
+start=$SECONDS
+check() { if "$@"; then echo "ok: ${2#"$out"/} matches ${3#"$out"/} ${*:4}"; else echo "FAIL: $*"; fail=1; fi; }
+# compare_images A B ... exits 1 with "max difference" when the pictures
+# (of matching sizes) differ by more than --max
+differs() {
+    local msg; msg=$("$compare" "$@" 2>&1); local rc=$?
+    if [ $rc -eq 1 ] && printf '%s' "$msg" | grep -q "max difference"; then echo "ok: ${1#"$out"/} differs from ${2#"$out"/} ${*:3}"
+    else echo "FAIL: $1 should differ from $2 (rc $rc: $msg)"; fail=1; fi
+}
+# view: the viewer's run, or FAIL with its arguments
+view() { "$viewer" "$@" || { echo "FAIL: mvr-viewer $* exits $?"; fail=1; return 1; }; }
 "$mvr" render --demo stereo --views 2 --size 320x240 --out "$out/render" --quiet || { echo "FAIL: mvr render"; exit 1; }
 for api in desktop gles; do
     if ! "$viewer" --demo stereo --size 640x240 --api "$api" --frames 3 --screenshot "$out/$api.png"; then
@@ -30,6 +49,24 @@ done
 "$viewer" --demo stereo --size 320x240 --display anaglyph --frames 2 --screenshot "$out/anaglyph.png" || { echo "FAIL: anaglyph"; fail=1; }
 check "$compare" "$out/anaglyph.png" "$out/render/view_00.png" --channels r --max 1
 check "$compare" "$out/anaglyph.png" "$out/render/view_01.png" --channels gb --max 1
+differs "$out/render/view_00.png" "$out/render/view_01.png" --max 1
+# grid with the stereo demo: 2 tiles side by side (the SIGFPE of issue 18)
+if view --demo stereo --size 640x240 --display grid --frames 2 --screenshot "$out/grid.png"; then
+    check "$compare" "$out/grid.png" "$out/render/view_00.png" --crop 0,0,320,240 --max 1
+    check "$compare" "$out/grid.png" "$out/render/view_01.png" --crop 320,0,320,240 --max 1
+fi
+# grid with the cube demo's own 6 views: 3 x 2 tiles of 213 x 120
+"$mvr" render --demo cube --size 213x120 --out "$out/cube" --quiet || { echo "FAIL: mvr render cube"; fail=1; }
+if view --demo cube --size 639x240 --display grid --frames 2 --screenshot "$out/cube_grid.png"; then
+    for k in 0 1 2 3 4 5; do
+        check "$compare" "$out/cube_grid.png" "$out/cube/view_0$k.png" --crop $((k % 3 * 213)),$((k / 3 * 120)),213,120 --max 1
+    done
+    differs "$out/cube_grid.png" "$out/cube/view_01.png" --crop 0,0,213,120 --max 1
+fi
+# single: the whole window is view K
+if view --demo stereo --size 320x240 --display single --single 1 --frames 2 --screenshot "$out/single.png"; then
+    check "$compare" "$out/single.png" "$out/render/view_01.png" --max 1
+fi
 if [ -n "$corpus" ]; then
     for f in physical_lights.gltf scene_graph.glb; do
         "$mvr" render "$corpus/$f" --views 2 --size 320x240 --out "$out/$f" --quiet || { echo "FAIL: mvr render $f"; fail=1; continue; }
@@ -41,6 +78,23 @@ if [ -n "$corpus" ]; then
             check "$compare" "$out/$f.$api.png" "$out/$f/view_01.png" --crop 320,0,320,240 --max 1
         done
     done
+    # the other displays with a file: its camera's views as mvr render's
+    f=scene_graph.glb
+    if view "$corpus/$f" --size 320x240 --display anaglyph --frames 2 --screenshot "$out/$f.anaglyph.png"; then
+        check "$compare" "$out/$f.anaglyph.png" "$out/$f/view_00.png" --channels r --max 1
+        check "$compare" "$out/$f.anaglyph.png" "$out/$f/view_01.png" --channels gb --max 1
+    fi
+    f=physical_lights.gltf
+    "$mvr" render "$corpus/$f" --views 4 --size 320x240 --out "$out/$f.4" --quiet || { echo "FAIL: mvr render $f --views 4"; fail=1; }
+    differs "$out/$f.4/view_00.png" "$out/$f.4/view_01.png" --max 1
+    if view "$corpus/$f" --views 4 --size 640x480 --display grid --frames 2 --screenshot "$out/$f.grid.png"; then
+        for k in 0 1 2 3; do
+            check "$compare" "$out/$f.grid.png" "$out/$f.4/view_0$k.png" --crop $((k % 2 * 320)),$((k / 2 * 240)),320,240 --max 1
+        done
+    fi
+    if view "$corpus/$f" --views 4 --size 320x240 --display single --single 2 --frames 2 --screenshot "$out/$f.single.png"; then
+        check "$compare" "$out/$f.single.png" "$out/$f.4/view_02.png" --max 1
+    fi
 fi
 # the environment options are mvr render's: a bad value is named, exit 2
 # (checked before any window opens)
@@ -53,4 +107,6 @@ expect_usage --env-intensity -1
 expect_usage --env-rotation nan
 expect_usage --background sky
 expect_usage --background-blur 2
+expect_usage --display mosaic
+echo "test_viewer: $((SECONDS - start)) s"
 exit $fail
