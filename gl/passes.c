@@ -383,7 +383,7 @@ static const blend_key *per_view_blend_order(mvr_renderer *r, const pass_context
 }
 
 
-/* The features MVR_FORCE_FEATURES=inert adds to a draw's key: each compiles
+/* The features overrides.force_inert_features adds to a draw's key: each compiles
  * code in that cannot change this draw's pixels. A disabled texture
  * transform is the identity (exact: x * 1 + y * -0 + 0); UV sets only feed
  * sampling a draw's material selects by its own bits; a missing COLOR_0

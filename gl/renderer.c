@@ -2,6 +2,7 @@
  * readback. Drawing is in passes.c, scene uploads in gpu_scene.c. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -49,25 +50,6 @@ const char *mvr_depth_mode_name(mvr_depth_mode mode)
     return NULL;
 }
 
-/* MVR_MATERIAL_PATH=arrays|per_material|per_draw|auto overrides the descriptor. */
-static mvr_material_path env_material_path(mvr_material_path from_desc, const mvr_logger *logger)
-{
-    const char *env = getenv("MVR_MATERIAL_PATH");
-    mvr_material_path p = from_desc;
-    if (env && *env) {
-        bool found = false;
-        for (int k = MVR_MATERIAL_PATH_AUTO; k <= MVR_MATERIAL_PATH_PER_DRAW; ++k)
-            if (strcmp(env, mvr_material_path_name((mvr_material_path)k)) == 0) {
-                p = (mvr_material_path)k;
-                found = true;
-            }
-        if (!found)
-            mvr_log(logger, MVR_LOG_WARNING, MVR_LOG_ID_GENERAL,
-                    "mvr: MVR_MATERIAL_PATH=%s is not auto, arrays, per_material or per_draw; ignored", env);
-    }
-    /* 2D texture arrays are core in GLES 3.0 and GL 3.0: auto is always arrays */
-    return p == MVR_MATERIAL_PATH_AUTO ? MVR_MATERIAL_PATH_ARRAYS : p;
-}
 
 const char *mvr_color_format_name(mvr_color_format format)
 {
@@ -158,25 +140,117 @@ void mvr_renderer_delete(mvr_renderer *r, mvr_gl_object kind, GLuint *name)
     *name = 0;
 }
 
-/* MVR_VIEW_PATH=loop|multiview|auto overrides the descriptor (tests, benchmarks). */
-static mvr_view_path env_view_path(mvr_view_path from_desc, const mvr_logger *logger)
+/* value among choices: *out = its index + 1 (the override enums' order);
+ * else the failure, naming the variable and what it takes */
+static mvr_result parse_choice(const char *name, const char *value, const char *const *choices, int count, int *out,
+                               mvr_error *error)
 {
-    const char *env = getenv("MVR_VIEW_PATH");
-    if (!env || !*env)
-        return from_desc;
-    for (int p = MVR_VIEW_PATH_AUTO; p <= MVR_VIEW_PATH_LOOP; ++p)
-        if (strcmp(env, mvr_view_path_name((mvr_view_path)p)) == 0)
-            return (mvr_view_path)p;
-    mvr_log(logger, MVR_LOG_WARNING, MVR_LOG_ID_GENERAL,
-            "mvr: MVR_VIEW_PATH=%s is not auto, multiview or loop; ignored", env);
-    return from_desc;
+    char list[128] = "";
+    for (int k = 0; k < count; ++k) {
+        if (strcmp(value, choices[k]) == 0) {
+            *out = k + 1;
+            return MVR_OK;
+        }
+        size_t used = strlen(list);
+        snprintf(list + used, sizeof list - used, "%s%s", k == 0 ? "" : k == count - 1 ? " or " : ", ", choices[k]);
+    }
+    return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "%s=%s is not %s", name, value, list);
 }
 
-/* Debug and test switches read from the environment: true when name=value. */
-static bool env_is(const char *name, const char *value)
+static bool valid_ubo_alignment(unsigned long a)
 {
-    const char *env = getenv(name);
-    return env && strcmp(env, value) == 0;
+    return a >= 1 && a <= 4096 && (a & (a - 1)) == 0;
+}
+
+mvr_result mvr_renderer_overrides_from_env(mvr_renderer_overrides *out, mvr_error *error)
+{
+    if (!out)
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_renderer_overrides_from_env: out is NULL");
+    memset(out, 0, sizeof *out);
+    /* the choices in the order of the override enums (after their NONE) */
+    static const char *const view_paths[] = {"auto", "multiview", "loop"};
+    static const char *const material_paths[] = {"auto", "arrays", "per_material", "per_draw"};
+    static const char *const depth_modes[] = {"auto", "reversed_z", "standard"};
+    static const char *const switches[] = {"off", "on"};
+    static const char *const features[] = {"inert"};
+    enum { VIEW_PATH, MATERIAL_PATH, DEPTH, CULLING, INSTANCING, MSAA_MULTIVIEW, FORCE_FEATURES, UBO_ALIGNMENT, COUNT };
+    static const char *const names[COUNT] = {"MVR_VIEW_PATH", "MVR_MATERIAL_PATH", "MVR_DEPTH",
+                                             "MVR_CULLING", "MVR_INSTANCING", "MVR_MSAA_MULTIVIEW",
+                                             "MVR_FORCE_FEATURES", "MVR_UBO_ALIGNMENT"};
+    mvr_renderer_overrides o;
+    memset(&o, 0, sizeof o);
+    for (int v = 0; v < COUNT; ++v) {
+        const char *value = getenv(names[v]);
+        if (!value || !*value)
+            continue;
+        int k = 0;
+        mvr_result res = MVR_OK;
+        switch (v) {
+        case VIEW_PATH:
+            res = parse_choice(names[v], value, view_paths, 3, &k, error);
+            o.view_path = (mvr_view_path_override)k;
+            break;
+        case MATERIAL_PATH:
+            res = parse_choice(names[v], value, material_paths, 4, &k, error);
+            o.material_path = (mvr_material_path_override)k;
+            break;
+        case DEPTH:
+            res = parse_choice(names[v], value, depth_modes, 3, &k, error);
+            o.depth_mode = (mvr_depth_mode_override)k;
+            break;
+        case CULLING:
+        case INSTANCING:
+        case MSAA_MULTIVIEW:
+            res = parse_choice(names[v], value, switches, 2, &k, error);
+            *(v == CULLING ? &o.culling : v == INSTANCING ? &o.instancing : &o.msaa_multiview) =
+                (mvr_override_switch)k;
+            break;
+        case FORCE_FEATURES:
+            res = parse_choice(names[v], value, features, 1, &k, error);
+            o.force_inert_features = k == 1;
+            break;
+        case UBO_ALIGNMENT: {
+            char *end = NULL;
+            unsigned long a = strtoul(value, &end, 10);
+            if (value[0] < '0' || value[0] > '9' || *end || !valid_ubo_alignment(a))
+                res = mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
+                                    "%s=%s is not a power of two from 1 to 4096", names[v], value);
+            o.ubo_alignment = (uint32_t)a;
+            break;
+        }
+        }
+        if (res != MVR_OK)
+            return res;
+    }
+    *out = o;
+    return MVR_OK;
+}
+
+/* Every override field a value its type has. */
+static mvr_result check_overrides(const mvr_renderer_overrides *o, mvr_error *error)
+{
+    const char *field = NULL;
+    int value = 0;
+    if ((unsigned)o->view_path > MVR_VIEW_PATH_OVERRIDE_LOOP)
+        field = "view_path", value = (int)o->view_path;
+    else if ((unsigned)o->material_path > MVR_MATERIAL_PATH_OVERRIDE_PER_DRAW)
+        field = "material_path", value = (int)o->material_path;
+    else if ((unsigned)o->depth_mode > MVR_DEPTH_MODE_OVERRIDE_STANDARD)
+        field = "depth_mode", value = (int)o->depth_mode;
+    else if ((unsigned)o->culling > MVR_OVERRIDE_ON)
+        field = "culling", value = (int)o->culling;
+    else if ((unsigned)o->instancing > MVR_OVERRIDE_ON)
+        field = "instancing", value = (int)o->instancing;
+    else if ((unsigned)o->msaa_multiview > MVR_OVERRIDE_ON)
+        field = "msaa_multiview", value = (int)o->msaa_multiview;
+    if (field)
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
+                             "mvr_renderer_create: overrides.%s %d is out of its enum's range", field, value);
+    if (o->ubo_alignment != 0 && !valid_ubo_alignment(o->ubo_alignment))
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
+                             "mvr_renderer_create: overrides.ubo_alignment %u is not a power of two up to 4096",
+                             (unsigned)o->ubo_alignment);
+    return MVR_OK;
 }
 
 static void timer_init(mvr_renderer *r)
@@ -213,11 +287,12 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
     if (!mvr_depth_mode_name(desc->depth_mode))
         return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
                              "mvr_renderer_create: depth_mode %d is not an mvr_depth_mode", (int)desc->depth_mode);
-    mvr_depth_mode depth_mode = desc->depth_mode;
-    if (env_is("MVR_DEPTH", "standard"))
-        depth_mode = MVR_DEPTH_MODE_STANDARD;
-    else if (env_is("MVR_DEPTH", "reversed_z"))
-        depth_mode = MVR_DEPTH_MODE_REVERSED_Z;
+    const mvr_renderer_overrides *ov = &desc->overrides;
+    mvr_result checked = check_overrides(ov, error);
+    if (checked != MVR_OK)
+        return checked;
+    /* the override enums are the desc's enums + 1 (0 = none) */
+    mvr_depth_mode depth_mode = ov->depth_mode ? (mvr_depth_mode)(ov->depth_mode - 1) : desc->depth_mode;
     bool clip_control = desc->context->caps.ext.ext_clip_control && desc->context->gl.ClipControl;
     if (depth_mode == MVR_DEPTH_MODE_REVERSED_Z && !clip_control)
         return mvr_error_set(error, MVR_ERROR_UNSUPPORTED,
@@ -238,10 +313,14 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
     r->ctx = desc->context;
     r->gl = &desc->context->gl;
     r->logger = desc->logger.fn ? desc->logger : desc->context->logger;
-    r->requested_path = env_view_path(desc->view_path, &r->logger);
-    r->material_path = env_material_path(desc->material_path, &r->logger);
-    r->force_inert_features = env_is("MVR_FORCE_FEATURES", "inert");
-    r->culling = !desc->disable_culling && !env_is("MVR_CULLING", "off");
+    r->requested_path = ov->view_path ? (mvr_view_path)(ov->view_path - 1) : desc->view_path;
+    r->material_path = ov->material_path ? (mvr_material_path)(ov->material_path - 1) : desc->material_path;
+    /* 2D texture arrays are core in GLES 3.0 and GL 3.0: auto is always arrays */
+    if (r->material_path == MVR_MATERIAL_PATH_AUTO)
+        r->material_path = MVR_MATERIAL_PATH_ARRAYS;
+    r->force_inert_features = ov->force_inert_features;
+    r->culling = ov->culling ? ov->culling == MVR_OVERRIDE_ON : !desc->disable_culling;
+    r->msaa_multiview_off = ov->msaa_multiview == MVR_OVERRIDE_OFF;
     r->blend_policy = desc->transparency_order;
     r->oversized_images = desc->oversized_images == MVR_OVERSIZED_IMAGE_DEFAULT ? MVR_OVERSIZED_IMAGE_DOWNSCALE
                                                                                 : desc->oversized_images;
@@ -252,15 +331,11 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
     r->reversed_z = depth_mode == MVR_DEPTH_MODE_AUTO ? clip_control : depth_mode == MVR_DEPTH_MODE_REVERSED_Z;
     r->ubo_alignment = (uint32_t)(c->limits.uniform_buffer_offset_alignment > 0
                                       ? c->limits.uniform_buffer_offset_alignment : 256);
-    /* MVR_UBO_ALIGNMENT=N (a power of two above the GL's): lays uniform data
-     * out as a GL with that alignment needs (tests of the padded layouts
-     * desktop GPUs use, on a GL that needs less) */
-    const char *align_env = getenv("MVR_UBO_ALIGNMENT");
-    if (align_env) {
-        unsigned long a = strtoul(align_env, NULL, 10);
-        if (a > r->ubo_alignment && a <= 4096 && (a & (a - 1)) == 0)
-            r->ubo_alignment = (uint32_t)a;
-    }
+    /* overrides.ubo_alignment (a power of two above the GL's): lays uniform
+     * data out as a GL with that alignment needs (tests of the padded
+     * layouts desktop GPUs use, on a GL that needs less) */
+    if (ov->ubo_alignment > r->ubo_alignment)
+        r->ubo_alignment = ov->ubo_alignment;
     uint32_t cap = (uint32_t)c->limits.max_uniform_block_size / MVR_MATERIAL_BLOCK_SIZE;
     r->material_capacity = cap > MVR_SHADER_MAX_MATERIAL_CAPACITY ? MVR_SHADER_MAX_MATERIAL_CAPACITY : cap;
     if (r->material_capacity == 0) {
@@ -283,7 +358,7 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
      * to the uniform offset alignment: 256 on many desktop GPUs), and whose
      * size fits the GL's uniform block limit */
     r->draw_stride = (uint32_t)((MVR_DRAW_BLOCK_SIZE + r->ubo_alignment - 1) / r->ubo_alignment * r->ubo_alignment);
-    bool instancing = !desc->disable_instancing && !env_is("MVR_INSTANCING", "off") &&
+    bool instancing = (ov->instancing ? ov->instancing == MVR_OVERRIDE_ON : !desc->disable_instancing) &&
                       r->material_path != MVR_MATERIAL_PATH_PER_DRAW && r->draw_stride % 16 == 0 &&
                       r->draw_stride <= 4096;
     uint32_t draw_cap = (uint32_t)c->limits.max_uniform_block_size / r->draw_stride;

@@ -214,9 +214,10 @@ struct mvr_renderer {
     uint32_t compiled_this_frame, cache_hits_this_frame, binary_loads_this_frame, binary_rejects_this_frame;
     char *program_cache_dir;     /* NULL = no binary cache */
     bool program_cache_warned;
-    /* MVR_FORCE_FEATURES=inert: every draw's key gains the features that
-     * cannot change its pixels (tests: skipping changes cost, not pixels) */
+    /* overrides.force_inert_features: every draw's key gains the features
+     * that cannot change its pixels (tests: skipping changes cost, not pixels) */
     bool force_inert_features;
+    bool msaa_multiview_off;     /* overrides.msaa_multiview: MSAA targets take the loop path */
     uint64_t upload_bytes, view_upload_bytes;
     /* per-pass compaction: the visible draws' blocks of each culled pass,
      * consecutive, so culling does not cut instanced runs apart */

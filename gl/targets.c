@@ -106,14 +106,13 @@ static bool resolve_anti_aliasing(mvr_renderer *r, mvr_target_desc *d)
     return false;
 }
 
-/* Multisampled multiview where the GL has it (and MVR_MSAA_MULTIVIEW is not off). */
+/* Multisampled multiview where the GL has it (and overrides.msaa_multiview is not off). */
 static mvr_result make_msaa_multiview(mvr_target *t)
 {
     mvr_renderer *r = t->renderer;
     const mvr_gl_api_table *gl = r->gl;
     const mvr_caps *c = &r->ctx->caps;
-    const char *env = getenv("MVR_MSAA_MULTIVIEW");
-    if ((env && strcmp(env, "off") == 0) || !c->ext.ovr_multiview2 || t->desc.external_level != 0)
+    if (r->msaa_multiview_off || !c->ext.ovr_multiview2 || t->desc.external_level != 0)
         return MVR_OK;
     if (c->ext.ovr_multiview_multisampled_render_to_texture && gl->FramebufferTextureMultisampleMultiviewOVR) {
         t->msaa_multiview = MVR_MSAA_MV_RENDER_TO_TEXTURE;

@@ -68,11 +68,11 @@ static void render_usage(FILE *out)
             "  --scene K           SCENE: the file's K-th scene (0-based; default: its default)\n"
             "  --size WxH          layer size in pixels (default: 640x480)\n"
             "  --out DIR           output directory (default: out), created if missing\n"
-            "  --view-path P       auto | multiview | loop (default: auto; env MVR_VIEW_PATH)\n"
+            "  --view-path P       auto | multiview | loop (default: auto; MVR_VIEW_PATH wins)\n"
             "  --material-path P   auto | arrays | per_material | per_draw (default: auto = arrays;\n"
-            "                      env MVR_MATERIAL_PATH)\n"
+            "                      MVR_MATERIAL_PATH wins)\n"
             "  --depth D           auto | reversed_z | standard (default: auto = reversed_z\n"
-            "                      where GL_EXT_clip_control exists; env MVR_DEPTH)\n"
+            "                      where GL_EXT_clip_control exists; MVR_DEPTH wins)\n"
             "  --transparency T    auto | centroid | per_view: blended draws in one order for\n"
             "                      all views of a multiview pass (from their centroid), or each\n"
             "                      view's own (its blend pass apart); auto: own order only where\n"
@@ -699,6 +699,12 @@ int mvr_cmd_render(int argc, char **argv)
                             .material_path = o.material_path, .depth_mode = o.depth_mode,
                             .transparency_order = o.transparency,
                             .program_cache_dir = program_cache_dir(&o, cache_buf, sizeof cache_buf)};
+    /* mvr render reads the library's MVR_* debugging variables (docs/guide.md) */
+    if (mvr_renderer_overrides_from_env(&rd.overrides, &err) != MVR_OK) {
+        fprintf(stderr, "mvr render: %s\n", err.message);
+        rc = MVR_EXIT_USAGE;
+        goto done;
+    }
     if (mvr_renderer_create(&rd, &renderer, &err) != MVR_OK) {
         fprintf(stderr, "mvr render: %s\n", err.message);
         goto done;

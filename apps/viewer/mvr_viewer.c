@@ -230,11 +230,13 @@ static bool make_renderer(viewer *v)
     v->renderer = NULL;
     mvr_renderer_desc rd = {.context = v->ctx, .view_path = v->view_path, .material_path = v->material_path};
     mvr_error err;
-    if (mvr_renderer_create(&rd, &v->renderer, &err) != MVR_OK) {
+    /* the viewer reads the library's MVR_* debugging variables (docs/guide.md) */
+    if (mvr_renderer_overrides_from_env(&rd.overrides, &err) != MVR_OK ||
+        mvr_renderer_create(&rd, &v->renderer, &err) != MVR_OK) {
         fprintf(stderr, "mvr-viewer: %s\n", err.message);
         return false;
     }
-    layer_size(v, &v->layer_w, &v->layer_h);
+    layer_size(v, v->view_count, &v->layer_w, &v->layer_h);
     /* the sRGB target mvr render uses (blending in linear light); its bytes
      * are copied to the window as they are */
     mvr_target_desc td = {v->layer_w, v->layer_h, v->view_count, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT};

@@ -582,14 +582,14 @@ typedef struct mvr_target mvr_target;
 typedef enum mvr_view_path {
     MVR_VIEW_PATH_AUTO = 0,      /* the faster for frame time, as measured: multiview where the GL has
                                     it, loop where multiview defers rasterization to the pass's end
-                                    (llvmpipe) or cannot attach the target (env MVR_VIEW_PATH overrides) */
+                                    (llvmpipe) or cannot attach the target */
     MVR_VIEW_PATH_MULTIVIEW,     /* one pass per chunk of <= GL_MAX_VIEWS_OVR views */
     MVR_VIEW_PATH_LOOP           /* one pass per view */
 } mvr_view_path;
 const char *mvr_view_path_name(mvr_view_path path);
 
 typedef enum mvr_material_path {
-    MVR_MATERIAL_PATH_AUTO = 0,      /* arrays (env MVR_MATERIAL_PATH overrides) */
+    MVR_MATERIAL_PATH_AUTO = 0,      /* arrays */
     MVR_MATERIAL_PATH_ARRAYS,        /* textures grouped into 2D arrays, bound once per group per pass */
     MVR_MATERIAL_PATH_PER_MATERIAL,  /* one 2D texture per image, bound when the material changes */
     MVR_MATERIAL_PATH_PER_DRAW       /* benchmark baseline: texture and material range re-bound every draw */
@@ -651,14 +651,86 @@ typedef enum mvr_oversized_image {
 } mvr_oversized_image;
 const char *mvr_oversized_image_name(mvr_oversized_image policy);
 
+/* Overrides: debugging, test and benchmark switches that win over what the
+ * other fields of the renderer desc (and the descs of the renderer's
+ * targets) ask. Zero = none: a field left 0 leaves the descriptors in
+ * charge. mvr reads no environment variable by itself; an application that
+ * lets its users steer these from the environment calls
+ * mvr_renderer_overrides_from_env (the mvr CLI and mvr-viewer do: each
+ * field names its variable). */
+typedef enum mvr_override_switch {
+    MVR_OVERRIDE_NONE = 0,       /* what the descriptors ask */
+    MVR_OVERRIDE_OFF,
+    MVR_OVERRIDE_ON
+} mvr_override_switch;
+
+typedef enum mvr_view_path_override {
+    MVR_VIEW_PATH_OVERRIDE_NONE = 0, /* view_path */
+    MVR_VIEW_PATH_OVERRIDE_AUTO,
+    MVR_VIEW_PATH_OVERRIDE_MULTIVIEW,
+    MVR_VIEW_PATH_OVERRIDE_LOOP
+} mvr_view_path_override;
+
+typedef enum mvr_material_path_override {
+    MVR_MATERIAL_PATH_OVERRIDE_NONE = 0, /* material_path */
+    MVR_MATERIAL_PATH_OVERRIDE_AUTO,
+    MVR_MATERIAL_PATH_OVERRIDE_ARRAYS,
+    MVR_MATERIAL_PATH_OVERRIDE_PER_MATERIAL,
+    MVR_MATERIAL_PATH_OVERRIDE_PER_DRAW
+} mvr_material_path_override;
+
+typedef enum mvr_depth_mode_override {
+    MVR_DEPTH_MODE_OVERRIDE_NONE = 0, /* depth_mode */
+    MVR_DEPTH_MODE_OVERRIDE_AUTO,
+    MVR_DEPTH_MODE_OVERRIDE_REVERSED_Z, /* refused without clip control, as depth_mode's is */
+    MVR_DEPTH_MODE_OVERRIDE_STANDARD
+} mvr_depth_mode_override;
+
+typedef struct mvr_renderer_overrides {
+    /* MVR_VIEW_PATH=auto|multiview|loop: the view path, whatever view_path asks */
+    mvr_view_path_override view_path;
+    /* MVR_MATERIAL_PATH=auto|arrays|per_material|per_draw */
+    mvr_material_path_override material_path;
+    /* MVR_DEPTH=auto|reversed_z|standard */
+    mvr_depth_mode_override depth_mode;
+    /* MVR_CULLING=on|off: per-view frustum culling, whatever disable_culling asks */
+    mvr_override_switch culling;
+    /* MVR_INSTANCING=on|off: instancing, whatever disable_instancing asks
+     * (on: where the material path and the block alignment allow it, as by
+     * default) */
+    mvr_override_switch instancing;
+    /* MVR_MSAA_MULTIVIEW=on|off: off draws the renderer's multisampled
+     * targets view by view (the loop path) even where the GL has
+     * multisampled multiview; on is the default */
+    mvr_override_switch msaa_multiview;
+    /* MVR_FORCE_FEATURES=inert: every draw's program variant gains the
+     * features that cannot change its pixels (tests: skipping features
+     * changes cost, not pixels) */
+    bool force_inert_features;
+    /* MVR_UBO_ALIGNMENT=N: uniform data laid out for a uniform buffer offset
+     * alignment of N bytes (a power of two, at most 4096), as a GL that needs
+     * N would (tests of the padded layouts desktop GPUs use, on a GL that
+     * needs less); never below the GL's own. 0 = the GL's. */
+    uint32_t ubo_alignment;
+} mvr_renderer_overrides;
+
+/* The one place mvr reads the environment, and only when an application
+ * calls it: fills *out (all of it; unset or empty variables = no override)
+ * from MVR_VIEW_PATH, MVR_MATERIAL_PATH, MVR_DEPTH, MVR_CULLING,
+ * MVR_INSTANCING, MVR_MSAA_MULTIVIEW, MVR_FORCE_FEATURES and
+ * MVR_UBO_ALIGNMENT (values as mvr_renderer_overrides lists them). A value
+ * outside those fails with MVR_ERROR_INVALID_ARGUMENT and a message naming
+ * the variable, *out left all zero. Put the result in
+ * mvr_renderer_desc.overrides. */
+mvr_result mvr_renderer_overrides_from_env(mvr_renderer_overrides *out, mvr_error *out_error);
+
 typedef struct mvr_renderer_desc {
     mvr_context *context;        /* required; the renderer draws with it */
     mvr_view_path view_path;
     mvr_logger logger;           /* 0 = the context's */
     mvr_material_path material_path;
     /* Per-view frustum culling is on by default (conservative bounding
-     * spheres: it never changes pixels); true turns it off. Env
-     * MVR_CULLING=off does the same. */
+     * spheres: it never changes pixels); true turns it off. */
     bool disable_culling;
     /* A directory for program binaries (glGetProgramBinary), so a later
      * renderer links variants without compiling them. NULL = no cache. The
@@ -668,11 +740,12 @@ typedef struct mvr_renderer_desc {
     const char *program_cache_dir;
     /* Instancing is on by default: consecutive draws of one primitive with
      * the same program, textures and material page become one instanced
-     * draw (same pixels). true turns it off; so does env MVR_INSTANCING=off. */
+     * draw (same pixels). true turns it off. */
     bool disable_instancing;
-    mvr_depth_mode depth_mode;   /* env MVR_DEPTH=reversed_z|standard overrides */
+    mvr_depth_mode depth_mode;
     mvr_transparency_order transparency_order;
     mvr_oversized_image oversized_images;
+    mvr_renderer_overrides overrides; /* 0 = none; win over the fields above */
 } mvr_renderer_desc;
 
 /*
@@ -748,8 +821,8 @@ typedef struct mvr_target_desc {
      * multiview: resolved layer by layer with glBlitFramebuffer), views
      * keep their multiview passes. Elsewhere (llvmpipe) each view is drawn
      * into a multisampled renderbuffer and resolved into its layer, one
-     * view at a time (the loop path). Env MVR_MSAA_MULTIVIEW=off forces the
-     * latter. Refused above GL_MAX_SAMPLES or where the color format cannot
+     * view at a time (the loop path). The renderer's
+     * overrides.msaa_multiview = MVR_OVERRIDE_OFF forces the latter. Refused above GL_MAX_SAMPLES or where the color format cannot
      * be multisampled. */
     uint32_t samples;
     /* Supersampling: N x N samples per pixel (0 or 1 = none, at most 4).

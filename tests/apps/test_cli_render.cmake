@@ -296,4 +296,21 @@ run(rc so se render --help)
 expect("render --help documents --env and its defaults" so MATCHES "--env E.*neutral for a glTF file")
 expect("render --help documents --background" so MATCHES "--background B")
 
+# the MVR_* variables are the CLI's (mvr_renderer_overrides_from_env): they win
+# over the options, and a bad value stops the render naming the variable
+set(ENV{MVR_VIEW_PATH} loop)
+run(rc so se render --demo stereo --views 2 --size 160x120 --view-path multiview --out ${OUT}/env_loop
+    --stats ${OUT}/env_loop/stats.json --quiet)
+expect("MVR_VIEW_PATH=loop render exits 0 (got ${rc}): ${se}" rc EQUAL 0)
+if(EXISTS ${OUT}/env_loop/stats.json)
+  file(READ ${OUT}/env_loop/stats.json stats)
+  string(JSON path GET "${stats}" view_path)
+  expect("MVR_VIEW_PATH=loop wins over --view-path multiview (got ${path})" path STREQUAL "loop")
+endif()
+set(ENV{MVR_VIEW_PATH} bogus)
+run(rc so se render --demo stereo --views 2 --size 160x120 --out ${OUT}/env_bogus --quiet)
+expect("MVR_VIEW_PATH=bogus exits 2 (got ${rc})" rc EQUAL 2)
+expect("MVR_VIEW_PATH=bogus is named: ${se}" se MATCHES "MVR_VIEW_PATH=bogus is not auto, multiview or loop")
+unset(ENV{MVR_VIEW_PATH})
+
 expect_summary("CLI render")

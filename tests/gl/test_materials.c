@@ -134,8 +134,11 @@ static void material_paths_agree(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
-/* MVR_MATERIAL_PATH overrides the descriptor, and a bad value is ignored with a warning. */
-static void material_path_environment(mvr_test_state *t)
+/* overrides.material_path wins over the descriptor's material_path; the
+ * environment (MVR_MATERIAL_PATH) is read only by
+ * mvr_renderer_overrides_from_env, which refuses a bad value naming the
+ * variable (tests/gl/test_overrides.c). */
+static void material_path_override(mvr_test_state *t)
 {
     mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
     if (!ctx)
@@ -143,18 +146,28 @@ static void material_path_environment(mvr_test_state *t)
     log_sink sink = {0};
     mvr_renderer_desc rd = {.context = ctx, .logger = {log_sink_fn, &sink, MVR_LOG_DEFAULT}};
     mvr_renderer *r = NULL;
-    setenv("MVR_MATERIAL_PATH", "per_material", 1);
+    rd.overrides.material_path = MVR_MATERIAL_PATH_OVERRIDE_PER_MATERIAL;
     CHECK(t, mvr_renderer_create(&rd, &r, NULL) == MVR_OK && r->material_path == MVR_MATERIAL_PATH_PER_MATERIAL);
     mvr_renderer_destroy(r);
-    setenv("MVR_MATERIAL_PATH", "bogus", 1);
-    CHECK(t, mvr_renderer_create(&rd, &r, NULL) == MVR_OK && r->material_path == MVR_MATERIAL_PATH_ARRAYS);
-    CHECK_EQ_INT(t, sink.warnings, 1);
+    rd.material_path = MVR_MATERIAL_PATH_PER_DRAW;
+    CHECK(t, mvr_renderer_create(&rd, &r, NULL) == MVR_OK && r->material_path == MVR_MATERIAL_PATH_PER_MATERIAL);
     mvr_renderer_destroy(r);
-    unsetenv("MVR_MATERIAL_PATH");
-    rd.material_path = (mvr_material_path)9;
+    rd.overrides.material_path = MVR_MATERIAL_PATH_OVERRIDE_AUTO; /* auto wins too: arrays */
+    CHECK(t, mvr_renderer_create(&rd, &r, NULL) == MVR_OK && r->material_path == MVR_MATERIAL_PATH_ARRAYS);
+    mvr_renderer_destroy(r);
+    rd.overrides.material_path = MVR_MATERIAL_PATH_OVERRIDE_NONE;
+    rd.material_path = MVR_MATERIAL_PATH_AUTO;
+    CHECK(t, mvr_renderer_create(&rd, &r, NULL) == MVR_OK && r->material_path == MVR_MATERIAL_PATH_ARRAYS);
+    CHECK_EQ_INT(t, sink.warnings, 0);
+    mvr_renderer_destroy(r);
     mvr_error err;
+    rd.overrides.material_path = (mvr_material_path_override)9;
+    CHECK(t, mvr_renderer_create(&rd, &r, &err) == MVR_ERROR_INVALID_ARGUMENT && r == NULL);
+    CHECK(t, strstr(err.message, "overrides.material_path") != NULL);
+    rd.overrides.material_path = MVR_MATERIAL_PATH_OVERRIDE_NONE;
+    rd.material_path = (mvr_material_path)9;
     CHECK(t, mvr_renderer_create(&rd, &r, &err) == MVR_ERROR_INVALID_ARGUMENT && r == NULL);
     mvr_context_destroy(ctx);
 }
 
-MVR_TEST_MAIN(TEST(material_paths_agree), TEST(material_path_environment))
+MVR_TEST_MAIN(TEST(material_paths_agree), TEST(material_path_override))

@@ -351,9 +351,9 @@ static void forced_features_change_no_pixels(mvr_test_state *t)
             const char *demo = mvr_demo_name(d);
             mvr_renderer_desc rd = {.material_path = paths[p]};
             bool ok = render_demo_run(t, ctx, demo, rd, bits, &lean);
-            setenv("MVR_FORCE_FEATURES", "inert", 1);
-            ok = ok && render_demo_run(t, ctx, demo, rd, bits, &forced);
-            unsetenv("MVR_FORCE_FEATURES");
+            mvr_renderer_desc forced_rd = rd;
+            forced_rd.overrides.force_inert_features = true;
+            ok = ok && render_demo_run(t, ctx, demo, forced_rd, bits, &forced);
             if (!ok)
                 continue;
             const char *mp = mvr_material_path_name(paths[p]);

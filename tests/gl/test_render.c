@@ -18,18 +18,28 @@ typedef struct rendered {
     mvr_frame_stats first, second;
 } rendered;
 
-static mvr_renderer *make_renderer(mvr_test_state *t, mvr_context *ctx, mvr_view_path path)
+static mvr_renderer *make_renderer_with(mvr_test_state *t, mvr_context *ctx, mvr_view_path path,
+                                        const mvr_renderer_overrides *overrides)
 {
     mvr_renderer_desc rd = {.context = ctx, .view_path = path};
+    if (overrides)
+        rd.overrides = *overrides;
     mvr_renderer *r = NULL;
     mvr_error err;
     CHECK_MSG(t, mvr_renderer_create(&rd, &r, &err) == MVR_OK, "%s", err.message);
     return r;
 }
 
-/* Renders a demo twice (the second frame is the steady state) and reads every layer. */
-static bool render_demo(mvr_test_state *t, mvr_context *ctx, const char *demo, uint32_t views,
-                        mvr_view_path path, const mvr_target_desc *external, rendered *out)
+static mvr_renderer *make_renderer(mvr_test_state *t, mvr_context *ctx, mvr_view_path path)
+{
+    return make_renderer_with(t, ctx, path, NULL);
+}
+
+/* Renders a demo twice (the second frame is the steady state) and reads
+ * every layer; overrides (NULL = none) go into the renderer desc. */
+static bool render_demo_with(mvr_test_state *t, mvr_context *ctx, const char *demo, uint32_t views,
+                             mvr_view_path path, const mvr_target_desc *external,
+                             const mvr_renderer_overrides *overrides, rendered *out)
 {
     memset(out, 0, sizeof *out);
     mvr_scene *scene = NULL;
@@ -40,7 +50,7 @@ static bool render_demo(mvr_test_state *t, mvr_context *ctx, const char *demo, u
         CHECK_MSG(t, 0, "demo %s: %s", demo, err.message);
         return false;
     }
-    mvr_renderer *r = make_renderer(t, ctx, path);
+    mvr_renderer *r = make_renderer_with(t, ctx, path, overrides);
     mvr_target *target = NULL;
     mvr_target_desc td = {W, H, views, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT};
     if (external)
@@ -68,6 +78,12 @@ static bool render_demo(mvr_test_state *t, mvr_context *ctx, const char *demo, u
     mvr_view_set_destroy(vs);
     mvr_scene_destroy(scene);
     return ok;
+}
+
+static bool render_demo(mvr_test_state *t, mvr_context *ctx, const char *demo, uint32_t views,
+                        mvr_view_path path, const mvr_target_desc *external, rendered *out)
+{
+    return render_demo_with(t, ctx, demo, views, path, external, NULL, out);
 }
 
 static uint32_t count_diff(const uint8_t *a, const uint8_t *b, size_t pixels)
@@ -477,9 +493,8 @@ static void culling_changes_cost_not_pixels(mvr_test_state *t)
     /* every demo: the same pixels with culling off */
     for (uint32_t d = 0; mvr_demo_name(d); ++d) {
         rendered on, off;
-        setenv("MVR_CULLING", "off", 1);
-        bool ok = render_demo(t, ctx, mvr_demo_name(d), 2, MVR_VIEW_PATH_AUTO, NULL, &off);
-        unsetenv("MVR_CULLING");
+        const mvr_renderer_overrides no_culling = {.culling = MVR_OVERRIDE_OFF};
+        bool ok = render_demo_with(t, ctx, mvr_demo_name(d), 2, MVR_VIEW_PATH_AUTO, NULL, &no_culling, &off);
         ok = ok && render_demo(t, ctx, mvr_demo_name(d), 2, MVR_VIEW_PATH_AUTO, NULL, &on);
         if (ok) {
             CHECK_MSG(t, count_diff(on.pixels, off.pixels, (size_t)W * H * 2) == 0, "%s: culling changed pixels",
@@ -641,14 +656,11 @@ static void instancing_changes_calls_not_pixels(mvr_test_state *t)
                     const char *demo = mvr_demo_name(d);
                     uint32_t n = view_counts[vc];
                     mvr_view_path path = pi == 0 && have_mv ? MVR_VIEW_PATH_MULTIVIEW : MVR_VIEW_PATH_LOOP;
-                    if (!cull)
-                        setenv("MVR_CULLING", "off", 1);
+                    mvr_renderer_overrides ov = {.culling = cull ? MVR_OVERRIDE_NONE : MVR_OVERRIDE_OFF};
                     rendered on, off;
-                    bool ok = render_demo(t, ctx, demo, n, path, NULL, &on);
-                    setenv("MVR_INSTANCING", "off", 1);
-                    ok = render_demo(t, ctx, demo, n, path, NULL, &off) && ok;
-                    unsetenv("MVR_INSTANCING");
-                    unsetenv("MVR_CULLING");
+                    bool ok = render_demo_with(t, ctx, demo, n, path, NULL, &ov, &on);
+                    ov.instancing = MVR_OVERRIDE_OFF;
+                    ok = render_demo_with(t, ctx, demo, n, path, NULL, &ov, &off) && ok;
                     if (ok) {
                         size_t diff = count_diff(on.pixels, off.pixels, (size_t)W * H * n);
                         CHECK_MSG(t, diff == 0, "%s x%u %s culling %d: instancing changed %zu pixels", demo, n,
@@ -732,7 +744,7 @@ static void desktop_and_gles_agree(mvr_test_state *t)
 
 /* Desktop GPUs align uniform buffer offsets to 256 bytes: per-draw blocks
  * are then 256 apart, and the instanced draw block pads each element to
- * match (MVR_DRAW_PAD). Emulated here with MVR_UBO_ALIGNMENT=256: the same
+ * match (MVR_DRAW_PAD). Emulated here with overrides.ubo_alignment = 256: the same
  * pixels and the same instanced runs as with llvmpipe's 16. */
 static void instancing_with_padded_blocks(mvr_test_state *t)
 {
@@ -746,9 +758,8 @@ static void instancing_with_padded_blocks(mvr_test_state *t)
             mvr_view_path path = pi == 0 && have_mv ? MVR_VIEW_PATH_MULTIVIEW : MVR_VIEW_PATH_LOOP;
             rendered native, padded;
             bool ok = render_demo(t, ctx, demos[d], 2, path, NULL, &native);
-            setenv("MVR_UBO_ALIGNMENT", "256", 1);
-            ok = render_demo(t, ctx, demos[d], 2, path, NULL, &padded) && ok;
-            unsetenv("MVR_UBO_ALIGNMENT");
+            const mvr_renderer_overrides padded_blocks = {.ubo_alignment = 256};
+            ok = render_demo_with(t, ctx, demos[d], 2, path, NULL, &padded_blocks, &padded) && ok;
             if (ok) {
                 CHECK_MSG(t, count_diff(native.pixels, padded.pixels, (size_t)W * H * 2) == 0,
                           "%s %s: 256-byte blocks changed pixels", demos[d], mvr_view_path_name(path));
