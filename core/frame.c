@@ -56,6 +56,64 @@ static void put_i(uint8_t *dst, const int32_t *v, size_t n)
     memcpy(dst, v, n * sizeof(int32_t));
 }
 
+/* ---- the std140 layout table (frame.h) */
+
+#define MEMBER(name, type, offset) {name, MVR_STD140_##type, offset, MEMBER_SIZE_##type, 1u, 0u, MEMBER_MSTRIDE_##type}
+#define ARRAY(name, type, offset, count, stride) \
+    {name, MVR_STD140_##type, offset, MEMBER_SIZE_##type, count, stride, MEMBER_MSTRIDE_##type}
+#define MEMBER_SIZE_VEC4 16u
+#define MEMBER_SIZE_IVEC4 16u
+#define MEMBER_SIZE_MAT4 64u
+#define MEMBER_MSTRIDE_VEC4 0u
+#define MEMBER_MSTRIDE_IVEC4 0u
+#define MEMBER_MSTRIDE_MAT4 16u
+
+static const mvr_block_member views_members[] = {
+    ARRAY("mvr_view_proj", MAT4, MVR_VIEWS_VIEW_PROJ_OFFSET, MVR_VIEWS_PER_BLOCK, MVR_VIEW_MATRIX_SIZE),
+    ARRAY("mvr_eye_position", VEC4, MVR_VIEWS_EYE_POSITION_OFFSET, MVR_VIEWS_PER_BLOCK, MVR_VIEW_EYE_SIZE),
+    ARRAY("mvr_view_info", IVEC4, MVR_VIEWS_VIEW_INFO_OFFSET, MVR_VIEWS_PER_BLOCK, MVR_VIEW_INFO_SIZE),
+};
+static const mvr_block_member draw_members[] = {
+    MEMBER("model", MAT4, MVR_DRAW_MODEL_OFFSET),
+    MEMBER("normal_matrix", MAT4, MVR_DRAW_NORMAL_MATRIX_OFFSET),
+    MEMBER("info", IVEC4, MVR_DRAW_INFO_OFFSET),
+};
+static const mvr_block_member material_members[] = {
+    MEMBER("base_color_factor", VEC4, MVR_MATERIAL_BASE_COLOR_OFFSET),
+    MEMBER("emissive", VEC4, MVR_MATERIAL_EMISSIVE_OFFSET),
+    MEMBER("params", VEC4, MVR_MATERIAL_PARAMS_OFFSET),
+    MEMBER("layers", IVEC4, MVR_MATERIAL_LAYERS_OFFSET),
+    MEMBER("extra", IVEC4, MVR_MATERIAL_EXTRA_OFFSET),
+    ARRAY("uv_transform", VEC4, MVR_MATERIAL_UV_TRANSFORM_OFFSET, MVR_MATERIAL_UV_TRANSFORM_COUNT,
+          MVR_MATERIAL_UV_TRANSFORM_STRIDE),
+};
+static const mvr_block_member light_members[] = {
+    MEMBER("position_range", VEC4, MVR_LIGHT_POSITION_RANGE_OFFSET),
+    MEMBER("direction", VEC4, MVR_LIGHT_DIRECTION_OFFSET),
+    MEMBER("color", VEC4, MVR_LIGHT_COLOR_OFFSET),
+    MEMBER("spot", VEC4, MVR_LIGHT_SPOT_OFFSET),
+};
+static const mvr_block_member shadows_members[] = {
+    ARRAY("mvr_shadow_matrix", MAT4, MVR_SHADOWS_MATRIX_OFFSET, MVR_SHADOWS_LAYERS, MVR_SHADOWS_MATRIX_STRIDE),
+    ARRAY("mvr_shadow_params", VEC4, MVR_SHADOWS_PARAMS_OFFSET, MVR_SHADOWS_LAYERS, MVR_SHADOWS_PARAMS_STRIDE),
+    ARRAY("mvr_light_shadow", IVEC4, MVR_SHADOWS_LIGHT_OFFSET, MVR_SHADOWS_LIGHTS, MVR_SHADOWS_LIGHT_STRIDE),
+};
+
+static const mvr_block_layout block_layouts[] = {
+    {"mvr_views", NULL, MVR_VIEWS_BLOCK_SIZE, views_members, MVR_ARRAY_COUNT(views_members)},
+    {"mvr_draw", "mvr_draws", MVR_DRAW_BLOCK_SIZE, draw_members, MVR_ARRAY_COUNT(draw_members)},
+    {"mvr_materials", "mvr_material_table", MVR_MATERIAL_BLOCK_SIZE, material_members,
+     MVR_ARRAY_COUNT(material_members)},
+    {"mvr_lights", "mvr_light_list", MVR_LIGHT_BLOCK_SIZE, light_members, MVR_ARRAY_COUNT(light_members)},
+    {"mvr_shadows", NULL, MVR_SHADOWS_BLOCK_SIZE, shadows_members, MVR_ARRAY_COUNT(shadows_members)},
+};
+
+const mvr_block_layout *mvr_block_layouts(uint32_t *count)
+{
+    *count = (uint32_t)MVR_ARRAY_COUNT(block_layouts);
+    return block_layouts;
+}
+
 /* Two rows of the 2x3 affine of KHR_texture_transform: uv' = T * R * S * uv
  * with R = mat3(cos, sin, 0, -sin, cos, 0, 0, 0, 1) in column-major GLSL, as
  * the ratified extension text writes it. */
@@ -79,16 +137,16 @@ static void uv_rows(const mvr_texture_transform *t, float out[8])
 void mvr_material_pack(const mvr_material_desc *m, uint8_t out[MVR_MATERIAL_BLOCK_SIZE])
 {
     memset(out, 0, MVR_MATERIAL_BLOCK_SIZE);
-    put_f(out + 0, m->base_color_factor, 4);
+    put_f(out + MVR_MATERIAL_BASE_COLOR_OFFSET, m->base_color_factor, 4);
     float emissive[4] = {m->emissive_factor[0] * m->emissive_strength,
                          m->emissive_factor[1] * m->emissive_strength,
                          m->emissive_factor[2] * m->emissive_strength, m->alpha_cutoff};
-    put_f(out + 16, emissive, 4);
+    put_f(out + MVR_MATERIAL_EMISSIVE_OFFSET, emissive, 4);
     float params[4] = {m->metallic_factor, m->roughness_factor, m->normal_scale, m->occlusion_strength};
-    put_f(out + 32, params, 4);
+    put_f(out + MVR_MATERIAL_PARAMS_OFFSET, params, 4);
     /* layers: 0 on the per-material path (one 2D texture per role) */
     int32_t layers[4] = {0, 0, 0, 0};
-    put_i(out + 48, layers, 4);
+    put_i(out + MVR_MATERIAL_LAYERS_OFFSET, layers, 4);
     const mvr_texture_ref *roles[5] = {&m->base_color, &m->metallic_roughness, &m->normal,
                                        &m->occlusion, &m->emissive};
     int32_t uv1_bits = 0;
@@ -96,11 +154,11 @@ void mvr_material_pack(const mvr_material_desc *m, uint8_t out[MVR_MATERIAL_BLOC
         if (roles[i]->texcoord == 1)
             uv1_bits |= 1 << i;
     int32_t extra[4] = {0, uv1_bits, 0, 0};
-    put_i(out + 64, extra, 4);
+    put_i(out + MVR_MATERIAL_EXTRA_OFFSET, extra, 4);
     for (int i = 0; i < 5; ++i) {
         float rows[8];
         uv_rows(&roles[i]->transform, rows);
-        put_f(out + 80 + (size_t)i * 32, rows, 8);
+        put_f(out + MVR_MATERIAL_UV_TRANSFORM_OFFSET + (size_t)i * 2 * MVR_MATERIAL_UV_TRANSFORM_STRIDE, rows, 8);
     }
 }
 
@@ -150,17 +208,17 @@ static void pack_draw_block(uint8_t *dst, const mvr_dmat4 *world, mvr_dvec3 orig
     mvr_mat4f model = mvr_dmat4_relative_to(world, origin);
     mvr_dmat4 nm = mvr_dmat4_normal_matrix(world);
     mvr_mat4f normal = mvr_dmat4_to_float(&nm);
-    put_f(dst, model.m, 16);
-    put_f(dst + 64, normal.m, 16);
+    put_f(dst + MVR_DRAW_MODEL_OFFSET, model.m, 16);
+    put_f(dst + MVR_DRAW_NORMAL_MATRIX_OFFSET, normal.m, 16);
     int32_t info[4] = {(int32_t)material, 0, 0, 0};
-    put_i(dst + 128, info, 4);
+    put_i(dst + MVR_DRAW_INFO_OFFSET, info, 4);
 }
 
 static void pack_lights(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin)
 {
     memset(f->light_counts, 0, sizeof f->light_counts);
     f->lights_dropped = 0;
-    float blocks[3][MVR_SHADER_MAX_LIGHTS_PER_TYPE][16];
+    uint8_t blocks[3][MVR_SHADER_MAX_LIGHTS_PER_TYPE][MVR_LIGHT_BLOCK_SIZE];
     mvr_frame_light info[3][MVR_SHADER_MAX_LIGHTS_PER_TYPE];
     for (uint32_t i = 0; i < s->node_count; ++i) {
         const scene_node *n = &s->nodes[i];
@@ -172,8 +230,8 @@ static void pack_lights(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin)
             f->lights_dropped++;
             continue;
         }
-        float *b = blocks[type][f->light_counts[type]++];
-        memset(b, 0, 16 * sizeof *b);
+        uint8_t *b = blocks[type][f->light_counts[type]++];
+        memset(b, 0, MVR_LIGHT_BLOCK_SIZE);
         mvr_dvec3 p = mvr_dvec3_sub(mvr_dmat4_transform_point(&f->world[i], mvr_dvec3_make(0, 0, 0)), origin);
         mvr_dvec3 d = mvr_dvec3_normalize(mvr_dmat4_transform_dir(&f->world[i], mvr_dvec3_make(0, 0, -1)),
                                           mvr_dvec3_make(0, 0, -1));
@@ -186,22 +244,19 @@ static void pack_lights(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin)
         li->cast_shadows = l->cast_shadows;
         li->layers = l->layers ? l->layers : 0xffffffffu;
         li->peak = (double)fmaxf(l->color[0], fmaxf(l->color[1], l->color[2])) * l->intensity;
-        b[0] = (float)p.x;
-        b[1] = (float)p.y;
-        b[2] = (float)p.z;
-        b[3] = l->range;
-        b[4] = (float)d.x;
-        b[5] = (float)d.y;
-        b[6] = (float)d.z;
-        for (int c = 0; c < 3; ++c)
-            b[8 + c] = l->color[c] * l->intensity;
+        float position_range[4] = {(float)p.x, (float)p.y, (float)p.z, l->range};
+        float direction[4] = {(float)d.x, (float)d.y, (float)d.z, 0.0f};
+        float color[4] = {l->color[0] * l->intensity, l->color[1] * l->intensity, l->color[2] * l->intensity, 0.0f};
+        put_f(b + MVR_LIGHT_POSITION_RANGE_OFFSET, position_range, 4);
+        put_f(b + MVR_LIGHT_DIRECTION_OFFSET, direction, 4);
+        put_f(b + MVR_LIGHT_COLOR_OFFSET, color, 4);
         if (l->type == MVR_LIGHT_SPOT) {
             /* KHR_lights_punctual: scale = 1 / max(0.001, cos(inner) - cos(outer)),
              * offset = -cos(outer) * scale; attenuation = clamp(cd * scale + offset)^2 */
             float co = cosf(l->outer_cone_angle), ci = cosf(l->inner_cone_angle);
             float scale = 1.0f / fmaxf(0.001f, ci - co);
-            b[12] = scale;
-            b[13] = -co * scale;
+            float spot[4] = {scale, -co * scale, 0.0f, 0.0f};
+            put_f(b + MVR_LIGHT_SPOT_OFFSET, spot, 4);
         }
     }
     uint8_t *dst = f->light_blocks;

@@ -12,12 +12,89 @@
 #include "scene_internal.h"
 #include "shader_gen.h"
 
-/* std140 sizes of the shader blocks. */
-#define MVR_DRAW_BLOCK_SIZE 144u      /* mat4 model, mat4 normal, ivec4 info */
-#define MVR_MATERIAL_BLOCK_SIZE 240u  /* see struct mvr_material in mesh.frag.glsl */
+/*
+ * std140 layouts of the uniform blocks the C side writes: every member's
+ * offset, named here and listed once in mvr_block_layouts() (below), which
+ * tests/gl/test_block_layouts.c compares with what the GL reports for every
+ * shader variant that declares the block. The packing code uses these names
+ * only: no offset is spelled anywhere else.
+ */
+
+/* mvr_draw (shaders/mesh.vert.glsl): an array of struct mvr_draw_data, one per
+ * draw, spaced the GL's uniform offset alignment apart (padding vec4s) */
+#define MVR_DRAW_MODEL_OFFSET 0u          /* mat4 model */
+#define MVR_DRAW_NORMAL_MATRIX_OFFSET 64u /* mat4 normal_matrix */
+#define MVR_DRAW_INFO_OFFSET 128u         /* ivec4 info; x: material index */
+#define MVR_DRAW_BLOCK_SIZE 144u          /* the struct without padding */
+
+/* mvr_materials (shaders/mesh.frag.glsl): an array of struct mvr_material */
+#define MVR_MATERIAL_BASE_COLOR_OFFSET 0u     /* vec4 base_color_factor */
+#define MVR_MATERIAL_EMISSIVE_OFFSET 16u      /* vec4 emissive */
+#define MVR_MATERIAL_PARAMS_OFFSET 32u        /* vec4 params */
+#define MVR_MATERIAL_LAYERS_OFFSET 48u        /* ivec4 layers */
+#define MVR_MATERIAL_EXTRA_OFFSET 64u         /* ivec4 extra */
+#define MVR_MATERIAL_UV_TRANSFORM_OFFSET 80u  /* vec4 uv_transform[10] */
+#define MVR_MATERIAL_UV_TRANSFORM_COUNT 10u   /* two rows per texture role */
+#define MVR_MATERIAL_UV_TRANSFORM_STRIDE 16u
+#define MVR_MATERIAL_BLOCK_SIZE 240u
+
+/* mvr_lights (shaders/mesh.frag.glsl): an array of struct mvr_light */
+#define MVR_LIGHT_POSITION_RANGE_OFFSET 0u /* vec4 position_range */
+#define MVR_LIGHT_DIRECTION_OFFSET 16u     /* vec4 direction */
+#define MVR_LIGHT_COLOR_OFFSET 32u         /* vec4 color */
+#define MVR_LIGHT_SPOT_OFFSET 48u          /* vec4 spot */
 #define MVR_LIGHT_BLOCK_SIZE 64u
-#define MVR_VIEW_MATRIX_SIZE 64u      /* one mat4 of mvr_view_proj */
-#define MVR_VIEW_EYE_SIZE 16u         /* one vec4 of mvr_eye_position */
+
+/* mvr_views (shaders/views.glsl): three arrays of MVR_VIEWS_PER_BLOCK */
+#define MVR_VIEWS_PER_BLOCK 64u       /* MVR_MAX_VIEWS of the shaders */
+#define MVR_VIEW_MATRIX_SIZE 64u      /* array stride of mat4 mvr_view_proj[] */
+#define MVR_VIEW_EYE_SIZE 16u         /* array stride of vec4 mvr_eye_position[] */
+#define MVR_VIEW_INFO_SIZE 16u        /* array stride of ivec4 mvr_view_info[] */
+#define MVR_VIEWS_VIEW_PROJ_OFFSET 0u
+#define MVR_VIEWS_EYE_POSITION_OFFSET (MVR_VIEWS_VIEW_PROJ_OFFSET + MVR_VIEWS_PER_BLOCK * MVR_VIEW_MATRIX_SIZE)
+#define MVR_VIEWS_VIEW_INFO_OFFSET (MVR_VIEWS_EYE_POSITION_OFFSET + MVR_VIEWS_PER_BLOCK * MVR_VIEW_EYE_SIZE)
+#define MVR_VIEWS_BLOCK_SIZE (MVR_VIEWS_VIEW_INFO_OFFSET + MVR_VIEWS_PER_BLOCK * MVR_VIEW_INFO_SIZE)
+
+/* mvr_shadows (shaders/mesh.frag.glsl, MVR_SHADOWS): per layer, per light */
+#define MVR_SHADOWS_LAYERS MVR_SHADER_MAX_SHADOW_LAYERS        /* MVR_MAX_SHADOW_LAYERS */
+#define MVR_SHADOWS_LIGHTS (3u * MVR_SHADER_MAX_LIGHTS_PER_TYPE) /* MVR_MAX_LIGHTS */
+#define MVR_SHADOWS_MATRIX_STRIDE 64u /* mat4 mvr_shadow_matrix[] */
+#define MVR_SHADOWS_PARAMS_STRIDE 16u /* vec4 mvr_shadow_params[] */
+#define MVR_SHADOWS_LIGHT_STRIDE 16u  /* ivec4 mvr_light_shadow[] */
+#define MVR_SHADOWS_MATRIX_OFFSET 0u
+#define MVR_SHADOWS_PARAMS_OFFSET (MVR_SHADOWS_MATRIX_OFFSET + MVR_SHADOWS_LAYERS * MVR_SHADOWS_MATRIX_STRIDE)
+#define MVR_SHADOWS_LIGHT_OFFSET (MVR_SHADOWS_PARAMS_OFFSET + MVR_SHADOWS_LAYERS * MVR_SHADOWS_PARAMS_STRIDE)
+#define MVR_SHADOWS_BLOCK_SIZE (MVR_SHADOWS_LIGHT_OFFSET + MVR_SHADOWS_LIGHTS * MVR_SHADOWS_LIGHT_STRIDE)
+
+typedef enum mvr_std140_type {
+    MVR_STD140_VEC4 = 0,
+    MVR_STD140_IVEC4,
+    MVR_STD140_MAT4   /* column-major, matrix stride 16 */
+} mvr_std140_type;
+
+/* One member of a block (or of the struct its one array holds). */
+typedef struct mvr_block_member {
+    const char *name;       /* GLSL name */
+    mvr_std140_type type;
+    uint32_t offset;        /* from the start of the block, or of the struct element */
+    uint32_t size;          /* bytes of one element */
+    uint32_t array_size;    /* 1: not an array */
+    uint32_t array_stride;  /* bytes between array elements; 0: not an array */
+    uint32_t matrix_stride; /* bytes between matrix columns; 0: not a matrix */
+} mvr_block_member;
+
+typedef struct mvr_block_layout {
+    const char *block;      /* GLSL block name, e.g. "mvr_materials" */
+    const char *element;    /* the block's one member, an array of this struct
+                               (its length set per shader variant); NULL: the
+                               members are the block's own */
+    uint32_t size;          /* std140 size of the struct (element) or of the block */
+    const mvr_block_member *members;
+    uint32_t member_count;
+} mvr_block_layout;
+
+/* The uniform blocks C writes: views, draw, materials, lights, shadows. */
+const mvr_block_layout *mvr_block_layouts(uint32_t *count);
 
 typedef enum mvr_pass_kind {
     MVR_PASS_OPAQUE = 0,
@@ -122,7 +199,7 @@ static inline bool mvr_visible(const mvr_visibility *vis, uint32_t view, uint32_
 /* Mesh feature bits of a primitive drawn with a material. */
 uint32_t mvr_draw_features(const scene_primitive *prim, const mvr_material_desc *material);
 
-/* Packs a material into its 240-byte std140 block. */
+/* Packs a material into its std140 block (MVR_MATERIAL_BLOCK_SIZE bytes). */
 void mvr_material_pack(const mvr_material_desc *material, uint8_t out[MVR_MATERIAL_BLOCK_SIZE]);
 
 #endif

@@ -322,13 +322,13 @@ void mvr_shadow_block_pack(const mvr_shadow_plan *plan, const mvr_shadow_desc *s
         const mvr_shadow_layer *layer = &plan->layers[k];
         mvr_dmat4 m = mvr_dmat4_mul(&bias, &layer->view_proj);
         mvr_mat4f mf = mvr_dmat4_to_float(&m);
-        put_f32(out + k * 64u, mf.m, 16);
+        put_f32(out + MVR_SHADOWS_MATRIX_OFFSET + k * MVR_SHADOWS_MATRIX_STRIDE, mf.m, 16);
         float params[4] = {(float)layer->texel, layer->perspective ? 1.0f : 0.0f, s->normal_bias,
                            1.0f / (float)s->map_size};
-        put_f32(out + MVR_SHADOW_MAX_LAYERS * 64u + k * 16u, params, 4);
+        put_f32(out + MVR_SHADOWS_PARAMS_OFFSET + k * MVR_SHADOWS_PARAMS_STRIDE, params, 4);
     }
     for (uint32_t i = 0; i < MVR_FRAME_MAX_LIGHTS; ++i) {
         int32_t info[4] = {plan->light_first[i], (int32_t)plan->light_layers[i], 0, 0};
-        memcpy(out + MVR_SHADOW_MAX_LAYERS * 80u + i * 16u, info, sizeof info);
+        memcpy(out + MVR_SHADOWS_LIGHT_OFFSET + i * MVR_SHADOWS_LIGHT_STRIDE, info, sizeof info);
     }
 }

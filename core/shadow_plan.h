@@ -16,8 +16,9 @@
 #define MVR_SHADOW_MAX_CASCADES 4
 #define MVR_FRAME_MAX_LIGHTS (3 * MVR_SHADER_MAX_LIGHTS_PER_TYPE)
 /* std140 size of the mvr_shadows block of shaders/mesh.frag.glsl: receiver
- * matrices, per-layer parameters, per-light (first layer, count) */
-#define MVR_SHADOW_BLOCK_SIZE (MVR_SHADOW_MAX_LAYERS * 64u + MVR_SHADOW_MAX_LAYERS * 16u + MVR_FRAME_MAX_LIGHTS * 16u)
+ * matrices, per-layer parameters, per-light (first layer, count); its
+ * members' offsets are MVR_SHADOWS_* of frame.h */
+#define MVR_SHADOW_BLOCK_SIZE MVR_SHADOWS_BLOCK_SIZE
 
 typedef struct mvr_shadow_layer {
     uint32_t light;              /* index in the frame's light list */

@@ -543,14 +543,14 @@ static mvr_result upload_materials(mvr_renderer *r, const mvr_scene *s)
         size_t at = (size_t)(i / cap) * (size_t)g->material_page_stride + (size_t)(i % cap) * MVR_MATERIAL_BLOCK_SIZE;
         mvr_material_pack(m, data + at);
         if (g->arrays) {
-            /* the array layers of each role (std140: ivec4 layers at 48, extra.x at 64) */
+            /* the array layers of each role (std140: ivec4 layers, extra.x) */
             const mvr_material_slots *ms = &g->plan.materials[i];
             int32_t layers[4], emissive;
             for (int k = 0; k < 4; ++k)
                 layers[k] = ms->layer[k] == MVR_NO_GROUP ? 0 : ms->layer[k];
             emissive = ms->layer[4] == MVR_NO_GROUP ? 0 : ms->layer[4];
-            memcpy(data + at + 48, layers, sizeof layers);
-            memcpy(data + at + 64, &emissive, sizeof emissive);
+            memcpy(data + at + MVR_MATERIAL_LAYERS_OFFSET, layers, sizeof layers);
+            memcpy(data + at + MVR_MATERIAL_EXTRA_OFFSET, &emissive, sizeof emissive);
             continue;
         }
         const mvr_texture_ref *roles[5] = {&m->base_color, &m->metallic_roughness, &m->normal,

@@ -11,10 +11,11 @@
 
 #include "renderer_internal.h"
 
-/* Views per uniform block (MVR_MAX_VIEWS of shaders/views.glsl). */
-#define VIEWS_PER_BLOCK 64u
-#define VIEW_INFO_SIZE 16u /* one ivec4 of mvr_view_info: the view's light mask */
-#define VIEW_BLOCK_SIZE (VIEWS_PER_BLOCK * (MVR_VIEW_MATRIX_SIZE + MVR_VIEW_EYE_SIZE + VIEW_INFO_SIZE))
+/* Views per uniform block (MVR_MAX_VIEWS of shaders/views.glsl); the
+ * block's layout is MVR_VIEWS_* of core/frame.h. */
+#define VIEWS_PER_BLOCK MVR_VIEWS_PER_BLOCK
+#define VIEW_INFO_SIZE MVR_VIEW_INFO_SIZE /* one ivec4 of mvr_view_info: the view's light mask */
+#define VIEW_BLOCK_SIZE MVR_VIEWS_BLOCK_SIZE
 
 static GLsizeiptr align_up(GLsizeiptr v, GLsizeiptr a)
 {
@@ -158,7 +159,7 @@ static mvr_result upload_static(mvr_renderer *r)
     if (r->material_path == MVR_MATERIAL_PATH_PER_DRAW)
         for (uint32_t i = 0; i < f->draw_count; ++i) {
             int32_t zero = 0; /* per-draw baseline: each draw reads element 0 of its own range */
-            memcpy(f->draw_blocks + (size_t)i * f->block_stride + 128, &zero, sizeof zero);
+            memcpy(f->draw_blocks + (size_t)i * f->block_stride + MVR_DRAW_INFO_OFFSET, &zero, sizeof zero);
         }
     GLsizeiptr draw_bytes = (GLsizeiptr)f->draw_count * f->block_stride;
     uint32_t light_count = f->light_counts[0] + f->light_counts[1] + f->light_counts[2];
@@ -236,8 +237,8 @@ static mvr_result upload_frame(mvr_renderer *r, const mvr_view_set *views, const
             mvr_mat4f m = mvr_dmat4_to_float(&plan->layers[k].view_proj);
             memcpy(casters[k], m.m, sizeof casters[k]);
         }
-        gl->BufferSubData(GL_UNIFORM_BUFFER, lay->shadow_views, (GLsizeiptr)plan->layer_count * MVR_VIEW_MATRIX_SIZE,
-                          casters);
+        gl->BufferSubData(GL_UNIFORM_BUFFER, lay->shadow_views + (GLintptr)MVR_VIEWS_VIEW_PROJ_OFFSET,
+                          (GLsizeiptr)plan->layer_count * MVR_VIEW_MATRIX_SIZE, casters);
         uint8_t block[MVR_SHADOW_BLOCK_SIZE];
         mvr_shadow_block_pack(plan, &r->shadows.settings, r->reversed_z, block);
         gl->BufferSubData(GL_UNIFORM_BUFFER, lay->shadow_block, (GLsizeiptr)sizeof block, block);
@@ -273,10 +274,11 @@ static mvr_result upload_frame(mvr_renderer *r, const mvr_view_set *views, const
             memcpy(&infos[k][0], &mask, sizeof mask);
         }
         GLintptr at = lay->views + (GLintptr)b * view_block_stride;
-        gl->BufferSubData(GL_UNIFORM_BUFFER, at, (GLsizeiptr)n * MVR_VIEW_MATRIX_SIZE, matrices);
-        gl->BufferSubData(GL_UNIFORM_BUFFER, at + (GLintptr)VIEWS_PER_BLOCK * MVR_VIEW_MATRIX_SIZE,
+        gl->BufferSubData(GL_UNIFORM_BUFFER, at + (GLintptr)MVR_VIEWS_VIEW_PROJ_OFFSET,
+                          (GLsizeiptr)n * MVR_VIEW_MATRIX_SIZE, matrices);
+        gl->BufferSubData(GL_UNIFORM_BUFFER, at + (GLintptr)MVR_VIEWS_EYE_POSITION_OFFSET,
                           (GLsizeiptr)n * MVR_VIEW_EYE_SIZE, eyes);
-        gl->BufferSubData(GL_UNIFORM_BUFFER, at + (GLintptr)VIEWS_PER_BLOCK * (MVR_VIEW_MATRIX_SIZE + MVR_VIEW_EYE_SIZE),
+        gl->BufferSubData(GL_UNIFORM_BUFFER, at + (GLintptr)MVR_VIEWS_VIEW_INFO_OFFSET,
                           (GLsizeiptr)n * VIEW_INFO_SIZE, infos);
         r->view_upload_bytes += (uint64_t)n * (MVR_VIEW_MATRIX_SIZE + MVR_VIEW_EYE_SIZE + VIEW_INFO_SIZE);
     }

@@ -253,8 +253,7 @@ mvr_result mvr_shadows_draw(mvr_renderer *r, GLintptr views_at, GLintptr draws_a
         return res;
     /* the maps are written here: no unit may sample them meanwhile */
     mvr_state_texture(st, MVR_UNIT_SHADOW_MAP, GL_TEXTURE_2D_ARRAY, 0);
-    mvr_state_ubo_range(st, MVR_BLOCK_VIEWS, r->ring.buffer, views_at,
-                        (GLsizeiptr)64u * (MVR_VIEW_MATRIX_SIZE + MVR_VIEW_EYE_SIZE + 16u));
+    mvr_state_ubo_range(st, MVR_BLOCK_VIEWS, r->ring.buffer, views_at, (GLsizeiptr)MVR_VIEWS_BLOCK_SIZE);
     mvr_state_viewport(st, 0, 0, (GLsizei)sm->size, (GLsizei)sm->size);
     mvr_state_scissor_test(st, false);
     mvr_state_blend(st, false, GL_ONE, GL_ZERO, GL_ONE, GL_ZERO);
