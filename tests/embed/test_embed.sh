@@ -6,7 +6,12 @@
 #     runtime symbol undefined in them, no libstdc++ in embed, a C link line);
 #  3. the installed package: `cmake --install`, then a project outside the
 #     tree builds embed with find_package(mvr) (static and shared) and with
-#     pkg-config (mvr-static), and each renders the same bytes.
+#     pkg-config (mvr-static), and each renders the same bytes;
+#  4. the installed glTF and image libraries: the same outside project and
+#     pkg-config (mvr-gltf + mvr-image, mvr-gltf-static + mvr-image-static)
+#     build gltf_to_png (C), which loads tests/data/peers/textured.gltf,
+#     renders it headless and writes a PNG: four PNGs with a picture, the same
+#     bytes; the installed shared libraries export exactly their headers' API.
 # Under sanitizers (SANITIZED=ON) the archives carry ASan's instrumentation
 # (its own data sections, and symbols only an instrumented link resolves):
 # the globals check and the outside consumers are left to the plain build.
@@ -57,7 +62,7 @@ cmake --install "$build" --prefix "$prefix" > "$out/install.log" 2>&1 || { bad "
 if cmake -S "$src/tests/embed/consumer" -B "$out/consumer" -DCMAKE_PREFIX_PATH="$prefix" \
         -DEMBED_SOURCE="$src/apps/examples/embed.c" > "$out/consumer.log" 2>&1 &&
    cmake --build "$out/consumer" >> "$out/consumer.log" 2>&1; then
-    ok "find_package(mvr) builds embed (static and shared)"
+    ok "find_package(mvr) builds embed and gltf_to_png (static and shared)"
     "$out/consumer/embed_static" --demo stereo --out "$out/static" > /dev/null && cmp_layers "$out/static" "installed static" || bad "installed static embed"
     LD_LIBRARY_PATH="$prefix/lib" "$out/consumer/embed_shared" --demo stereo --out "$out/shared" > /dev/null &&
         cmp_layers "$out/shared" "installed libmvr.so" || bad "installed shared embed"
@@ -72,4 +77,46 @@ if cc -std=c11 "$src/apps/examples/embed.c" -I"$gles" $(PKG_CONFIG_PATH="$prefix
 else
     bad "cc with pkg-config mvr-static"; cat "$out/pc.log"
 fi
+
+# 4. glTF in, PNG out, from the installed package alone
+gltf="$src/tests/data/peers/textured.gltf"
+png_ok() { # label program png
+    if "$2" "$gltf" "$3" > "$3.log" 2>&1; then ok "$1: $(tail -1 "$3.log")"; else bad "$1"; cat "$3.log"; fi
+}
+if [ -x "$out/consumer/gltf_to_png_static" ]; then
+    png_ok "find_package(mvr) mvr::mvr_gltf (static)" "$out/consumer/gltf_to_png_static" "$out/gltf_cmake_static.png"
+    png_ok "find_package(mvr) mvr::mvr_gltf_shared" "$out/consumer/gltf_to_png_shared" "$out/gltf_cmake_shared.png"
+    needed=$(readelf -d "$out/consumer/gltf_to_png_shared" | grep -o 'lib[a-z_]*\.so[.0-9]*' | tr '\n' ' ')
+    case "$needed" in *libmvr_gltf.so*libmvr_image.so*libmvr.so*) ok "gltf_to_png_shared needs $needed";;
+        *) bad "gltf_to_png_shared needs $needed";; esac
+    link="$out/consumer/CMakeFiles/gltf_to_png_shared.dir/link.txt"
+    grep -qE -- '-lstdc\+\+|c\+\+|g\+\+' "$link" && bad "gltf_to_png_shared's link line is C++" || ok "gltf_to_png_shared links with the C compiler"
+fi
+pc() { PKG_CONFIG_PATH="$prefix/lib/pkgconfig" pkg-config "$@"; }
+if cc -std=c11 -Wall -Wextra -Werror "$src/tests/embed/consumer/gltf_to_png.c" $(pc --cflags --libs mvr-gltf mvr-image) \
+        -Wl,-rpath,"$prefix/lib" -o "$out/gltf_pc_shared" 2> "$out/pc_gltf.log"; then
+    png_ok "pkg-config mvr-gltf mvr-image" "$out/gltf_pc_shared" "$out/gltf_pc_shared.png"
+else
+    bad "cc with pkg-config mvr-gltf mvr-image"; cat "$out/pc_gltf.log"
+fi
+if cc -std=c11 -Wall -Wextra -Werror "$src/tests/embed/consumer/gltf_to_png.c" $(pc --cflags --libs mvr-gltf-static mvr-image-static) \
+        -o "$out/gltf_pc_static" 2> "$out/pc_gltf_static.log"; then
+    png_ok "pkg-config mvr-gltf-static mvr-image-static" "$out/gltf_pc_static" "$out/gltf_pc_static.png"
+else
+    bad "cc with pkg-config mvr-gltf-static mvr-image-static"; cat "$out/pc_gltf_static.log"
+fi
+for png in "$out"/gltf_cmake_shared.png "$out"/gltf_pc_shared.png "$out"/gltf_pc_static.png; do
+    [ -s "$png" ] && [ -s "$out/gltf_cmake_static.png" ] || continue
+    cmp -s "$png" "$out/gltf_cmake_static.png" && ok "$(basename "$png") equals gltf_cmake_static.png" ||
+        bad "$(basename "$png") differs from gltf_cmake_static.png"
+done
+# the shared libraries need no dependency's .pc file or headers to be found
+for m in mvr mvr-image mvr-gltf; do
+    r=$(pc --print-requires "$m" | tr '\n' ' ')
+    echo "$m requires: ${r:-nothing} (private: $(pc --print-requires-private "$m" | tr '\n' ' '))"
+done
+pc --print-requires --print-requires-private mvr | grep -q osmesa && bad "mvr.pc requires osmesa" || ok "mvr.pc does not require osmesa"
+"$src/tests/embed/check_exports.sh" "$src" "$out/exports" "$prefix/lib/libmvr.so=$src/include/mvr/mvr.h" \
+    "$prefix/lib/libmvr_image.so=$src/include/mvr/mvr_image.h" "$prefix/lib/libmvr_gltf.so=$src/include/mvr/mvr_gltf.h" ||
+    bad "the installed shared libraries export more or less than their headers declare"
 exit $fail
