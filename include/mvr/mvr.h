@@ -1,7 +1,7 @@
 /*
  * mvr: render glTF 2.0 scenes into many views at once on OpenGL ES 3.
  *
- * Public C API. Conventions (see docs/api.md):
+ * Public C API. Conventions (see docs/guide.md):
  * - opaque handles with create/destroy pairs; destroy accepts NULL;
  * - descriptor structs are read once at create time, and a zeroed descriptor
  *   means "all defaults" (every enum has 0 = default);
