@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "environment.h"
 #include "renderer_internal.h"
 
 /* Views per uniform block (MVR_MAX_VIEWS of shaders/views.glsl); the
@@ -20,39 +21,6 @@
 static GLsizeiptr align_up(GLsizeiptr v, GLsizeiptr a)
 {
     return (v + a - 1) / a * a;
-}
-
-static bool same_viewport(mvr_viewport a, mvr_viewport b)
-{
-    return a.x == b.x && a.y == b.y && a.width == b.width && a.height == b.height;
-}
-
-/* Splits the enabled views into passes. Multiview chunks hold consecutive
- * layers with one viewport (the GL has one viewport per pass), at most
- * max_views of them, never crossing a view block. */
-static uint32_t make_chunks(const mvr_view_set *views, const mvr_target *t, bool multiview,
-                            uint32_t max_views, mvr_view_chunk *out)
-{
-    uint32_t n = 0;
-    for (uint32_t i = 0; i < views->count; ++i) {
-        const mvr_view_desc *v = &views->views[i];
-        mvr_viewport vp = mvr_view_viewport(v, t->desc.width, t->desc.height);
-        if (v->disabled || vp.width == 0 || vp.height == 0)
-            continue;
-        if (multiview && n > 0) {
-            mvr_view_chunk *c = &out[n - 1];
-            if (c->base + c->count == i && c->count < max_views && same_viewport(c->viewport, vp) &&
-                c->base / VIEWS_PER_BLOCK == i / VIEWS_PER_BLOCK) {
-                c->count++;
-                continue;
-            }
-        }
-        out[n].base = i;
-        out[n].count = 1;
-        out[n].viewport = vp;
-        n++;
-    }
-    return n;
 }
 
 /* Exact sRGB encode (IEC 61966-2-1) for clear colors of UNORM targets. */
@@ -596,27 +564,58 @@ static mvr_result draw_list(pass_context *pc, mvr_pass_kind kind)
     return MVR_OK;
 }
 
+/* ------------------------------------------------------------------ the frame
+ * mvr_renderer_draw_frame prepares the frame's CPU data, builds its plan
+ * (core/frame_plan.c) and executes the records in order, one function per
+ * record kind. */
+
+/* The executor's state: the frame's layout and constants, and the chunk
+ * whose view pass is running. */
+typedef struct frame_exec {
+    mvr_renderer *r;
+    const mvr_view_set *views;
+    mvr_target *t;
+    const mvr_render_desc *desc;
+    const mvr_frame_plan *plan;
+    bool static_current;         /* the frame's static blocks are uploaded already */
+    bool ring_begun;             /* this frame's ring segment is in use */
+    frame_layout lay;
+    pass_context pc;
+    double pre_exposure;
+    float clear[4], clear_depth;
+    GLsizeiptr view_block_stride;
+    uint32_t light_total;
+    /* the current chunk */
+    GLuint fbo, msaa_fbo;        /* its layers' framebuffer; the multisampled one views draw into */
+    bool split;                  /* its blended draws go per view */
+    uint32_t block;              /* its view block */
+    mvr_state_counters before;
+    uint32_t draws_before;
+} frame_exec;
+
 /* The per-draw baseline re-binds textures and uniform ranges every draw. */
 static void st_rebind_setup(mvr_renderer *r)
 {
     r->state.rebind_always = r->material_path == MVR_MATERIAL_PATH_PER_DRAW;
 }
 
-mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, const mvr_view_set *views,
-                                   mvr_target *t, const mvr_render_desc *desc, mvr_view_path path)
+/* The frame's CPU data: draw list and blocks (rebuilt only when what they
+ * depend on changed: *same says they did not), visibility, shadow layers. */
+static mvr_result prepare_frame(mvr_renderer *r, const mvr_scene *scene, const mvr_view_set *views,
+                                const mvr_target *t, const mvr_render_desc *desc, bool *same)
 {
     char why[256] = "";
     uint32_t stride = (uint32_t)align_up(MVR_DRAW_BLOCK_SIZE, (GLsizeiptr)r->ubo_alignment);
     /* dirty tracking: the same scene state seen from the same origin reuses
      * the frame and its uploaded blocks (a static scene sends only views) */
-    bool same = r->frame_key.valid && r->frame_key.scene_serial == mvr_scene_serial(scene) &&
-                r->frame_key.geometry_version == scene->geometry_version &&
-                r->frame_key.material_version == scene->material_version &&
-                r->frame_key.transform_version == scene->transform_version &&
-                r->frame_key.origin.x == views->origin.x && r->frame_key.origin.y == views->origin.y &&
-                r->frame_key.origin.z == views->origin.z;
+    *same = r->frame_key.valid && r->frame_key.scene_serial == mvr_scene_serial(scene) &&
+            r->frame_key.geometry_version == scene->geometry_version &&
+            r->frame_key.material_version == scene->material_version &&
+            r->frame_key.transform_version == scene->transform_version &&
+            r->frame_key.origin.x == views->origin.x && r->frame_key.origin.y == views->origin.y &&
+            r->frame_key.origin.z == views->origin.z;
     mvr_result res = MVR_OK;
-    if (!same) {
+    if (!*same) {
         r->frame_key.valid = false;
         res = mvr_frame_build(&r->frame, scene, views->origin, stride, r->material_capacity,
                               r->gpu.arrays ? &r->gpu.plan : NULL, why, sizeof why);
@@ -641,77 +640,91 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
                 r->stats.culled += r->vis.culled[v];
     }
     mvr_shadows_plan(r, views, t, desc);
-    /* multisampling: in the multiview passes where the GL has multisampled
-     * multiview, else one view at a time (the loop path) */
-    bool msaa = t->desc.samples > 1;
-    /* an HDR frame (tone mapping, physical exposure, dithering): views draw
-     * into a half-float array, the post pass writes the layers */
-    bool post = mvr_post_needed(desc);
-    t->hdr_frame = post && !t->ss_color;
-    if (post) {
-        mvr_result hr = mvr_target_ensure_hdr(t);
-        if (hr != MVR_OK)
-            return hr;
+    return MVR_OK;
+}
+
+/* The plan of this frame (r->plan) from its state, and the scratch its
+ * executor needs (grown, never per frame). */
+static mvr_result build_plan(mvr_renderer *r, const mvr_view_set *views, const mvr_target *t,
+                             const mvr_render_desc *desc, mvr_view_path path)
+{
+    mvr_frame_plan_input in;
+    memset(&in, 0, sizeof in);
+    in.views = views;
+    in.width = t->desc.width;
+    in.height = t->desc.height;
+    in.samples = t->desc.samples;
+    in.factor = mvr_target_factor(t);
+    in.supersampled = t->ss_color != 0;
+    in.unorm8 = t->internal_format == GL_RGBA8;
+    in.post = mvr_post_needed(desc);
+    in.max_views = (uint32_t)r->ctx->caps.limits.max_views_ovr;
+    in.msaa_multiview = t->msaa_multiview;
+    in.path = path;
+    in.blend_policy = r->blend_policy;
+    in.background = desc->background != MVR_BACKGROUND_COLOR;
+    in.environment = desc->environment != NULL;
+    in.environment_new = desc->environment && r->env.serial != desc->environment->serial;
+    in.shadow_layers = r->shadows.plan.layer_count;
+    for (int k = 0; k < MVR_PASS_KIND_COUNT; ++k)
+        in.draws[k] = r->frame.pass_count[k];
+    mvr_frame_plan *plan = &r->plan;
+    bool ok = mvr_frame_plan_build(plan, &in) == MVR_OK;
+    if (ok && plan->chunk_count > r->chunk_compact_cap) {
+        GLintptr *p = realloc(r->chunk_compact, plan->chunk_count * sizeof *p);
+        ok = p != NULL;
+        if (ok) {
+            r->chunk_compact = p;
+            r->chunk_compact_cap = plan->chunk_count;
+        }
     }
-    double pre_exposure = post ? mvr_post_pre_exposure(r, t, desc) : (double)desc->exposure;
-    r->stats.exposure_mode = desc->exposure_mode;
-    r->stats.tone_mapper = desc->tone_map;
-    r->stats.exposure_ev100 = log2(1.0 / (1.2 * pre_exposure));
-    bool msaa_mv = msaa && !post && t->msaa_multiview != MVR_MSAA_MV_NONE && path == MVR_VIEW_PATH_MULTIVIEW;
-    if (msaa && !msaa_mv)
-        path = MVR_VIEW_PATH_LOOP;
-    r->stats.anti_aliasing = t->anti_aliasing;
-    r->stats.msaa_multiview = msaa_mv;
-    r->path_ran = path;
-    bool multiview = path == MVR_VIEW_PATH_MULTIVIEW;
-    uint32_t max_views = (uint32_t)r->ctx->caps.limits.max_views_ovr;
-    if (max_views > VIEWS_PER_BLOCK)
-        max_views = VIEWS_PER_BLOCK;
-    mvr_view_chunk *chunks = malloc(views->count * sizeof *chunks);
-    GLintptr *compact = malloc(views->count * sizeof *compact);
-    uint8_t *groups_used = r->gpu.arrays ? calloc(r->gpu.plan.group_count + 1, 1) : NULL;
-    if (!chunks || !compact || (r->gpu.arrays && !groups_used)) {
-        free(chunks);
-        free(compact);
-        free(groups_used);
+    uint32_t groups = r->gpu.arrays ? r->gpu.plan.group_count + 1 : 0;
+    if (ok && groups > r->groups_used_cap) {
+        uint8_t *p = realloc(r->groups_used, groups);
+        ok = p != NULL;
+        if (ok) {
+            r->groups_used = p;
+            r->groups_used_cap = groups;
+        }
+    }
+    if (!ok) {
+        plan->count = plan->chunk_count = 0;
         return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "render: out of memory");
     }
-    uint32_t chunk_count = make_chunks(views, t, multiview, max_views, chunks);
-    frame_layout lay;
-    lay.compact = compact;
-    res = upload_frame(r, views, t, chunks, chunk_count, &lay, same);
-    if (res != MVR_OK) {
-        free(chunks);
-        free(compact);
-        free(groups_used);
-        return res;
-    }
+    r->stats.anti_aliasing = t->anti_aliasing;
+    r->stats.msaa_multiview = plan->msaa_multiview;
+    r->path_ran = plan->path;
+    return MVR_OK;
+}
 
-    pass_context pc;
-    memset(&pc, 0, sizeof pc);
-    pc.r = r;
-    pc.scene = scene;
-    pc.lay = &lay;
-    pc.desc = desc;
-    pc.groups_used = groups_used;
-    pc.view_set = views;
+static mvr_result exec_env_prefilter(frame_exec *fx)
+{
+    return mvr_environment_sync(fx->r, fx->desc->environment);
+}
+
+/* The frame's state for the mesh passes: GL state, output features, clear values. */
+static void setup_frame_state(frame_exec *fx)
+{
+    mvr_renderer *r = fx->r;
+    const mvr_render_desc *desc = fx->desc;
+    pass_context *pc = &fx->pc;
+    pc->r = r;
+    pc->lay = &fx->lay;
+    pc->desc = desc;
+    pc->groups_used = r->gpu.arrays ? r->groups_used : NULL;
+    pc->view_set = fx->views;
     st_rebind_setup(r);
-    /* a supersampled target draws linear floats; its resolve encodes */
-    uint32_t factor = mvr_target_factor(t);
-    bool encode_in_mesh = t->internal_format == GL_RGBA8 && factor == 1 && !post;
-    if (encode_in_mesh)
-        pc.output_features |= MVR_FEATURE_SRGB_OUTPUT;
-    pc.mesh_exposure = (float)pre_exposure;
+    if (fx->plan->encode_in_mesh) /* a supersampled target draws linear floats; its resolve encodes */
+        pc->output_features |= MVR_FEATURE_SRGB_OUTPUT;
+    pc->mesh_exposure = (float)fx->pre_exposure;
     if (r->shadows.plan.layer_count)
-        pc.output_features |= MVR_FEATURE_SHADOWS;
+        pc->output_features |= MVR_FEATURE_SHADOWS;
     if (r->shadows.plan.masked)
-        pc.output_features |= MVR_FEATURE_LIGHT_MASKS;
-    /* image-based lighting: the environment, prefiltered before the frame
-     * (mvr_environment_sync), is read by every lit draw of every pass */
+        pc->output_features |= MVR_FEATURE_LIGHT_MASKS;
+    /* image-based lighting: the environment, prefiltered before the view
+     * passes, is read by every lit draw of every pass */
     if (desc->environment)
-        pc.output_features |= MVR_FEATURE_IBL | (desc->environment_samples ? MVR_FEATURE_IBL_REFERENCE : 0u);
-    bool background = desc->background != MVR_BACKGROUND_COLOR;
-
+        pc->output_features |= MVR_FEATURE_IBL | (desc->environment_samples ? MVR_FEATURE_IBL_REFERENCE : 0u);
     mvr_state_cache *st = &r->state;
     if (r->force_inert_features) /* what a forced COLOR_0 reads where a primitive has none */
         r->gl->VertexAttrib4f(5, 1.0f, 1.0f, 1.0f, 1.0f);
@@ -725,165 +738,297 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
      * blends them unconverted */
     if (r->ctx->caps.api == MVR_GL_API_DESKTOP)
         mvr_state_framebuffer_srgb(st, true);
-    float clear[4];
-    memcpy(clear, desc->clear_color, sizeof clear);
-    if (encode_in_mesh)
+    memcpy(fx->clear, desc->clear_color, sizeof fx->clear);
+    if (fx->plan->encode_in_mesh)
         for (int c = 0; c < 3; ++c)
-            clear[c] = srgb_encode(clear[c]);
-    if (post) /* scene-referred in an HDR frame: exposed and tone mapped as the rest */
+            fx->clear[c] = srgb_encode(fx->clear[c]);
+    if (fx->plan->post) /* scene-referred in an HDR frame: exposed and tone mapped as the rest */
         for (int c = 0; c < 3; ++c)
-            clear[c] = (float)(clear[c] * pre_exposure);
-    float clear_depth = r->reversed_z ? 0.0f : 1.0f;
-    GLsizeiptr view_block_stride = align_up(VIEW_BLOCK_SIZE, (GLsizeiptr)r->ubo_alignment);
-    uint32_t light_total = r->frame.light_counts[0] + r->frame.light_counts[1] + r->frame.light_counts[2];
-    /* view-independent: the shadow maps, once, before any view */
-    res = mvr_shadows_draw(r, lay.shadow_views, lay.draws);
+            fx->clear[c] = (float)(fx->clear[c] * fx->pre_exposure);
+    fx->clear_depth = r->reversed_z ? 0.0f : 1.0f;
+    fx->view_block_stride = align_up(VIEW_BLOCK_SIZE, (GLsizeiptr)r->ubo_alignment);
+    fx->light_total = r->frame.light_counts[0] + r->frame.light_counts[1] + r->frame.light_counts[2];
+}
 
-    for (uint32_t c = 0; c < chunk_count && res == MVR_OK; ++c) {
-        const mvr_view_chunk *ch = &chunks[c];
-        /* one view gains nothing from multiview, and on llvmpipe a 1-view
-         * multiview pass costs about 50% more CPU than a plain one (measured
-         * with tests/bench/bench_views): a plain single-layer pass instead */
-        bool mv_pass = multiview && ch->count > 1;
-        GLuint fbo = 0, draw_fbo = 0;
-        res = mvr_target_framebuffer(t, ch->base, mv_pass ? ch->count : 0, &fbo);
-        /* multisampled: the multiview chunk's own framebuffer, or one view's renderbuffers */
-        bool mv_msaa = msaa && mv_pass;
-        GLuint msaa_fbo = t->hdr_frame ? t->msaa_hdr_fbo : t->msaa_fbo;
-        draw_fbo = msaa ? msaa_fbo : fbo;
-        if (res == MVR_OK && mv_msaa)
-            res = mvr_target_msaa_framebuffer(t, ch->base, ch->count, &draw_fbo);
-        if (res != MVR_OK)
-            break;
-        mvr_state_draw_framebuffer(st, draw_fbo);
-        /* views are drawn factor times the layer size on supersampled targets */
-        GLint vx = ch->viewport.x * (GLint)factor, vy = ch->viewport.y * (GLint)factor;
-        GLsizei vw = (GLsizei)(ch->viewport.width * factor), vh = (GLsizei)(ch->viewport.height * factor);
-        mvr_state_viewport(st, vx, vy, vw, vh);
-        /* clear only the view's viewport: other views may share the layer */
-        bool partial = ch->viewport.x != 0 || ch->viewport.y != 0 || ch->viewport.width != t->desc.width ||
-                       ch->viewport.height != t->desc.height;
-        if (partial) {
-            mvr_state_scissor_test(st, true);
-            r->gl->Scissor(vx, vy, vw, vh);
-        }
-        mvr_state_color_mask(st, true);
-        mvr_state_depth(st, true, r->reversed_z ? GL_GREATER : GL_LESS, GL_TRUE);
-        r->gl->ClearBufferfv(GL_COLOR, 0, clear);
-        r->gl->ClearBufferfv(GL_DEPTH, 0, &clear_depth);
-        if (partial)
-            mvr_state_scissor_test(st, false);
-
-        /* each pass binds what it samples (a few binds), so its stats stand
-         * alone: texture_binds = groups used (arrays) or material changes */
-        mvr_state_forget_textures(st);
-        mvr_state_counters before = st->counters;
-        uint32_t draws_before = r->stats.draws;
-        if (groups_used)
-            memset(groups_used, 0, r->gpu.plan.group_count + 1);
-        pc.groups_used_count = 0;
-        uint32_t block = ch->base / VIEWS_PER_BLOCK;
-        mvr_state_ubo_range(st, MVR_BLOCK_VIEWS, r->ring.buffer,
-                            lay.views + (GLintptr)block * view_block_stride, VIEW_BLOCK_SIZE);
-        if (light_total)
-            mvr_state_ubo_range(st, MVR_BLOCK_LIGHTS, r->ring.buffer, lay.lights, lay.lights_size);
-        mvr_shadows_bind(r, lay.shadow_block);
-        if (desc->environment)
-            mvr_environment_bind(r, desc->environment_samples > 0);
-        pc.num_views = mv_pass ? ch->count : 0;
-        pc.first_view = ch->base;
-        pc.views = ch->count;
-        pc.view_base = (int32_t)(ch->base - block * VIEWS_PER_BLOCK);
-        pc.compact = lay.compact[c];
-        pc.compact_next = 0;
-        pc.last_program = NULL;
-        /* blended draws: the centroid order serves every view of a
-         * multiview pass unless they disagree (auto) or per_view asks */
-        /* (not with multisampled multiview: a view's samples cannot be
-         * drawn apart there, so its chunk blends in the shared order) */
-        bool split_blend = mv_pass && !mv_msaa && r->frame.pass_count[MVR_PASS_BLEND] > 0 &&
-                           r->blend_policy != MVR_TRANSPARENCY_ORDER_CENTROID;
-        if (split_blend) {
-            bool diverged = blend_orders_diverge(r, &pc);
-            r->stats.blend_diverged_chunks += diverged;
-            split_blend = diverged || r->blend_policy == MVR_TRANSPARENCY_ORDER_PER_VIEW;
-        }
-        for (int k = 0; k < MVR_PASS_KIND_COUNT && res == MVR_OK; ++k) {
-            /* the background after the opaque and masked geometry, before
-             * the blended: only uncovered pixels pass its depth test, and
-             * what is transparent blends over it */
-            if (background && k == MVR_PASS_BLEND)
-                res = mvr_environment_draw_background(r, desc, pc.num_views, pc.view_base, encode_in_mesh,
-                                                      pc.mesh_exposure);
-            if (res == MVR_OK && !(split_blend && k == MVR_PASS_BLEND))
-                res = draw_list(&pc, (mvr_pass_kind)k);
-        }
-        /* the views' own blend passes, into their layers and depth: after the
-         * multiview pass, as a loop pass would draw them */
-        for (uint32_t v = ch->base; split_blend && res == MVR_OK && v < ch->base + ch->count; ++v) {
-            GLuint layer_fbo = 0;
-            res = mvr_target_framebuffer(t, v, 0, &layer_fbo);
-            if (res != MVR_OK)
-                break;
-            mvr_state_draw_framebuffer(st, layer_fbo);
-            pc.num_views = 0;
-            pc.first_view = v;
-            pc.views = 1;
-            pc.view_base = (int32_t)(v - block * VIEWS_PER_BLOCK);
-            pc.last_program = NULL; /* the loop variant of each program */
-            res = draw_list(&pc, MVR_PASS_BLEND);
-            r->stats.blend_fallback_passes++;
-        }
-        if (msaa && !(mv_msaa && t->msaa_multiview == MVR_MSAA_MV_RENDER_TO_TEXTURE)) {
-            /* resolve each view's samples into its layer (same rectangle):
-             * from the view's renderbuffers, or layer by layer from the
-             * multisampled array (never read from a multiview framebuffer) */
-            const mvr_viewport *vp = &ch->viewport;
-            GLint x1 = vp->x + (GLint)vp->width, y1 = vp->y + (GLint)vp->height;
-            mvr_state_scissor_test(st, false);
-            for (uint32_t k = 0; k < (mv_msaa ? ch->count : 1u) && res == MVR_OK; ++k) {
-                GLuint read_fbo = msaa_fbo, out_fbo = fbo;
-                if (mv_msaa) {
-                    res = mvr_target_msaa_framebuffer(t, ch->base + k, 0, &read_fbo);
-                    if (res == MVR_OK)
-                        res = mvr_target_framebuffer(t, ch->base + k, 0, &out_fbo);
-                    if (res != MVR_OK)
-                        break;
-                }
-                mvr_state_read_framebuffer(st, read_fbo);
-                mvr_state_draw_framebuffer(st, out_fbo);
-                /* an HDR frame's metering reads depth: resolve it too */
-                GLbitfield bits = GL_COLOR_BUFFER_BIT | (t->hdr_frame && !mv_msaa ? GL_DEPTH_BUFFER_BIT : 0u);
-                r->gl->BlitFramebuffer(vp->x, vp->y, x1, y1, vp->x, vp->y, x1, y1, bits, GL_NEAREST);
-                r->stats.resolves++;
-            }
-        }
-        r->stats.passes++;
-        r->stats.multiview_passes += mv_pass;
-        r->stats.views += ch->count;
-        if (r->pass_stats_count < MVR_MAX_PASS_STATS) {
-            mvr_pass_stats *ps = &r->pass_stats[r->pass_stats_count++];
-            ps->first_view = ch->base;
-            ps->views = ch->count;
-            ps->multiview = mv_pass;
-            ps->draws = r->stats.draws - draws_before;
-            ps->program_binds = st->counters.program_binds - before.program_binds;
-            ps->texture_binds = st->counters.texture_binds - before.texture_binds;
-            ps->ubo_range_binds = st->counters.ubo_range_binds - before.ubo_range_binds;
-            ps->texture_groups = pc.groups_used_count;
-        }
+/* The HDR frame's array, the exposure, and the frame's uniform data. */
+static mvr_result exec_upload(frame_exec *fx)
+{
+    mvr_renderer *r = fx->r;
+    mvr_target *t = fx->t;
+    const mvr_render_desc *desc = fx->desc;
+    const mvr_frame_plan *plan = fx->plan;
+    /* an HDR frame (tone mapping, physical exposure, dithering): views draw
+     * into a half-float array, the post pass writes the layers */
+    t->hdr_frame = plan->hdr_frame;
+    if (plan->post) {
+        mvr_result hr = mvr_target_ensure_hdr(t);
+        if (hr != MVR_OK)
+            return hr;
     }
-    if (res == MVR_OK && post)
-        res = mvr_post_run(r, t, views, desc, chunks, chunk_count, multiview, pre_exposure);
-    else if (res == MVR_OK && factor > 1) /* the supersampling resolve: the mean of each pixel's samples, encoded */
-        res = mvr_full_screen_passes(r, t, t->ss_color, chunks, chunk_count, multiview,
-                                     MVR_FEATURE_DOWNSAMPLE |
-                                         (t->internal_format == GL_RGBA8 ? MVR_FEATURE_SRGB_ENCODE : 0u),
-                                     NULL, false, &r->stats.resolves);
-    st->rebind_always = false;
-    free(chunks);
-    free(compact);
-    free(groups_used);
-    mvr_ring_end_frame(r);
+    fx->pre_exposure = plan->post ? mvr_post_pre_exposure(r, t, desc) : (double)desc->exposure;
+    r->stats.exposure_mode = desc->exposure_mode;
+    r->stats.tone_mapper = desc->tone_map;
+    r->stats.exposure_ev100 = log2(1.0 / (1.2 * fx->pre_exposure));
+    fx->lay.compact = r->chunk_compact;
+    mvr_result res = upload_frame(r, fx->views, t, plan->chunks, plan->chunk_count, &fx->lay, fx->static_current);
+    if (res != MVR_OK)
+        return res;
+    fx->ring_begun = true;
+    setup_frame_state(fx);
+    return MVR_OK;
+}
+
+/* view-independent: the shadow maps, once, before any view */
+static mvr_result exec_shadow_maps(frame_exec *fx)
+{
+    return mvr_shadows_draw(fx->r, fx->lay.shadow_views, fx->lay.draws);
+}
+
+/* A chunk's view pass: its framebuffer and viewport, the clear, the
+ * bindings every sub-pass shares, and whether its blended draws split. */
+static mvr_result exec_view_pass(frame_exec *fx, const mvr_plan_record *rec)
+{
+    mvr_renderer *r = fx->r;
+    mvr_target *t = fx->t;
+    mvr_state_cache *st = &r->state;
+    const mvr_view_chunk *ch = &fx->plan->chunks[rec->chunk];
+    bool mv_pass = rec->multiview, msaa = rec->msaa, mv_msaa = msaa && mv_pass;
+    GLuint draw_fbo = 0;
+    mvr_result res = mvr_target_framebuffer(t, ch->base, mv_pass ? ch->count : 0, &fx->fbo);
+    /* multisampled: the multiview chunk's own framebuffer, or one view's renderbuffers */
+    fx->msaa_fbo = t->hdr_frame ? t->msaa_hdr_fbo : t->msaa_fbo;
+    draw_fbo = msaa ? fx->msaa_fbo : fx->fbo;
+    if (res == MVR_OK && mv_msaa)
+        res = mvr_target_msaa_framebuffer(t, ch->base, ch->count, &draw_fbo);
+    if (res != MVR_OK)
+        return res;
+    mvr_state_draw_framebuffer(st, draw_fbo);
+    /* views are drawn factor times the layer size on supersampled targets */
+    uint32_t factor = fx->plan->factor;
+    GLint vx = ch->viewport.x * (GLint)factor, vy = ch->viewport.y * (GLint)factor;
+    GLsizei vw = (GLsizei)(ch->viewport.width * factor), vh = (GLsizei)(ch->viewport.height * factor);
+    mvr_state_viewport(st, vx, vy, vw, vh);
+    /* clear only the view's viewport: other views may share the layer */
+    bool partial = ch->viewport.x != 0 || ch->viewport.y != 0 || ch->viewport.width != t->desc.width ||
+                   ch->viewport.height != t->desc.height;
+    if (partial) {
+        mvr_state_scissor_test(st, true);
+        r->gl->Scissor(vx, vy, vw, vh);
+    }
+    mvr_state_color_mask(st, true);
+    mvr_state_depth(st, true, r->reversed_z ? GL_GREATER : GL_LESS, GL_TRUE);
+    r->gl->ClearBufferfv(GL_COLOR, 0, fx->clear);
+    r->gl->ClearBufferfv(GL_DEPTH, 0, &fx->clear_depth);
+    if (partial)
+        mvr_state_scissor_test(st, false);
+
+    /* each pass binds what it samples (a few binds), so its stats stand
+     * alone: texture_binds = groups used (arrays) or material changes */
+    pass_context *pc = &fx->pc;
+    mvr_state_forget_textures(st);
+    fx->before = st->counters;
+    fx->draws_before = r->stats.draws;
+    if (pc->groups_used)
+        memset(pc->groups_used, 0, r->gpu.plan.group_count + 1);
+    pc->groups_used_count = 0;
+    fx->block = ch->base / VIEWS_PER_BLOCK;
+    mvr_state_ubo_range(st, MVR_BLOCK_VIEWS, r->ring.buffer,
+                        fx->lay.views + (GLintptr)fx->block * fx->view_block_stride, VIEW_BLOCK_SIZE);
+    if (fx->light_total)
+        mvr_state_ubo_range(st, MVR_BLOCK_LIGHTS, r->ring.buffer, fx->lay.lights, fx->lay.lights_size);
+    mvr_shadows_bind(r, fx->lay.shadow_block);
+    if (fx->desc->environment)
+        mvr_environment_bind(r, fx->desc->environment_samples > 0);
+    pc->num_views = mv_pass ? ch->count : 0;
+    pc->first_view = ch->base;
+    pc->views = ch->count;
+    pc->view_base = (int32_t)(ch->base - fx->block * VIEWS_PER_BLOCK);
+    pc->compact = fx->lay.compact[rec->chunk];
+    pc->compact_next = 0;
+    pc->last_program = NULL;
+    /* blended draws: per view where the views' orders diverge (auto) or always (per_view) */
+    fx->split = false;
+    if (rec->blend != MVR_PLAN_BLEND_SHARED) {
+        bool diverged = blend_orders_diverge(r, pc);
+        r->stats.blend_diverged_chunks += diverged;
+        fx->split = diverged || rec->blend == MVR_PLAN_BLEND_SPLIT;
+    }
+    return MVR_OK;
+}
+
+/* the background after the opaque and masked geometry, before the blended:
+ * only uncovered pixels pass its depth test, and what is transparent blends
+ * over it */
+static mvr_result exec_background(frame_exec *fx)
+{
+    return mvr_environment_draw_background(fx->r, fx->desc, fx->pc.num_views, fx->pc.view_base,
+                                           fx->plan->encode_in_mesh, fx->pc.mesh_exposure);
+}
+
+/* A view's own blend pass, into its layer and depth: after the multiview
+ * pass, as a loop pass would draw it. */
+static mvr_result exec_blend_view(frame_exec *fx, const mvr_plan_record *rec)
+{
+    mvr_renderer *r = fx->r;
+    GLuint layer_fbo = 0;
+    mvr_result res = mvr_target_framebuffer(fx->t, rec->first_view, 0, &layer_fbo);
+    if (res != MVR_OK)
+        return res;
+    mvr_state_draw_framebuffer(&r->state, layer_fbo);
+    pass_context *pc = &fx->pc;
+    pc->num_views = 0;
+    pc->first_view = rec->first_view;
+    pc->views = 1;
+    pc->view_base = (int32_t)(rec->first_view - fx->block * VIEWS_PER_BLOCK);
+    pc->last_program = NULL; /* the loop variant of each program */
+    res = draw_list(pc, MVR_PASS_BLEND);
+    r->stats.blend_fallback_passes++;
+    return res;
+}
+
+/* Resolves each view's samples into its layer (same rectangle): from the
+ * view's renderbuffers, or layer by layer from the multisampled array
+ * (never read from a multiview framebuffer). */
+static mvr_result exec_msaa_resolve(frame_exec *fx, const mvr_plan_record *rec)
+{
+    mvr_renderer *r = fx->r;
+    mvr_state_cache *st = &r->state;
+    const mvr_viewport *vp = &fx->plan->chunks[rec->chunk].viewport;
+    GLint x1 = vp->x + (GLint)vp->width, y1 = vp->y + (GLint)vp->height;
+    mvr_state_scissor_test(st, false);
+    for (uint32_t v = rec->first_view; v < rec->first_view + rec->views; ++v) {
+        GLuint read_fbo = fx->msaa_fbo, out_fbo = fx->fbo;
+        if (rec->msaa) {
+            mvr_result res = mvr_target_msaa_framebuffer(fx->t, v, 0, &read_fbo);
+            if (res == MVR_OK)
+                res = mvr_target_framebuffer(fx->t, v, 0, &out_fbo);
+            if (res != MVR_OK)
+                return res;
+        }
+        mvr_state_read_framebuffer(st, read_fbo);
+        mvr_state_draw_framebuffer(st, out_fbo);
+        /* an HDR frame's metering reads depth: resolve it too */
+        GLbitfield bits = GL_COLOR_BUFFER_BIT | (rec->depth ? GL_DEPTH_BUFFER_BIT : 0u);
+        r->gl->BlitFramebuffer(vp->x, vp->y, x1, y1, vp->x, vp->y, x1, y1, bits, GL_NEAREST);
+        r->stats.resolves++;
+    }
+    return MVR_OK;
+}
+
+/* The chunk's pass is done: its stats. */
+static void end_chunk(frame_exec *fx, const mvr_plan_record *rec)
+{
+    mvr_renderer *r = fx->r;
+    const mvr_view_chunk *ch = &fx->plan->chunks[rec->chunk];
+    const mvr_state_cache *st = &r->state;
+    bool mv_pass = fx->plan->multiview && ch->count > 1;
+    r->stats.passes++;
+    r->stats.multiview_passes += mv_pass;
+    r->stats.views += ch->count;
+    if (r->pass_stats_count < MVR_MAX_PASS_STATS) {
+        mvr_pass_stats *ps = &r->pass_stats[r->pass_stats_count++];
+        ps->first_view = ch->base;
+        ps->views = ch->count;
+        ps->multiview = mv_pass;
+        ps->draws = r->stats.draws - fx->draws_before;
+        ps->program_binds = st->counters.program_binds - fx->before.program_binds;
+        ps->texture_binds = st->counters.texture_binds - fx->before.texture_binds;
+        ps->ubo_range_binds = st->counters.ubo_range_binds - fx->before.ubo_range_binds;
+        ps->texture_groups = fx->pc.groups_used_count;
+    }
+}
+
+/* the supersampling resolve: the mean of each pixel's samples, encoded */
+static mvr_result exec_supersample_resolve(frame_exec *fx)
+{
+    mvr_target *t = fx->t;
+    return mvr_full_screen_passes(fx->r, t, t->ss_color, fx->plan->chunks, fx->plan->chunk_count,
+                                  fx->plan->multiview,
+                                  MVR_FEATURE_DOWNSAMPLE | (t->internal_format == GL_RGBA8 ? MVR_FEATURE_SRGB_ENCODE : 0u),
+                                  NULL, false, &fx->r->stats.resolves);
+}
+
+static mvr_result exec_post(frame_exec *fx)
+{
+    return mvr_post_run(fx->r, fx->t, fx->views, fx->desc, fx->plan->chunks, fx->plan->chunk_count,
+                        fx->plan->multiview, fx->pre_exposure);
+}
+
+static bool record_runs(const frame_exec *fx, const mvr_plan_record *rec)
+{
+    switch (rec->when) {
+    case MVR_PLAN_RUN:
+        return true;
+    case MVR_PLAN_IF_ORDERS_AGREE:
+        return !fx->split;
+    case MVR_PLAN_IF_ORDERS_DIVERGE:
+        return fx->split;
+    default:
+        return false;
+    }
+}
+
+static mvr_result exec_record(frame_exec *fx, const mvr_plan_record *rec)
+{
+    switch (rec->kind) {
+    case MVR_PLAN_ENV_PREFILTER:
+        return exec_env_prefilter(fx);
+    case MVR_PLAN_UPLOAD:
+        return exec_upload(fx);
+    case MVR_PLAN_SHADOW_MAPS:
+        return exec_shadow_maps(fx);
+    case MVR_PLAN_VIEW_PASS:
+        return exec_view_pass(fx, rec);
+    case MVR_PLAN_OPAQUE:
+        return draw_list(&fx->pc, MVR_PASS_OPAQUE);
+    case MVR_PLAN_MASK:
+        return draw_list(&fx->pc, MVR_PASS_MASK);
+    case MVR_PLAN_BACKGROUND:
+        return exec_background(fx);
+    case MVR_PLAN_BLEND:
+        return draw_list(&fx->pc, MVR_PASS_BLEND);
+    case MVR_PLAN_BLEND_VIEW:
+        return exec_blend_view(fx, rec);
+    case MVR_PLAN_MSAA_RESOLVE:
+        return exec_msaa_resolve(fx, rec);
+    case MVR_PLAN_SUPERSAMPLE_RESOLVE:
+        return exec_supersample_resolve(fx);
+    case MVR_PLAN_POST:
+        return exec_post(fx);
+    default:
+        return MVR_OK;
+    }
+}
+
+mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, const mvr_view_set *views,
+                                   mvr_target *t, const mvr_render_desc *desc, mvr_view_path path)
+{
+    r->plan.count = r->plan.chunk_count = 0;
+    bool same = false;
+    mvr_result res = prepare_frame(r, scene, views, t, desc, &same);
+    if (res == MVR_OK)
+        res = build_plan(r, views, t, desc, path);
+    if (res != MVR_OK)
+        return res;
+    frame_exec fx;
+    memset(&fx, 0, sizeof fx);
+    fx.r = r;
+    fx.views = views;
+    fx.t = t;
+    fx.desc = desc;
+    fx.plan = &r->plan;
+    fx.static_current = same;
+    fx.pc.scene = scene;
+    for (uint32_t i = 0; i < r->plan.count && res == MVR_OK; ++i) {
+        const mvr_plan_record *rec = &r->plan.records[i];
+        if (record_runs(&fx, rec))
+            res = exec_record(&fx, rec);
+        if (res == MVR_OK && rec->ends_chunk)
+            end_chunk(&fx, rec);
+    }
+    if (fx.ring_begun) {
+        r->state.rebind_always = false;
+        mvr_ring_end_frame(r);
+    }
     return res;
 }

@@ -442,6 +442,9 @@ void mvr_renderer_destroy(mvr_renderer *r)
     free(r->program_cache_dir);
     free(r->compact_scratch);
     free(r->blend_order);
+    mvr_frame_plan_free(&r->plan);
+    free(r->chunk_compact);
+    free(r->groups_used);
     free(r);
 }
 
@@ -752,8 +755,7 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
     }
     uint32_t failures = r->failures;
     res = mvr_gpu_scene_sync(r, scene);
-    if (res == MVR_OK)
-        res = mvr_environment_sync(r, d.environment);
+    /* the frame plan prefilters a new environment (mvr_environment_sync) first */
     if (res == MVR_OK)
         res = mvr_renderer_draw_frame(r, scene, views, target, &d, path);
     if (r->timer.timestamps) {
@@ -851,6 +853,22 @@ bool mvr_renderer_get_pass_stats(const mvr_renderer *r, uint32_t index, mvr_pass
         return false;
     *out = r->pass_stats[index];
     return true;
+}
+
+size_t mvr_renderer_format_plan(const mvr_renderer *r, char *buf, size_t size)
+{
+    if (!r) {
+        if (buf && size)
+            buf[0] = '\0';
+        return 0;
+    }
+    if (r->plan.count == 0) { /* no render planned yet */
+        static const char none[] = "frame plan: none (no render yet)\n";
+        if (buf && size)
+            snprintf(buf, size, "%s", none);
+        return sizeof none - 1;
+    }
+    return mvr_frame_plan_format(&r->plan, buf, size);
 }
 
 mvr_result mvr_renderer_finish(mvr_renderer *r)

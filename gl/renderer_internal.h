@@ -6,6 +6,7 @@
 #include "batch_plan.h"
 #include "context_internal.h"
 #include "frame.h"
+#include "frame_plan.h"
 #include "program.h"
 #include "shadow_plan.h"
 #include "state_cache.h"
@@ -117,7 +118,7 @@ struct mvr_target {
     GLuint msaa_fbo, msaa_color, msaa_depth;
     /* multisampled multiview, where the GL has it: the GL resolves
      * (render to texture), or these arrays are resolved layer by layer */
-    enum { MVR_MSAA_MV_NONE = 0, MVR_MSAA_MV_ARRAY, MVR_MSAA_MV_RENDER_TO_TEXTURE } msaa_multiview;
+    mvr_msaa_multiview_mode msaa_multiview; /* (core/frame_plan.h) */
     GLuint msaa_array_color, msaa_array_depth;
     mvr_anti_aliasing anti_aliasing; /* resolved: NONE, MSAA or SUPERSAMPLE */
     /* HDR frames (a post pass): views draw into hdr_color (RGBA16F, or the
@@ -223,6 +224,14 @@ struct mvr_renderer {
      * consecutive, so culling does not cut instanced runs apart */
     uint8_t *compact_scratch;
     size_t compact_scratch_cap;
+    /* the frame plan (core/frame_plan.h) of the last render, and the
+     * executor's scratch, grown as needed: per chunk its compacted blocks'
+     * offset; per texture group whether the pass sampled it */
+    mvr_frame_plan plan;
+    GLintptr *chunk_compact;
+    uint32_t chunk_compact_cap;
+    uint8_t *groups_used;
+    uint32_t groups_used_cap;
     GLuint empty_vao;            /* for attributeless full-screen passes */
     mvr_shadow_maps shadows;
     GLuint nearest_sampler;      /* texel reads of depth (auto-exposure metering) */
@@ -307,12 +316,8 @@ void mvr_environment_release(mvr_renderer *r);
 /* The luminance of a white Lambertian surface, averaged over directions. */
 double mvr_environment_average_diffuse(const mvr_environment *env);
 
-/* A pass's views: consecutive layers sharing one viewport (passes.c
+/* A pass's views: mvr_view_chunk of core/frame_plan.h (the frame plan
  * splits the view set into these; a loop-path chunk is one view). */
-typedef struct mvr_view_chunk {
-    uint32_t base, count;
-    mvr_viewport viewport;
-} mvr_view_chunk;
 
 /* post.c: full-screen composite passes reading `source` (bound to the
  * composite unit, with the state such passes need): per chunk one

@@ -1066,6 +1066,15 @@ uint32_t mvr_renderer_view_culled(const mvr_renderer *renderer, uint32_t view);
 /* Stats of pass `index` of the last render (the first 256 passes); false past the end. */
 bool mvr_renderer_get_pass_stats(const mvr_renderer *renderer, uint32_t index, mvr_pass_stats *out);
 
+/* The frame plan of the last render as text (what `mvr render --plan`
+ * prints): a summary line, then one line per pass record in order (view-
+ * independent passes, each view pass with its sub-passes and resolve, the
+ * supersampling resolve and post), each with its views, whether it runs, is
+ * skipped or depends on the drawn data, and why. Writes at most size bytes,
+ * NUL-terminated when size > 0 (buf may be NULL when size is 0); returns the
+ * length of the whole text, as snprintf does. */
+size_t mvr_renderer_format_plan(const mvr_renderer *renderer, char *buf, size_t size);
+
 
 /* ------------------------------------------------------------------ framing
  *
