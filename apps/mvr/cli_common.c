@@ -22,6 +22,41 @@ void cli_logger(mvr_logger *logger, const char *command, bool verbose)
     logger->level = verbose ? MVR_LOG_DEBUG : MVR_LOG_WARNING;
 }
 
+enum { CTX_CONTEXT = CLI_ID_CONTEXT, CTX_API, CTX_DEVICE };
+
+const cli_option cli_context_options[] = {
+    {CLI_OPT_STRING, CTX_CONTEXT, "--context", NULL, "NAME", 0, 0, NULL,
+     "default | surfaceless | device | pbuffer | osmesa\n(default: surfaceless, then device, then pbuffer)", NULL, NULL,
+     NULL},
+    {CLI_OPT_CHOICE, CTX_API, "--api", NULL, "NAME", 0, 0, "gles|desktop",
+     "gles | desktop (default: gles on EGL, desktop on osmesa)", NULL, NULL, NULL},
+    {CLI_OPT_U32, CTX_DEVICE, "--device", NULL, "N", 1, 1024, NULL,
+     "with --context device: the N-th EGL device (1-based)", NULL, NULL, NULL},
+    {CLI_OPT_END, 0, NULL, NULL, NULL, 0, 0, NULL, NULL, NULL, NULL, NULL},
+};
+
+int cli_context_apply(const char *command, const cli_arg *arg, mvr_context_desc *desc)
+{
+    if (!arg->opt || arg->opt->id < CTX_CONTEXT || arg->opt->id > CTX_DEVICE)
+        return 0;
+    switch (arg->opt->id) {
+    case CTX_CONTEXT:
+        if (mvr_context_provider_from_name(arg->value, &desc->provider) != MVR_OK ||
+            desc->provider == MVR_CONTEXT_PROVIDER_EXTERNAL) {
+            fprintf(stderr, "%s: unknown context provider '%s' (default, surfaceless, device, "
+                            "pbuffer, osmesa)\n", command, arg->value);
+            return -1;
+        }
+        break;
+    case CTX_API:
+        desc->api = arg->choice == 0 ? MVR_GL_API_GLES : MVR_GL_API_DESKTOP;
+        break;
+    default:
+        desc->device_index = (int)arg->number;
+    }
+    return 1;
+}
+
 int cli_context_option(const char *command, int argc, char **argv, int *i, mvr_context_desc *desc)
 {
     const char *a = argv[*i];

@@ -5,6 +5,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "cli_options.h"
 #include "mvr/mvr.h"
 
 /* Logs warnings and errors (all levels with verbose) to stderr, prefixed with
@@ -16,6 +17,13 @@ void cli_logger(mvr_logger *logger, const char *command, bool verbose);
  * bad value (message printed). */
 int cli_context_option(const char *command, int argc, char **argv, int *i, mvr_context_desc *desc);
 
+/* --context, --api, --device as a table (ids CLI_ID_CONTEXT..), for
+ * cli_parser; cli_context_apply stores a parsed one into desc. Returns 1 if
+ * arg is one of them, 0 if not, -1 on a bad value (printed, prefixed with
+ * command, e.g. "mvr render"). */
+extern const cli_option cli_context_options[];
+int cli_context_apply(const char *command, const cli_arg *arg, mvr_context_desc *desc);
+
 /* Checks the combination; prints and returns false when it is not valid. */
 bool cli_context_check(const char *command, const mvr_context_desc *desc);
 
@@ -24,11 +32,5 @@ bool cli_parse_u32(const char *s, uint32_t lo, uint32_t hi, uint32_t *out);
 
 /* Creates path and its parents (mkdir -p); prints what failed. */
 bool cli_make_dirs(const char *command, const char *path);
-
-#define CLI_CONTEXT_HELP \
-    "  --context NAME      default | surfaceless | device | pbuffer | osmesa\n" \
-    "                      (default: surfaceless, then device, then pbuffer)\n" \
-    "  --api NAME          gles | desktop (default: gles on EGL, desktop on osmesa)\n" \
-    "  --device N          with --context device: the N-th EGL device (1-based)\n"
 
 #endif

@@ -47,18 +47,35 @@ static bool parse_uniform(const char *v, float rgb[3])
     return rgb[0] > 0.0f || rgb[1] > 0.0f || rgb[2] > 0.0f;
 }
 
-int cli_env_option(const char *command, int argc, char **argv, int *i, cli_env_options *o)
+enum { ENV_ENV = CLI_ID_ENV, ENV_INTENSITY, ENV_ROTATION, ENV_BACKGROUND, ENV_BLUR };
+
+const cli_option cli_env_option_table[] = {
+    {CLI_OPT_STRING, ENV_ENV, "--env", NULL, "E", 0, 0, NULL,
+     "image-based lighting: FILE (an equirectangular .hdr or .exr,\n"
+     "linear radiance) | neutral (the built-in studio) | uniform\n"
+     "(radiance 1 from everywhere; uniform:R,G,B for a colour) |\n"
+     "none (default: neutral for a glTF file; none for the demos,\n"
+     "closed rooms with their own lights)", NULL, NULL, NULL},
+    {CLI_OPT_STRING, ENV_INTENSITY, "--env-intensity", NULL, "X", 0, 0, NULL,
+     "multiplies the environment's radiance (> 0; default: 1)", NULL, NULL, NULL},
+    {CLI_OPT_STRING, ENV_ROTATION, "--env-rotation", NULL, "DEG", 0, 0, NULL,
+     "turns the environment about +Y (default: 0)", NULL, NULL, NULL},
+    {CLI_OPT_STRING, ENV_BACKGROUND, "--background", NULL, "B", 0, 0, NULL,
+     "color (--clear) | env (the environment) | blur (the\n"
+     "environment blurred) (default: color)", NULL, NULL, NULL},
+    {CLI_OPT_STRING, ENV_BLUR, "--background-blur", NULL, "R", 0, 0, NULL,
+     "the blurred background's roughness, 0..1 (0: sharp;\n"
+     "default: 0.5); implies --background blur", NULL, NULL, NULL},
+    {CLI_OPT_END, 0, NULL, NULL, NULL, 0, 0, NULL, NULL, NULL, NULL, NULL},
+};
+
+int cli_env_apply(const char *command, const cli_arg *arg, cli_env_options *o)
 {
-    const char *a = argv[*i];
-    if (strcmp(a, "--env") != 0 && strcmp(a, "--env-intensity") != 0 && strcmp(a, "--env-rotation") != 0 &&
-        strcmp(a, "--background") != 0 && strcmp(a, "--background-blur") != 0)
+    if (!arg->opt || arg->opt->id < ENV_ENV || arg->opt->id > ENV_BLUR)
         return 0;
-    const char *v = *i + 1 < argc ? argv[*i + 1] : NULL;
-    if (!v || strncmp(v, "--", 2) == 0) { /* "--env --out DIR": the value was forgotten */
-        fprintf(stderr, "%s: %s needs a value\n", command, a);
-        return -1;
-    }
-    if (strcmp(a, "--env") == 0) {
+    const int id = arg->opt->id;
+    const char *v = arg->value;
+    if (id == ENV_ENV) {
         if (strncmp(v, "uniform", 7) == 0 && (v[7] == '\0' || v[7] == ':')) {
             if (!parse_uniform(v, o->uniform)) {
                 fprintf(stderr, "%s: --env uniform:R,G,B takes three radiances >= 0, not all 0 (got '%s')\n",
@@ -70,20 +87,20 @@ int cli_env_option(const char *command, int argc, char **argv, int *i, cli_env_o
             return -1;
         }
         o->env = v;
-    } else if (strcmp(a, "--env-intensity") == 0) {
+    } else if (id == ENV_INTENSITY) {
         if (!parse_float(v, &o->intensity) || !(o->intensity > 0.0f)) {
             fprintf(stderr, "%s: --env-intensity takes a finite number > 0 (got '%s'; --env none turns the "
                             "environment off)\n", command, v);
             return -1;
         }
         o->intensity_set = true;
-    } else if (strcmp(a, "--env-rotation") == 0) {
+    } else if (id == ENV_ROTATION) {
         if (!parse_float(v, &o->rotation)) {
             fprintf(stderr, "%s: --env-rotation takes a finite angle in degrees (got '%s')\n", command, v);
             return -1;
         }
         o->rotation_set = true;
-    } else if (strcmp(a, "--background") == 0) {
+    } else if (id == ENV_BACKGROUND) {
         if (strcmp(v, "color") == 0)
             o->background = MVR_BACKGROUND_COLOR;
         else if (strcmp(v, "env") == 0)
@@ -102,7 +119,6 @@ int cli_env_option(const char *command, int argc, char **argv, int *i, cli_env_o
         }
         o->blur_set = true;
     }
-    *i += 1;
     return 1;
 }
 

@@ -6,6 +6,7 @@
 
 #include <stdbool.h>
 
+#include "cli_options.h"
 #include "mvr/mvr.h"
 
 typedef struct cli_env_options {
@@ -28,11 +29,12 @@ typedef struct cli_env_used {
     float intensity, rotation;
 } cli_env_used;
 
-/* Parses --env, --env-intensity, --env-rotation, --background or
- * --background-blur at argv[*i]. Returns 1 if consumed (advancing *i past
- * the value), 0 if not one of them, -1 on a bad value (message printed,
- * prefixed with command, e.g. "mvr render"). */
-int cli_env_option(const char *command, int argc, char **argv, int *i, cli_env_options *o);
+/* --env, --env-intensity, --env-rotation, --background and
+ * --background-blur as a table (ids CLI_ID_ENV..), for cli_parser;
+ * cli_env_apply stores a parsed one. Returns 1 if arg is one of them, 0 if
+ * not, -1 on a bad value (printed, prefixed with command, e.g. "mvr render"). */
+extern const cli_option cli_env_option_table[];
+int cli_env_apply(const char *command, const cli_arg *arg, cli_env_options *o);
 
 /* Checks the options together for a glTF file (scene_file) or a demo: an
  * intensity, rotation or environment background without an environment,
@@ -50,18 +52,5 @@ bool cli_env_check(const char *command, const cli_env_options *o, bool scene_fil
  * Prints what failed and returns an MVR_EXIT_ code. used is optional. */
 int cli_env_create(const char *command, const cli_env_options *o, bool scene_file, mvr_render_desc *desc,
                    mvr_environment **env, cli_env_used *used);
-
-#define CLI_ENV_HELP \
-    "  --env E             image-based lighting: FILE (an equirectangular .hdr or .exr,\n" \
-    "                      linear radiance) | neutral (the built-in studio) | uniform\n" \
-    "                      (radiance 1 from everywhere; uniform:R,G,B for a colour) |\n" \
-    "                      none (default: neutral for a glTF file; none for the demos,\n" \
-    "                      closed rooms with their own lights)\n" \
-    "  --env-intensity X   multiplies the environment's radiance (> 0; default: 1)\n" \
-    "  --env-rotation DEG  turns the environment about +Y (default: 0)\n" \
-    "  --background B      color (--clear) | env (the environment) | blur (the\n" \
-    "                      environment blurred) (default: color)\n" \
-    "  --background-blur R the blurred background's roughness, 0..1 (0: sharp;\n" \
-    "                      default: 0.5); implies --background blur\n"
 
 #endif

@@ -59,10 +59,40 @@ void cli_render_desc_defaults(mvr_render_desc *desc)
     memcpy(desc->clear_color, sky, sizeof sky);
 }
 
+uint32_t cli_demo_max_views(const char *demo, uint32_t width, uint32_t height)
+{
+    if (strcmp(demo, "cube") == 0 || strcmp(demo, "ring") == 0)
+        return 1024;
+    if (strcmp(demo, "stereo") != 0 && strcmp(demo, "city") != 0)
+        return 0;
+    /* core/demo.c: eyes 0.064 apart, each frustum turned toward the centre
+     * by 0.9 rad per metre of offset; the library takes frustum angles
+     * below 1.5707 rad. The outer eye of n is (n - 1) / 2 eyes out. */
+    double aspect = width && height ? (double)width / (double)height : 1.0;
+    double half_h = atan(tan(0.45) * aspect);
+    uint32_t n = 1;
+    while (n < 1024 && half_h + (double)n * 0.5 * 0.064 * 0.9 < 1.5707)
+        ++n;
+    return n;
+}
+
+bool cli_check_demo_views(const char *command, const char *demo, uint32_t views, uint32_t width, uint32_t height)
+{
+    uint32_t most = demo ? cli_demo_max_views(demo, width, height) : 0;
+    if (!most || views <= most)
+        return true;
+    fprintf(stderr, "%s: --demo %s frames at most %u views at %ux%u (eyes 64 mm apart, the outer frusta turned "
+                    "toward the centre: more would turn them past 90 degrees); --demo ring and cube take up to "
+                    "1024\n", command, demo, most, width, height);
+    return false;
+}
+
 int cli_load_scene(const char *command, const cli_scene_options *o, mvr_scene **scene, mvr_view_set **views)
 {
     if (o->scene_file)
         return load_scene_file(command, o, scene, views);
+    if (!cli_check_demo_views(command, o->demo, o->views, o->width, o->height))
+        return MVR_EXIT_USAGE;
     mvr_error err;
     mvr_demo_desc dd = {o->views, o->width, o->height, o->logger};
     if (mvr_demo_create(o->demo, &dd, scene, views, &err) != MVR_OK) {

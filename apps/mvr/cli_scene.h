@@ -31,6 +31,17 @@ typedef struct cli_scene_options {
  * they show a file alike. */
 int cli_load_scene(const char *command, const cli_scene_options *o, mvr_scene **scene, mvr_view_set **views);
 
+/* The most views a demo frames at width x height (layer size; 0 = square):
+ * stereo and city turn their outer frusta toward the centre, 0.9 rad per
+ * metre of offset, eyes 64 mm apart, and a frustum edge must stay inside
+ * 90 degrees; cube (its six faces, repeated) and ring take any count up to
+ * 1024. 0 for an unknown demo. */
+uint32_t cli_demo_max_views(const char *demo, uint32_t width, uint32_t height);
+
+/* Whether views (0: the demo's own) is at most cli_demo_max_views; prints
+ * the limit and why (prefixed with command) when not. */
+bool cli_check_demo_views(const char *command, const char *demo, uint32_t views, uint32_t width, uint32_t height);
+
 /* The render desc mvr render and mvr-viewer start from: an opaque dark sky
  * as the clear colour, exposure 1; everything else the library's default. */
 void cli_render_desc_defaults(mvr_render_desc *desc);

@@ -16,6 +16,7 @@
 #include "bench.h"
 #include "cli_common.h"
 #include "cli_env.h"
+#include "cli_options.h"
 #include "cli_scene.h"
 #include "commands.h"
 #include "mvr/mvr_image.h"
@@ -32,6 +33,72 @@
 #endif
 
 
+enum {
+    B_DEMO = 1, B_VIEWS, B_SIZE, B_FRAMES, B_WARMUP, B_ROUNDS, B_MATRIX, B_OUT, B_CALLGRIND, B_QUIET, B_VERBOSE,
+    B_ONLY, B_ENV_AXES, B_SPECULAR_SIZES, B_SPECULAR_SAMPLES, B_REFERENCE_SAMPLES
+};
+
+#define END {CLI_OPT_END, 0, NULL, NULL, NULL, 0, 0, NULL, NULL, NULL, NULL, NULL}
+#define ENV_AXES_WHY "--env-axes times the prefilter, not frames"
+
+/* name, value and range, help, conflicts; the order is --help's */
+static const cli_option bench_table[] = {
+    {CLI_OPT_STRING, B_DEMO, "--demo", NULL, "NAME", 0, 0, NULL, "stereo | cube | city | ring (default: city)", NULL,
+     NULL, NULL},
+    {CLI_OPT_U32, B_VIEWS, "--views", NULL, "N", 1, 64, NULL,
+     "views (default: the demo's own), 1..64; --demo stereo and city\n"
+     "frame at most 39 at 256x256 (fewer on wider layers)", NULL, NULL, NULL},
+    {CLI_OPT_STRING, B_SIZE, "--size", NULL, "WxH", 0, 0, NULL, "layer size (default: 256x256)", NULL, NULL, NULL},
+    {CLI_OPT_U32, B_FRAMES, "--frames", NULL, "F", 1, 1000, NULL, "measured frames per configuration (default: 10)",
+     NULL, NULL, NULL},
+    {CLI_OPT_U32, B_WARMUP, "--warmup", NULL, "W", 0, 1000, NULL, "frames before measuring (default: 2)", NULL, NULL,
+     NULL},
+    {CLI_OPT_U32, B_ROUNDS, "--rounds", NULL, "R", 1, 100, NULL,
+     "take the frames in R rounds over all configurations\n"
+     "(default: 5, at most F)", NULL, NULL, NULL},
+    {CLI_OPT_CHOICE, B_MATRIX, "--matrix", NULL, "M", 0, 0, "quick|full", "quick | full (default: quick)", NULL, NULL,
+     NULL},
+    {CLI_OPT_STRING, B_OUT, "--out", NULL, "DIR", 0, 0, NULL, "output directory (default: bench-out)", NULL, NULL,
+     NULL},
+    {CLI_OPT_FLAG, B_CALLGRIND, "--callgrind", NULL, NULL, 0, 0, NULL,
+     "also count the submitting thread's instructions per frame\n"
+     "under valgrind --tool=callgrind (repeatable to < 1% on a\n"
+     "shared machine, unlike wall time; slow)", NULL, NULL, NULL},
+    {CLI_OPT_FLAG, B_QUIET, "--quiet", NULL, NULL, 0, 0, NULL, "no progress bar", NULL, NULL, NULL},
+    {CLI_OPT_FLAG, B_VERBOSE, "--verbose", NULL, NULL, 0, 0, NULL, "log what the library does to stderr", NULL, NULL,
+     NULL},
+    /* internal: --callgrind runs each configuration alone in a child */
+    {CLI_OPT_U32, B_ONLY, "--only", NULL, "K", 0, 1000, NULL, NULL, NULL, NULL, NULL},
+    {CLI_OPT_TEXT, 0, NULL, NULL, NULL, 0, 0, NULL, "\nenvironment prefilter axes:\n", NULL, NULL, NULL},
+    {CLI_OPT_FLAG, B_ENV_AXES, "--env-axes", NULL, NULL, 0, 0, NULL,
+     "instead of the matrix above: the image-based lighting's\n"
+     "prefilter, specular map size x GGX samples per texel\n"
+     "(mvr_environment_desc.specular_size, .specular_samples),\n"
+     "on a grid of spheres of 8 roughnesses, dielectric and\n"
+     "metal, under --env (default: neutral); or SCENE.gltf, or\n"
+     "--demo NAME with --env. Each is timed by its prefilter\n"
+     "(env_prefilter_ms of the first frame with a fresh\n"
+     "environment: median of --frames runs, default 5, after\n"
+     "--warmup untimed ones, default 1) and compared, over the\n"
+     "pixels the scene covers, neither side anti-aliased, with\n"
+     "the reference (the environment integrated per pixel, loop\n"
+     "path) and with the converged maps (the largest size, 4096\n"
+     "samples: the prefilter's own error). Marks the one with the\n"
+     "library default's pixels. Writes results.csv, results.json,\n"
+     "plot_env.png, plot_env.svg, reference.png,\n"
+     "worst_diff_x8_<configuration>.png", NULL, "--matrix --callgrind", ENV_AXES_WHY},
+    {CLI_OPT_STRING, B_SPECULAR_SIZES, "--specular-sizes", NULL, "L", 0, 0, NULL,
+     "face sizes, powers of two 16..1024 (default: 32,64,128,256)", NULL, NULL, NULL},
+    {CLI_OPT_STRING, B_SPECULAR_SAMPLES, "--specular-samples", NULL, "L", 0, 0, NULL,
+     "samples per texel, 1..4096 (default: 16,64,256)", NULL, NULL, NULL},
+    {CLI_OPT_U32, B_REFERENCE_SAMPLES, "--reference-samples", NULL, "N", 1, 65536, NULL,
+     "samples per lobe of the reference (default: 1024)", NULL, NULL, NULL},
+    END,
+};
+
+static const cli_option *const bench_tables[] = {bench_table, cli_env_option_table, cli_context_options,
+                                                 cli_help_option, NULL};
+
 static void bench_usage(FILE *out)
 {
     fprintf(out,
@@ -47,44 +114,8 @@ static void bench_usage(FILE *out)
             "Pareto front counts only differences beyond that noise), reference.png and\n"
             "worst_diff_x8_<configuration>.png (|image - reference| x 8) into --out.\n"
             "\n"
-            "options:\n"
-            "  --demo NAME         stereo | cube | city | ring (default: city)\n"
-            "  --views N           views (default: the demo's own)\n"
-            "  --size WxH          layer size (default: 256x256)\n"
-            "  --frames F          measured frames per configuration (default: 10)\n"
-            "  --warmup W          frames before measuring (default: 2)\n"
-            "  --rounds R          take the frames in R rounds over all configurations\n"
-            "                      (default: 5, at most F)\n"
-            "  --matrix M          quick | full (default: quick)\n"
-            "  --out DIR           output directory (default: bench-out)\n"
-            "  --callgrind         also count the submitting thread's instructions per frame\n"
-            "                      under valgrind --tool=callgrind (repeatable to < 1%% on a\n"
-            "                      shared machine, unlike wall time; slow)\n"
-            "  --quiet             no progress bar\n"
-            "\n");
-    fprintf(out,
-            "environment prefilter axes:\n"
-            "  --env-axes          instead of the matrix above: the image-based lighting's\n"
-            "                      prefilter, specular map size x GGX samples per texel\n"
-            "                      (mvr_environment_desc.specular_size, .specular_samples),\n"
-            "                      on a grid of spheres of 8 roughnesses, dielectric and\n"
-            "                      metal, under --env (default: neutral); or SCENE.gltf, or\n"
-            "                      --demo NAME with --env. Each is timed by its prefilter\n"
-            "                      (env_prefilter_ms of the first frame with a fresh\n"
-            "                      environment: median of --frames runs, default 5, after\n"
-            "                      --warmup untimed ones, default 1) and compared, over the\n"
-            "                      pixels the scene covers, neither side anti-aliased, with\n"
-            "                      the reference (the environment integrated per pixel, loop\n"
-            "                      path) and with the converged maps (the largest size, 4096\n"
-            "                      samples: the prefilter's own error). Marks the one with the\n"
-            "                      library default's pixels. Writes results.csv, results.json,\n"
-            "                      plot_env.png, plot_env.svg, reference.png,\n"
-            "                      worst_diff_x8_<configuration>.png\n"
-            "  --specular-sizes L  face sizes, powers of two 16..1024 (default: 32,64,128,256)\n"
-            "  --specular-samples L samples per texel, 1..4096 (default: 16,64,256)\n"
-            "  --reference-samples N samples per lobe of the reference (default: 1024)\n"
-            CLI_ENV_HELP CLI_CONTEXT_HELP
-            "  -h, --help          this text\n");
+            "options:\n");
+    cli_print_options(out, bench_tables, 20);
 }
 
 /* "32,64,128": up to 8 distinct values in lo..hi (powers of two if pow2),
@@ -121,98 +152,80 @@ static int parse(int argc, char **argv, bench_options *o)
     o->only = -1;
     o->reference_samples = 1024;
     bool verbose = false;
-    for (int i = 1; i < argc; ++i) {
-        const char *a = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int c = cli_context_option("mvr bench", argc, argv, &i, &o->context);
-        if (c < 0)
-            return MVR_EXIT_USAGE;
-        if (c > 0)
+    cli_parser p;
+    cli_parser_init(&p, "mvr bench", bench_tables, argc, argv);
+    cli_arg arg;
+    int c;
+    while ((c = cli_next(&p, &arg)) > 0) {
+        if (!arg.opt) {
+            if (o->scene.scene_file) {
+                fprintf(stderr, "mvr bench: one SCENE file at a time (got %s and %s)\n", o->scene.scene_file,
+                        arg.value);
+                return MVR_EXIT_USAGE;
+            }
+            o->scene.scene_file = arg.value;
             continue;
-        c = cli_env_option("mvr bench", argc, argv, &i, &o->env);
-        if (c < 0)
-            return MVR_EXIT_USAGE;
-        if (c > 0) {
+        }
+        const char *a = arg.opt->name, *v = arg.value;
+        int done = cli_context_apply("mvr bench", &arg, &o->context);
+        if (done == 0 && (done = cli_env_apply("mvr bench", &arg, &o->env)) > 0)
             o->env_option = a;
-            continue;
-        }
-        if (strcmp(a, "--env-axes") == 0) {
-            o->env_axes = true;
-            continue;
-        }
-        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
-            bench_usage(stdout);
-            return -1;
-        }
-        if (strcmp(a, "--quiet") == 0) {
-            o->quiet = true;
-            continue;
-        }
-        if (strcmp(a, "--verbose") == 0) {
-            verbose = true;
-            continue;
-        }
-        if (strcmp(a, "--callgrind") == 0) {
-            o->callgrind = true;
-            continue;
-        }
-        if (a[0] != '-') {
-            o->scene.scene_file = a;
-            continue;
-        }
-        if (!v) {
-            fprintf(stderr, "mvr bench: %s needs a value\n", a);
+        if (done < 0)
             return MVR_EXIT_USAGE;
-        }
+        if (done > 0)
+            continue;
         bool ok = true;
-        if (strcmp(a, "--demo") == 0) {
+        switch (arg.opt->id) {
+        case CLI_ID_HELP: bench_usage(stdout); return -1;
+        case B_ENV_AXES: o->env_axes = true; break;
+        case B_QUIET: o->quiet = true; break;
+        case B_VERBOSE: verbose = true; break;
+        case B_CALLGRIND: o->callgrind = true; break;
+        case B_DEMO:
             o->scene.demo = v;
             o->demo_set = true;
-        } else if (strcmp(a, "--views") == 0)
-            ok = cli_parse_u32(v, 1, 64, &o->scene.views);
-        else if (strcmp(a, "--frames") == 0) {
-            ok = cli_parse_u32(v, 1, 1000, &o->frames);
+            break;
+        case B_VIEWS: o->scene.views = arg.number; break;
+        case B_FRAMES:
+            o->frames = arg.number;
             o->frames_set = true;
-        } else if (strcmp(a, "--warmup") == 0) {
-            ok = cli_parse_u32(v, 0, 1000, &o->warmup);
+            break;
+        case B_WARMUP:
+            o->warmup = arg.number;
             o->warmup_set = true;
-        } else if (strcmp(a, "--rounds") == 0) {
-            ok = cli_parse_u32(v, 1, 100, &o->rounds);
-        } else if (strcmp(a, "--specular-sizes") == 0) {
+            break;
+        case B_ROUNDS: o->rounds = arg.number; break;
+        case B_SPECULAR_SIZES:
             ok = parse_list(v, 16, 1024, true, o->sizes, &o->n_sizes);
             o->env_option = a;
-        } else if (strcmp(a, "--specular-samples") == 0) {
+            break;
+        case B_SPECULAR_SAMPLES:
             ok = parse_list(v, 1, 4096, false, o->samples, &o->n_samples);
             o->env_option = a;
-        } else if (strcmp(a, "--reference-samples") == 0) {
-            ok = cli_parse_u32(v, 1, 65536, &o->reference_samples);
+            break;
+        case B_REFERENCE_SAMPLES:
+            o->reference_samples = arg.number;
             o->env_option = a;
-        } else if (strcmp(a, "--out") == 0)
-            o->out_dir = v;
-        else if (strcmp(a, "--only") == 0) {
-            uint32_t k = 0;
-            ok = cli_parse_u32(v, 0, 1000, &k);
-            o->only = (int)k;
-        } else if (strcmp(a, "--matrix") == 0) {
+            break;
+        case B_OUT: o->out_dir = v; break;
+        case B_ONLY: o->only = (int)arg.number; break;
+        case B_MATRIX:
             o->matrix_set = true;
-            ok = strcmp(v, "quick") == 0 || strcmp(v, "full") == 0;
-            o->full = strcmp(v, "full") == 0;
-        } else if (strcmp(a, "--size") == 0) {
-            unsigned w = 0, h = 0;
-            char tail = 0;
-            ok = sscanf(v, "%ux%u%c", &w, &h, &tail) == 2 && w >= 1 && h >= 1 && w <= 4096 && h <= 4096;
-            o->scene.width = w;
-            o->scene.height = h;
-        } else {
-            fprintf(stderr, "mvr bench: unknown option %s (see mvr bench --help)\n", a);
-            return MVR_EXIT_USAGE;
+            o->full = arg.choice == 1;
+            break;
+        case B_SIZE: ok = cli_parse_size(v, 1, 4096, &o->scene.width, &o->scene.height); break;
+        default: ok = false;
         }
         if (!ok) {
             fprintf(stderr, "mvr bench: bad value '%s' for %s\n", v, a);
             return MVR_EXIT_USAGE;
         }
-        ++i;
     }
+    if (c < 0)
+        return MVR_EXIT_USAGE;
+    if (!o->scene.scene_file && !cli_check_demo_views("mvr bench", o->scene.demo, o->scene.views, o->scene.width,
+                                                      o->scene.height))
+        return MVR_EXIT_USAGE;
     if (!cli_context_check("mvr bench", &o->context))
         return MVR_EXIT_USAGE;
     if (!o->env_axes) {
@@ -222,11 +235,6 @@ static int parse(int argc, char **argv, bench_options *o)
             return MVR_EXIT_USAGE;
         }
     } else {
-        if (o->callgrind || o->matrix_set) {
-            fprintf(stderr, "mvr bench: --env-axes times the prefilter, not frames: %s is for the frame matrix\n",
-                    o->callgrind ? "--callgrind" : "--matrix");
-            return MVR_EXIT_USAGE;
-        }
         if (!cli_env_check("mvr bench", &o->env, !o->demo_set))
             return MVR_EXIT_USAGE;
         if (o->env.env ? strcmp(o->env.env, "none") == 0 : o->demo_set && !o->scene.scene_file) {

@@ -24,7 +24,10 @@ static void info_usage(FILE *out)
             "Creates a GL context through a provider and prints its version, the\n"
             "extensions and limits mvr uses, and the known driver bugs it detected.\n"
             "\n"
-            "options:\n" CLI_CONTEXT_HELP
+            "options:\n");
+    const cli_option *const context[] = {cli_context_options, NULL};
+    cli_print_options(out, context, 20);
+    fprintf(out,
             "  --json              machine-readable output on stdout\n"
             "  --debug             debug context; driver messages go to stderr\n"
             "  --require-multiview exit with status 3 unless GL_OVR_multiview2 is usable\n"

@@ -6,8 +6,10 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "cli_common.h"
+#include "cli_options.h"
 #include "cli_env.h"
 #include "cli_scene.h"
 #include "commands.h"
@@ -47,6 +49,126 @@ typedef struct render_options {
     uint64_t memory_budget;      /* glTF load budget in bytes; 0 = the loader's default */
 } render_options;
 
+enum {
+    R_DEMO = 1, R_VIEWS, R_CAMERA, R_LAYOUT, R_IPD, R_SCENE, R_SIZE, R_OUT, R_VIEW_PATH, R_MATERIAL_PATH, R_DEPTH,
+    R_TRANSPARENCY, R_SUPERSAMPLE, R_MSAA, R_AA, R_REFERENCE, R_FORMAT, R_TARGET_FORMAT, R_SHADOWS, R_SHADOW_SIZE,
+    R_EXPOSURE, R_EXPOSURE_SCALE, R_CAMERA_EXPOSURE, R_EXPOSURE_PER_VIEW, R_DITHER, R_CLEAR, R_TONE_MAP, R_FRAMES,
+    R_STATS, R_STRICT, R_MEMORY_BUDGET, R_PROGRAM_CACHE, R_QUIET
+};
+
+#define EXPOSURE_GROUP "the exposure"
+#define AA_GROUP "the anti-aliasing"
+#define REFERENCE_WHY "--reference sets the loop path, per-view transparency and 4x4 supersampling itself"
+#define END {CLI_OPT_END, 0, NULL, NULL, NULL, 0, 0, NULL, NULL, NULL, NULL, NULL}
+
+/* name, value and range, help, conflicts; the order is --help's */
+static const cli_option render_table[] = {
+    {CLI_OPT_STRING, R_DEMO, "--demo", NULL, "NAME", 0, 0, NULL, "stereo | cube | city | ring (default: stereo)",
+     NULL, NULL, NULL},
+    {CLI_OPT_U32, R_VIEWS, "--views", NULL, "N", 1, 1024, NULL,
+     "number of views (default: the demo's or layout's own), 1..1024;\n"
+     "--demo stereo and city frame at most 35 at 640x480 (their\n"
+     "outer frusta turn toward the centre; fewer on wider layers,\n"
+     "the error says how many); cube repeats its six faces", NULL, NULL, NULL},
+    {CLI_OPT_U32, R_CAMERA, "--camera", NULL, "K", 0, 1u << 20, NULL,
+     "SCENE: view from the file's K-th camera node (0-based);\n"
+     "N views are eyes --ipd apart along its right axis\n"
+     "(default: the first camera when the file has one)", NULL, "--layout",
+     "--layout frames the scene without a camera"},
+    {CLI_OPT_CHOICE, R_LAYOUT, "--layout", NULL, "L", 0, 0, "stereo|cube|ring|grid",
+     "SCENE without --camera: stereo | cube | ring | grid around\n"
+     "the scene's bounding sphere (default: stereo)", NULL, NULL, NULL},
+    {CLI_OPT_STRING, R_IPD, "--ipd", NULL, "M", 0, 0, NULL,
+     "distance between stereo eyes in scene units (default: 1/30 of\n"
+     "the distance to the scene: 0.064 at 1.9)", NULL, NULL, NULL},
+    {CLI_OPT_U32, R_SCENE, "--scene", NULL, "K", 0, 1u << 20, NULL,
+     "SCENE: the file's K-th scene (0-based; default: its default)", NULL, NULL, NULL},
+    {CLI_OPT_STRING, R_SIZE, "--size", NULL, "WxH", 0, 0, NULL, "layer size in pixels (default: 640x480)", NULL,
+     NULL, NULL},
+    {CLI_OPT_STRING, R_OUT, "--out", NULL, "DIR", 0, 0, NULL, "output directory (default: out), created if missing",
+     NULL, NULL, NULL},
+    {CLI_OPT_CHOICE, R_VIEW_PATH, "--view-path", NULL, "P", 0, 0, "auto|multiview|loop",
+     "auto | multiview | loop (default: auto; MVR_VIEW_PATH wins)", NULL, NULL, NULL},
+    {CLI_OPT_CHOICE, R_MATERIAL_PATH, "--material-path", NULL, "P", 0, 0, "auto|arrays|per_material|per_draw",
+     "auto | arrays | per_material | per_draw (default: auto = arrays;\n"
+     "MVR_MATERIAL_PATH wins)", NULL, NULL, NULL},
+    {CLI_OPT_CHOICE, R_DEPTH, "--depth", NULL, "D", 0, 0, "auto|reversed_z|standard",
+     "auto | reversed_z | standard (default: auto = reversed_z\n"
+     "where GL_EXT_clip_control exists; MVR_DEPTH wins)", NULL, NULL, NULL},
+    {CLI_OPT_CHOICE, R_TRANSPARENCY, "--transparency", NULL, "T", 0, 0, "auto|centroid|per_view",
+     "auto | centroid | per_view: blended draws in one order for\n"
+     "all views of a multiview pass (from their centroid), or each\n"
+     "view's own (its blend pass apart); auto: own order only where\n"
+     "the views disagree (default: auto)", NULL, NULL, NULL},
+    {CLI_OPT_U32, R_SUPERSAMPLE, "--supersample", NULL, "N", 1, 4, NULL,
+     "render N x N samples per pixel into a float target and\n"
+     "average them (1..4; default: 1)", AA_GROUP, NULL, NULL},
+    {CLI_OPT_U32, R_MSAA, "--msaa", NULL, "N", 0, 64, NULL,
+     "N samples per pixel (multisampling; resolves view by view,\n"
+     "so it takes the loop path) (default: none)", AA_GROUP, NULL, NULL},
+    {CLI_OPT_CHOICE, R_AA, "--aa", NULL, "A", 0, 0, "none|msaa|supersample|auto",
+     "none | msaa | supersample | auto: the library's anti-aliasing\n"
+     "(msaa 4x, supersample 2x2 on the GPU; auto: 4x MSAA, in the\n"
+     "multiview passes where the GL has multisampled multiview)", AA_GROUP, NULL, NULL},
+    {CLI_OPT_FLAG, R_REFERENCE, "--reference", NULL, NULL, 0, 0, NULL,
+     "ground truth, slow: --view-path loop --transparency per_view\n"
+     "--supersample 4, and the environment integrated per pixel\n"
+     "(1024 samples per lobe) instead of its prefiltered maps", NULL,
+     "--view-path --transparency --supersample --msaa --aa", REFERENCE_WHY},
+    {CLI_OPT_CHOICE, R_FORMAT, "--format", NULL, "F", 0, 0, "png|exr",
+     "png (8-bit sRGB) | exr (half float, linear) (default: png)", NULL, NULL, NULL},
+    {CLI_OPT_CHOICE, R_TARGET_FORMAT, "--target-format", NULL, "F", 0, 0, "srgb8|rgba8|rgba16f",
+     "srgb8 | rgba8 | rgba16f (default: srgb8; rgba16f for exr)", NULL, NULL, NULL},
+    {CLI_OPT_CHOICE, R_SHADOWS, "--shadows", NULL, "S", 0, 0, "default|all|off",
+     "default | all | off: shadow maps for the lights that ask\n"
+     "(glTF has no such flag, so none), for every directional\n"
+     "and spot light, or none (default: default)", NULL, NULL, NULL},
+    {CLI_OPT_U32, R_SHADOW_SIZE, "--shadow-size", NULL, "N", 16, 16384, NULL,
+     "shadow map texels per side (default: 1024)", NULL, NULL, NULL},
+    {CLI_OPT_STRING, R_EXPOSURE, "--exposure", NULL, "E", 0, 0, NULL,
+     "auto | an EV100 (physical camera exposure; default: auto\n"
+     "when the lights are in physical units, e.g. a sun of\n"
+     "thousands of lux, else a linear 1)", EXPOSURE_GROUP, NULL, NULL},
+    {CLI_OPT_STRING, R_EXPOSURE_SCALE, "--exposure-scale", NULL, "X", 0, 0, NULL,
+     "linear exposure multiplier instead (default: 1)", EXPOSURE_GROUP, NULL, NULL},
+    {CLI_OPT_STRING, R_CAMERA_EXPOSURE, "--camera-exposure", NULL, "N,T,ISO", 0, 0, NULL,
+     "physical exposure of a camera: f-number,\n"
+     "shutter seconds, ISO (e.g. 16,0.008,100)", EXPOSURE_GROUP, NULL, NULL},
+    {CLI_OPT_FLAG, R_EXPOSURE_PER_VIEW, "--exposure-per-view", NULL, NULL, 0, 0, NULL,
+     "auto-exposure per view (default: one for all views)", NULL, "--exposure-scale --camera-exposure",
+     "--exposure-per-view is for auto exposure"},
+    {CLI_OPT_FLAG, R_DITHER, "--dither", NULL, NULL, 0, 0, NULL, "+-1 step of noise before 8-bit storage (default: off)",
+     NULL, NULL, NULL},
+    {CLI_OPT_STRING, R_CLEAR, "--clear", NULL, "R,G,B[,A]", 0, 0, NULL, "linear clear color (default: a dark opaque sky)",
+     NULL, NULL, NULL},
+    {CLI_OPT_CHOICE, R_TONE_MAP, "--tone-map", NULL, "T", 0, 0, "none|aces|pbr-neutral",
+     "none | aces | pbr-neutral (default: pbr-neutral with auto\n"
+     "exposure, none otherwise)", NULL, NULL, NULL},
+    END,
+};
+
+static const cli_option render_table_tail[] = {
+    {CLI_OPT_U32, R_FRAMES, "--frames", NULL, "N", 1, 100000, NULL,
+     "render N frames (the last is written; default: 1)", NULL, NULL, NULL},
+    {CLI_OPT_STRING, R_STATS, "--stats", NULL, "FILE.json", 0, 0, NULL, "write the last frame's stats as JSON", NULL,
+     NULL, NULL},
+    {CLI_OPT_FLAG, R_STRICT, "--strict", NULL, NULL, 0, 0, NULL,
+     "a glTF image that is missing or cannot be decoded fails the\n"
+     "load (default: its textures take their defaults, warned)", NULL, NULL, NULL},
+    {CLI_OPT_U32, R_MEMORY_BUDGET, "--memory-budget", NULL, "MIB", 1, 1u << 20, NULL,
+     "most memory a glTF load may hold (default: 2048)", NULL, NULL, NULL},
+    {CLI_OPT_STRING, R_PROGRAM_CACHE, "--program-cache", NULL, "D", 0, 0, NULL,
+     "program binaries in D, so a later run compiles no shader;\n"
+     "off disables it (default: $XDG_CACHE_HOME/mvr/programs or\n"
+     "~/.cache/mvr/programs); D is created if missing and must be\n"
+     "a directory you can write to", NULL, NULL, NULL},
+    {CLI_OPT_FLAG, R_QUIET, "--quiet", NULL, NULL, 0, 0, NULL, "print only errors", NULL, NULL, NULL},
+    END,
+};
+
+static const cli_option *const render_tables[] = {render_table, cli_env_option_table, render_table_tail,
+                                                  cli_context_options, cli_help_option, NULL};
+
 static void render_usage(FILE *out)
 {
     fprintf(out,
@@ -55,69 +177,126 @@ static void render_usage(FILE *out)
             "Renders a scene into N views headless and writes one image per view\n"
             "(view_00.png, ...) and a contact sheet (PNG) of all views side by side.\n"
             "\n"
-            "options:\n"
-            "  --demo NAME         stereo | cube | city | ring (default: stereo)\n"
-            "  --views N           number of views (default: the demo's or layout's own)\n"
-            "  --camera K          SCENE: view from the file's K-th camera node (0-based);\n"
-            "                      N views are eyes --ipd apart along its right axis\n"
-            "                      (default: the first camera when the file has one)\n"
-            "  --layout L          SCENE without --camera: stereo | cube | ring | grid around\n"
-            "                      the scene's bounding sphere (default: stereo)\n"
-            "  --ipd M             distance between stereo eyes in scene units (default: 1/30 of\n"
-            "                      the distance to the scene: 0.064 at 1.9)\n"
-            "  --scene K           SCENE: the file's K-th scene (0-based; default: its default)\n"
-            "  --size WxH          layer size in pixels (default: 640x480)\n"
-            "  --out DIR           output directory (default: out), created if missing\n"
-            "  --view-path P       auto | multiview | loop (default: auto; MVR_VIEW_PATH wins)\n"
-            "  --material-path P   auto | arrays | per_material | per_draw (default: auto = arrays;\n"
-            "                      MVR_MATERIAL_PATH wins)\n"
-            "  --depth D           auto | reversed_z | standard (default: auto = reversed_z\n"
-            "                      where GL_EXT_clip_control exists; MVR_DEPTH wins)\n"
-            "  --transparency T    auto | centroid | per_view: blended draws in one order for\n"
-            "                      all views of a multiview pass (from their centroid), or each\n"
-            "                      view's own (its blend pass apart); auto: own order only where\n"
-            "                      the views disagree (default: auto)\n"
-            "  --supersample N     render N x N samples per pixel into a float target and\n"
-            "                      average them (1..4; default: 1)\n"
-            "  --msaa N            N samples per pixel (multisampling; resolves view by view,\n"
-            "                      so it takes the loop path) (default: none)\n"
-            "  --aa A              none | msaa | supersample | auto: the library's anti-aliasing\n"
-            "                      (msaa 4x, supersample 2x2 on the GPU; auto: 4x MSAA, in the\n"
-            "                      multiview passes where the GL has multisampled multiview)\n"
-            "  --reference         ground truth, slow: --view-path loop --transparency per_view\n"
-            "                      --supersample 4, and the environment integrated per pixel\n"
-            "                      (1024 samples per lobe) instead of its prefiltered maps\n"
-            "  --format F          png (8-bit sRGB) | exr (half float, linear) (default: png)\n"
-            "  --target-format F   srgb8 | rgba8 | rgba16f (default: srgb8; rgba16f for exr)\n"
-            "  --shadows S         default | all | off: shadow maps for the lights that ask\n"
-            "                      (glTF has no such flag, so none), for every directional\n"
-            "                      and spot light, or none (default: default)\n"
-            "  --shadow-size N     shadow map texels per side (default: 1024)\n"
-            );
-    /* two strings: C99 promises 4095 characters in one literal */
-    fprintf(out,
-            "  --exposure E        auto | an EV100 (physical camera exposure; default: auto\n"
-            "                      when the lights are in physical units, e.g. a sun of\n"
-            "                      thousands of lux, else a linear 1)\n"
-            "  --exposure-scale X  linear exposure multiplier instead (default: 1)\n"
-            "  --camera-exposure N,T,ISO  physical exposure of a camera: f-number,\n"
-            "                      shutter seconds, ISO (e.g. 16,0.008,100)\n"
-            "  --exposure-per-view auto-exposure per view (default: one for all views)\n"
-            "  --dither            +-1 step of noise before 8-bit storage (default: off)\n"
-            "  --clear R,G,B[,A]   linear clear color (default: a dark opaque sky)\n"
-            "  --tone-map T        none | aces | pbr-neutral (default: pbr-neutral with auto\n"
-            "                      exposure, none otherwise)\n"
-            CLI_ENV_HELP
-            "  --frames N          render N frames (the last is written; default: 1)\n"
-            "  --stats FILE.json   write the last frame's stats as JSON\n"
-            "  --strict            a glTF image that is missing or cannot be decoded fails the\n"
-            "                      load (default: its textures take their defaults, warned)\n"
-            "  --memory-budget MIB most memory a glTF load may hold (default: 2048)\n"
-            "  --program-cache D   program binaries in D, so a later run compiles no shader;\n"
-            "                      off disables it (default: $XDG_CACHE_HOME/mvr/programs or\n"
-            "                      ~/.cache/mvr/programs)\n"
-            "  --quiet             print only errors\n" CLI_CONTEXT_HELP
-            "  -h, --help          this text\n");
+            "options:\n");
+    cli_print_options(out, render_tables, 20);
+}
+
+/* A finite number, the whole string. */
+static bool parse_double(const char *v, double *out)
+{
+    char *end = NULL;
+    *out = strtod(v, &end);
+    return end != v && end && !*end && isfinite(*out);
+}
+
+/* One option's value into the options (the parser checked kinds and ranges). */
+static bool apply(const cli_arg *arg, render_options *o)
+{
+    const char *v = arg->value;
+    switch (arg->opt->id) {
+    case R_QUIET: o->quiet = true; break;
+    case R_STRICT: o->strict = true; break;
+    case R_DEMO: o->demo = v; break;
+    case R_VIEWS: o->views = arg->number; break;
+    case R_CAMERA: o->camera = (int)arg->number; break;
+    case R_SCENE: o->gltf_scene = arg->number + 1; break;
+    case R_LAYOUT:
+        o->layout = (mvr_view_layout)(MVR_LAYOUT_STEREO + arg->choice);
+        o->layout_set = true;
+        break;
+    case R_IPD:
+        if (!parse_double(v, &o->ipd) || !(o->ipd > 0.0)) {
+            fprintf(stderr, "mvr render: --ipd takes a distance > 0\n");
+            return false;
+        }
+        break;
+    case R_FRAMES: o->frames = arg->number; break;
+    case R_SIZE:
+        if (!cli_parse_size(v, 1, 16384, &o->width, &o->height)) {
+            fprintf(stderr, "mvr render: --size takes WxH with 1..16384 each, e.g. 640x480\n");
+            return false;
+        }
+        break;
+    case R_OUT: o->out_dir = v; break;
+    case R_STATS: o->stats_file = v; break;
+    case R_MEMORY_BUDGET: o->memory_budget = (uint64_t)arg->number << 20; break;
+    case R_PROGRAM_CACHE: o->program_cache = v; break;
+    case R_VIEW_PATH: o->view_path = (mvr_view_path)(MVR_VIEW_PATH_AUTO + arg->choice); break;
+    case R_MATERIAL_PATH: o->material_path = (mvr_material_path)(MVR_MATERIAL_PATH_AUTO + arg->choice); break;
+    case R_DEPTH: o->depth_mode = (mvr_depth_mode)(MVR_DEPTH_MODE_AUTO + arg->choice); break;
+    case R_TRANSPARENCY:
+        o->transparency = (mvr_transparency_order)(MVR_TRANSPARENCY_ORDER_AUTO + arg->choice);
+        break;
+    case R_REFERENCE: o->reference = true; break;
+    case R_MSAA: o->msaa = arg->number; break;
+    case R_AA: o->aa = (mvr_anti_aliasing)(MVR_ANTI_ALIASING_NONE + arg->choice); break;
+    case R_SUPERSAMPLE: o->supersample = arg->number; break;
+    case R_SHADOWS: o->render.shadows.mode = (mvr_shadow_mode)(MVR_SHADOWS_DEFAULT + arg->choice); break;
+    case R_SHADOW_SIZE: o->render.shadows.map_size = arg->number; break;
+    case R_FORMAT: o->exr = arg->choice == 1; break;
+    case R_TARGET_FORMAT: {
+        static const mvr_color_format formats[] = {MVR_COLOR_FORMAT_DEFAULT, MVR_COLOR_FORMAT_RGBA8,
+                                                   MVR_COLOR_FORMAT_RGBA16F};
+        o->format = formats[arg->choice];
+        o->format_set = true;
+        break;
+    }
+    case R_CLEAR: {
+        float rgba[4] = {0, 0, 0, 1};
+        if (sscanf(v, "%f,%f,%f,%f", &rgba[0], &rgba[1], &rgba[2], &rgba[3]) < 3) {
+            fprintf(stderr, "mvr render: --clear takes R,G,B[,A] (linear, 0..1)\n");
+            return false;
+        }
+        memcpy(o->render.clear_color, rgba, sizeof rgba);
+        break;
+    }
+    case R_EXPOSURE:
+        o->exposure_set = true;
+        if (strcmp(v, "auto") == 0) {
+            o->render.exposure_mode = MVR_EXPOSURE_AUTO;
+        } else {
+            o->render.exposure_mode = MVR_EXPOSURE_EV100;
+            if (!parse_double(v, &o->render.ev100)) {
+                fprintf(stderr, "mvr render: --exposure takes auto or an EV100 (e.g. 15 for sunlight)\n");
+                return false;
+            }
+        }
+        break;
+    case R_EXPOSURE_SCALE: {
+        double x = 0.0;
+        o->exposure_set = true;
+        o->render.exposure_mode = MVR_EXPOSURE_LINEAR;
+        if (!parse_double(v, &x) || !(x > 0.0) || !isfinite((float)x)) {
+            fprintf(stderr, "mvr render: --exposure-scale takes a number > 0\n");
+            return false;
+        }
+        o->render.exposure = (float)x;
+        break;
+    }
+    case R_CAMERA_EXPOSURE: {
+        double n = 0, sh = 0, iso = 0;
+        o->exposure_set = true;
+        if (sscanf(v, "%lf,%lf,%lf", &n, &sh, &iso) != 3 || !(n > 0) || !(sh > 0) || !(iso > 0)) {
+            fprintf(stderr, "mvr render: --camera-exposure takes f-number,shutter-seconds,ISO (e.g. 16,0.008,100)\n");
+            return false;
+        }
+        o->render.exposure_mode = MVR_EXPOSURE_CAMERA;
+        o->render.aperture = n;
+        o->render.shutter = sh;
+        o->render.iso = iso;
+        break;
+    }
+    case R_EXPOSURE_PER_VIEW: o->render.exposure_per_view = true; break;
+    case R_DITHER: o->render.dither = true; break;
+    case R_TONE_MAP: {
+        static const mvr_tone_map maps[] = {MVR_TONE_MAP_NONE, MVR_TONE_MAP_ACES, MVR_TONE_MAP_KHR_PBR_NEUTRAL};
+        o->tone_map = maps[arg->choice];
+        o->tone_map_set = true;
+        break;
+    }
+    default: return false;
+    }
+    return true;
 }
 
 static int parse(int argc, char **argv, render_options *o)
@@ -130,293 +309,33 @@ static int parse(int argc, char **argv, render_options *o)
     o->out_dir = "out";
     o->camera = -1;
     cli_render_desc_defaults(&o->render); /* as mvr-viewer starts */
-    for (int i = 1; i < argc; ++i) {
-        const char *a = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int c = cli_context_option("render", argc, argv, &i, &o->context);
-        if (c < 0)
-            return MVR_EXIT_USAGE;
-        if (c > 0)
+    cli_parser p;
+    cli_parser_init(&p, "mvr render", render_tables, argc, argv);
+    cli_arg arg;
+    int c;
+    while ((c = cli_next(&p, &arg)) > 0) {
+        if (!arg.opt) {
+            if (o->scene_file) {
+                fprintf(stderr, "mvr render: one SCENE file at a time (got %s and %s)\n", o->scene_file, arg.value);
+                return MVR_EXIT_USAGE;
+            }
+            o->scene_file = arg.value;
             continue;
-        c = cli_env_option("mvr render", argc, argv, &i, &o->env);
-        if (c < 0)
-            return MVR_EXIT_USAGE;
-        if (c > 0)
-            continue;
-        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+        }
+        if (arg.opt->id == CLI_ID_HELP) {
             render_usage(stdout);
             return -1;
-        } else if (strcmp(a, "--quiet") == 0) {
-            o->quiet = true;
-        } else if (strcmp(a, "--strict") == 0) {
-            o->strict = true;
-        } else if (a[0] == '-' && a[1] == '-' && !v) {
-            fprintf(stderr, "mvr render: %s needs a value\n", a);
-            return MVR_EXIT_USAGE;
-        } else if (strcmp(a, "--demo") == 0) {
-            o->demo = v, ++i;
-        } else if (strcmp(a, "--views") == 0) {
-            if (!cli_parse_u32(v, 1, 1024, &o->views)) {
-                fprintf(stderr, "mvr render: --views takes 1..1024\n");
-                return MVR_EXIT_USAGE;
-            }
-            ++i;
-        } else if (strcmp(a, "--camera") == 0) {
-            uint32_t k = 0;
-            if (!cli_parse_u32(v, 0, 1u << 20, &k)) {
-                fprintf(stderr, "mvr render: --camera takes a camera node index from 0\n");
-                return MVR_EXIT_USAGE;
-            }
-            o->camera = (int)k;
-            ++i;
-        } else if (strcmp(a, "--scene") == 0) {
-            uint32_t k = 0;
-            if (!cli_parse_u32(v, 0, 1u << 20, &k)) {
-                fprintf(stderr, "mvr render: --scene takes a scene index from 0\n");
-                return MVR_EXIT_USAGE;
-            }
-            o->gltf_scene = k + 1;
-            ++i;
-        } else if (strcmp(a, "--layout") == 0) {
-            bool found = false;
-            for (int l = MVR_LAYOUT_STEREO; l <= MVR_LAYOUT_GRID; ++l)
-                if (strcmp(v, mvr_view_layout_name((mvr_view_layout)l)) == 0) {
-                    o->layout = (mvr_view_layout)l;
-                    o->layout_set = true;
-                    found = true;
-                }
-            if (!found) {
-                fprintf(stderr, "mvr render: --layout takes stereo, cube, ring or grid\n");
-                return MVR_EXIT_USAGE;
-            }
-            ++i;
-        } else if (strcmp(a, "--ipd") == 0) {
-            char *end = NULL;
-            o->ipd = strtod(v, &end);
-            if (!end || *end || !(o->ipd > 0.0)) {
-                fprintf(stderr, "mvr render: --ipd takes a distance > 0\n");
-                return MVR_EXIT_USAGE;
-            }
-            ++i;
-        } else if (strcmp(a, "--frames") == 0) {
-            if (!cli_parse_u32(v, 1, 100000, &o->frames)) {
-                fprintf(stderr, "mvr render: --frames takes 1..100000\n");
-                return MVR_EXIT_USAGE;
-            }
-            ++i;
-        } else if (strcmp(a, "--size") == 0) {
-            char w[16] = "", h[16] = "";
-            const char *x = strchr(v, 'x');
-            if (!x || (size_t)(x - v) >= sizeof w || strlen(x + 1) >= sizeof h) {
-                fprintf(stderr, "mvr render: --size takes WxH, e.g. 640x480\n");
-                return MVR_EXIT_USAGE;
-            }
-            memcpy(w, v, (size_t)(x - v));
-            strcpy(h, x + 1);
-            if (!cli_parse_u32(w, 1, 16384, &o->width) || !cli_parse_u32(h, 1, 16384, &o->height)) {
-                fprintf(stderr, "mvr render: --size takes WxH with 1..16384 each\n");
-                return MVR_EXIT_USAGE;
-            }
-            ++i;
-        } else if (strcmp(a, "--out") == 0) {
-            o->out_dir = v, ++i;
-        } else if (strcmp(a, "--stats") == 0) {
-            o->stats_file = v, ++i;
-        } else if (strcmp(a, "--memory-budget") == 0) {
-            uint32_t mib;
-            if (!cli_parse_u32(v, 1, 1u << 20, &mib)) {
-                fprintf(stderr, "mvr render: --memory-budget takes MiB in 1..1048576\n");
-                return MVR_EXIT_USAGE;
-            }
-            o->memory_budget = (uint64_t)mib << 20;
-            ++i;
-        } else if (strcmp(a, "--program-cache") == 0) {
-            o->program_cache = v, ++i;
-        } else if (strcmp(a, "--view-path") == 0) {
-            if (strcmp(v, "auto") == 0)
-                o->view_path = MVR_VIEW_PATH_AUTO;
-            else if (strcmp(v, "multiview") == 0)
-                o->view_path = MVR_VIEW_PATH_MULTIVIEW;
-            else if (strcmp(v, "loop") == 0)
-                o->view_path = MVR_VIEW_PATH_LOOP;
-            else {
-                fprintf(stderr, "mvr render: --view-path takes auto, multiview or loop\n");
-                return MVR_EXIT_USAGE;
-            }
-            ++i;
-        } else if (strcmp(a, "--material-path") == 0) {
-            bool found = false;
-            for (int k = MVR_MATERIAL_PATH_AUTO; k <= MVR_MATERIAL_PATH_PER_DRAW; ++k)
-                if (strcmp(v, mvr_material_path_name((mvr_material_path)k)) == 0) {
-                    o->material_path = (mvr_material_path)k;
-                    found = true;
-                }
-            if (!found) {
-                fprintf(stderr, "mvr render: --material-path takes auto, arrays, per_material or per_draw\n");
-                return MVR_EXIT_USAGE;
-            }
-            ++i;
-        } else if (strcmp(a, "--reference") == 0) {
-            o->reference = true;
-        } else if (strcmp(a, "--msaa") == 0) {
-            if (!cli_parse_u32(v, 0, 64, &o->msaa)) {
-                fprintf(stderr, "mvr render: --msaa takes a sample count\n");
-                return MVR_EXIT_USAGE;
-            }
-            ++i;
-        } else if (strcmp(a, "--aa") == 0) {
-            bool found = false;
-            for (int k = MVR_ANTI_ALIASING_NONE; k <= MVR_ANTI_ALIASING_AUTO; ++k)
-                if (v && strcmp(v, mvr_anti_aliasing_name((mvr_anti_aliasing)k)) == 0) {
-                    o->aa = (mvr_anti_aliasing)k;
-                    found = true;
-                }
-            if (!found) {
-                fprintf(stderr, "mvr render: --aa takes none, msaa, supersample or auto\n");
-                return MVR_EXIT_USAGE;
-            }
-            ++i;
-        } else if (strcmp(a, "--supersample") == 0) {
-            if (!cli_parse_u32(v, 1, 4, &o->supersample)) {
-                fprintf(stderr, "mvr render: --supersample takes 1 to 4\n");
-                return MVR_EXIT_USAGE;
-            }
-            ++i;
-        } else if (strcmp(a, "--shadows") == 0) {
-            bool found = false;
-            for (int k = MVR_SHADOWS_DEFAULT; k <= MVR_SHADOWS_OFF; ++k)
-                if (v && strcmp(v, mvr_shadow_mode_name((mvr_shadow_mode)k)) == 0) {
-                    o->render.shadows.mode = (mvr_shadow_mode)k;
-                    found = true;
-                }
-            if (!found) {
-                fprintf(stderr, "mvr render: --shadows takes default, all or off\n");
-                return MVR_EXIT_USAGE;
-            }
-            ++i;
-        } else if (strcmp(a, "--shadow-size") == 0) {
-            if (!cli_parse_u32(v, 16, 16384, &o->render.shadows.map_size)) {
-                fprintf(stderr, "mvr render: --shadow-size takes 16..16384\n");
-                return MVR_EXIT_USAGE;
-            }
-            ++i;
-        } else if (strcmp(a, "--transparency") == 0) {
-            bool found = false;
-            for (int k = MVR_TRANSPARENCY_ORDER_AUTO; k <= MVR_TRANSPARENCY_ORDER_PER_VIEW; ++k)
-                if (strcmp(v, mvr_transparency_order_name((mvr_transparency_order)k)) == 0) {
-                    o->transparency = (mvr_transparency_order)k;
-                    found = true;
-                }
-            if (!found) {
-                fprintf(stderr, "mvr render: --transparency takes auto, centroid or per_view\n");
-                return MVR_EXIT_USAGE;
-            }
-            ++i;
-        } else if (strcmp(a, "--depth") == 0) {
-            bool found = false;
-            for (int k = MVR_DEPTH_MODE_AUTO; k <= MVR_DEPTH_MODE_STANDARD; ++k)
-                if (strcmp(v, mvr_depth_mode_name((mvr_depth_mode)k)) == 0) {
-                    o->depth_mode = (mvr_depth_mode)k;
-                    found = true;
-                }
-            if (!found) {
-                fprintf(stderr, "mvr render: --depth takes auto, reversed_z or standard\n");
-                return MVR_EXIT_USAGE;
-            }
-            ++i;
-        } else if (strcmp(a, "--format") == 0) {
-            if (strcmp(v, "png") == 0 || strcmp(v, "exr") == 0)
-                o->exr = v[0] == 'e';
-            else {
-                fprintf(stderr, "mvr render: --format takes png or exr\n");
-                return MVR_EXIT_USAGE;
-            }
-            ++i;
-        } else if (strcmp(a, "--target-format") == 0) {
-            o->format_set = true;
-            if (strcmp(v, "srgb8") == 0)
-                o->format = MVR_COLOR_FORMAT_DEFAULT;
-            else if (strcmp(v, "rgba8") == 0)
-                o->format = MVR_COLOR_FORMAT_RGBA8;
-            else if (strcmp(v, "rgba16f") == 0)
-                o->format = MVR_COLOR_FORMAT_RGBA16F;
-            else {
-                fprintf(stderr, "mvr render: --target-format takes srgb8, rgba8 or rgba16f\n");
-                return MVR_EXIT_USAGE;
-            }
-            ++i;
-        } else if (strcmp(a, "--clear") == 0) {
-            float rgba[4] = {0, 0, 0, 1};
-            int n = sscanf(v, "%f,%f,%f,%f", &rgba[0], &rgba[1], &rgba[2], &rgba[3]);
-            if (n < 3) {
-                fprintf(stderr, "mvr render: --clear takes R,G,B[,A] (linear, 0..1)\n");
-                return MVR_EXIT_USAGE;
-            }
-            memcpy(o->render.clear_color, rgba, sizeof rgba);
-            ++i;
-        } else if (strcmp(a, "--exposure") == 0) {
-            char *end = NULL;
-            o->exposure_set = true;
-            if (v && strcmp(v, "auto") == 0) {
-                o->render.exposure_mode = MVR_EXPOSURE_AUTO;
-            } else {
-                o->render.exposure_mode = MVR_EXPOSURE_EV100;
-                o->render.ev100 = v ? strtod(v, &end) : 0.0;
-                if (!v || !end || *end || !isfinite(o->render.ev100)) {
-                    fprintf(stderr, "mvr render: --exposure takes auto or an EV100 (e.g. 15 for sunlight)\n");
-                    return MVR_EXIT_USAGE;
-                }
-            }
-            ++i;
-        } else if (strcmp(a, "--exposure-scale") == 0) {
-            char *end = NULL;
-            o->exposure_set = true;
-            o->render.exposure_mode = MVR_EXPOSURE_LINEAR;
-            o->render.exposure = v ? strtof(v, &end) : 0.0f;
-            if (!v || !end || *end || !(o->render.exposure > 0.0f) || !isfinite(o->render.exposure)) {
-                fprintf(stderr, "mvr render: --exposure-scale takes a number > 0\n");
-                return MVR_EXIT_USAGE;
-            }
-            ++i;
-        } else if (strcmp(a, "--camera-exposure") == 0) {
-            double n = 0, sh = 0, iso = 0;
-            o->exposure_set = true;
-            if (!v || sscanf(v, "%lf,%lf,%lf", &n, &sh, &iso) != 3 || !(n > 0) || !(sh > 0) || !(iso > 0)) {
-                fprintf(stderr, "mvr render: --camera-exposure takes f-number,shutter-seconds,ISO (e.g. 16,0.008,100)\n");
-                return MVR_EXIT_USAGE;
-            }
-            o->render.exposure_mode = MVR_EXPOSURE_CAMERA;
-            o->render.aperture = n;
-            o->render.shutter = sh;
-            o->render.iso = iso;
-            ++i;
-        } else if (strcmp(a, "--exposure-per-view") == 0) {
-            o->render.exposure_per_view = true;
-        } else if (strcmp(a, "--dither") == 0) {
-            o->render.dither = true;
-        } else if (strcmp(a, "--tone-map") == 0) {
-            o->tone_map_set = true;
-            if (!v)
-                v = "";
-            if (strcmp(v, "none") == 0)
-                o->tone_map = MVR_TONE_MAP_NONE;
-            else if (strcmp(v, "aces") == 0)
-                o->tone_map = MVR_TONE_MAP_ACES;
-            else if (strcmp(v, "pbr-neutral") == 0)
-                o->tone_map = MVR_TONE_MAP_KHR_PBR_NEUTRAL;
-            else {
-                fprintf(stderr, "mvr render: --tone-map takes none, aces or pbr-neutral\n");
-                return MVR_EXIT_USAGE;
-            }
-            ++i;
-        } else if (a[0] != '-' && !o->scene_file) {
-            o->scene_file = a;
-        } else {
-            fprintf(stderr, "mvr render: unknown option '%s'\n\n", a);
-            render_usage(stderr);
-            return MVR_EXIT_USAGE;
         }
+        int done = cli_context_apply("mvr render", &arg, &o->context);
+        if (done == 0)
+            done = cli_env_apply("mvr render", &arg, &o->env);
+        if (done == 0)
+            done = apply(&arg, o) ? 1 : -1;
+        if (done < 0)
+            return MVR_EXIT_USAGE;
     }
+    if (c < 0)
+        return MVR_EXIT_USAGE;
     if (!o->scene_file && (o->camera >= 0 || o->gltf_scene)) {
         fprintf(stderr, "mvr render: --camera and --scene are for a SCENE file\n");
         return MVR_EXIT_USAGE;
@@ -453,6 +372,13 @@ static int parse(int argc, char **argv, render_options *o)
             return MVR_EXIT_USAGE;
         }
     }
+    if (!o->scene_file && !cli_check_demo_views("mvr render", o->demo, o->views, o->width, o->height))
+        return MVR_EXIT_USAGE;
+    /* a directory given must be usable, or the run says why instead of
+     * silently compiling without it */
+    if (o->program_cache && strcmp(o->program_cache, "off") != 0 &&
+        !cli_check_writable_dir("mvr render", "--program-cache", o->program_cache))
+        return MVR_EXIT_USAGE;
     return MVR_EXIT_OK;
 }
 
@@ -479,8 +405,8 @@ static const char *program_cache_dir(const render_options *o, char *buf, size_t 
         if (n <= 0 || (size_t)n >= size)
             return NULL;
     }
-    if (!cli_make_dirs("mvr render", buf)) {
-        fprintf(stderr, "mvr render: warning: no program cache (cannot create %s)\n", buf);
+    if (!cli_make_dirs("mvr render", buf) || access(buf, W_OK | X_OK) != 0) {
+        fprintf(stderr, "mvr render: warning: no program cache (cannot create or write %s)\n", buf);
         return NULL;
     }
     return buf;

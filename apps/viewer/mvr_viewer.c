@@ -20,6 +20,7 @@
 #include <GLES3/gl3.h>
 
 #include "cli_env.h"
+#include "cli_options.h"
 #include "cli_scene.h"
 #include "commands.h"
 #include "mvr/mvr.h"
@@ -630,21 +631,38 @@ static void on_drop(GLFWwindow *w, int count, const char **paths)
         open_scene(v, paths[0], NULL);
 }
 
+enum { V_DEMO = 1, V_VIEWS, V_DISPLAY, V_SINGLE, V_SIZE, V_API, V_VIEW_PATH, V_FRAMES, V_SCREENSHOT };
+
+/* name, value and range, help; the order is --help's */
+static const cli_option viewer_table[] = {
+    {CLI_OPT_STRING, V_DEMO, "--demo", NULL, "NAME", 0, 0, NULL, "stereo | cube | city | ring (default: stereo)",
+     NULL, NULL, NULL},
+    {CLI_OPT_U32, V_VIEWS, "--views", NULL, "N", 1, 64, NULL,
+     "views (default: the scene's own, 2 for files), 1..64;\n"
+     "--demo stereo and city frame at most 35 at 640x480 layers", NULL, NULL, NULL},
+    {CLI_OPT_CHOICE, V_DISPLAY, "--display", NULL, "D", 0, 0, "stereo|grid|anaglyph|single",
+     "stereo | grid | anaglyph | single (default: stereo)", NULL, NULL, NULL},
+    {CLI_OPT_U32, V_SINGLE, "--single", NULL, "K", 0, 63, NULL, "with --display single: the view shown (default 0)",
+     NULL, NULL, NULL},
+    {CLI_OPT_STRING, V_SIZE, "--size", NULL, "WxH", 0, 0, NULL, "window size (default 1280x480)", NULL, NULL, NULL},
+    {CLI_OPT_CHOICE, V_API, "--api", NULL, "A", 0, 0, "gles|desktop",
+     "gles | desktop: the context GLFW makes (default desktop)", NULL, NULL, NULL},
+    {CLI_OPT_CHOICE, V_VIEW_PATH, "--view-path", NULL, "P", 0, 0, "auto|multiview|loop",
+     "auto | multiview | loop (default auto)", NULL, NULL, NULL},
+    {CLI_OPT_U32, V_FRAMES, "--frames", NULL, "N", 1, 1000000, NULL,
+     "render N frames, then exit (with --screenshot: save the last)", NULL, NULL, NULL},
+    {CLI_OPT_STRING, V_SCREENSHOT, "--screenshot", NULL, "FILE", 0, 0, NULL,
+     "the window's contents after the last frame (PNG)", NULL, NULL, NULL},
+    {CLI_OPT_END, 0, NULL, NULL, NULL, 0, 0, NULL, NULL, NULL, NULL, NULL},
+};
+
+static const cli_option *const viewer_tables[] = {viewer_table, cli_env_option_table, cli_help_option, NULL};
+
 static void usage(FILE *out)
 {
+    fprintf(out, "usage: mvr-viewer [SCENE.gltf | SCENE.glb | --demo NAME] [options]\n\n");
+    cli_print_options(out, viewer_tables, 21);
     fprintf(out,
-            "usage: mvr-viewer [SCENE.gltf | SCENE.glb | --demo NAME] [options]\n"
-            "\n"
-            "  --demo NAME          stereo | cube | city | ring (default: stereo)\n"
-            "  --views N            views (default: the scene's own, 2 for files)\n"
-            "  --display D          stereo | grid | anaglyph | single (default: stereo)\n"
-            "  --single K           with --display single: the view shown (default 0)\n"
-            "  --size WxH           window size (default 1280x480)\n"
-            "  --api A              gles | desktop: the context GLFW makes (default desktop)\n"
-            "  --view-path P        auto | multiview | loop (default auto)\n"
-            "  --frames N           render N frames, then exit (with --screenshot: save the last)\n"
-            "  --screenshot FILE    the window's contents after the last frame (PNG)\n"
-            CLI_ENV_HELP
             "\n"
             "A file opens as mvr render shows it: from its first camera (else framed by its\n"
             "size), auto-exposed when its lights are in physical units, lit by the same\n"
@@ -663,60 +681,52 @@ int main(int argc, char **argv)
     viewer v;
     memset(&v, 0, sizeof v);
     v.display = DISPLAY_STEREO;
-    for (int i = 1; i < argc; ++i) {
-        const char *a = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
-        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
-            usage(stdout);
-            return 0;
-        }
-        if (a[0] != '-') {
-            file = a;
+    cli_parser p;
+    cli_parser_init(&p, "mvr-viewer", viewer_tables, argc, argv);
+    cli_arg arg;
+    int c;
+    while ((c = cli_next(&p, &arg)) > 0) {
+        if (!arg.opt) {
+            if (file) {
+                fprintf(stderr, "mvr-viewer: one SCENE file at a time (got %s and %s)\n", file, arg.value);
+                return 2;
+            }
+            file = arg.value;
             continue;
         }
-        int env_option = cli_env_option("mvr-viewer", argc, argv, &i, &v.env_options);
+        int env_option = cli_env_apply("mvr-viewer", &arg, &v.env_options);
         if (env_option < 0)
             return 2;
         if (env_option > 0)
             continue;
-        if (!val) {
-            fprintf(stderr, "mvr-viewer: %s needs a value\n", a);
-            return 2;
-        }
-        ++i;
-        if (strcmp(a, "--demo") == 0)
-            demo = val;
-        else if (strcmp(a, "--views") == 0)
-            v.view_count = (uint32_t)strtoul(val, NULL, 10);
-        else if (strcmp(a, "--single") == 0)
-            v.single = (uint32_t)strtoul(val, NULL, 10);
-        else if (strcmp(a, "--frames") == 0)
-            frames = (unsigned)strtoul(val, NULL, 10);
-        else if (strcmp(a, "--screenshot") == 0)
-            shot = val;
-        else if (strcmp(a, "--api") == 0 && (strcmp(val, "gles") == 0 || strcmp(val, "desktop") == 0))
-            gles = val[0] == 'g';
-        else if (strcmp(a, "--size") == 0 && sscanf(val, "%ux%u", &win_w, &win_h) == 2 && win_w && win_h)
-            continue;
-        else if (strcmp(a, "--view-path") == 0 && strcmp(val, "multiview") == 0)
-            v.view_path = MVR_VIEW_PATH_MULTIVIEW;
-        else if (strcmp(a, "--view-path") == 0 && strcmp(val, "loop") == 0)
-            v.view_path = MVR_VIEW_PATH_LOOP;
-        else if (strcmp(a, "--view-path") == 0 && strcmp(val, "auto") == 0)
-            v.view_path = MVR_VIEW_PATH_AUTO;
-        else if (strcmp(a, "--display") == 0) {
-            int found = -1;
-            for (int d = 0; d < DISPLAY_COUNT; ++d)
-                if (strcmp(val, display_names[d]) == 0)
-                    found = d;
-            if (found < 0) {
-                fprintf(stderr, "mvr-viewer: --display takes stereo, grid, anaglyph or single\n");
+        switch (arg.opt->id) {
+        case CLI_ID_HELP: usage(stdout); return 0;
+        case V_DEMO: demo = arg.value; break;
+        case V_VIEWS: v.view_count = arg.number; break;
+        case V_SINGLE: v.single = arg.number; break;
+        case V_FRAMES: frames = arg.number; break;
+        case V_SCREENSHOT: shot = arg.value; break;
+        case V_API: gles = arg.choice == 0; break;
+        case V_VIEW_PATH: v.view_path = (mvr_view_path)(MVR_VIEW_PATH_AUTO + arg.choice); break;
+        case V_DISPLAY: v.display = (display_mode)arg.choice; break;
+        case V_SIZE:
+            if (!cli_parse_size(arg.value, 1, 16384, &win_w, &win_h)) {
+                fprintf(stderr, "mvr-viewer: --size takes WxH with 1..16384 each, e.g. 1280x480\n");
                 return 2;
             }
-            v.display = (display_mode)found;
-        } else {
-            fprintf(stderr, "mvr-viewer: bad option %s %s (see --help)\n", a, val);
-            return 2;
+            break;
         }
+    }
+    if (c < 0)
+        return 2;
+    if (cli_given(&p, "--single") && v.display != DISPLAY_SINGLE) {
+        fprintf(stderr, "mvr-viewer: --single conflicts with --display %s (it is for --display single)\n",
+                display_names[v.display]);
+        return 2;
+    }
+    if (cli_given(&p, "--screenshot") && !frames) {
+        fprintf(stderr, "mvr-viewer: --screenshot needs --frames N (it saves the last of N frames)\n");
+        return 2;
     }
     if (!cli_env_check("mvr-viewer", &v.env_options, file != NULL))
         return 2;

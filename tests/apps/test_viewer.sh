@@ -108,5 +108,26 @@ expect_usage --env-rotation nan
 expect_usage --background sky
 expect_usage --background-blur 2
 expect_usage --display mosaic
+# the option table (issue 18): its own message for each usage error, exit 2
+expect_message() {
+    local want=$1; shift
+    local msg; msg=$("$viewer" "$@" 2>&1 >/dev/null); local rc=$?
+    if [ $rc -eq 2 ] && printf '%s' "$msg" | grep -q -- "$want"; then echo "ok: viewer $*: $msg"
+    else echo "FAIL: mvr-viewer $* exits $rc: $msg (wanted: $want)"; fail=1; fi
+}
+expect_message "unknown option --bogus (see --help)" --bogus
+expect_message "unknown option --bogus" --demo cube --bogus 3
+expect_message "--size needs a value (WxH)" --size
+expect_message "--demo needs a value (NAME)" --demo --frames 2
+expect_message "--views takes 1..64 (got '0')" --views 0
+expect_message "--single conflicts with --display stereo" --single 1
+expect_message "--single conflicts with --display grid" --display grid --single 1
+expect_message "--screenshot needs --frames N" --screenshot "$out/never.png"
+expect_message "one SCENE file at a time" a.gltf b.gltf
+help=$("$viewer" --help)
+for opt in --demo --views --display --single --env --background-blur "-h, --help"; do
+    if printf '%s\n' "$help" | grep -q -- "^  $opt "; then echo "ok: viewer --help lists $opt"
+    else echo "FAIL: viewer --help does not list $opt"; fail=1; fi
+done
 echo "test_viewer: $((SECONDS - start)) s"
 exit $fail
