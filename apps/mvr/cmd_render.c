@@ -28,6 +28,7 @@ typedef struct render_options {
     uint32_t views, width, height, frames;
     const char *out_dir;
     const char *stats_file;
+    bool plan;                   /* --plan */
     mvr_view_path view_path;
     mvr_material_path material_path;
     mvr_depth_mode depth_mode;
@@ -53,7 +54,7 @@ enum {
     R_DEMO = 1, R_VIEWS, R_CAMERA, R_LAYOUT, R_IPD, R_SCENE, R_SIZE, R_OUT, R_VIEW_PATH, R_MATERIAL_PATH, R_DEPTH,
     R_TRANSPARENCY, R_SUPERSAMPLE, R_MSAA, R_AA, R_REFERENCE, R_FORMAT, R_TARGET_FORMAT, R_SHADOWS, R_SHADOW_SIZE,
     R_EXPOSURE, R_EXPOSURE_SCALE, R_CAMERA_EXPOSURE, R_EXPOSURE_PER_VIEW, R_DITHER, R_CLEAR, R_TONE_MAP, R_FRAMES,
-    R_STATS, R_STRICT, R_MEMORY_BUDGET, R_PROGRAM_CACHE, R_QUIET
+    R_STATS, R_STRICT, R_MEMORY_BUDGET, R_PROGRAM_CACHE, R_QUIET, R_PLAN
 };
 
 #define EXPOSURE_GROUP "the exposure"
@@ -152,6 +153,9 @@ static const cli_option render_table_tail[] = {
      "render N frames (the last is written; default: 1)", NULL, NULL, NULL},
     {CLI_OPT_STRING, R_STATS, "--stats", NULL, "FILE.json", 0, 0, NULL, "write the last frame's stats as JSON", NULL,
      NULL, NULL},
+    {CLI_OPT_FLAG, R_PLAN, "--plan", NULL, NULL, 0, 0, NULL,
+     "print the last frame's plan: its passes in order, each with\n"
+     "its views and why it runs", NULL, NULL, NULL},
     {CLI_OPT_FLAG, R_STRICT, "--strict", NULL, NULL, 0, 0, NULL,
      "a glTF image that is missing or cannot be decoded fails the\n"
      "load (default: its textures take their defaults, warned)", NULL, NULL, NULL},
@@ -219,6 +223,7 @@ static bool apply(const cli_arg *arg, render_options *o)
         break;
     case R_OUT: o->out_dir = v; break;
     case R_STATS: o->stats_file = v; break;
+    case R_PLAN: o->plan = true; break;
     case R_MEMORY_BUDGET: o->memory_budget = (uint64_t)arg->number << 20; break;
     case R_PROGRAM_CACHE: o->program_cache = v; break;
     case R_VIEW_PATH: o->view_path = (mvr_view_path)(MVR_VIEW_PATH_AUTO + arg->choice); break;
@@ -684,6 +689,15 @@ int mvr_cmd_render(int argc, char **argv)
     }
     mvr_frame_stats st;
     mvr_renderer_get_stats(renderer, &st);
+    if (o.plan) {
+        size_t need = mvr_renderer_format_plan(renderer, NULL, 0) + 1;
+        char *text = malloc(need);
+        if (text) {
+            mvr_renderer_format_plan(renderer, text, need);
+            fputs(text, stdout);
+            free(text);
+        }
+    }
     if (o.stats_file) {
         FILE *f = fopen(o.stats_file, "w");
         if (!f) {

@@ -403,4 +403,14 @@ foreach(opt --demo --views --size --exposure-scale --camera-exposure --reference
 endforeach()
 expect("render --help states the demos' view limit" so MATCHES "at most 35 at 640x480")
 
+# --plan prints the frame's passes: the cube's 6 views on the loop path are
+# 6 view passes; the background record is there, skipped without a background
+run(rc so se render --demo cube --size 32x32 --view-path loop --plan --quiet --out ${OUT}/plan)
+expect("--plan exits 0 (got ${rc}): ${se}" rc EQUAL 0)
+expect("--plan prints the plan: ${so}" so MATCHES "frame plan: 6 views in 6 passes")
+string(REGEX MATCHALL "view-pass +run" view_passes "${so}")
+list(LENGTH view_passes nvp)
+expect("--plan: 6 view passes on the loop (${nvp})" nvp EQUAL 6)
+expect("--plan: the background is skipped without one: ${so}" so MATCHES "background +skip")
+
 expect_summary("CLI render")
