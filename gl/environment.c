@@ -194,6 +194,22 @@ static mvr_result make_dfg(mvr_renderer *r)
     return MVR_OK;
 }
 
+/* The sampler both cubes are read with (trilinear, clamped), and the
+ * prefilter's GL errors checked. */
+static mvr_result make_cube_sampler(mvr_renderer *r)
+{
+    const mvr_gl_api_table *gl = r->gl;
+    GLuint *sampler = &r->env.cube_sampler;
+    gl->GenSamplers(1, sampler);
+    gl->SamplerParameteri(*sampler, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    gl->SamplerParameteri(*sampler, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl->SamplerParameteri(*sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl->SamplerParameteri(*sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl->SamplerParameteri(*sampler, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    mvr_result res = mvr_gl_check(r->ctx, "environment prefilter", true);
+    return res == MVR_OK ? MVR_OK : mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
+}
+
 /* Steps 1 and 2 for a new environment. */
 static mvr_result prefilter(mvr_renderer *r, const mvr_environment *env)
 {
@@ -289,18 +305,8 @@ static mvr_result prefilter(mvr_renderer *r, const mvr_environment *env)
         level_job j = {g->specular, k, size, scratch[log2_floor(source_size / size)], fbo, read_fbo, copy_fbo};
         res = draw_level(r, &j, e);
     }
-    if (res == MVR_OK) {
-        /* the GL's own sampling state of both cubes is what the sampler object below overrides */
-        gl->GenSamplers(1, &g->cube_sampler);
-        gl->SamplerParameteri(g->cube_sampler, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-        gl->SamplerParameteri(g->cube_sampler, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        gl->SamplerParameteri(g->cube_sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        gl->SamplerParameteri(g->cube_sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-        gl->SamplerParameteri(g->cube_sampler, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
-        res = mvr_gl_check(r->ctx, "environment prefilter", true);
-        if (res != MVR_OK)
-            res = mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
-    }
+    if (res == MVR_OK)
+        res = make_cube_sampler(r);
     mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &fbo);
     mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &read_fbo);
     mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &copy_fbo);
