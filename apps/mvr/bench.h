@@ -128,6 +128,8 @@ double bench_median(double *v, uint32_t n); /* sorts v */
  * the pixels compared. */
 size_t bench_compare(const uint8_t *ref, const uint8_t *img, size_t pixels, bool covered, bench_result *res);
 void bench_progress(const bench_options *o, uint32_t done, uint32_t total, const char *what);
+/* What a result keeps of a frame's stats: the paths that ran, draws and binds. */
+void bench_take_stats(bench_result *res, const mvr_frame_stats *st);
 
 /* bench_env.c: mvr bench --env-axes (after the options are parsed and the context made). */
 int bench_run_env_axes(int argc, char **argv, const bench_options *o, mvr_context *ctx);

@@ -157,14 +157,7 @@ static bool run_env_config(const bench_options *o, mvr_context *ctx, mvr_scene *
         res->prefilter_passes = st.env_prefilter_passes;
         if (ev100)
             *ev100 = st.exposure_ev100;
-        res->view_path_ran = mvr_view_path_name(st.view_path);
-        res->material_path_ran = mvr_material_path_name(st.material_path);
-        res->draws = st.draws;
-        res->draw_calls = st.draw_calls;
-        res->passes = st.passes;
-        res->program_binds = st.program_binds;
-        res->texture_binds = st.texture_binds;
-        res->ubo_range_binds = st.ubo_range_binds;
+        bench_take_stats(res, &st);
         if (st.env_prefilter_passes == 0) {
             fprintf(stderr, "mvr bench: %s: the first frame with a fresh environment ran no prefilter\n", name);
             ok = false;

@@ -443,6 +443,19 @@ static double quantile(const double *v, uint32_t n, double q)
     return i + 1 < n ? v[i] + (x - i) * (v[i + 1] - v[i]) : v[n - 1];
 }
 
+/* What a result keeps of a frame's stats: the paths that ran, draws and binds. */
+void bench_take_stats(bench_result *res, const mvr_frame_stats *st)
+{
+    res->view_path_ran = mvr_view_path_name(st->view_path);
+    res->material_path_ran = mvr_material_path_name(st->material_path);
+    res->draws = st->draws;
+    res->draw_calls = st->draw_calls;
+    res->passes = st->passes;
+    res->program_binds = st->program_binds;
+    res->texture_binds = st->texture_binds;
+    res->ubo_range_binds = st->ubo_range_binds;
+}
+
 /* Statistics of the measured frames and the read-back; releases the run. */
 static bool finish_config(const bench_options *o, mvr_view_set *vs, const bench_config *c, config_run *cr,
                           bench_result *res)
@@ -450,14 +463,7 @@ static bool finish_config(const bench_options *o, mvr_view_set *vs, const bench_
     uint32_t n = mvr_view_set_count(vs), w = o->scene.width, h = o->scene.height, frames = cr->measured;
     mvr_frame_stats st;
     mvr_renderer_get_stats(cr->r, &st);
-    res->view_path_ran = mvr_view_path_name(st.view_path);
-    res->material_path_ran = mvr_material_path_name(st.material_path);
-    res->draws = st.draws;
-    res->draw_calls = st.draw_calls;
-    res->passes = st.passes;
-    res->program_binds = st.program_binds;
-    res->texture_binds = st.texture_binds;
-    res->ubo_range_binds = st.ubo_range_binds;
+    bench_take_stats(res, &st);
     double *wall = cr->times, *cpu = cr->times + o->frames, *gpu = cr->times + 2 * o->frames;
     res->wall_median = bench_median(wall, frames); /* sorts wall */
     res->wall_min = wall[0];
