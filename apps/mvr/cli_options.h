@@ -56,6 +56,7 @@ typedef struct cli_parser {
     int i;
     unsigned given_count;
     const cli_option *given[CLI_MAX_GIVEN];
+    const char *positional;           /* the SCENE argument, once given (a second is refused) */
 } cli_parser;
 
 void cli_parser_init(cli_parser *p, const char *command, const cli_option *const *tables, int argc, char **argv);
@@ -63,7 +64,8 @@ void cli_parser_init(cli_parser *p, const char *command, const cli_option *const
 /* The next argument: 1 with *arg filled, 0 at the end, -1 on a usage error
  * (printed: "unknown option --bogus (see --help)", "--size needs a value
  * (WxH)", "--views takes 1..1024 (got '0')", "--aa takes none, msaa,
- * supersample or auto (got 'x')", or a refused conflict naming both). */
+ * supersample or auto (got 'x')", a refused conflict naming both, or a
+ * second positional argument: "one SCENE file at a time (got a and b)"). */
 int cli_next(cli_parser *p, cli_arg *arg);
 
 /* Whether the option named name (e.g. "--layout") was given. */

@@ -157,12 +157,7 @@ static int parse(int argc, char **argv, bench_options *o)
     cli_arg arg;
     int c;
     while ((c = cli_next(&p, &arg)) > 0) {
-        if (!arg.opt) {
-            if (o->scene.scene_file) {
-                fprintf(stderr, "mvr bench: one SCENE file at a time (got %s and %s)\n", o->scene.scene_file,
-                        arg.value);
-                return MVR_EXIT_USAGE;
-            }
+        if (!arg.opt) { /* the SCENE (the parser refuses a second) */
             o->scene.scene_file = arg.value;
             continue;
         }

@@ -686,11 +686,7 @@ int main(int argc, char **argv)
     cli_arg arg;
     int c;
     while ((c = cli_next(&p, &arg)) > 0) {
-        if (!arg.opt) {
-            if (file) {
-                fprintf(stderr, "mvr-viewer: one SCENE file at a time (got %s and %s)\n", file, arg.value);
-                return 2;
-            }
+        if (!arg.opt) { /* the SCENE (the parser refuses a second) */
             file = arg.value;
             continue;
         }
