@@ -118,6 +118,9 @@ bool bench_write_images(const bench_run *run);
  * plot_env.gp, plot_env.png and plot_env.svg, prefilter time against error);
  * false (with a message) when gnuplot is missing or fails. */
 bool bench_plot(const bench_run *run);
+/* All of the above: the table on stdout and every file into run->out_dir;
+ * false when any failed (each says why). */
+bool bench_write_reports(const bench_run *run);
 
 
 /* cmd_bench.c, shared with bench_env.c */

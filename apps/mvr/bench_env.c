@@ -367,15 +367,7 @@ int bench_run_env_axes(int argc, char **argv, const bench_options *o, mvr_contex
     bench_run run = {scene_name, o->out_dir, cmdline, mvr_context_caps(ctx)->renderer, n_views, o->scene.width,
                      o->scene.height, o->frames, count, configs, results, 0, "", true, env_name,
                      o->reference_samples, compared, 0};
-    bench_print_table(&run, stdout);
-    char path[4096];
-    snprintf(path, sizeof path, "%s/results.csv", o->out_dir);
-    bool ok = bench_write_csv(&run, path);
-    snprintf(path, sizeof path, "%s/results.json", o->out_dir);
-    ok = bench_write_json(&run, path) && ok;
-    ok = bench_write_images(&run) && ok;
-    ok = bench_plot(&run) && ok;
-    rc = ok ? MVR_EXIT_OK : MVR_EXIT_FAILURE;
+    rc = bench_write_reports(&run) ? MVR_EXIT_OK : MVR_EXIT_FAILURE;
 done:
     for (uint32_t k = 0; k < count; ++k)
         free(results[k].display);

@@ -543,3 +543,15 @@ bool bench_plot(const bench_run *run)
     snprintf(path, sizeof path, "%s/plot.gp", run->out_dir);
     return run_gnuplot(run, "plot.gp", path);
 }
+
+bool bench_write_reports(const bench_run *run)
+{
+    char path[4096];
+    bench_print_table(run, stdout);
+    snprintf(path, sizeof path, "%s/results.csv", run->out_dir);
+    bool ok = bench_write_csv(run, path);
+    snprintf(path, sizeof path, "%s/results.json", run->out_dir);
+    ok = bench_write_json(run, path) && ok;
+    ok = bench_write_images(run) && ok;
+    return bench_plot(run) && ok;
+}

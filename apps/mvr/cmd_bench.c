@@ -773,15 +773,7 @@ int mvr_cmd_bench(int argc, char **argv)
     bench_run run = {o.scene.scene_file ? o.scene.scene_file : o.scene.demo, o.out_dir, cmdline,
                      mvr_context_caps(ctx)->renderer, n_views, o.scene.width, o.scene.height, o.frames, count,
                      configs, results, 0, omitted, false, NULL, 0, pixels, rounds};
-    bench_print_table(&run, stdout);
-    char path[4096];
-    snprintf(path, sizeof path, "%s/results.csv", o.out_dir);
-    bool ok = bench_write_csv(&run, path);
-    snprintf(path, sizeof path, "%s/results.json", o.out_dir);
-    ok = bench_write_json(&run, path) && ok;
-    ok = bench_write_images(&run) && ok;
-    ok = bench_plot(&run) && ok;
-    rc = ok ? MVR_EXIT_OK : MVR_EXIT_FAILURE;
+    rc = bench_write_reports(&run) ? MVR_EXIT_OK : MVR_EXIT_FAILURE;
 done:
     for (uint32_t k = 0; k < count; ++k)
         free(results[k].display);
