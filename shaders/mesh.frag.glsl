@@ -226,7 +226,10 @@ vec3 mvr_ibl(vec3 n, vec3 v, vec3 base, float metallic, float roughness)
         }
     }
     float inv = 1.0 / float(mvr_env_samples);
-    // the multiple-scattering energy, as mvr_ibl_fresnel's second term
+    // the multiple-scattering energy: mvr_ibl_fresnel's second term, but over
+    // the single-scattering albedo the DFG table integrates (f0 A + B), not
+    // over its roughness-dependent Fresnel k_s (an approximation of the maps,
+    // which the reference is there to measure)
     vec2 ab = texture(mvr_env_dfg, clamp(vec2(n_dot_v, roughness), 0.0, 1.0)).rg;
     vec3 fss_ess = f0 * ab.x + ab.y;
     float ems = 1.0 - (ab.x + ab.y);
