@@ -16,9 +16,9 @@ bool mvr_anim_sampler_value_count(size_t count, uint32_t components, mvr_interpo
 {
     size_t per_key = components;
     switch (interpolation) {
-    case MVR_INTERP_LINEAR:
-    case MVR_INTERP_STEP: break;
-    case MVR_INTERP_CUBICSPLINE:
+    case MVR_INTERPOLATION_LINEAR:
+    case MVR_INTERPOLATION_STEP: break;
+    case MVR_INTERPOLATION_CUBICSPLINE:
         if (!mvr_size_mul(per_key, 3, &per_key))
             return false;
         break;
@@ -33,8 +33,8 @@ bool mvr_anim_sampler_valid(const mvr_anim_sampler *s, char *why, size_t why_siz
         mvr_str_copy(why, why_size, "sampler is NULL");
         return false;
     }
-    if (s->interpolation != MVR_INTERP_LINEAR && s->interpolation != MVR_INTERP_STEP &&
-        s->interpolation != MVR_INTERP_CUBICSPLINE) {
+    if (s->interpolation != MVR_INTERPOLATION_LINEAR && s->interpolation != MVR_INTERPOLATION_STEP &&
+        s->interpolation != MVR_INTERPOLATION_CUBICSPLINE) {
         mvr_str_format(why, why_size, "unknown interpolation %d", (int)s->interpolation);
         return false;
     }
@@ -152,7 +152,7 @@ static void slerp(const double *a, const double *b, double s, double *out)
 void mvr_anim_sample(const mvr_anim_sampler *s, double t, double *out)
 {
     const size_t c = s->components;
-    const bool cubic = s->interpolation == MVR_INTERP_CUBICSPLINE;
+    const bool cubic = s->interpolation == MVR_INTERPOLATION_CUBICSPLINE;
     const size_t stride = cubic ? 3 * c : c;  /* doubles per key */
     const size_t value_at = cubic ? c : 0;    /* the value within a key */
     size_t k = mvr_anim_find_key(s->times, s->count, t);
@@ -160,9 +160,9 @@ void mvr_anim_sample(const mvr_anim_sampler *s, double t, double *out)
 
     /* Clamped before the first key / at or after the last, STEP, or a time
      * exactly on a key: the key's value. */
-    if (k + 1 >= s->count || !(t > s->times[0]) || s->interpolation == MVR_INTERP_STEP || t == s->times[k]) {
+    if (k + 1 >= s->count || !(t > s->times[0]) || s->interpolation == MVR_INTERPOLATION_STEP || t == s->times[k]) {
         memcpy(out, vk, c * sizeof *out);
-        if (s->quaternion && s->interpolation != MVR_INTERP_STEP)
+        if (s->quaternion && s->interpolation != MVR_INTERPOLATION_STEP)
             normalize_quat(out);
         return;
     }

@@ -12,11 +12,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
-typedef enum {
-    MVR_INTERP_LINEAR = 0,
-    MVR_INTERP_STEP,
-    MVR_INTERP_CUBICSPLINE
-} mvr_interpolation;
+#include "mvr/mvr.h"
+
+/* mvr_interpolation (LINEAR, STEP, CUBICSPLINE) is the public enum of mvr.h */
 
 /* One sampler. The arrays are borrowed, not owned.
  * values holds count * components doubles, or for CUBICSPLINE

@@ -87,7 +87,7 @@ mvr_result demo_mesh_add(mvr_scene *scene, demo_mesh *m, mvr_material_id materia
     p.index_count = m->index_count;
     p.indices32 = m->indices;
     p.material = material;
-    mvr_mesh_desc md = {&p, 1, name};
+    mvr_mesh_desc md = {.primitives = &p, .primitive_count = 1, .name = name};
     return mvr_scene_add_mesh(scene, &md, out);
 }
 

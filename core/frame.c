@@ -203,15 +203,150 @@ static int compare_draws(const void *pa, const void *pb)
     return a->block < b->block ? -1 : (a->block > b->block);
 }
 
-static void pack_draw_block(uint8_t *dst, const mvr_dmat4 *world, mvr_dvec3 origin, uint32_t material)
+/* A skinned draw's joint matrices are already world and relative to the
+ * origin: its model is the identity (exactly, so both skinning paths agree). */
+static void pack_draw_block(uint8_t *dst, const mvr_dmat4 *world, mvr_dvec3 origin, uint32_t material,
+                           const mvr_deform *deform)
 {
-    mvr_mat4f model = mvr_dmat4_relative_to(world, origin);
-    mvr_dmat4 nm = mvr_dmat4_normal_matrix(world);
+    bool skinned = deform && deform->joint_base >= 0;
+    mvr_dmat4 identity = mvr_dmat4_identity();
+    mvr_mat4f model = skinned ? mvr_dmat4_to_float(&identity) : mvr_dmat4_relative_to(world, origin);
+    mvr_dmat4 nm = skinned ? identity : mvr_dmat4_normal_matrix(world);
     mvr_mat4f normal = mvr_dmat4_to_float(&nm);
     put_f(dst + MVR_DRAW_MODEL_OFFSET, model.m, 16);
     put_f(dst + MVR_DRAW_NORMAL_MATRIX_OFFSET, normal.m, 16);
-    int32_t info[4] = {(int32_t)material, 0, 0, 0};
+    int32_t info[4] = {(int32_t)material, deform ? deform->joint_base : -1, deform ? deform->morph_base : -1,
+                       deform ? deform->delta_base : -1};
     put_i(dst + MVR_DRAW_INFO_OFFSET, info, 4);
+}
+
+/* ---- skins and morph targets */
+
+static bool grow_buffer(void **p, size_t *cap, size_t need, size_t elem)
+{
+    if (need <= *cap)
+        return true;
+    size_t n = *cap ? *cap : 64, bytes;
+    while (n < need)
+        n *= 2;
+    if (!mvr_size_mul(n, elem, &bytes))
+        return false;
+    void *q = realloc(*p, bytes);
+    if (!q)
+        return false;
+    *p = q;
+    *cap = n;
+    return true;
+}
+
+static bool deform_texels(mvr_frame *f, uint32_t count, float **out)
+{
+    size_t need = ((size_t)f->deform_texels + count) * 4;
+    if (!grow_buffer((void **)&f->deform_data, &f->deform_data_cap, need, sizeof(float)))
+        return false;
+    *out = f->deform_data + (size_t)f->deform_texels * 4;
+    memset(*out, 0, (size_t)count * 4 * sizeof(float));
+    f->deform_texels += count;
+    return true;
+}
+
+/* Joint matrices of every skin a drawn node uses: in double (joint_world,
+ * for bounds) and, relative to the origin and narrowed, into the texels. */
+static bool pose_skins(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin)
+{
+    size_t cap = f->skin_first_cap;
+    if (!grow_buffer((void **)&f->skin_first, &cap, s->skin_count ? s->skin_count : 1, sizeof *f->skin_first))
+        return false;
+    f->skin_first_cap = (uint32_t)cap;
+    for (uint32_t i = 0; i < s->skin_count; ++i)
+        f->skin_first[i] = MVR_NO_INDEX;
+    uint32_t total = 0;
+    for (uint32_t i = 0; i < s->node_count; ++i) {
+        const scene_node *n = &s->nodes[i];
+        if (n->skin == MVR_NO_INDEX || n->mesh == MVR_NO_INDEX || f->skin_first[n->skin] != MVR_NO_INDEX)
+            continue;
+        f->skin_first[n->skin] = total;
+        total += s->skins[n->skin].joint_count;
+    }
+    cap = f->joint_world_cap;
+    if (!grow_buffer((void **)&f->joint_world, &cap, total ? total : 1, sizeof *f->joint_world))
+        return false;
+    f->joint_world_cap = (uint32_t)cap;
+    float *texels;
+    if (!deform_texels(f, total * MVR_DEFORM_TEXELS_PER_JOINT, &texels))
+        return false;
+    f->joints = total;
+    for (uint32_t k = 0; k < s->skin_count; ++k) {
+        if (f->skin_first[k] == MVR_NO_INDEX)
+            continue;
+        mvr_dmat4 *joints = f->joint_world + f->skin_first[k];
+        mvr_scene_skin_matrices(s, k, f->world, joints);
+        for (uint32_t j = 0; j < s->skins[k].joint_count; ++j) {
+            float *t = texels + ((size_t)f->skin_first[k] + j) * MVR_DEFORM_TEXELS_PER_JOINT * 4;
+            mvr_mat4f m = mvr_dmat4_relative_to(&joints[j], origin);
+            mvr_dmat4 nd = mvr_dmat4_normal_matrix(&joints[j]);
+            mvr_mat4f nm = mvr_dmat4_to_float(&nd);
+            memcpy(t, m.m, 16 * sizeof(float));
+            for (int c = 0; c < 3; ++c) /* the normal matrix's 3x3 columns */
+                memcpy(t + 16 + c * 4, nm.m + c * 4, 3 * sizeof(float));
+        }
+    }
+    return true;
+}
+
+/* The deform of one (node, primitive), its morph header and active
+ * weights written: only targets with a non-zero weight cost work. */
+static bool add_deform(mvr_frame *f, const mvr_scene *s, uint32_t node, uint32_t prim, uint32_t *out)
+{
+    const scene_node *n = &s->nodes[node];
+    const scene_primitive *p = &s->primitives[prim];
+    bool skinned = mvr_scene_draw_skinned(s, n, p);
+    const float *w = p->target_count ? mvr_scene_node_weights(s, n) : NULL;
+    *out = MVR_NO_INDEX;
+    if (!skinned && !p->target_count)
+        return true;
+    size_t cap = f->deform_cap;
+    if (!grow_buffer((void **)&f->deforms, &cap, (size_t)f->deform_count + 1, sizeof *f->deforms))
+        return false;
+    f->deform_cap = (uint32_t)cap;
+    mvr_deform *d = &f->deforms[f->deform_count];
+    memset(d, 0, sizeof *d);
+    d->node = node;
+    d->primitive = prim;
+    d->joint_base = skinned ? (int32_t)(f->skin_first[n->skin] * MVR_DEFORM_TEXELS_PER_JOINT) : -1;
+    d->morph_base = -1;
+    d->delta_base = p->target_count ? (int32_t)p->morph_base : -1;
+    if (skinned)
+        d->features |= MVR_FEATURE_SKIN | (p->influence_sets > 1 ? MVR_FEATURE_SKIN8 : 0u);
+    if (p->target_count) {
+        d->features |= MVR_FEATURE_MORPH;
+        uint32_t active = 0;
+        for (uint32_t t = 0; w && t < p->target_count; ++t)
+            active += w[t] != 0.0f;
+        float *texels;
+        d->morph_base = (int32_t)f->deform_texels;
+        if (!deform_texels(f, 1 + (active + 1) / 2, &texels))
+            return false;
+        texels[0] = (float)active;
+        texels[1] = (float)p->vertex_count;
+        texels[2] = (float)p->morph_attributes;
+        texels[3] = (float)p->morph_slots;
+        uint32_t k = 0;
+        for (uint32_t t = 0; w && t < p->target_count; ++t)
+            if (w[t] != 0.0f) {
+                texels[4 + 2 * k] = (float)t;
+                texels[4 + 2 * k + 1] = w[t];
+                k++;
+            }
+        d->active_targets = active;
+        f->morph_active += active;
+    }
+    if (p->normals)
+        d->features |= MVR_FEATURE_NORMALS;
+    if (p->tangents)
+        d->features |= MVR_FEATURE_TANGENTS;
+    *out = f->deform_count++;
+    return true;
 }
 
 static void pack_lights(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin)
@@ -287,6 +422,11 @@ mvr_result mvr_frame_build(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin, u
         f->world_cap = s->node_count;
     }
     mvr_scene_world_matrices(s, f->world);
+    f->deform_count = f->deform_texels = f->joints = f->morph_active = 0;
+    if (!pose_skins(f, s, origin)) {
+        mvr_str_copy(why, why_size, "out of memory (joint matrices)");
+        return MVR_ERROR_OUT_OF_MEMORY;
+    }
 
     uint32_t count = 0;
     for (uint32_t i = 0; i < s->node_count; ++i)
@@ -320,6 +460,10 @@ mvr_result mvr_frame_build(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin, u
             const scene_primitive *p = &s->primitives[pi];
             const mvr_material_desc *mat = mvr_scene_material(s, p->material);
             mvr_draw *d = &f->draws[f->draw_count];
+            if (!add_deform(f, s, i, pi, &d->deform)) {
+                mvr_str_copy(why, why_size, "out of memory (morph weights)");
+                return MVR_ERROR_OUT_OF_MEMORY;
+            }
             d->primitive = pi;
             d->material = p->material;
             d->features = mvr_draw_features(p, mat);
@@ -342,6 +486,26 @@ mvr_result mvr_frame_build(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin, u
             d->center[1] = world_center.y;
             d->center[2] = world_center.z;
             d->radius = half * fmax(sx, fmax(sy, sz)) * (1.0 + 1e-6) + 1e-9;
+            if (d->deform != MVR_NO_INDEX) {
+                /* posed: the skeleton's and the weights' bounds, never the
+                 * bind pose's (a posed character is never culled while
+                 * visible); the same box shadows fit */
+                const mvr_deform *df = &f->deforms[d->deform];
+                mvr_dvec3 lo, hi;
+                mvr_scene_posed_bounds(s, n, p, w,
+                                       df->joint_base >= 0 ? f->joint_world + f->skin_first[n->skin] : NULL, &lo,
+                                       &hi);
+                mvr_dvec3 c = mvr_dvec3_sub(mvr_dvec3_scale(mvr_dvec3_add(lo, hi), 0.5), origin);
+                d->center[0] = c.x;
+                d->center[1] = c.y;
+                d->center[2] = c.z;
+                d->depth = (float)mvr_dvec3_length(c);
+                d->radius = 0.5 * mvr_dvec3_length(mvr_dvec3_sub(hi, lo)) * (1.0 + 1e-6) + 1e-9;
+                if (df->joint_base >= 0) /* the skeleton decides the winding, not the node */
+                    d->mirrored = mvr_dmat4_det3(f->joint_world + f->skin_first[n->skin]) < 0.0;
+                if (!f->preskin)
+                    d->features |= df->features & MVR_DEFORM_FEATURES;
+            }
             /* material index: the default material sits after the scene's */
             uint32_t material_slot = p->material == MVR_NO_INDEX ? s->material_count : p->material;
             d->group_key = 0;
@@ -377,7 +541,7 @@ mvr_result mvr_frame_build(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin, u
         uint32_t material_slot = d->material == MVR_NO_INDEX ? s->material_count : d->material;
         d->block = i;
         pack_draw_block(f->draw_blocks + (size_t)i * stride, &f->world[d->node], origin,
-                        material_slot % material_capacity);
+                        material_slot % material_capacity, d->deform != MVR_NO_INDEX ? &f->deforms[d->deform] : NULL);
     }
     memset(f->pass_first, 0, sizeof f->pass_first);
     memset(f->pass_count, 0, sizeof f->pass_count);
@@ -394,6 +558,10 @@ void mvr_frame_free(mvr_frame *f)
     free(f->draws);
     free(f->draw_blocks);
     free(f->world);
+    free(f->deforms);
+    free(f->deform_data);
+    free(f->joint_world);
+    free(f->skin_first);
     memset(f, 0, sizeof *f);
 }
 

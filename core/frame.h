@@ -24,7 +24,8 @@
  * draw, spaced the GL's uniform offset alignment apart (padding vec4s) */
 #define MVR_DRAW_MODEL_OFFSET 0u          /* mat4 model */
 #define MVR_DRAW_NORMAL_MATRIX_OFFSET 64u /* mat4 normal_matrix */
-#define MVR_DRAW_INFO_OFFSET 128u         /* ivec4 info; x: material index */
+#define MVR_DRAW_INFO_OFFSET 128u         /* ivec4 info; x: material index; y, z, w: deform.glsl's
+                                             joint base, morph header, morph delta base (-1: none) */
 #define MVR_DRAW_BLOCK_SIZE 144u          /* the struct without padding */
 
 /* mvr_materials (shaders/mesh.frag.glsl): an array of struct mvr_material */
@@ -118,7 +119,26 @@ typedef struct mvr_draw {
     float depth;                 /* distance from the origin to its bounds' center */
     double center[3];            /* world bounding sphere, relative to the origin */
     double radius;
+    uint32_t deform;             /* its entry in mvr_frame.deforms, or MVR_NO_INDEX */
 } mvr_draw;
+
+/* The per-frame deformation data (shaders/deform.glsl): RGBA32F texels in
+ * rows of 2^MVR_DEFORM_WIDTH_LOG2, joint matrices of every skin drawn then
+ * every morphed draw's active weights; uploaded once per frame for every
+ * view. */
+#define MVR_DEFORM_WIDTH_LOG2 10u
+#define MVR_DEFORM_TEXELS_PER_JOINT 7u
+
+/* One skinned or morphed (node, primitive): what the pre-skinning pass
+ * runs once per frame, and what the vertex path reads per draw. */
+typedef struct mvr_deform {
+    uint32_t node, primitive;
+    int32_t joint_base;          /* texel of the skin's joint 0, or -1 */
+    int32_t morph_base;          /* texel of its morph header, or -1 */
+    int32_t delta_base;          /* its primitive's first delta texel */
+    uint32_t features;           /* SKIN, SKIN8, MORPH, NORMALS, TANGENTS (the pre-skinning variant) */
+    uint32_t active_targets;
+} mvr_deform;
 
 /* What shadows and light masks need of a light, in the order of the light
  * blocks (directional, point, spot). */
@@ -146,6 +166,22 @@ typedef struct mvr_frame {
     mvr_frame_light lights[3 * MVR_SHADER_MAX_LIGHTS_PER_TYPE];
     mvr_dmat4 *world;
     uint32_t world_cap;
+    /* skins and morph targets */
+    mvr_deform *deforms;
+    uint32_t deform_count, deform_cap;
+    float *deform_data;          /* deform_texels * 4 floats */
+    uint32_t deform_texels;
+    size_t deform_data_cap;      /* floats */
+    mvr_dmat4 *joint_world;      /* every drawn skin's joint matrices (double, not relative) */
+    uint32_t joint_world_cap;
+    uint32_t *skin_first;        /* per scene skin: its first joint in joint_world, or MVR_NO_INDEX */
+    uint32_t skin_first_cap;
+    uint32_t joints;             /* joint matrices in deform_data */
+    uint32_t morph_active;       /* non-zero weights summed over morphed draws */
+    /* set before mvr_frame_build: the pre-skinning path takes deformation
+     * out of the draws' programs (no SKIN, SKIN8, MORPH bits): they draw
+     * the vertices its pass captured */
+    bool preskin;
 } mvr_frame;
 
 /* Builds the frame's draws, blocks and lights for a scene seen from origin.
@@ -158,6 +194,7 @@ typedef struct mvr_frame {
 mvr_result mvr_frame_build(mvr_frame *frame, const mvr_scene *scene, mvr_dvec3 origin,
                            uint32_t block_stride, uint32_t material_capacity,
                            const mvr_batch_plan *plan, char *why, size_t why_size);
+
 void mvr_frame_free(mvr_frame *frame);
 
 /* Per-view frustum culling: visible[view * words + draw / 64] bit draw % 64

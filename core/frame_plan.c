@@ -201,6 +201,14 @@ mvr_result mvr_frame_plan_build(mvr_frame_plan *p, const mvr_frame_plan_input *i
                                        : "this environment is prefiltered already");
     add(p, MVR_PLAN_UPLOAD, MVR_PLAN_RUN, MVR_PLAN_NO_CHUNK, 0, views,
         "view blocks; per-draw blocks and lights only when changed");
+    if (in->deforms) {
+        mvr_plan_record *d = add(p, MVR_PLAN_PRESKIN, in->preskin && in->deforms_moved ? MVR_PLAN_RUN : MVR_PLAN_SKIP,
+                                 MVR_PLAN_NO_CHUNK, 0, views,
+                                 !in->preskin ? "vertex path: each view's vertex stage deforms"
+                                 : in->deforms_moved ? "once, captured for every view and the shadow maps"
+                                                     : "nothing moved: last capture reused");
+        d->draws = in->deforms;
+    }
     mvr_plan_record *r = add(p, MVR_PLAN_SHADOW_MAPS, in->shadow_layers ? MVR_PLAN_RUN : MVR_PLAN_SKIP,
                              MVR_PLAN_NO_CHUNK, 0, views,
                              in->shadow_layers ? "once, its layers shared by every view" : "no shadow layers planned");
@@ -229,7 +237,7 @@ void mvr_frame_plan_free(mvr_frame_plan *p)
 const char *mvr_plan_kind_name(mvr_plan_kind kind)
 {
     static const char *const names[MVR_PLAN_KIND_COUNT] = {
-        "env-prefilter", "upload", "shadow-maps", "view-pass",           "opaque",       "mask",
+        "env-prefilter", "upload", "preskin", "shadow-maps", "view-pass",           "opaque",       "mask",
         "background",    "blend",  "blend-view",  "msaa-resolve", "supersample-resolve", "post"};
     return (unsigned)kind < MVR_PLAN_KIND_COUNT ? names[kind] : "?";
 }

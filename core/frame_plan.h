@@ -37,7 +37,8 @@ typedef enum mvr_msaa_multiview_mode {
 
 typedef enum mvr_plan_kind {
     MVR_PLAN_ENV_PREFILTER = 0,  /* once per new environment */
-    MVR_PLAN_UPLOAD,             /* the frame's uniform data and state */
+    MVR_PLAN_UPLOAD,             /* the frame's uniform data and state (joints and weights included) */
+    MVR_PLAN_PRESKIN,            /* skinning and morphing once for every view (transform feedback) */
     MVR_PLAN_SHADOW_MAPS,        /* once, shared by every view */
     MVR_PLAN_VIEW_PASS,          /* one chunk: its framebuffer, viewport, clear and bindings */
     MVR_PLAN_OPAQUE,             /* sub-passes of the chunk's view pass */
@@ -99,6 +100,9 @@ typedef struct mvr_frame_plan_input {
     bool environment;            /* image-based lighting this frame */
     bool environment_new;        /* ... from an environment not yet prefiltered */
     uint32_t shadow_layers;      /* layers of this frame's shadow plan */
+    uint32_t deforms;            /* skinned or morphed draws (0: no pre-skinning record) */
+    bool preskin;                /* ... deformed on the pre-skinning path */
+    bool deforms_moved;          /* ... whose joints or weights changed since the last capture */
     uint32_t draws[MVR_PASS_KIND_COUNT]; /* the frame's opaque, mask and blend lists */
 } mvr_frame_plan_input;
 

@@ -79,6 +79,7 @@ static void free_primitive(scene_primitive *p)
     free(p->uv1);
     free(p->colors);
     free(p->indices);
+    mvr_scene_free_deformers(p);
 }
 
 void mvr_scene_destroy(mvr_scene *s)
@@ -89,6 +90,13 @@ void mvr_scene_destroy(mvr_scene *s)
         free(s->images[i].rgba);
     for (uint32_t i = 0; i < s->primitive_count; ++i)
         free_primitive(&s->primitives[i]);
+    for (uint32_t i = 0; i < s->mesh_count; ++i)
+        free(s->meshes[i].weights);
+    for (uint32_t i = 0; i < s->node_count; ++i) {
+        free(s->nodes[i].weights);
+        free(s->nodes[i].rest_weights);
+    }
+    mvr_scene_free_skins_and_animations(s);
     free(s->images);
     free(s->materials);
     free(s->primitives);
@@ -378,6 +386,11 @@ static mvr_result add_primitive(mvr_scene *s, const mvr_primitive_desc *d, const
         free_primitive(p);
         return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_mesh(%s): out of memory", mesh);
     }
+    mvr_result dr = mvr_scene_primitive_deformers(s, p, d, mesh, k);
+    if (dr != MVR_OK) {
+        free_primitive(p);
+        return dr;
+    }
     uint32_t repaired = sanitize_vertices(p);
     if (repaired) {
         s->sanitized += repaired;
@@ -422,9 +435,48 @@ mvr_result mvr_scene_add_mesh(mvr_scene *s, const mvr_mesh_desc *d, mvr_mesh_id 
             return r;
         }
     }
+    /* glTF 3.7.2.2: every primitive of a mesh has the same number of targets */
+    uint32_t targets = s->primitives[first].target_count;
+    const char *bad = NULL;
+    for (uint32_t k = 1; k < d->primitive_count && !bad; ++k)
+        if (s->primitives[first + k].target_count != targets)
+            bad = "its primitives have different numbers of morph targets";
+    if (!bad && d->weight_count && (d->weight_count != targets || !d->weights))
+        bad = "its default weights are not one per morph target";
+    if (!bad && d->weight_count && !finite_floats(d->weights, d->weight_count))
+        bad = "its default weights are not finite";
+    float *weights = NULL;
+    if (!bad && targets) {
+        weights = calloc(targets, sizeof *weights);
+        if (!weights)
+            bad = "out of memory";
+        else if (d->weight_count)
+            memcpy(weights, d->weights, targets * sizeof *weights);
+    }
+    if (bad) {
+        while (s->primitive_count > first)
+            free_primitive(&s->primitives[--s->primitive_count]);
+        return fail(s, weights || strcmp(bad, "out of memory") ? MVR_ERROR_INVALID_ARGUMENT : MVR_ERROR_OUT_OF_MEMORY,
+                    "mvr_scene_add_mesh(%s): %s (%u targets, %u weights)", name, bad, targets, d->weight_count);
+    }
+    for (uint32_t k = 0; k < d->primitive_count; ++k) {
+        scene_primitive *p = &s->primitives[first + k];
+        if (!p->target_count)
+            continue;
+        uint32_t slot = 0, slots = 0;
+        const float *attr[3] = {p->target_positions, p->target_normals, p->target_tangents};
+        for (uint32_t a = 0; a < 3; ++a)
+            slots |= (attr[a] ? slot++ : 3u) << (2 * a);
+        p->morph_attributes = slot;
+        p->morph_slots = slots;
+        p->morph_base = s->morph_texels;
+        s->morph_texels += (uint64_t)p->target_count * slot * p->vertex_count;
+    }
     scene_mesh *m = &s->meshes[s->mesh_count];
     m->first_primitive = first;
     m->primitive_count = d->primitive_count;
+    m->target_count = targets;
+    m->weights = weights;
     mvr_str_copy(m->name, sizeof m->name, name);
     s->mesh_count++;
     s->geometry_version++;
@@ -542,6 +594,10 @@ mvr_result mvr_scene_add_node(mvr_scene *s, const mvr_node_desc *d, mvr_node_id 
     n->mesh = d->mesh.id ? d->mesh.id - 1 : MVR_NO_INDEX;
     n->light = d->light.id ? d->light.id - 1 : MVR_NO_INDEX;
     n->camera = d->camera.id ? d->camera.id - 1 : MVR_NO_INDEX;
+    n->skin = MVR_NO_INDEX;
+    n->rest_translation = n->translation;
+    n->rest_rotation = n->rotation;
+    n->rest_scale = n->scale;
     mvr_str_copy(n->name, sizeof n->name, name);
     s->node_count++;
     s->transform_version++;
@@ -563,6 +619,9 @@ mvr_result mvr_scene_set_node_transform(mvr_scene *s, mvr_node_id node, const do
     scene_node *n = &s->nodes[node.id - 1];
     n->use_matrix = false;
     set_trs(s, n, "mvr_scene_set_node_transform", t, r, sc);
+    n->rest_translation = n->translation;
+    n->rest_rotation = n->rotation;
+    n->rest_scale = n->scale;
     s->transform_version++;
     return MVR_OK;
 }
@@ -596,6 +655,12 @@ void mvr_scene_get_info(const mvr_scene *s, mvr_scene_info *out)
     out->nodes = s->node_count;
     out->lights = s->light_count;
     out->cameras = s->camera_count;
+    out->skins = s->skin_count;
+    for (uint32_t i = 0; i < s->skin_count; ++i)
+        out->joints += s->skins[i].joint_count;
+    out->animations = s->animation_count;
+    for (uint32_t i = 0; i < s->primitive_count; ++i)
+        out->morph_targets += s->primitives[i].target_count;
     for (uint32_t i = 0; i < s->light_count; ++i) {
         const mvr_light_desc *l = &s->lights[i];
         float c = fmaxf(l->color[0], fmaxf(l->color[1], l->color[2])) * l->intensity;
@@ -604,27 +669,33 @@ void mvr_scene_get_info(const mvr_scene *s, mvr_scene_info *out)
     }
     mvr_dvec3 lo = mvr_dvec3_make(INFINITY, INFINITY, INFINITY);
     mvr_dvec3 hi = mvr_dvec3_make(-INFINITY, -INFINITY, -INFINITY);
+    uint32_t most_joints = 0;
+    for (uint32_t i = 0; i < s->skin_count; ++i)
+        if (s->skins[i].joint_count > most_joints)
+            most_joints = s->skins[i].joint_count;
     mvr_dmat4 *world = s->node_count ? malloc(s->node_count * sizeof *world) : NULL;
+    mvr_dmat4 *joints = most_joints ? malloc(most_joints * sizeof *joints) : NULL;
     if (world) {
         mvr_scene_world_matrices(s, world);
         for (uint32_t i = 0; i < s->node_count; ++i) {
-            if (s->nodes[i].mesh == MVR_NO_INDEX)
+            const scene_node *n = &s->nodes[i];
+            if (n->mesh == MVR_NO_INDEX)
                 continue;
-            const scene_mesh *m = &s->meshes[s->nodes[i].mesh];
+            /* as posed now: skinned by its joints, morphed by its weights */
+            if (n->skin != MVR_NO_INDEX && joints)
+                mvr_scene_skin_matrices(s, n->skin, world, joints);
+            const scene_mesh *m = &s->meshes[n->mesh];
             for (uint32_t k = 0; k < m->primitive_count; ++k) {
-                const scene_primitive *p = &s->primitives[m->first_primitive + k];
-                for (int c = 0; c < 8; ++c) {
-                    mvr_dvec3 corner = mvr_dvec3_make(c & 1 ? p->bounds_max.x : p->bounds_min.x,
-                                                      c & 2 ? p->bounds_max.y : p->bounds_min.y,
-                                                      c & 4 ? p->bounds_max.z : p->bounds_min.z);
-                    mvr_dvec3 w = mvr_dmat4_transform_point(&world[i], corner);
-                    lo = mvr_dvec3_make(fmin(lo.x, w.x), fmin(lo.y, w.y), fmin(lo.z, w.z));
-                    hi = mvr_dvec3_make(fmax(hi.x, w.x), fmax(hi.y, w.y), fmax(hi.z, w.z));
-                }
+                mvr_dvec3 plo, phi;
+                mvr_scene_posed_bounds(s, n, &s->primitives[m->first_primitive + k], &world[i],
+                                       n->skin != MVR_NO_INDEX ? joints : NULL, &plo, &phi);
+                lo = mvr_dvec3_make(fmin(lo.x, plo.x), fmin(lo.y, plo.y), fmin(lo.z, plo.z));
+                hi = mvr_dvec3_make(fmax(hi.x, phi.x), fmax(hi.y, phi.y), fmax(hi.z, phi.z));
             }
         }
-        free(world);
     }
+    free(world);
+    free(joints);
     out->bounds_min[0] = lo.x; out->bounds_min[1] = lo.y; out->bounds_min[2] = lo.z;
     out->bounds_max[0] = hi.x; out->bounds_max[1] = hi.y; out->bounds_max[2] = hi.z;
 }

@@ -5,6 +5,7 @@
 
 #include "core_util.h"
 #include "mvr_math.h"
+#include "mvr/mvr.h"
 
 #define MVR_NO_INDEX UINT32_MAX
 
@@ -29,12 +30,64 @@ typedef struct scene_primitive {
     mvr_primitive_mode mode;
     uint32_t material;           /* index; MVR_NO_INDEX = default material */
     mvr_dvec3 bounds_min, bounds_max; /* local */
+    /* skinning: 0, 1 or 2 sets of 4 joints and weights per vertex, the
+     * weights normalised over all sets; max_joint the largest joint index
+     * with a non-zero weight (checked against the skin a node gives it) */
+    uint32_t influence_sets;
+    uint16_t *joints[2];
+    float *weights[2];
+    uint32_t max_joint;
+    /* per joint index 0..max_joint: the bind-space box of the vertices it
+     * moves (min > max: none), for posed bounds */
+    mvr_dvec3 *joint_min, *joint_max;
+    /* morph targets: target_count * vertex_count * 3 deltas per attribute
+     * (NULL: no target moves it; zeros where one target lacks it), and per
+     * target the largest |position delta| per axis (bounds) */
+    uint32_t target_count;
+    float *target_positions, *target_normals, *target_tangents;
+    mvr_dvec3 *target_extent;
+    /* where its deltas sit in the scene's morph delta texels (deform.glsl):
+     * base + (target * morph_attributes + slot) * vertex_count + vertex;
+     * slots: position | normal << 2 | tangent << 4, 3 = none */
+    uint64_t morph_base;
+    uint32_t morph_attributes, morph_slots;
 } scene_primitive;
 
 typedef struct scene_mesh {
     uint32_t first_primitive, primitive_count;
+    uint32_t target_count;       /* morph targets of every primitive (0: none) */
+    float *weights;              /* target_count default weights (glTF mesh.weights) */
     char name[64];
 } scene_mesh;
+
+typedef struct scene_skin {
+    uint32_t *joints;            /* node indices */
+    mvr_dmat4 *inverse_bind;     /* per joint */
+    uint32_t joint_count;
+    uint32_t skeleton;           /* node index or MVR_NO_INDEX */
+    char name[64];
+} scene_skin;
+
+typedef struct scene_anim_sampler {
+    double *times, *values;
+    uint32_t key_count, value_count;
+    mvr_interpolation interpolation;
+} scene_anim_sampler;
+
+typedef struct scene_anim_channel {
+    uint32_t sampler, node;
+    mvr_animation_path path;
+    uint32_t components;         /* 3, 4, 3 or the node's mesh's target count */
+} scene_anim_channel;
+
+typedef struct scene_animation {
+    scene_anim_sampler *samplers;
+    uint32_t sampler_count;
+    scene_anim_channel *channels;
+    uint32_t channel_count;
+    double start, end;
+    char name[64];
+} scene_animation;
 
 typedef struct scene_node {
     uint32_t parent;             /* index or MVR_NO_INDEX; parents come first */
@@ -43,6 +96,13 @@ typedef struct scene_node {
     mvr_dquat rotation;
     mvr_dmat4 matrix;
     uint32_t mesh, light, camera; /* indices or MVR_NO_INDEX */
+    uint32_t skin;               /* index or MVR_NO_INDEX */
+    float *weights;              /* the mesh's target count; NULL = the mesh's defaults */
+    /* the rest pose (mvr_scene_reset_pose): what add_node, set_node_transform
+     * and set_node_weights last gave; animations never change it */
+    float *rest_weights;
+    mvr_dvec3 rest_translation, rest_scale;
+    mvr_dquat rest_rotation;
     char name[64];
 } scene_node;
 
@@ -63,6 +123,11 @@ struct mvr_scene {
     uint32_t light_count, light_cap;
     mvr_projection *cameras;
     uint32_t camera_count, camera_cap;
+    scene_skin *skins;
+    uint32_t skin_count, skin_cap;
+    scene_animation *animations;
+    uint32_t animation_count, animation_cap;
+    uint64_t morph_texels;       /* delta texels of every primitive's targets */
     float ambient[3];
     /* Change counters: a renderer re-uploads what moved on since it looked. */
     uint64_t geometry_version;   /* meshes, images */
@@ -81,5 +146,43 @@ const mvr_material_desc *mvr_scene_material(const mvr_scene *scene, uint32_t ind
 
 /* World matrices of every node (double), in node order. */
 void mvr_scene_world_matrices(const mvr_scene *scene, mvr_dmat4 *out);
+
+/* ---- skins and morph targets (core/scene_animation.c) */
+
+/* Copies, checks and normalises a primitive's joints, weights and morph
+ * targets into p (its vertex attributes already copied); frees nothing on
+ * failure (the caller frees the primitive). */
+mvr_result mvr_scene_primitive_deformers(mvr_scene *scene, scene_primitive *p, const mvr_primitive_desc *d,
+                                         const char *mesh, uint32_t k);
+void mvr_scene_free_deformers(scene_primitive *p);
+void mvr_scene_free_skins_and_animations(mvr_scene *scene);
+
+/* Whether a node's draws are skinned: it has a skin and its primitive
+ * joints (else the node's transform places the bind pose, as glTF asks). */
+static inline bool mvr_scene_draw_skinned(const mvr_scene *s, const scene_node *n, const scene_primitive *p)
+{
+    (void)s;
+    return n->skin != MVR_NO_INDEX && p->influence_sets > 0;
+}
+
+/* The weights a node's mesh is drawn with (target_count of them; NULL when
+ * the mesh has no targets). */
+const float *mvr_scene_node_weights(const mvr_scene *scene, const scene_node *node);
+
+/* Joint matrices of a skin, world(joint) * inverse bind, in double. */
+void mvr_scene_skin_matrices(const mvr_scene *scene, uint32_t skin, const mvr_dmat4 *world, mvr_dmat4 *out);
+
+/* The CPU reference of deform.glsl, in double: the world positions of a
+ * primitive's vertices as a node draws it now (morphed by its weights,
+ * skinned by its skin, else placed by the node), out[3 * vertex_count].
+ * Tests compare the GPU's paths with it. False when out of memory. */
+bool mvr_scene_posed_positions(const mvr_scene *scene, uint32_t node, uint32_t primitive, double *out);
+
+/* World-space box of one primitive as node draws it this frame: posed by
+ * its skin (joint_matrices: that skin's, from mvr_scene_skin_matrices) and
+ * its morph weights; conservative. */
+void mvr_scene_posed_bounds(const mvr_scene *scene, const scene_node *node, const scene_primitive *p,
+                            const mvr_dmat4 *world, const mvr_dmat4 *joint_matrices, mvr_dvec3 *lo,
+                            mvr_dvec3 *hi);
 
 #endif

@@ -34,6 +34,18 @@ static const feature_define mesh_defines[] = {
     {MVR_FEATURE_SHADOW_CASTER, "MVR_SHADOW_CASTER"},
     {MVR_FEATURE_IBL, "MVR_IBL"},
     {MVR_FEATURE_IBL_REFERENCE, "MVR_IBL_REFERENCE"},
+    {MVR_FEATURE_SKIN, "MVR_SKIN"},
+    {MVR_FEATURE_SKIN8, "MVR_SKIN8"},
+    {MVR_FEATURE_MORPH, "MVR_MORPH"},
+};
+
+/* the mesh bits the pre-skinning program shares (MVR_PRESKIN_FEATURES) */
+static const feature_define preskin_defines[] = {
+    {MVR_FEATURE_NORMALS, "MVR_NORMALS"},
+    {MVR_FEATURE_TANGENTS, "MVR_TANGENTS"},
+    {MVR_FEATURE_SKIN, "MVR_SKIN"},
+    {MVR_FEATURE_SKIN8, "MVR_SKIN8"},
+    {MVR_FEATURE_MORPH, "MVR_MORPH"},
 };
 
 static const feature_define composite_defines[] = {
@@ -76,6 +88,9 @@ static const feature_define *program_defines(mvr_program_kind program, size_t *c
     case MVR_PROGRAM_BACKGROUND:
         *count = MVR_ARRAY_COUNT(background_defines);
         return background_defines;
+    case MVR_PROGRAM_PRESKIN:
+        *count = MVR_ARRAY_COUNT(preskin_defines);
+        return preskin_defines;
     case MVR_PROGRAM_KIND_COUNT:
         break;
     }
@@ -90,6 +105,7 @@ static bool program_files_of(mvr_program_kind program, program_files *out)
     switch (program) {
     case MVR_PROGRAM_MESH:
         out->shared[1] = "views.glsl";
+        out->vertex_shared = "deform.glsl";
         out->fragment_shared[0] = "output.glsl";
         out->fragment_shared[1] = "environment.glsl";
         out->stage[MVR_SHADER_STAGE_VERTEX] = "mesh.vert.glsl";
@@ -109,6 +125,11 @@ static bool program_files_of(mvr_program_kind program, program_files *out)
         out->fragment_shared[0] = "output.glsl";
         out->stage[MVR_SHADER_STAGE_VERTEX] = "background.vert.glsl";
         out->stage[MVR_SHADER_STAGE_FRAGMENT] = "background.frag.glsl";
+        return true;
+    case MVR_PROGRAM_PRESKIN:
+        out->vertex_shared = "deform.glsl";
+        out->stage[MVR_SHADER_STAGE_VERTEX] = "preskin.vert.glsl";
+        out->stage[MVR_SHADER_STAGE_FRAGMENT] = "preskin.frag.glsl";
         return true;
     case MVR_PROGRAM_KIND_COUNT:
         break;
@@ -131,6 +152,7 @@ const char *mvr_program_kind_name(mvr_program_kind kind)
     case MVR_PROGRAM_COMPOSITE: return "composite";
     case MVR_PROGRAM_ENVIRONMENT: return "environment";
     case MVR_PROGRAM_BACKGROUND: return "background";
+    case MVR_PROGRAM_PRESKIN: return "preskin";
     case MVR_PROGRAM_KIND_COUNT: break;
     }
     return NULL;

@@ -24,6 +24,7 @@ typedef enum mvr_program_kind {
     MVR_PROGRAM_COMPOSITE,  /* full-screen copy of one array layer per view */
     MVR_PROGRAM_ENVIRONMENT, /* environment prefiltering: a cube map level, six faces as six views */
     MVR_PROGRAM_BACKGROUND, /* the environment behind the scene, per view, at the far plane */
+    MVR_PROGRAM_PRESKIN,    /* skinning and morphing once per frame, into a transform feedback buffer */
     MVR_PROGRAM_KIND_COUNT
 } mvr_program_kind;
 
@@ -51,8 +52,16 @@ typedef enum mvr_mesh_feature {
     MVR_FEATURE_SHADOW_CASTER = 1u << 19,   /* depth only: the shadow map pass (alpha test at most) */
     MVR_FEATURE_IBL = 1u << 20,             /* image-based lighting from a prefiltered environment */
     MVR_FEATURE_IBL_REFERENCE = 1u << 21,   /* with IBL: the environment integrated per pixel (ground truth) */
-    MVR_MESH_FEATURE_ALL_ = (1u << 22) - 1u
+    MVR_FEATURE_SKIN = 1u << 22,            /* skinning in the vertex stage, four influences (JOINTS_0) */
+    MVR_FEATURE_SKIN8 = 1u << 23,           /* with SKIN: eight influences (JOINTS_1) */
+    MVR_FEATURE_MORPH = 1u << 24,           /* morph targets in the vertex stage */
+    MVR_MESH_FEATURE_ALL_ = (1u << 25) - 1u
 } mvr_mesh_feature;
+
+/* What the pre-skinning program does: the mesh bits it shares (same
+ * #defines: NORMALS, TANGENTS, SKIN, SKIN8, MORPH). */
+#define MVR_DEFORM_FEATURES (MVR_FEATURE_SKIN | MVR_FEATURE_SKIN8 | MVR_FEATURE_MORPH)
+#define MVR_PRESKIN_FEATURES (MVR_FEATURE_NORMALS | MVR_FEATURE_TANGENTS | MVR_DEFORM_FEATURES)
 
 #define MVR_TEXTURE_FEATURES                                                                        \
     (MVR_FEATURE_BASE_COLOR_TEX | MVR_FEATURE_METAL_ROUGH_TEX | MVR_FEATURE_NORMAL_TEX |                \

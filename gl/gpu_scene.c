@@ -441,10 +441,17 @@ static mvr_result upload_geometry(mvr_renderer *r, const mvr_scene *s)
         const struct { const float *data; GLint size; GLuint location; } attrs[] = {
             {sp->positions, 3, 0}, {sp->normals, 3, 1}, {sp->tangents, 4, 2},
             {sp->uv0, 2, 3}, {sp->uv1, 2, 4}, {sp->colors, 4, 5}};
+        /* skinning (deform.glsl): joints as integers, weights as floats */
+        const struct { const void *data; size_t bytes; GLuint location; bool joints; } skin[] = {
+            {sp->joints[0], sizeof(uint16_t), 6, true}, {sp->weights[0], sizeof(float), 7, false},
+            {sp->joints[1], sizeof(uint16_t), 8, true}, {sp->weights[1], sizeof(float), 9, false}};
         size_t total = 0;
         for (size_t a = 0; a < MVR_ARRAY_COUNT(attrs); ++a)
             if (attrs[a].data)
                 total += (size_t)sp->vertex_count * (size_t)attrs[a].size * sizeof(float);
+        for (size_t a = 0; a < MVR_ARRAY_COUNT(skin); ++a)
+            if (skin[a].data)
+                total += (size_t)sp->vertex_count * 4 * skin[a].bytes;
         /* staged and uploaded in one call: sub-data updates of a STATIC_DRAW
          * buffer are a slow path drivers warn about */
         uint8_t *staging = malloc(total ? total : 1);
@@ -456,6 +463,13 @@ static mvr_result upload_geometry(mvr_renderer *r, const mvr_scene *s)
                 continue;
             size_t bytes = (size_t)sp->vertex_count * (size_t)attrs[a].size * sizeof(float);
             memcpy(staging + at, attrs[a].data, bytes);
+            at += bytes;
+        }
+        for (size_t a = 0; a < MVR_ARRAY_COUNT(skin); ++a) {
+            if (!skin[a].data)
+                continue;
+            size_t bytes = (size_t)sp->vertex_count * 4 * skin[a].bytes;
+            memcpy(staging + at, skin[a].data, bytes);
             at += bytes;
         }
         gl->GenVertexArrays(1, &p->vao);
@@ -478,7 +492,21 @@ static mvr_result upload_geometry(mvr_renderer *r, const mvr_scene *s)
             gl->EnableVertexAttribArray(attrs[a].location);
             gl->VertexAttribPointer(attrs[a].location, attrs[a].size, GL_FLOAT, GL_FALSE, 0,
                                     (const void *)(uintptr_t)offset);
+            p->attributes |= 1u << attrs[a].location;
+            p->attribute_offset[attrs[a].location] = (GLintptr)offset;
             offset += bytes;
+        }
+        for (size_t a = 0; a < MVR_ARRAY_COUNT(skin); ++a) {
+            if (!skin[a].data)
+                continue;
+            gl->EnableVertexAttribArray(skin[a].location);
+            if (skin[a].joints)
+                gl->VertexAttribIPointer(skin[a].location, 4, GL_UNSIGNED_SHORT, 0, (const void *)(uintptr_t)offset);
+            else
+                gl->VertexAttribPointer(skin[a].location, 4, GL_FLOAT, GL_FALSE, 0, (const void *)(uintptr_t)offset);
+            p->attributes |= 1u << skin[a].location;
+            p->attribute_offset[skin[a].location] = (GLintptr)offset;
+            offset += (size_t)sp->vertex_count * 4 * skin[a].bytes;
         }
         r->upload_bytes += total;
         p->mode = gl_mode(sp->mode);
@@ -600,6 +628,8 @@ mvr_result mvr_gpu_scene_sync(mvr_renderer *r, const mvr_scene *s)
     bool materials = geometry || g->material_version != s->material_version;
     if (geometry) {
         res = upload_geometry(r, s);
+        if (res == MVR_OK)
+            res = mvr_skinning_sync_scene(r, s);
         if (res != MVR_OK)
             return res;
         g->geometry_version = s->geometry_version;
@@ -626,6 +656,7 @@ mvr_result mvr_gpu_scene_sync(mvr_renderer *r, const mvr_scene *s)
 void mvr_gpu_scene_release(mvr_renderer *r)
 {
     mvr_gpu_scene *g = &r->gpu;
+    mvr_skinning_release(r);
     release_geometry(r);
     free(g->textures);
     for (uint32_t i = 0; i < g->sampler_count; ++i)

@@ -438,7 +438,9 @@ static uint32_t instance_run(const pass_context *pc, mvr_pass_kind kind, uint32_
             continue;
         }
         const mvr_draw *b = &f->draws[pos];
-        bool same = b->primitive == a->primitive && b->features == a->features && b->mirrored == a->mirrored &&
+        /* a pre-skinned draw has its own captured vertices: never instanced */
+        bool same = b->primitive == a->primitive && !mvr_skinning_vao(r, a) && !mvr_skinning_vao(r, b) &&
+                    b->features == a->features && b->mirrored == a->mirrored &&
                     b->material_page == a->material_page &&
                     (r->gpu.arrays ? b->group_key == a->group_key : b->material == a->material);
         if (!same)
@@ -487,7 +489,8 @@ void mvr_submit_draw(mvr_renderer *r, const mvr_draw *d, uint32_t instances)
     bool double_sided = (d->features & MVR_FEATURE_DOUBLE_SIDED) != 0;
     mvr_state_cull(&r->state, !double_sided, d->mirrored ? GL_CW : GL_CCW);
     const mvr_gpu_primitive *p = &r->gpu.primitives[d->primitive];
-    mvr_state_vao(&r->state, p->vao);
+    GLuint captured = mvr_skinning_vao(r, d);
+    mvr_state_vao(&r->state, captured ? captured : p->vao);
     if (instances > 1) {
         if (p->ibo)
             gl->DrawElementsInstanced(p->mode, p->count, p->index_type, NULL, (GLsizei)instances);
@@ -608,7 +611,11 @@ static mvr_result prepare_frame(mvr_renderer *r, const mvr_scene *scene, const m
     uint32_t stride = (uint32_t)align_up(MVR_DRAW_BLOCK_SIZE, (GLsizeiptr)r->ubo_alignment);
     /* dirty tracking: the same scene state seen from the same origin reuses
      * the frame and its uploaded blocks (a static scene sends only views) */
-    *same = r->frame_key.valid && r->frame_key.scene_serial == mvr_scene_serial(scene) &&
+    /* where skinning runs decides the draws' programs: a change rebuilds */
+    r->skinning.path = mvr_skinning_choose(r, scene, views->count);
+    bool preskin = r->skinning.path == MVR_SKINNING_PATH_PRESKIN;
+    *same = r->frame_key.valid && r->frame.preskin == preskin &&
+            r->frame_key.scene_serial == mvr_scene_serial(scene) &&
             r->frame_key.geometry_version == scene->geometry_version &&
             r->frame_key.material_version == scene->material_version &&
             r->frame_key.transform_version == scene->transform_version &&
@@ -617,6 +624,7 @@ static mvr_result prepare_frame(mvr_renderer *r, const mvr_scene *scene, const m
     mvr_result res = MVR_OK;
     if (!*same) {
         r->frame_key.valid = false;
+        r->frame.preskin = preskin;
         res = mvr_frame_build(&r->frame, scene, views->origin, stride, r->material_capacity,
                               r->gpu.arrays ? &r->gpu.plan : NULL, why, sizeof why);
         if (res != MVR_OK)
@@ -646,7 +654,7 @@ static mvr_result prepare_frame(mvr_renderer *r, const mvr_scene *scene, const m
 /* The plan of this frame (r->plan) from its state, and the scratch its
  * executor needs (grown, never per frame). */
 static mvr_result build_plan(mvr_renderer *r, const mvr_view_set *views, const mvr_target *t,
-                             const mvr_render_desc *desc, mvr_view_path path)
+                             const mvr_render_desc *desc, mvr_view_path path, bool same)
 {
     mvr_frame_plan_input in;
     memset(&in, 0, sizeof in);
@@ -666,6 +674,9 @@ static mvr_result build_plan(mvr_renderer *r, const mvr_view_set *views, const m
     in.environment = desc->environment != NULL;
     in.environment_new = desc->environment && r->env.serial != desc->environment->serial;
     in.shadow_layers = r->shadows.plan.layer_count;
+    in.deforms = r->frame.deform_count;
+    in.preskin = r->skinning.path == MVR_SKINNING_PATH_PRESKIN;
+    in.deforms_moved = !same || r->skinning.captured_key == 0;
     for (int k = 0; k < MVR_PASS_KIND_COUNT; ++k)
         in.draws[k] = r->frame.pass_count[k];
     mvr_frame_plan *plan = &r->plan;
@@ -774,6 +785,11 @@ static mvr_result exec_upload(frame_exec *fx)
     if (res != MVR_OK)
         return res;
     fx->ring_begun = true;
+    /* skins and morphs: joints and weights once for every view; on the
+     * pre-skinning path the capture, before the shadow and view passes */
+    res = mvr_skinning_frame(r, !fx->static_current);
+    if (res != MVR_OK)
+        return res;
     setup_frame_state(fx);
     return MVR_OK;
 }
@@ -975,6 +991,8 @@ static mvr_result exec_record(frame_exec *fx, const mvr_plan_record *rec)
         return exec_env_prefilter(fx);
     case MVR_PLAN_UPLOAD:
         return exec_upload(fx);
+    case MVR_PLAN_PRESKIN:
+        return mvr_skinning_capture(fx->r);
     case MVR_PLAN_SHADOW_MAPS:
         return exec_shadow_maps(fx);
     case MVR_PLAN_VIEW_PASS:
@@ -1007,7 +1025,7 @@ mvr_result mvr_renderer_draw_frame(mvr_renderer *r, const mvr_scene *scene, cons
     bool same = false;
     mvr_result res = prepare_frame(r, scene, views, t, desc, &same);
     if (res == MVR_OK)
-        res = build_plan(r, views, t, desc, path);
+        res = build_plan(r, views, t, desc, path, same);
     if (res != MVR_OK)
         return res;
     frame_exec fx;

@@ -94,7 +94,7 @@ static void store_binary(mvr_context *ctx, GLuint program, const char *path, con
 }
 
 static mvr_result link_sources(mvr_context *ctx, const char *name, const char *vs_text, const char *fs_text,
-                               bool retrievable, GLuint *out)
+                               bool retrievable, bool capture, GLuint *out)
 {
     const mvr_gl_api_table *gl = &ctx->gl;
     GLuint vs = 0, fs = 0;
@@ -111,6 +111,12 @@ static mvr_result link_sources(mvr_context *ctx, const char *name, const char *v
         gl->ProgramParameteri(program, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
     gl->AttachShader(program, vs);
     gl->AttachShader(program, fs);
+    if (capture) {
+        /* the pre-skinning program: its outputs, interleaved, in the
+         * layout gl/skinning.c draws from (MVR_PRESKIN_STRIDE) */
+        static const char *const varyings[3] = {"o_position", "o_normal", "o_tangent"};
+        gl->TransformFeedbackVaryings(program, 3, varyings, GL_INTERLEAVED_ATTRIBS);
+    }
     gl->LinkProgram(program);
     gl->DetachShader(program, vs);
     gl->DetachShader(program, fs);
@@ -184,7 +190,8 @@ mvr_result mvr_gl_program_build_cached(mvr_context *ctx, const mvr_shader_varian
     }
     mvr_result r = MVR_OK;
     if (!program) {
-        r = link_sources(ctx, name, vs_src.data, fs_src.data, use_cache, &program);
+        r = link_sources(ctx, name, vs_src.data, fs_src.data, use_cache, variant->program == MVR_PROGRAM_PRESKIN,
+                         &program);
         if (r == MVR_OK && use_cache)
             store_binary(ctx, program, path, driver, key, info);
     }
@@ -217,6 +224,8 @@ mvr_result mvr_gl_program_build_cached(mvr_context *ctx, const mvr_shader_varian
     bind_sampler(gl, program, "mvr_env_background", MVR_UNIT_ENV_BACKGROUND);
     bind_sampler(gl, program, "mvr_env_source", MVR_UNIT_ENV_INPUT);
     bind_sampler(gl, program, "mvr_env_equirect", MVR_UNIT_ENV_INPUT);
+    bind_sampler(gl, program, "mvr_anim_data", MVR_UNIT_ANIM_DATA);
+    bind_sampler(gl, program, "mvr_morph_deltas", MVR_UNIT_MORPH_DELTAS);
     r = mvr_gl_check(ctx, "mvr_gl_program_build", false);
     if (r != MVR_OK) {
         gl->DeleteProgram(program);

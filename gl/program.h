@@ -26,6 +26,8 @@ enum {
     MVR_UNIT_ENV_DFG = 7,        /* mesh: the DFG table */
     MVR_UNIT_ENV_BACKGROUND = 8, /* background: the cube map it shows (its own unit: the
                                     mesh draws after it in the pass keep theirs) */
+    MVR_UNIT_ANIM_DATA = 9,      /* mesh and pre-skinning vertex stages: joints and morph weights */
+    MVR_UNIT_MORPH_DELTAS = 10,  /* mesh and pre-skinning vertex stages: morph target deltas */
     MVR_UNIT_COMPOSITE_SOURCE = 0,
     MVR_UNIT_COMPOSITE_DEPTH = 1,
     MVR_UNIT_ENV_INPUT = 0       /* environment program: the equirect image or the source cube */

@@ -173,10 +173,12 @@ mvr_result mvr_renderer_overrides_from_env(mvr_renderer_overrides *out, mvr_erro
     static const char *const depth_modes[] = {"auto", "reversed_z", "standard"};
     static const char *const switches[] = {"off", "on"};
     static const char *const features[] = {"inert"};
-    enum { VIEW_PATH, MATERIAL_PATH, DEPTH, CULLING, INSTANCING, MSAA_MULTIVIEW, FORCE_FEATURES, UBO_ALIGNMENT, COUNT };
+    static const char *const skinning_paths[] = {"auto", "vertex", "preskin"};
+    enum { VIEW_PATH, MATERIAL_PATH, DEPTH, CULLING, INSTANCING, MSAA_MULTIVIEW, FORCE_FEATURES, UBO_ALIGNMENT,
+           SKINNING_PATH, COUNT };
     static const char *const names[COUNT] = {"MVR_VIEW_PATH", "MVR_MATERIAL_PATH", "MVR_DEPTH",
                                              "MVR_CULLING", "MVR_INSTANCING", "MVR_MSAA_MULTIVIEW",
-                                             "MVR_FORCE_FEATURES", "MVR_UBO_ALIGNMENT"};
+                                             "MVR_FORCE_FEATURES", "MVR_UBO_ALIGNMENT", "MVR_SKINNING_PATH"};
     mvr_renderer_overrides o;
     memset(&o, 0, sizeof o);
     for (int v = 0; v < COUNT; ++v) {
@@ -204,6 +206,10 @@ mvr_result mvr_renderer_overrides_from_env(mvr_renderer_overrides *out, mvr_erro
             res = parse_choice(names[v], value, switches, 2, &k, error);
             *(v == CULLING ? &o.culling : v == INSTANCING ? &o.instancing : &o.msaa_multiview) =
                 (mvr_override_switch)k;
+            break;
+        case SKINNING_PATH:
+            res = parse_choice(names[v], value, skinning_paths, 3, &k, error);
+            o.skinning_path = (mvr_skinning_path_override)k;
             break;
         case FORCE_FEATURES:
             res = parse_choice(names[v], value, features, 1, &k, error);
@@ -237,6 +243,8 @@ static mvr_result check_overrides(const mvr_renderer_overrides *o, mvr_error *er
         field = "material_path", value = (int)o->material_path;
     else if ((unsigned)o->depth_mode > MVR_DEPTH_MODE_OVERRIDE_STANDARD)
         field = "depth_mode", value = (int)o->depth_mode;
+    else if ((unsigned)o->skinning_path > MVR_SKINNING_PATH_OVERRIDE_PRESKIN)
+        field = "skinning_path", value = (int)o->skinning_path;
     else if ((unsigned)o->culling > MVR_OVERRIDE_ON)
         field = "culling", value = (int)o->culling;
     else if ((unsigned)o->instancing > MVR_OVERRIDE_ON)
@@ -297,6 +305,10 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
     if (depth_mode == MVR_DEPTH_MODE_REVERSED_Z && !clip_control)
         return mvr_error_set(error, MVR_ERROR_UNSUPPORTED,
                              "mvr_renderer_create: depth_mode reversed_z needs GL_EXT_clip_control (or GL 4.5)");
+    if (!mvr_skinning_path_name(desc->skinning_path))
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
+                             "mvr_renderer_create: skinning_path %d is not an mvr_skinning_path",
+                             (int)desc->skinning_path);
     if (!mvr_material_path_name(desc->material_path))
         return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
                              "mvr_renderer_create: material_path %d is not an mvr_material_path",
@@ -315,6 +327,7 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
     r->logger = desc->logger.fn ? desc->logger : desc->context->logger;
     r->requested_path = ov->view_path ? (mvr_view_path)(ov->view_path - 1) : desc->view_path;
     r->material_path = ov->material_path ? (mvr_material_path)(ov->material_path - 1) : desc->material_path;
+    r->skinning.requested = ov->skinning_path ? (mvr_skinning_path)(ov->skinning_path - 1) : desc->skinning_path;
     /* 2D texture arrays are core in GLES 3.0 and GL 3.0: auto is always arrays */
     if (r->material_path == MVR_MATERIAL_PATH_AUTO)
         r->material_path = MVR_MATERIAL_PATH_ARRAYS;
@@ -519,6 +532,7 @@ mvr_result mvr_renderer_program(mvr_renderer *r, const mvr_shader_variant *v, mv
         {offsetof(mvr_program_entry, loc_depth_range), "mvr_depth_range"},
         {offsetof(mvr_program_entry, loc_background_lod), "mvr_background_lod"},
         {offsetof(mvr_program_entry, loc_env_samples), "mvr_env_samples"},
+        {offsetof(mvr_program_entry, loc_deform_info), "mvr_deform_info"},
     };
     for (size_t i = 0; i < MVR_ARRAY_COUNT(env_uniforms); ++i)
         *(GLint *)((char *)e + env_uniforms[i].offset) = r->gl->GetUniformLocation(program, env_uniforms[i].name);

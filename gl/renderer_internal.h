@@ -23,14 +23,18 @@ typedef struct mvr_program_entry {
         loc_source_max_lod;      /* environment programs */
     GLint loc_depth_range, loc_background_lod; /* background programs */
     GLint loc_env_samples;       /* mesh, the IBL reference */
+    GLint loc_deform_info;       /* pre-skinning */
     int32_t view_base;           /* last value set (INT32_MIN = unknown) */
     uint64_t frame_serial;       /* frame whose per-frame uniforms are set */
     bool from_binary;            /* linked from the binary cache */
 } mvr_program_entry;
 
 /* GPU copy of one scene primitive. */
+#define MVR_VERTEX_ATTRIBUTES 10 /* locations of mesh.vert.glsl and deform.glsl */
 typedef struct mvr_gpu_primitive {
     GLuint vao, vbo, ibo;
+    uint32_t attributes;         /* bit per location present in vbo */
+    GLintptr attribute_offset[MVR_VERTEX_ATTRIBUTES];
     GLenum mode, index_type;
     GLsizei count;
     uint32_t textures[5];        /* index into gpu_scene textures + 1 per role; 0 = none */
@@ -82,6 +86,32 @@ typedef struct mvr_gpu_scene {
     uint8_t *downscaled;
     uint32_t downscaled_cap, downscaled_count;
 } mvr_gpu_scene;
+
+/* Skins and morph targets on the GPU (gl/skinning.c): the morph deltas
+ * (once per scene geometry), the frame's deformation texels (joints and
+ * weights, once per frame for every view), and on the pre-skinning path
+ * one captured vertex buffer per deform. */
+typedef struct mvr_preskin_buffer {
+    GLuint buffer, vao;
+    uint32_t primitive;          /* the primitive whose vertices it holds (MVR_NO_INDEX: none) */
+    uint32_t vertices;
+} mvr_preskin_buffer;
+
+typedef struct mvr_skinning {
+    mvr_skinning_path requested;  /* the renderer's setting (AUTO allowed) */
+    mvr_skinning_path path;       /* this frame's: VERTEX or PRESKIN */
+    GLuint deltas;                /* RGBA32F, rows of 2^MVR_DEFORM_WIDTH_LOG2 texels */
+    uint64_t deltas_geometry;     /* the geometry version they are of (0: none) */
+    GLuint data;                  /* RGBA32F, this frame's joints and weights */
+    uint32_t data_rows;           /* allocated */
+    mvr_preskin_buffer *buffers;  /* per frame deform (pre-skinning path) */
+    uint32_t buffer_count, buffer_cap;
+    uint64_t captured_key;        /* the frame key the buffers hold (0: stale) */
+    /* a complete 1x1 framebuffer bound during the capture: a draw with the
+     * rasterizer off still fails without one (GL_INVALID_FRAMEBUFFER_OPERATION
+     * on surfaceless contexts, which have no default framebuffer) */
+    GLuint capture_fbo, capture_color;
+} mvr_skinning;
 
 /* Uniform data of one frame goes into one segment of a ring buffer; a fence
  * per segment keeps the CPU from overwriting what the GPU still reads. */
@@ -236,6 +266,7 @@ struct mvr_renderer {
     mvr_shadow_maps shadows;
     GLuint nearest_sampler;      /* texel reads of depth (auto-exposure metering) */
     mvr_gpu_environment env;
+    mvr_skinning skinning;
 };
 
 mvr_result mvr_renderer_fail(mvr_renderer *r, mvr_result result, const char *fmt, ...) MVR_PRINTF(3, 4);
@@ -338,6 +369,18 @@ bool mvr_post_needed(const mvr_render_desc *desc);
 double mvr_post_pre_exposure(mvr_renderer *r, const mvr_target *t, const mvr_render_desc *desc);
 mvr_result mvr_post_run(mvr_renderer *r, mvr_target *t, const mvr_view_set *views, const mvr_render_desc *desc,
                         const mvr_view_chunk *chunks, uint32_t chunk_count, bool multiview, double pre_exposure);
+
+/* skinning.c: the morph deltas of a scene's geometry (after its upload);
+ * this frame's path, deformation texels and, on the pre-skinning path, the
+ * capture pass (frame_changed: the frame was rebuilt, so joints or weights
+ * may have moved; nothing is sent or captured otherwise); the vertex array
+ * a draw of a deform uses (0: the primitive's own). */
+mvr_result mvr_skinning_sync_scene(mvr_renderer *r, const mvr_scene *scene);
+mvr_skinning_path mvr_skinning_choose(const mvr_renderer *r, const mvr_scene *scene, uint32_t views);
+mvr_result mvr_skinning_frame(mvr_renderer *r, bool frame_changed);
+mvr_result mvr_skinning_capture(mvr_renderer *r);
+GLuint mvr_skinning_vao(const mvr_renderer *r, const mvr_draw *d);
+void mvr_skinning_release(mvr_renderer *r);
 
 /* passes.c */
 /* Binds the textures of the roles in `features` a draw samples (array

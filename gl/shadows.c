@@ -147,9 +147,12 @@ static mvr_result shadow_framebuffer(mvr_renderer *r, uint32_t base, uint32_t co
  * test, so keeps what its base color alpha reads. */
 static uint32_t caster_features(const mvr_draw *d)
 {
+    /* a caster casts its posed shape: skinning and morphing stay (the
+     * vertex path; pre-skinned draws have none and draw their capture) */
+    uint32_t deform = d->features & MVR_DEFORM_FEATURES;
     if (d->pass != MVR_PASS_MASK)
-        return MVR_FEATURE_SHADOW_CASTER;
-    return MVR_FEATURE_SHADOW_CASTER |
+        return MVR_FEATURE_SHADOW_CASTER | deform;
+    return MVR_FEATURE_SHADOW_CASTER | deform |
            (d->features & (MVR_FEATURE_ALPHA_MASK | MVR_FEATURE_UV0 | MVR_FEATURE_UV1 | MVR_FEATURE_COLOR0 |
                            MVR_FEATURE_BASE_COLOR_TEX | MVR_FEATURE_TEXTURE_TRANSFORM |
                            MVR_FEATURE_MATERIAL_ARRAYS));
@@ -207,7 +210,8 @@ static mvr_result draw_casters(mvr_renderer *r, const caster_pass *cp)
         uint32_t n = 1;
         while (r->draw_capacity > 1 && n < r->draw_capacity && pos + n < end) {
             const mvr_draw *b = &f->draws[pos + n];
-            bool same = b->primitive == d->primitive && b->mirrored == d->mirrored &&
+            bool same = b->primitive == d->primitive && !mvr_skinning_vao(r, d) && !mvr_skinning_vao(r, b) &&
+                        b->mirrored == d->mirrored &&
                         caster_features(b) == features &&
                         (b->features & MVR_FEATURE_DOUBLE_SIDED) == (d->features & MVR_FEATURE_DOUBLE_SIDED) &&
                         (d->pass != MVR_PASS_MASK || (b->material_page == d->material_page &&

@@ -220,6 +220,11 @@ void mvr_state_scissor_test(mvr_state_cache *s, bool enabled)
     enable(s, GL_SCISSOR_TEST, &s->scissor_test, enabled);
 }
 
+void mvr_state_rasterizer_discard(mvr_state_cache *s, bool enabled)
+{
+    enable(s, GL_RASTERIZER_DISCARD, &s->rasterizer_discard, enabled);
+}
+
 #ifndef GL_FRAMEBUFFER_SRGB
 #define GL_FRAMEBUFFER_SRGB 0x8DB9 /* desktop GL 3.0 / ARB_framebuffer_sRGB */
 #endif

@@ -12,7 +12,7 @@
 #include "gl_api.h"
 
 #define MVR_STATE_UBO_BINDINGS 5
-#define MVR_STATE_TEXTURE_UNITS 10
+#define MVR_STATE_TEXTURE_UNITS 12
 
 typedef struct mvr_state_counters {
     uint32_t program_binds;
@@ -38,6 +38,7 @@ typedef struct mvr_state_cache {
     GLuint samplers[MVR_STATE_TEXTURE_UNITS];
     GLint viewport[4];
     bool depth_test, cull_face, blend, scissor_test;
+    bool rasterizer_discard;     /* the pre-skinning capture only */
     bool polygon_offset_fill;
     GLfloat polygon_offset_factor, polygon_offset_units;
     bool framebuffer_srgb;       /* desktop GL only (GLES always encodes into sRGB formats) */
@@ -75,6 +76,7 @@ void mvr_state_blend(mvr_state_cache *s, bool enabled, GLenum src_rgb, GLenum ds
                      GLenum src_a, GLenum dst_a);
 void mvr_state_color_mask(mvr_state_cache *s, bool all);
 void mvr_state_scissor_test(mvr_state_cache *s, bool enabled);
+void mvr_state_rasterizer_discard(mvr_state_cache *s, bool enabled);
 /* GL_POLYGON_OFFSET_FILL and glPolygonOffset (values kept while disabled). */
 void mvr_state_polygon_offset(mvr_state_cache *s, bool enabled, GLfloat factor, GLfloat units);
 /* Desktop GL: sRGB encoding (and linear blending) for writes to sRGB

@@ -10,7 +10,8 @@
 struct mvr_draw_data {
     mat4 model;              // relative to the view origin
     mat4 normal_matrix;      // inverse-transpose of the model's upper 3x3
-    ivec4 info;              // x: material index
+    ivec4 info;              // x: material index; y: joint texel base (< 0: not skinned);
+                             // z: morph header texel (< 0: no targets); w: morph delta base
 #if MVR_DRAW_PAD > 0
     vec4 pad[MVR_DRAW_PAD];
 #endif
@@ -62,7 +63,22 @@ void main()
 {
     int view = mvr_view_index();
     mat4 mvr_model = mvr_draws[gl_InstanceID].model;
-    vec4 world = mvr_model * vec4(a_position, 1.0);
+    vec3 position = a_position;
+#ifdef MVR_NORMALS
+    vec3 normal = a_normal;
+#else
+    vec3 normal = vec3(0.0);
+#endif
+#ifdef MVR_TANGENTS
+    vec4 tangent = a_tangent;
+#else
+    vec4 tangent = vec4(0.0);
+#endif
+#if defined(MVR_SKIN) || defined(MVR_MORPH)
+    ivec4 deform = mvr_draws[gl_InstanceID].info;
+    mvr_deform(deform.y, deform.z, deform.w, position, normal, tangent);
+#endif
+    vec4 world = mvr_model * vec4(position, 1.0);
     v_position = world.xyz;
     v_to_eye = mvr_eye_position[view].xyz - world.xyz;
     v_material = mvr_draws[gl_InstanceID].info.x;
@@ -70,10 +86,10 @@ void main()
     v_view = view;
 #endif
 #ifdef MVR_NORMALS
-    v_normal = mat3(mvr_draws[gl_InstanceID].normal_matrix) * a_normal;
+    v_normal = mat3(mvr_draws[gl_InstanceID].normal_matrix) * normal;
 #endif
 #ifdef MVR_TANGENTS
-    v_tangent = vec4(mat3(mvr_model) * a_tangent.xyz, a_tangent.w);
+    v_tangent = vec4(mat3(mvr_model) * tangent.xyz, tangent.w);
 #endif
 #ifdef MVR_UV0
     v_uv0 = a_uv0;

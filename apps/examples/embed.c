@@ -83,7 +83,7 @@ static mvr_scene *make_scene(void)
         m.roughness_factor = 0.6f;
         mvr_material_id mat;
         mvr_primitive_desc p = {.vertex_count = 8, .positions = pos, .index_count = 36, .indices16 = idx};
-        mvr_mesh_desc md = {&p, 1, "box"};
+        mvr_mesh_desc md = {.primitives = &p, .primitive_count = 1, .name = "box"};
         mvr_mesh_id mesh;
         mvr_node_id node;
         if (mvr_scene_add_material(s, &m, &mat) != MVR_OK)

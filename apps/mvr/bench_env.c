@@ -47,7 +47,7 @@ static bool add_sphere(mvr_scene *s, mvr_material_id material, mvr_mesh_id *out)
         }
     mvr_primitive_desc p = {.vertex_count = NV, .positions = pos, .normals = pos, .index_count = NI,
                             .indices16 = idx, .material = material};
-    mvr_mesh_desc md = {&p, 1, "sphere"};
+    mvr_mesh_desc md = {.primitives = &p, .primitive_count = 1, .name = "sphere"};
     ok = ok && mvr_scene_add_mesh(s, &md, out) == MVR_OK;
     free(pos);
     free(idx);

@@ -311,4 +311,35 @@ std::vector<uint32_t> read_indices(context &cx, int index, const std::string &wh
     return out;
 }
 
+void require_normalized(context &cx, int index, const std::string &what)
+{
+    const Accessor &a = accessor_at(cx, index, what);
+    if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !a.normalized)
+        refuse(what + ": accessor " + std::to_string(index) + " has integer componentType " +
+               std::to_string(a.componentType) + " but is not normalized");
+}
+
+std::vector<uint16_t> read_joints(context &cx, int index, const std::string &what)
+{
+    const Accessor &a = accessor_at(cx, index, what);
+    if (a.normalized)
+        refuse(what + ": accessor " + std::to_string(index) + " is normalized (joint indices are plain integers)");
+    // glTF 2.0, 3.7.2.1: JOINTS_n are VEC4 of UNSIGNED_BYTE or UNSIGNED_SHORT;
+    // as floats they are exact (< 2^24), then narrowed to what they were
+    std::vector<float> f = read_floats(cx, index, 4, what,
+                                       component_bit(TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) |
+                                           component_bit(TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
+    cx.mem.charge(f.size() * sizeof(uint16_t), what + " (as 16-bit joints)");
+    cx.mesh_bytes += f.size() * sizeof(uint16_t);
+    std::vector<uint16_t> out(f.size());
+    for (size_t i = 0; i < f.size(); ++i)
+        out[i] = uint16_t(f[i]);
+    // the floats go now: their charge with them
+    uint64_t fb = f.size() * sizeof(float);
+    std::vector<float>().swap(f);
+    cx.mem.release(fb);
+    cx.mesh_bytes = cx.mesh_bytes > fb ? cx.mesh_bytes - fb : 0;
+    return out;
+}
+
 }  // namespace mvr_gltf

@@ -1,10 +1,12 @@
 // The converter from tinygltf's model into an mvr_scene, shared by the
-// loader's files: gltf_loader.cpp (meshes, nodes, cameras, lights, the load)
-// and gltf_materials.cpp (materials, textures, images).
+// loader's files: gltf_loader.cpp (meshes, nodes, cameras, lights, the load),
+// gltf_materials.cpp (materials, textures, images) and gltf_animation.cpp
+// (skinning attributes, morph targets, skins, node weights, animations).
 #ifndef MVR_GLTF_CONVERT_HPP
 #define MVR_GLTF_CONVERT_HPP
 
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -14,6 +16,31 @@ namespace mvr_gltf {
 
 // A number member of a JSON value from tinygltf (fallback when absent).
 double number(const tinygltf::Value &v, const char *key, double fallback);
+
+// One morph target's deltas as read (empty: the target has none of that attribute).
+struct morph_data {
+    std::vector<float> pos, nrm, tan;
+};
+
+// A primitive as read, before it becomes an mvr_primitive_desc.
+struct prim_data {
+    std::vector<float> pos, nrm, tan, uv0, uv1, col;
+    std::vector<uint32_t> idx;
+    mvr_primitive_mode mode = MVR_PRIMITIVE_TRIANGLES;
+    mvr_material_id material = {0};
+    std::vector<uint16_t> joints0, joints1;   // 4 per vertex each
+    std::vector<float> weights0, weights1;
+    std::vector<morph_data> targets;
+    std::vector<float> zeros;                 // deltas of targets lacking an attribute other targets move
+    std::vector<mvr_morph_target_desc> target_descs;
+};
+
+// What the rest of the load needs to know about a glTF mesh once read.
+struct mesh_facts {
+    uint32_t targets = 0;          // morph targets (every primitive has as many)
+    int max_joint = -1;            // the largest joint index its JOINTS_n name (-1: none)
+    std::string joint_attr;        // the attribute naming it, for messages
+};
 
 struct converter {
     converter(context &c, mvr_scene *s, const tinygltf::Model &model) : cx(c), scene(s), m(model) {}
@@ -26,7 +53,13 @@ struct converter {
     std::map<int, mvr_mesh_id> meshes;
     std::map<int, mvr_camera_id> cameras;
     std::map<int, mvr_light_id> lights;
-    bool warned_skin = false, warned_morph = false;
+    std::map<int, mesh_facts> mesh_info;     // every glTF mesh mesh() was asked for
+    std::vector<mvr_node_id> node_ids;       // glTF node -> scene node ({0}: not in the loaded scene)
+    std::vector<std::pair<int, mvr_node_id>> skinned;   // nodes with a skin and something to draw
+    std::map<int, mvr_skin_id> skin_ids;
+    std::map<int, uint32_t> skin_joint_counts;
+    bool warned_joints2 = false, warned_target_attr = false, warned_target_dropped = false;
+    std::set<std::string> warned_paths;      // unknown animation paths, each warned once
     bool missing_texture = false;   // set when a texture's image was left out
     // cameras and lights that failed their checks: an error only if a node uses them
     std::map<int, std::string> bad_cameras, bad_lights;
@@ -56,6 +89,22 @@ struct converter {
     mvr_material_id material(int index);
     mvr_mesh_id mesh(int index);
     void node(int index, mvr_node_id parent, std::vector<char> &state, uint32_t depth);
+
+    // gltf_animation.cpp
+    // JOINTS_n / WEIGHTS_n of primitive p (vcount vertices) into d; facts
+    // records the largest joint index.
+    void skin_attributes(const tinygltf::Primitive &p, const std::string &pw, size_t vcount, prim_data &d,
+                         mesh_facts &facts);
+    // p's morph targets into d (and d.target_descs, pointing into d).
+    void morph_targets(const tinygltf::Primitive &p, const std::string &pw, size_t vcount, prim_data &d);
+    // mesh.weights, checked against its target count (empty: none given).
+    std::vector<float> mesh_weights(const tinygltf::Mesh &g, const std::string &w, uint32_t targets);
+    // node.weights of the node just added as `id`.
+    void node_weights(int index, mvr_node_id id);
+    // After every node of the scene is added: the skins nodes use, then
+    // every animation.
+    void skins();
+    void animations();
 
 private:
     mvr_image_id decode_image(size_t index, const std::string &iname);

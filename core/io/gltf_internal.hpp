@@ -109,7 +109,9 @@ struct context {
     uint64_t vertices = 0, indices = 0;   // running totals against the caps
     uint64_t mesh_bytes = 0;              // charged for the mesh being read (released once in the scene)
     bool quantization_declared = false;   // KHR_mesh_quantization in extensionsUsed
+    uint32_t channels_ignored = 0;        // animation channels left out (see gltf_animation.cpp)
     void warn(const std::string &msg);
+    void debug(const std::string &msg);   // MVR_LOG_DEBUG, not counted as a warning
     // The byteLength bytes of buffers[index], read on first use; what names the reader.
     byte_span buffer(int index, const std::string &what);
 };
@@ -129,6 +131,31 @@ std::vector<float> read_floats(context &cx, int index, int components, const std
 
 // Reads accessor `index` as unsigned indices (SCALAR of UNSIGNED_BYTE / SHORT / INT).
 std::vector<uint32_t> read_indices(context &cx, int index, const std::string &what);
+
+// Reads a JOINTS_n accessor: VEC4 of UNSIGNED_BYTE or UNSIGNED_SHORT, not
+// normalized, widened to uint16 (charged like read_floats' results).
+std::vector<uint16_t> read_joints(context &cx, int index, const std::string &what);
+
+// Whether accessor `index` (which must exist) is a normalized integer one;
+// refuses an integer accessor that is not normalized where `what` needs it.
+void require_normalized(context &cx, int index, const std::string &what);
+
+// What read_floats / read_indices / read_joints charged (cx.mesh_bytes) from
+// here on is released when this goes out of scope: for reads whose data the
+// scene copies before the next object is read (skins, animations).
+struct scoped_reads {
+    context &cx;
+    uint64_t start;
+    explicit scoped_reads(context &c) : cx(c), start(c.mesh_bytes) {}
+    scoped_reads(const scoped_reads &) = delete;
+    scoped_reads &operator=(const scoped_reads &) = delete;
+    ~scoped_reads()
+    {
+        if (cx.mesh_bytes > start)
+            cx.mem.release(cx.mesh_bytes - start);
+        cx.mesh_bytes = start;
+    }
+};
 
 // Bit of a glTF component type in an allowed mask.
 uint32_t component_bit(int component_type);

@@ -29,6 +29,11 @@ void context::warn(const std::string &msg)
         logger.fn(MVR_LOG_WARNING, MVR_LOG_ID_GENERAL, ("mvr_gltf: " + msg).c_str(), logger.user_data);
 }
 
+void context::debug(const std::string &msg)
+{
+    mvr_log(&logger, MVR_LOG_DEBUG, MVR_LOG_ID_GENERAL, "mvr_gltf: %s", msg.c_str());
+}
+
 byte_span context::buffer(int index, const std::string &what)
 {
     if (index < 0 || size_t(index) >= res.buffers.size())
@@ -172,12 +177,16 @@ mvr_mesh_id converter::mesh(int index)
         refuse("mesh " + std::to_string(index) + " does not exist (" + std::to_string(m.meshes.size()) + " meshes)");
     const tinygltf::Mesh &g = m.meshes[size_t(index)];
     std::string w = "meshes[" + std::to_string(index) + "]";
-    struct prim_data {
-        std::vector<float> pos, nrm, tan, uv0, uv1, col;
-        std::vector<uint32_t> idx;
-        mvr_primitive_mode mode;
-        mvr_material_id material;
-    };
+    mesh_facts facts;
+    // glTF 2.0, 3.7.2.2: every primitive has the same number of morph targets
+    if (!g.primitives.empty())
+        facts.targets = uint32_t(g.primitives[0].targets.size());
+    for (size_t k = 1; k < g.primitives.size(); ++k)
+        if (g.primitives[k].targets.size() != facts.targets)
+            refuse(w + ".primitives[" + std::to_string(k) + "] has " + std::to_string(g.primitives[k].targets.size()) +
+                   " morph targets, primitives[0] has " + std::to_string(facts.targets) +
+                   ": every primitive of a mesh must have as many");
+    std::vector<float> weights = mesh_weights(g, w, facts.targets);
     std::vector<prim_data> data;
     for (size_t k = 0; k < g.primitives.size(); ++k) {
         const tinygltf::Primitive &p = g.primitives[k];
@@ -192,10 +201,6 @@ mvr_mesh_id converter::mesh(int index)
         if (a_pos < 0) {
             cx.warn(pw + " has no POSITION; skipped");
             continue;
-        }
-        if (!p.targets.empty() && !warned_morph) {
-            cx.warn(pw + " has morph targets: mvr draws the base mesh (weights 0)");
-            warned_morph = true;
         }
         prim_data d;
         // glTF 2.0 3.7.2.1 + KHR_mesh_quantization: the component types allowed per attribute
@@ -239,10 +244,8 @@ mvr_mesh_id converter::mesh(int index)
                 for (int ch = 0; ch < comps; ++ch)
                     d.col[v * 4 + size_t(ch)] = c[v * size_t(comps) + size_t(ch)];
         }
-        if (attr("JOINTS_0") >= 0 && !warned_skin) {
-            cx.warn(pw + " is skinned: mvr draws the bind pose");
-            warned_skin = true;
-        }
+        skin_attributes(p, pw, vcount, d, facts);
+        morph_targets(p, pw, vcount, d);
         std::vector<uint32_t> idx;
         if (p.indices >= 0) {
             idx = read_indices(cx, p.indices, pw + ".indices");
@@ -275,6 +278,7 @@ mvr_mesh_id converter::mesh(int index)
         d.material = p.material >= 0 ? material(p.material) : mvr_material_id{0};
         data.push_back(std::move(d));
     }
+    mesh_info[index] = facts;
     mvr_mesh_id id = {0};
     if (data.empty()) {
         meshes[index] = id;
@@ -296,8 +300,20 @@ mvr_mesh_id converter::mesh(int index)
         pd.indices32 = d.idx.data();
         pd.mode = d.mode;
         pd.material = d.material;
+        pd.joints0 = d.joints0.empty() ? nullptr : d.joints0.data();
+        pd.weights0 = d.weights0.empty() ? nullptr : d.weights0.data();
+        pd.joints1 = d.joints1.empty() ? nullptr : d.joints1.data();
+        pd.weights1 = d.weights1.empty() ? nullptr : d.weights1.data();
+        pd.targets = d.target_descs.empty() ? nullptr : d.target_descs.data();
+        pd.target_count = uint32_t(d.target_descs.size());
     }
-    mvr_mesh_desc md = {prims.data(), uint32_t(prims.size()), g.name.c_str()};
+    mvr_mesh_desc md;
+    std::memset(&md, 0, sizeof md);
+    md.primitives = prims.data();
+    md.primitive_count = uint32_t(prims.size());
+    md.name = g.name.c_str();
+    md.weights = weights.empty() ? nullptr : weights.data();
+    md.weight_count = uint32_t(weights.size());
     // the scene keeps a copy of what was read: charged while both exist
     cx.mem.charge(cx.mesh_bytes, w + " (the scene's copy)");
     check(mvr_scene_add_mesh(scene, &md, &id), w);
@@ -352,10 +368,6 @@ void converter::node(int index, mvr_node_id parent, std::vector<char> &state, ui
     }
     if (g.mesh >= 0)
         d.mesh = mesh(g.mesh);
-    if (g.skin >= 0 && !warned_skin) {
-        cx.warn(w + " is skinned: mvr draws the bind pose");
-        warned_skin = true;
-    }
     if (g.camera >= 0) {
         auto found = cameras.find(g.camera);
         if (found == cameras.end() && bad_cameras.count(g.camera))
@@ -376,6 +388,15 @@ void converter::node(int index, mvr_node_id parent, std::vector<char> &state, ui
     }
     mvr_node_id id = {0};
     check(mvr_scene_add_node(scene, &d, &id), w);
+    node_ids[size_t(index)] = id;
+    node_weights(index, id);
+    if (g.skin >= 0) {
+        // the skin itself is converted once every node of the scene is in (skins())
+        if (g.mesh < 0)
+            cx.warn(w + " has a skin but no mesh; the skin is ignored");
+        else if (d.mesh.id != 0)
+            skinned.push_back({index, id});
+    }
     for (int child : g.children)
         node(child, id, state, depth + 1);
     state[size_t(index)] = 2;
@@ -500,6 +521,19 @@ mvr_result load(const unsigned char *bytes, size_t size, const std::string &base
                 refuse(err.empty() ? "not a glTF file" : short_message(err));
             if (!warn.empty())
                 cx.warn(short_message(warn));
+            // tinygltf 2.7 drops an animation channel without target.node or
+            // sampler (as KHR_animation_pointer's channels are) and says so only
+            // in err: counted as ignored, warned once
+            uint32_t dropped = 0;
+            for (const char *lost : {"field is missing in animation.channels.target", "field is missing in animation channels"})
+                for (size_t at = err.find(lost); at != std::string::npos; at = err.find(lost, at + 1))
+                    ++dropped;
+            if (dropped) {
+                cx.channels_ignored += dropped;
+                cx.warn(std::to_string(dropped) + " animation channel(s) without target.node or sampler (e.g. "
+                        "KHR_animation_pointer's) are not implemented; ignored (channel indices in later messages "
+                        "skip them)");
+            }
             // undo the pre-pass's placeholder view: those accessors are zeros
             if (cx.res.placeholder_view) {
                 for (int i : cx.res.viewless_accessors)
@@ -543,6 +577,7 @@ mvr_result load(const unsigned char *bytes, size_t size, const std::string &base
             refuse("scene " + std::to_string(o.scene) + " requested (1-based); the file has " +
                    std::to_string(model.scenes.size()));
         std::vector<char> state(model.nodes.size(), 0);
+        cv.node_ids.assign(model.nodes.size(), mvr_node_id{0});
         if (!model.scenes.empty()) {
             if (size_t(si) >= model.scenes.size())
                 refuse("the default scene " + std::to_string(si) + " does not exist");
@@ -559,6 +594,8 @@ mvr_result load(const unsigned char *bytes, size_t size, const std::string &base
                 if (!child[i])
                     cv.node(int(i), mvr_node_id{0}, state, 0);
         }
+        cv.skins();
+        cv.animations();
         scene->logger = o.logger;
         if (info) {
             info->warnings = cx.warnings;
@@ -569,6 +606,7 @@ mvr_result load(const unsigned char *bytes, size_t size, const std::string &base
             info->memory_budget = cx.mem.limit;
             info->memory_peak = cx.mem.peak;
             info->json_bytes_estimate = json_estimate;
+            info->animation_channels_ignored = cx.channels_ignored;
         }
         *out = scene;
         if (error) {

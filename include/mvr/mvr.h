@@ -355,12 +355,42 @@ typedef struct mvr_primitive_desc {
     const uint32_t *indices32;
     mvr_primitive_mode mode;
     mvr_material_id material;    /* 0 = the default material */
+    /* Skinning (glTF JOINTS_n / WEIGHTS_n): per vertex four joints and four
+     * weights per set; set 1 (optional) adds four more influences. A joint
+     * is an index into the joints of the skin of the node that draws the
+     * mesh (mvr_scene_set_node_skin); an index past that skin's joints is
+     * refused when the node is given the skin. Weights must be finite and
+     * >= 0; each vertex's are normalised to sum 1 on the way in (a vertex
+     * whose weights are all 0 follows joint 0 of its first set, logged as a
+     * repair). A mesh with joints drawn by a node without a skin draws its
+     * bind pose placed by the node, as glTF asks. */
+    const uint16_t *joints0;     /* 4 per vertex */
+    const float *weights0;       /* 4 per vertex; with joints0 */
+    const uint16_t *joints1;     /* 4 per vertex; only with joints0 */
+    const float *weights1;
+    /* Morph targets: target_count targets, each with deltas of the same
+     * attributes in every target of the primitive (glTF 3.7.2.2). */
+    const struct mvr_morph_target_desc *targets;
+    uint32_t target_count;
 } mvr_primitive_desc;
+
+/* The deltas of one morph target, per vertex of its primitive; NULL = none
+ * of that attribute. A target may only move attributes the primitive has
+ * (normals and tangents deltas need the primitive's normals and tangents). */
+typedef struct mvr_morph_target_desc {
+    const float *positions;      /* 3 per vertex */
+    const float *normals;        /* 3 per vertex */
+    const float *tangents;       /* 3 per vertex: xyz only (w, the handedness, stays) */
+} mvr_morph_target_desc;
 
 typedef struct mvr_mesh_desc {
     const mvr_primitive_desc *primitives;
     uint32_t primitive_count;
     const char *name;
+    /* Default morph weights (glTF mesh.weights), one per target; every
+     * primitive of a mesh with targets has the same target count. NULL = 0. */
+    const float *weights;
+    uint32_t weight_count;
 } mvr_mesh_desc;
 mvr_result mvr_scene_add_mesh(mvr_scene *scene, const mvr_mesh_desc *desc, mvr_mesh_id *out);
 
@@ -429,11 +459,107 @@ mvr_result mvr_scene_set_node_transform(mvr_scene *scene, mvr_node_id node,
                                         const double translation[3], const double rotation[4],
                                         const double scale[3]);
 
+/* ---- skins, morph weights, animations */
+
+typedef struct mvr_skin_id { uint32_t id; } mvr_skin_id;
+
+/* A glTF skin: joint nodes and the inverse bind matrix of each. Vertex v of
+ * a mesh drawn by a node with this skin lands at
+ *   sum_i w_i * world(joints[j_i]) * inverse_bind_matrices[j_i] * v
+ * (the drawing node's own transform does not apply, as glTF asks), computed
+ * per frame in double and narrowed to float relative to the view set's
+ * origin. */
+typedef struct mvr_skin_desc {
+    const mvr_node_id *joints;   /* joint_count nodes, each at most once */
+    uint32_t joint_count;        /* 1 .. 65536 */
+    const double *inverse_bind_matrices; /* 16 per joint, column-major; NULL = identities */
+    mvr_node_id skeleton;        /* optional: the skeleton's root (glTF skin.skeleton); informative */
+    const char *name;
+} mvr_skin_desc;
+mvr_result mvr_scene_add_skin(mvr_scene *scene, const mvr_skin_desc *desc, mvr_skin_id *out);
+/* Gives a node (that draws a mesh) a skin; {0} removes it. Refused when a
+ * primitive of the node's mesh names a joint past the skin's joints. */
+mvr_result mvr_scene_set_node_skin(mvr_scene *scene, mvr_node_id node, mvr_skin_id skin);
+/* A node's morph weights (glTF node.weights), one per target of its mesh;
+ * count 0 returns to the mesh's default weights. */
+mvr_result mvr_scene_set_node_weights(mvr_scene *scene, mvr_node_id node, const float *weights, uint32_t count);
+
+typedef enum mvr_animation_path {
+    MVR_ANIMATION_PATH_TRANSLATION = 0, /* 3 values per key */
+    MVR_ANIMATION_PATH_ROTATION,        /* 4 (quaternion x, y, z, w) */
+    MVR_ANIMATION_PATH_SCALE,           /* 3 */
+    MVR_ANIMATION_PATH_WEIGHTS          /* one per morph target of the node's mesh */
+} mvr_animation_path;
+const char *mvr_animation_path_name(mvr_animation_path path);
+
+typedef enum mvr_interpolation {
+    MVR_INTERPOLATION_LINEAR = 0,  /* slerp along the shorter arc for rotations */
+    MVR_INTERPOLATION_STEP,
+    MVR_INTERPOLATION_CUBICSPLINE  /* glTF 2.0 Appendix C; per key in-tangent, value, out-tangent */
+} mvr_interpolation;
+
+typedef struct mvr_animation_sampler_desc {
+    const float *times;          /* key_count seconds, finite, strictly increasing */
+    uint32_t key_count;          /* >= 1 */
+    const float *values;         /* value_count floats: key_count * components (x3 for CUBICSPLINE) */
+    uint32_t value_count;
+    mvr_interpolation interpolation;
+} mvr_animation_sampler_desc;
+
+typedef struct mvr_animation_channel_desc {
+    uint32_t sampler;            /* index into the animation's samplers */
+    mvr_node_id node;
+    mvr_animation_path path;
+} mvr_animation_channel_desc;
+
+typedef struct mvr_animation_desc {
+    const mvr_animation_sampler_desc *samplers;
+    uint32_t sampler_count;
+    const mvr_animation_channel_desc *channels;
+    uint32_t channel_count;
+    const char *name;
+} mvr_animation_desc;
+
+/* Adds an animation (copied): every sampler's times and values are checked
+ * against the channels that read it (component counts, weights against the
+ * target count of the node's mesh). *out_index (optional) is its index. */
+mvr_result mvr_scene_add_animation(mvr_scene *scene, const mvr_animation_desc *desc, uint32_t *out_index);
+uint32_t mvr_scene_animation_count(const mvr_scene *scene);
+
+typedef struct mvr_animation_info {
+    const char *name;            /* "" when unnamed; owned by the scene */
+    double start, end;           /* seconds: the earliest and latest key of its samplers */
+    uint32_t channels, samplers;
+} mvr_animation_info;
+mvr_result mvr_scene_get_animation_info(const mvr_scene *scene, uint32_t index, mvr_animation_info *out);
+/* The index of the first animation with this name; MVR_ERROR_INVALID_ARGUMENT
+ * (naming the animations there are) when none has it. */
+mvr_result mvr_scene_find_animation(const mvr_scene *scene, const char *name, uint32_t *out_index);
+
+#define MVR_ANIMATION_ALL UINT32_MAX
+
+typedef enum mvr_animation_wrap {
+    MVR_ANIMATION_CLAMP = 0,     /* before start: the first keys; after end: the last */
+    MVR_ANIMATION_LOOP           /* time wrapped into [start, end) of the animation */
+} mvr_animation_wrap;
+
+/* Poses the scene at `time` seconds of animation `index` (MVR_ANIMATION_ALL:
+ * every animation, in order, each at that time): the channels' nodes take
+ * the sampled translation / rotation / scale / weights. Nodes no channel
+ * targets keep their pose. Cheap: no GPU work until the next render, which
+ * re-sends joint matrices and weights, never geometry. */
+mvr_result mvr_scene_apply_animation(mvr_scene *scene, uint32_t index, double time, mvr_animation_wrap wrap);
+/* Back to the rest pose: the transforms and weights that mvr_scene_add_node,
+ * mvr_scene_set_node_transform and mvr_scene_set_node_weights last gave
+ * (else the mesh's default weights); animations never change it. */
+void mvr_scene_reset_pose(mvr_scene *scene);
+
 /* Ambient light: uniform radiance from every direction (linear RGB). */
 void mvr_scene_set_ambient(mvr_scene *scene, const float rgb[3]);
 
 typedef struct mvr_scene_info {
     uint32_t images, materials, meshes, primitives, nodes, lights, cameras;
+    uint32_t skins, joints, animations, morph_targets; /* joints and targets summed over skins / primitives */
     double bounds_min[3], bounds_max[3]; /* world space, of every drawn primitive */
     /* the brightest light of each type (directional lux; point and spot
      * candela; color's largest channel times intensity) */
@@ -596,6 +722,20 @@ typedef enum mvr_material_path {
 } mvr_material_path;
 const char *mvr_material_path_name(mvr_material_path path);
 
+/* Where skinning and morphing run (scenes without skins or morph targets
+ * run neither). Both give the same pixels (tests/gl/test_skinning.c). */
+typedef enum mvr_skinning_path {
+    MVR_SKINNING_PATH_AUTO = 0,      /* see mvr_renderer_desc.skinning_path */
+    /* in the mesh vertex shader of every pass: once per view where the GL
+     * loops views inside a multiview draw (llvmpipe), and again in the
+     * shadow pass */
+    MVR_SKINNING_PATH_VERTEX,
+    /* once per frame: a transform feedback pass writes the posed vertices
+     * into a buffer that every view and the shadow pass then draw */
+    MVR_SKINNING_PATH_PRESKIN
+} mvr_skinning_path;
+const char *mvr_skinning_path_name(mvr_skinning_path path);
+
 /* Depth: reversed-Z (GL_EXT_clip_control zero-to-one, 32-bit float depth,
  * GL_GREATER, clear to 0, infinite far plane allowed) keeps about constant
  * relative precision with distance; standard depth (-1..1, GL_LESS, a finite
@@ -686,6 +826,13 @@ typedef enum mvr_depth_mode_override {
     MVR_DEPTH_MODE_OVERRIDE_STANDARD
 } mvr_depth_mode_override;
 
+typedef enum mvr_skinning_path_override {
+    MVR_SKINNING_PATH_OVERRIDE_NONE = 0, /* skinning_path */
+    MVR_SKINNING_PATH_OVERRIDE_AUTO,
+    MVR_SKINNING_PATH_OVERRIDE_VERTEX,
+    MVR_SKINNING_PATH_OVERRIDE_PRESKIN
+} mvr_skinning_path_override;
+
 typedef struct mvr_renderer_overrides {
     /* MVR_VIEW_PATH=auto|multiview|loop: the view path, whatever view_path asks */
     mvr_view_path_override view_path;
@@ -712,6 +859,8 @@ typedef struct mvr_renderer_overrides {
      * N would (tests of the padded layouts desktop GPUs use, on a GL that
      * needs less); never below the GL's own. 0 = the GL's. */
     uint32_t ubo_alignment;
+    /* MVR_SKINNING_PATH=auto|vertex|preskin */
+    mvr_skinning_path_override skinning_path;
 } mvr_renderer_overrides;
 
 /* The one place mvr reads the environment, and only when an application
@@ -746,6 +895,7 @@ typedef struct mvr_renderer_desc {
     mvr_transparency_order transparency_order;
     mvr_oversized_image oversized_images;
     mvr_renderer_overrides overrides; /* 0 = none; win over the fields above */
+    mvr_skinning_path skinning_path;
 } mvr_renderer_desc;
 
 /*
@@ -1019,6 +1169,17 @@ typedef struct mvr_frame_stats {
     double gpu_ms;               /* timer queries; < 0 when not available */
     uint32_t images_downscaled;  /* scene images stored smaller than given: too large for the GL
                                     (mvr_oversized_image) */
+    /* Skins and morph targets: joints posed this frame (summed over the
+     * skins drawn), the path skinning ran on (AUTO when nothing is skinned
+     * or morphed), morph targets with a non-zero weight summed over the
+     * morphed draws (the only ones that cost work), the bytes of joint
+     * matrices and weights sent this frame (once for all views), and the
+     * transform feedback passes of the pre-skinning path. */
+    uint32_t joints;
+    mvr_skinning_path skinning_path;
+    uint32_t morph_targets_active;
+    uint64_t animation_upload_bytes;
+    uint32_t preskin_passes;
 } mvr_frame_stats;
 
 /* The supersampling resolve: box-filters linear RGBA float pixels (width x

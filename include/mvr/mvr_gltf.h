@@ -40,8 +40,16 @@
  * bufferView (zeros), missing indices, KHR_mesh_quantization;
  * metallic-roughness materials with all texture roles, samplers,
  * TEXCOORD_0/1; perspective and orthographic cameras; KHR_lights_punctual,
- * KHR_materials_unlit, KHR_texture_transform, KHR_materials_emissive_strength.
- * Skins and morph targets draw the bind pose (with a warning). A required
+ * KHR_materials_unlit, KHR_texture_transform, KHR_materials_emissive_strength;
+ * skins (JOINTS_0/1 + WEIGHTS_0/1: up to 8 influences per vertex, more sets
+ * are ignored with a warning; the skins of the nodes in the loaded scene, each
+ * joint a node of that scene), morph targets (POSITION / NORMAL / TANGENT
+ * deltas; TEXCOORD / COLOR deltas are ignored with a warning), mesh and node
+ * weights, and animations (every one in the file, in file order, with its
+ * name; channels on translation / rotation / scale / weights; a channel whose
+ * node is outside the loaded scene, or whose path is unknown, e.g.
+ * KHR_animation_pointer's, is left out: see info.animation_channels_ignored).
+ * A required
  * extension outside this list is an error that names it; an unknown optional
  * one is a warning. Cameras and lights no node uses are not checked beyond a
  * warning.
@@ -87,7 +95,7 @@ typedef struct mvr_gltf_options {
     uint64_t max_indices;           /* summed over all primitives [64 M] */
     uint32_t max_image_dimension;   /* width or height of a texture [16384] */
     uint32_t max_nodes;             /* [1 M] */
-    mvr_logger logger;              /* warnings (skins, unknown optional extensions, ...) */
+    mvr_logger logger;              /* warnings (unknown optional extensions, ...) */
     /* Bytes the load may hold at once, by its own accounting (see above) [2 GiB]. */
     uint64_t memory_budget;
     uint32_t max_images;            /* images the scene uses [4096] */
@@ -105,6 +113,10 @@ typedef struct mvr_gltf_info {
     uint64_t memory_budget;         /* the budget in force */
     uint64_t memory_peak;           /* the most bytes the load held at once, by its accounting */
     uint64_t json_bytes_estimate;   /* what the parsed JSON was counted as */
+    /* animation channels left out: unknown target paths (KHR_animation_pointer's
+     * "pointer" among them, warned once per path) and channels whose node is
+     * outside the loaded scene */
+    uint32_t animation_channels_ignored;
 } mvr_gltf_info;
 
 /* Loads a .gltf or .glb file (by content, not by name). info is optional. */

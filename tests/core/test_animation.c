@@ -38,7 +38,7 @@ static void step_values(mvr_test_state *t)
 {
     const double times[] = {0.0, 1.0, 3.0};
     const double values[] = {10.0, 20.0, 40.0};
-    mvr_anim_sampler s = make(times, 3, values, 3, 1, MVR_INTERP_STEP, false);
+    mvr_anim_sampler s = make(times, 3, values, 3, 1, MVR_INTERPOLATION_STEP, false);
     char why[128] = "";
     CHECK_MSG(t, mvr_anim_sampler_valid(&s, why, sizeof why), "%s", why);
     CHECK(t, sample1(&s, 0.0) == 10.0);
@@ -55,7 +55,7 @@ static void linear_values_and_clamping(mvr_test_state *t)
     const double times[] = {0.0, 1.0, 3.0};
     /* two components */
     const double values[] = {10.0, -1.0, 20.0, -2.0, 40.0, 2.0};
-    mvr_anim_sampler s = make(times, 3, values, 6, 2, MVR_INTERP_LINEAR, false);
+    mvr_anim_sampler s = make(times, 3, values, 6, 2, MVR_INTERPOLATION_LINEAR, false);
     char why[128] = "";
     CHECK_MSG(t, mvr_anim_sampler_valid(&s, why, sizeof why), "%s", why);
     double v[2];
@@ -82,7 +82,7 @@ static void single_key(mvr_test_state *t)
     const double cubic[] = {100.0, 7.0, -100.0};
     for (int m = 0; m < 3; ++m) {
         mvr_interpolation interp = (mvr_interpolation)m;
-        bool is_cubic = interp == MVR_INTERP_CUBICSPLINE;
+        bool is_cubic = interp == MVR_INTERPOLATION_CUBICSPLINE;
         mvr_anim_sampler s = make(times, 1, is_cubic ? cubic : values, is_cubic ? 3 : 1, 1, interp, false);
         char why[128] = "";
         CHECK_MSG(t, mvr_anim_sampler_valid(&s, why, sizeof why), "%s", why);
@@ -112,7 +112,7 @@ static void many_keys_binary_search(mvr_test_state *t)
             bad++;
     }
     CHECK_EQ_INT(t, bad, 0);
-    mvr_anim_sampler s = make(times, N, values, N, 1, MVR_INTERP_LINEAR, false);
+    mvr_anim_sampler s = make(times, N, values, N, 1, MVR_INTERPOLATION_LINEAR, false);
     CHECK(t, mvr_anim_sampler_valid(&s, NULL, 0));
     double mid = 0.25 * times[600] + 0.75 * times[601];
     CHECK_MSG(t, fabs(sample1(&s, mid) - 600.75) < 1e-9, "%.17g", sample1(&s, mid));
@@ -131,7 +131,7 @@ static void slerp_90_degrees_about_y(mvr_test_state *t)
     const double times[] = {0.0, 1.0};
     const double h = 0.25 * PI; /* half of 90 degrees */
     const double values[] = {0, 0, 0, 1, 0, sin(h), 0, cos(h)};
-    mvr_anim_sampler s = make(times, 2, values, 8, 4, MVR_INTERP_LINEAR, true);
+    mvr_anim_sampler s = make(times, 2, values, 8, 4, MVR_INTERPOLATION_LINEAR, true);
     char why[128] = "";
     CHECK_MSG(t, mvr_anim_sampler_valid(&s, why, sizeof why), "%s", why);
     double q[4];
@@ -150,7 +150,7 @@ static void slerp_90_degrees_about_y(mvr_test_state *t)
 
     /* q1 = -q: the same rotation; the shorter arc still gives 45 degrees */
     const double neg[] = {0, 0, 0, 1, -0.0, -sin(h), -0.0, -cos(h)};
-    mvr_anim_sampler sn = make(times, 2, neg, 8, 4, MVR_INTERP_LINEAR, true);
+    mvr_anim_sampler sn = make(times, 2, neg, 8, 4, MVR_INTERPOLATION_LINEAR, true);
     mvr_anim_sample(&sn, 0.5, q);
     CHECK_MSG(t, quat_near(q, e45, 1e-12), "%.17g %.17g %.17g %.17g", q[0], q[1], q[2], q[3]);
     double n = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
@@ -159,14 +159,14 @@ static void slerp_90_degrees_about_y(mvr_test_state *t)
     /* nearly parallel keys fall back to normalised lerp and stay unit length */
     const double tiny = 1e-9;
     const double close[] = {0, 0, 0, 1, 0, sin(tiny), 0, cos(tiny)};
-    mvr_anim_sampler sc = make(times, 2, close, 8, 4, MVR_INTERP_LINEAR, true);
+    mvr_anim_sampler sc = make(times, 2, close, 8, 4, MVR_INTERPOLATION_LINEAR, true);
     mvr_anim_sample(&sc, 0.5, q);
     const double ec[4] = {0, sin(0.5 * tiny), 0, cos(0.5 * tiny)};
     CHECK_MSG(t, quat_near(q, ec, 1e-15), "%.17g %.17g", q[1], q[3]);
     /* small angles above the fallback keep slerp's precision */
     const double small = 1e-4;
     const double near[] = {0, 0, 0, 1, 0, sin(small), 0, cos(small)};
-    mvr_anim_sampler sm = make(times, 2, near, 8, 4, MVR_INTERP_LINEAR, true);
+    mvr_anim_sampler sm = make(times, 2, near, 8, 4, MVR_INTERPOLATION_LINEAR, true);
     mvr_anim_sample(&sm, 0.3, q);
     const double es[4] = {0, sin(0.3 * small), 0, cos(0.3 * small)};
     CHECK_MSG(t, quat_near(q, es, 1e-15), "%.17g %.17g", q[1], q[3]);
@@ -185,7 +185,7 @@ static void cubic_spline_reproduces_a_cubic(mvr_test_state *t)
         values[3 * k + 1] = cubic_f(times[k]);
         values[3 * k + 2] = cubic_df(times[k]); /* out-tangent */
     }
-    mvr_anim_sampler s = make(times, 4, values, 12, 1, MVR_INTERP_CUBICSPLINE, false);
+    mvr_anim_sampler s = make(times, 4, values, 12, 1, MVR_INTERPOLATION_CUBICSPLINE, false);
     char why[128] = "";
     CHECK_MSG(t, mvr_anim_sampler_valid(&s, why, sizeof why), "%s", why);
     int bad = 0;
@@ -211,7 +211,7 @@ static void cubic_spline_zero_tangents_is_smoothstep(mvr_test_state *t)
     /* two components: 0 -> 1 and 2 -> -2 */
     /* per key: in-tangent (2), value (2), out-tangent (2) */
     const double values[] = {0, 0, 0, 2, 0, 0, 0, 0, 1, -2, 0, 0};
-    mvr_anim_sampler s = make(times, 2, values, 12, 2, MVR_INTERP_CUBICSPLINE, false);
+    mvr_anim_sampler s = make(times, 2, values, 12, 2, MVR_INTERPOLATION_CUBICSPLINE, false);
     char why[128] = "";
     CHECK_MSG(t, mvr_anim_sampler_valid(&s, why, sizeof why), "%s", why);
     int bad = 0;
@@ -234,7 +234,7 @@ static void cubic_spline_quaternion_is_normalised(mvr_test_state *t)
     const double h = 0.25 * PI;
     const double values[] = {0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0,
                              0, 0, 0, 0, 0, sin(h), 0, cos(h), 0, 0, 0, 0};
-    mvr_anim_sampler s = make(times, 2, values, 24, 4, MVR_INTERP_CUBICSPLINE, true);
+    mvr_anim_sampler s = make(times, 2, values, 24, 4, MVR_INTERPOLATION_CUBICSPLINE, true);
     char why[128] = "";
     CHECK_MSG(t, mvr_anim_sampler_valid(&s, why, sizeof why), "%s", why);
     double q[4];
@@ -252,61 +252,61 @@ static void validation(mvr_test_state *t)
     char why[160];
     const double values[] = {1, 2, 3, 4, 5, 6, 7, 8, 9};
     const double ok[] = {0.0, 1.0, 2.0};
-    mvr_anim_sampler s = make(ok, 3, values, 3, 1, MVR_INTERP_LINEAR, false);
+    mvr_anim_sampler s = make(ok, 3, values, 3, 1, MVR_INTERPOLATION_LINEAR, false);
     CHECK(t, mvr_anim_sampler_valid(&s, why, sizeof why));
 
     const double equal[] = {0.0, 1.0, 1.0};
-    s = make(equal, 3, values, 3, 1, MVR_INTERP_LINEAR, false);
+    s = make(equal, 3, values, 3, 1, MVR_INTERPOLATION_LINEAR, false);
     why[0] = '\0';
     CHECK(t, !mvr_anim_sampler_valid(&s, why, sizeof why));
     CHECK_MSG(t, strstr(why, "increasing") != NULL, "%s", why);
 
     const double decreasing[] = {0.0, 2.0, 1.0};
-    s = make(decreasing, 3, values, 3, 1, MVR_INTERP_STEP, false);
+    s = make(decreasing, 3, values, 3, 1, MVR_INTERPOLATION_STEP, false);
     CHECK(t, !mvr_anim_sampler_valid(&s, why, sizeof why));
 
     const double with_nan[] = {0.0, NAN, 2.0};
-    s = make(with_nan, 3, values, 3, 1, MVR_INTERP_LINEAR, false);
+    s = make(with_nan, 3, values, 3, 1, MVR_INTERPOLATION_LINEAR, false);
     why[0] = '\0';
     CHECK(t, !mvr_anim_sampler_valid(&s, why, sizeof why));
     CHECK_MSG(t, strstr(why, "finite") != NULL, "%s", why);
     const double with_inf[] = {0.0, 1.0, INFINITY};
-    s = make(with_inf, 3, values, 3, 1, MVR_INTERP_LINEAR, false);
+    s = make(with_inf, 3, values, 3, 1, MVR_INTERPOLATION_LINEAR, false);
     CHECK(t, !mvr_anim_sampler_valid(&s, NULL, 0));
 
     /* short value arrays: LINEAR needs count * components, CUBICSPLINE three times that */
-    s = make(ok, 3, values, 5, 2, MVR_INTERP_LINEAR, false);
+    s = make(ok, 3, values, 5, 2, MVR_INTERPOLATION_LINEAR, false);
     why[0] = '\0';
     CHECK(t, !mvr_anim_sampler_valid(&s, why, sizeof why));
     CHECK_MSG(t, strstr(why, "need 6") != NULL, "%s", why);
-    s = make(ok, 3, values, 6, 2, MVR_INTERP_LINEAR, false);
+    s = make(ok, 3, values, 6, 2, MVR_INTERPOLATION_LINEAR, false);
     CHECK(t, mvr_anim_sampler_valid(&s, why, sizeof why));
-    s = make(ok, 3, values, 6, 2, MVR_INTERP_CUBICSPLINE, false);
+    s = make(ok, 3, values, 6, 2, MVR_INTERPOLATION_CUBICSPLINE, false);
     CHECK(t, !mvr_anim_sampler_valid(&s, why, sizeof why));
-    s = make(ok, 3, values, 8, 1, MVR_INTERP_CUBICSPLINE, false);
+    s = make(ok, 3, values, 8, 1, MVR_INTERPOLATION_CUBICSPLINE, false);
     CHECK(t, !mvr_anim_sampler_valid(&s, why, sizeof why));
-    s = make(ok, 3, values, 9, 1, MVR_INTERP_CUBICSPLINE, false);
+    s = make(ok, 3, values, 9, 1, MVR_INTERPOLATION_CUBICSPLINE, false);
     CHECK(t, mvr_anim_sampler_valid(&s, why, sizeof why));
 
     /* overflowing sizes, no keys, no components, NULL arrays, non-finite
      * values, a quaternion of 3 components, an unknown interpolation */
-    s = make(ok, SIZE_MAX / 2, values, SIZE_MAX, 4, MVR_INTERP_CUBICSPLINE, false);
+    s = make(ok, SIZE_MAX / 2, values, SIZE_MAX, 4, MVR_INTERPOLATION_CUBICSPLINE, false);
     CHECK(t, !mvr_anim_sampler_valid(&s, why, sizeof why));
     size_t n = 0;
-    CHECK(t, !mvr_anim_sampler_value_count(SIZE_MAX / 2, 4, MVR_INTERP_LINEAR, &n));
-    CHECK(t, mvr_anim_sampler_value_count(5, 4, MVR_INTERP_CUBICSPLINE, &n) && n == 60);
-    s = make(ok, 0, values, 9, 1, MVR_INTERP_LINEAR, false);
+    CHECK(t, !mvr_anim_sampler_value_count(SIZE_MAX / 2, 4, MVR_INTERPOLATION_LINEAR, &n));
+    CHECK(t, mvr_anim_sampler_value_count(5, 4, MVR_INTERPOLATION_CUBICSPLINE, &n) && n == 60);
+    s = make(ok, 0, values, 9, 1, MVR_INTERPOLATION_LINEAR, false);
     CHECK(t, !mvr_anim_sampler_valid(&s, why, sizeof why));
-    s = make(ok, 3, values, 9, 0, MVR_INTERP_LINEAR, false);
+    s = make(ok, 3, values, 9, 0, MVR_INTERPOLATION_LINEAR, false);
     CHECK(t, !mvr_anim_sampler_valid(&s, why, sizeof why));
-    s = make(NULL, 3, values, 9, 1, MVR_INTERP_LINEAR, false);
+    s = make(NULL, 3, values, 9, 1, MVR_INTERPOLATION_LINEAR, false);
     CHECK(t, !mvr_anim_sampler_valid(&s, why, sizeof why));
-    s = make(ok, 3, NULL, 9, 1, MVR_INTERP_LINEAR, false);
+    s = make(ok, 3, NULL, 9, 1, MVR_INTERPOLATION_LINEAR, false);
     CHECK(t, !mvr_anim_sampler_valid(&s, why, sizeof why));
     const double nan_value[] = {0.0, NAN, 1.0};
-    s = make(ok, 3, nan_value, 3, 1, MVR_INTERP_LINEAR, false);
+    s = make(ok, 3, nan_value, 3, 1, MVR_INTERPOLATION_LINEAR, false);
     CHECK(t, !mvr_anim_sampler_valid(&s, why, sizeof why));
-    s = make(ok, 3, values, 9, 3, MVR_INTERP_LINEAR, true);
+    s = make(ok, 3, values, 9, 3, MVR_INTERPOLATION_LINEAR, true);
     CHECK(t, !mvr_anim_sampler_valid(&s, why, sizeof why));
     s = make(ok, 3, values, 9, 1, (mvr_interpolation)7, false);
     CHECK(t, !mvr_anim_sampler_valid(&s, why, sizeof why));
@@ -347,7 +347,7 @@ static void clip_time(mvr_test_state *t)
     /* a looped sample through a sampler: the clip's values repeat */
     const double times[] = {0.0, 1.0};
     const double values[] = {0.0, 10.0};
-    mvr_anim_sampler s = make(times, 2, values, 2, 1, MVR_INTERP_LINEAR, false);
+    mvr_anim_sampler s = make(times, 2, values, 2, 1, MVR_INTERPOLATION_LINEAR, false);
     CHECK(t, fabs(sample1(&s, mvr_anim_time(-0.75, 0.0, 1.0, true)) - 2.5) < 1e-12);
 }
 

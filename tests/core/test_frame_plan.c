@@ -288,7 +288,37 @@ static void the_plan_prints(mvr_test_state *t)
     mvr_frame_plan_free(&f.plan);
 }
 
-MVR_TEST_MAIN(TEST(sixteen_views_by_six), TEST(chunks_split_at_viewports_and_disabled_views),
+/* Pre-skinning: a record only when something is skinned or morphed; it
+ * runs once, before the shadow maps and every view, on the pre-skinning
+ * path when joints or weights moved. */
+static void preskin_once_before_the_views(mvr_test_state *t)
+{
+    fixture f;
+    setup(&f, 16);
+    f.in.shadow_layers = 2;
+    CHECK(t, mvr_frame_plan_build(&f.plan, &f.in) == MVR_OK);
+    CHECK(t, find(&f.plan, MVR_PLAN_PRESKIN, 0) == NULL);
+    f.in.deforms = 3;
+    f.in.preskin = true;
+    f.in.deforms_moved = true;
+    CHECK(t, mvr_frame_plan_build(&f.plan, &f.in) == MVR_OK);
+    const mvr_plan_record *p = find(&f.plan, MVR_PLAN_PRESKIN, 0);
+    CHECK(t, p && p->when == MVR_PLAN_RUN && p->draws == 3 && p->views == 16);
+    CHECK_EQ_INT(t, count_kind(&f.plan, MVR_PLAN_PRESKIN, MVR_PLAN_RUN), 1);
+    CHECK(t, p < find(&f.plan, MVR_PLAN_SHADOW_MAPS, 0) && p < find(&f.plan, MVR_PLAN_VIEW_PASS, 0));
+    f.in.deforms_moved = false;
+    CHECK(t, mvr_frame_plan_build(&f.plan, &f.in) == MVR_OK);
+    p = find(&f.plan, MVR_PLAN_PRESKIN, 0);
+    CHECK(t, p && p->when == MVR_PLAN_SKIP && strstr(p->why, "reused"));
+    f.in.preskin = false;
+    f.in.deforms_moved = true;
+    CHECK(t, mvr_frame_plan_build(&f.plan, &f.in) == MVR_OK);
+    p = find(&f.plan, MVR_PLAN_PRESKIN, 0);
+    CHECK(t, p && p->when == MVR_PLAN_SKIP && strstr(p->why, "vertex path"));
+    mvr_frame_plan_free(&f.plan);
+}
+
+MVR_TEST_MAIN(TEST(preskin_once_before_the_views), TEST(sixteen_views_by_six), TEST(chunks_split_at_viewports_and_disabled_views),
               TEST(the_loop_path_passes_one_view_each), TEST(msaa_falls_back_to_the_loop),
               TEST(supersampling_resolves_unless_post), TEST(background_only_with_a_background),
               TEST(blend_fallback_records), TEST(shadow_pass_only_when_planned), TEST(the_plan_prints))

@@ -22,7 +22,7 @@ static mvr_scene *scene_of_radius(double r)
     mvr_primitive_desc p = {0};
     p.vertex_count = 6;
     p.positions = pos;
-    mvr_mesh_desc m = {&p, 1, "box"};
+    mvr_mesh_desc m = {.primitives = &p, .primitive_count = 1, .name = "box"};
     mvr_mesh_id mesh;
     mvr_node_desc n = {0};
     n.translation[0] = 5.0 * r;

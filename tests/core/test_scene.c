@@ -22,7 +22,7 @@ static void bad_meshes_are_refused(mvr_test_state *t)
     mvr_primitive_desc p = {0};
     p.vertex_count = 3;
     p.positions = tri;
-    mvr_mesh_desc m = {&p, 1, "tri"};
+    mvr_mesh_desc m = {.primitives = &p, .primitive_count = 1, .name = "tri"};
     CHECK(t, mvr_scene_add_mesh(s, &m, &id) == MVR_OK && id.id == 1);
 
     uint16_t idx[3] = {0, 1, 3};
@@ -107,7 +107,7 @@ static void frame_packs_draws_relative_to_origin(mvr_test_state *t)
     p.vertex_count = 3;
     p.positions = tri;
     p.material = opaque_m;
-    mvr_mesh_desc m = {&p, 1, "a"};
+    mvr_mesh_desc m = {.primitives = &p, .primitive_count = 1, .name = "a"};
     mvr_mesh_id a, b;
     CHECK(t, mvr_scene_add_mesh(s, &m, &a) == MVR_OK);
     p.material = blend_m;
@@ -194,7 +194,7 @@ static void degenerate_values_are_repaired(mvr_test_state *t)
     float colors[12] = {1, 1, 1, 1, 2, 0, 0, 1, nan, 0, 0, 1};   /* fine, > 1, NaN */
     mvr_primitive_desc p = {.vertex_count = 3, .positions = tri, .normals = normals, .tangents = tangents,
                             .texcoords0 = uv, .colors = colors};
-    mvr_mesh_desc md = {&p, 1, "bad"};
+    mvr_mesh_desc md = {.primitives = &p, .primitive_count = 1, .name = "bad"};
     mvr_mesh_id mesh;
     CHECK(t, mvr_scene_add_mesh(s, &md, &mesh) == MVR_OK);
     CHECK_EQ_INT(t, mvr_scene_sanitized_count(s), 2 + 2 + 1 + 2);

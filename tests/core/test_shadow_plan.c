@@ -14,7 +14,7 @@ static mvr_scene *scene_with_lights(mvr_test_state *t, uint32_t suns, uint32_t s
     mvr_scene *s = NULL;
     mvr_scene_create(NULL, &s, NULL);
     mvr_primitive_desc p = {.vertex_count = 3, .positions = tri};
-    mvr_mesh_desc md = {&p, 1, "ground"};
+    mvr_mesh_desc md = {.primitives = &p, .primitive_count = 1, .name = "ground"};
     mvr_mesh_id mesh;
     CHECK(t, mvr_scene_add_mesh(s, &md, &mesh) == MVR_OK);
     mvr_node_desc nd = {.mesh = mesh};

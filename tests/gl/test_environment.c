@@ -35,7 +35,7 @@ static mvr_mesh_id add_sphere(mvr_test_state *t, mvr_scene *s, mvr_material_id m
         }
     mvr_primitive_desc p = {.vertex_count = NV, .positions = pos, .normals = nrm, .index_count = NI,
                             .indices16 = idx, .material = material};
-    mvr_mesh_desc md = {&p, 1, "sphere"};
+    mvr_mesh_desc md = {.primitives = &p, .primitive_count = 1, .name = "sphere"};
     mvr_mesh_id id = {0};
     CHECK_MSG(t, mvr_scene_add_mesh(s, &md, &id) == MVR_OK, "sphere: %s", mvr_scene_last_error(s));
     return id;

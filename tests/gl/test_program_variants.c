@@ -25,7 +25,7 @@ static mvr_mesh_id add_quad(mvr_test_state *t, mvr_scene *s, mvr_material_id mat
     static const uint16_t idx[6] = {0, 1, 2, 0, 2, 3};
     mvr_primitive_desc p = {.vertex_count = 4, .positions = pos, .normals = nrm, .tangents = tan,
                             .texcoords0 = uv, .index_count = 6, .indices16 = idx, .material = material};
-    mvr_mesh_desc md = {&p, 1, "quad"};
+    mvr_mesh_desc md = {.primitives = &p, .primitive_count = 1, .name = "quad"};
     mvr_mesh_id mesh = {0};
     CHECK(t, mvr_scene_add_mesh(s, &md, &mesh) == MVR_OK);
     return mesh;

@@ -445,7 +445,7 @@ static void culling_changes_cost_not_pixels(mvr_test_state *t)
     mvr_scene_create(NULL, &scene, NULL);
     float tri[9] = {-0.5f, -0.5f, 0, 0.5f, -0.5f, 0, 0, 0.5f, 0};
     mvr_primitive_desc p = {.vertex_count = 3, .positions = tri};
-    mvr_mesh_desc md = {&p, 1, "tri"};
+    mvr_mesh_desc md = {.primitives = &p, .primitive_count = 1, .name = "tri"};
     mvr_mesh_id mesh;
     CHECK(t, mvr_scene_add_mesh(scene, &md, &mesh) == MVR_OK);
     /* both views look down -Z from x = -3 and x = +3: one triangle in front of
@@ -581,7 +581,7 @@ static void blend_pass_only_where_needed(mvr_test_state *t)
     CHECK(t, mvr_scene_add_material(scene, &glass, &glass_id) == MVR_OK);
     mvr_primitive_desc solid = {.vertex_count = 3, .positions = tri};
     mvr_primitive_desc clear = {.vertex_count = 3, .positions = tri, .material = glass_id};
-    mvr_mesh_desc solid_md = {&solid, 1, "solid"}, clear_md = {&clear, 1, "glass"};
+    mvr_mesh_desc solid_md = {.primitives = &solid, .primitive_count = 1, .name = "solid"}, clear_md = {.primitives = &clear, .primitive_count = 1, .name = "glass"};
     mvr_mesh_id solid_mesh, clear_mesh;
     CHECK(t, mvr_scene_add_mesh(scene, &solid_md, &solid_mesh) == MVR_OK);
     CHECK(t, mvr_scene_add_mesh(scene, &clear_md, &clear_mesh) == MVR_OK);

@@ -103,6 +103,8 @@ std::string json_members(const doc_lists &d, int default_scene)
     member("scenes", d.scenes);
     if (!d.scenes.empty())
         j += ",\"scene\":" + std::to_string(default_scene);
+    member("skins", d.skins);
+    member("animations", d.animations);
     if (!d.lights.empty())
         j += ",\"extensions\":{\"KHR_lights_punctual\":{\"lights\":" + json_array(d.lights) + "}}";
     std::vector<std::string> used, required;

@@ -17,14 +17,14 @@ enum class container { external_bin, data_uri, glb };
 // through json_members(), in one order.
 struct doc_lists {
     std::vector<std::string> buffer_views, accessors, meshes, materials, textures, images, samplers, nodes,
-        scenes, cameras, lights, ext_used, ext_required;
+        scenes, cameras, lights, ext_used, ext_required, skins, animations;
     int add(std::vector<std::string> &list, const std::string &json); // returns the index
 };
 
 // The members after "buffers", each only when its list is non-empty:
 // ,"bufferViews":[...] ... ,"scenes":[...], ,"scene":default_scene (with
-// scenes), the KHR_lights_punctual lights, "extensionsUsed" and
-// "extensionsRequired" (the names as JSON strings).
+// scenes), "skins", "animations", the KHR_lights_punctual lights,
+// "extensionsUsed" and "extensionsRequired" (the names as JSON strings).
 std::string json_members(const doc_lists &d, int default_scene);
 std::string json_array(const std::vector<std::string> &items); // [a,b,...]
 std::string json_string(const std::string &s);                 // quoted, with " \ and controls escaped

@@ -260,6 +260,53 @@ doc image_row_doc(const std::vector<std::string> &images)
     return d;
 }
 
+doc anim_doc(anim_parts *parts)
+{
+    doc d;
+    std::vector<uint8_t> bin;
+    anim_parts a;
+    uint8_t joints[16] = {0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
+    uint8_t weights[16] = {255, 0, 0, 0, 255, 0, 0, 0, 255, 0, 0, 0, 255, 0, 0, 0};
+    a.joints = put_accessor(d, put_view(d, bin, 0, joints, sizeof joints), UBYTE, 4, "VEC4");
+    a.weights = put_accessor(d, put_view(d, bin, 0, weights, sizeof weights), UBYTE, 4, "VEC4", ",\"normalized\":true");
+    float t0[12] = {0, 0, 0, 0, 0, 0, 0, 0.1f, 0, 0, 0.1f, 0};
+    float t1[12] = {0.1f, 0, 0, 0.1f, 0, 0, 0.1f, 0, 0, 0.1f, 0, 0};
+    a.target0 = put_accessor(d, put_view(d, bin, 0, t0, sizeof t0), FLOAT, 4, "VEC3");
+    a.target1 = put_accessor(d, put_view(d, bin, 0, t1, sizeof t1), FLOAT, 4, "VEC3");
+    float ibm[32] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -0.5f, 0, 1};
+    a.ibm = put_accessor(d, put_view(d, bin, 0, ibm, sizeof ibm), FLOAT, 2, "MAT4");
+    float times[3] = {0, 0.5f, 1};
+    a.times = put_accessor(d, put_view(d, bin, 0, times, sizeof times), FLOAT, 3, "SCALAR", ",\"min\":[0],\"max\":[1]");
+    float tr[9] = {0, 0, 0, 0.25f, 0, 0, 0, 0, 0};
+    a.translations = put_accessor(d, put_view(d, bin, 0, tr, sizeof tr), FLOAT, 3, "VEC3");
+    int16_t ro[12] = {0, 0, 0, 32767, 0, 0, 23170, 23170, 0, 0, 0, 32767};
+    a.rotations = put_accessor(d, put_view(d, bin, 0, ro, sizeof ro), SHORT, 3, "VEC4", ",\"normalized\":true");
+    float mw[6] = {0, 0, 1, 0, 0, 1};
+    a.morph_weights = put_accessor(d, put_view(d, bin, 0, mw, sizeof mw), FLOAT, 6, "SCALAR");
+    a.primitive = quad(d, bin, 0, 0, 0, 0.5f, -1,
+                       ",\"JOINTS_0\":" + std::to_string(a.joints) + ",\"WEIGHTS_0\":" + std::to_string(a.weights));
+    a.primitive.insert(a.primitive.size() - 1, ",\"targets\":[{\"POSITION\":" + std::to_string(a.target0) +
+                                                   "},{\"POSITION\":" + std::to_string(a.target1) + "}]");
+    d.add(d.meshes, "{\"primitives\":[" + a.primitive + "],\"weights\":[0.5,0.25]}");
+    d.add(d.nodes, "{\"mesh\":0,\"skin\":0,\"weights\":[1,0]}");
+    d.add(d.nodes, "{\"children\":[2]}");
+    d.add(d.nodes, "{\"translation\":[0,0.5,0]}");
+    d.add(d.scenes, "{\"nodes\":[0,1]}");
+    d.add(d.skins, "{\"joints\":[1,2],\"inverseBindMatrices\":" + std::to_string(a.ibm) + ",\"skeleton\":1,\"name\":\"rig\"}");
+    std::string T = std::to_string(a.times);
+    d.add(d.animations,
+          "{\"name\":\"wave\",\"samplers\":[{\"input\":" + T + ",\"output\":" + std::to_string(a.translations) +
+              ",\"interpolation\":\"LINEAR\"},{\"input\":" + T + ",\"output\":" + std::to_string(a.rotations) +
+              "},{\"input\":" + T + ",\"output\":" + std::to_string(a.morph_weights) +
+              ",\"interpolation\":\"STEP\"}],\"channels\":[{\"sampler\":0,\"target\":{\"node\":1,\"path\":\"translation\"}},"
+              "{\"sampler\":1,\"target\":{\"node\":2,\"path\":\"rotation\"}},"
+              "{\"sampler\":2,\"target\":{\"node\":0,\"path\":\"weights\"}}]}");
+    d.buffers.push_back(data_buffer(bin));
+    if (parts)
+        *parts = a;
+    return d;
+}
+
 // ------------------------------------------------------------ GLB framing
 
 chunk json_chunk(const std::string &j)

@@ -15,7 +15,7 @@
 namespace hostile {
 
 const uint64_t MiB = uint64_t(1) << 20, GiB = uint64_t(1) << 30;
-const int FLOAT = 5126, USHORT = 5123, UINT = 5125;
+const int FLOAT = 5126, USHORT = 5123, UINT = 5125, UBYTE = 5121, SHORT = 5122;
 
 // ------------------------------------------------------------ small writers
 
@@ -66,6 +66,19 @@ doc colour_doc(const std::string &uri, uint64_t byte_length);
 // A row of quads (centres x = -1, 0, 1, ..., y = 0, half size 0.4), quad i
 // textured by image i = images[i]; buffer 0 a data URI.
 doc image_row_doc(const std::vector<std::string> &images);
+
+// A skinned, morphed and animated quad, valid (each hostile anim_* file breaks
+// one thing of it): node 0 draws mesh 0 (JOINTS_0 u8, joints 0 and 1;
+// WEIGHTS_0 normalized u8; two POSITION targets; weights [0.5, 0.25]) with
+// skin 0 (joints: nodes 1 and 2, inverse bind matrices) and node.weights
+// [1, 0]; node 1 (a root) is node 2's parent. Animation 0 "wave": sampler 0
+// translation LINEAR, 1 rotation LINEAR (normalized shorts), 2 weights STEP,
+// 3 keys each at 0, 0.5, 1 s; channel k reads sampler k (nodes 1, 2, 0).
+struct anim_parts {
+    int joints, weights, target0, target1, ibm, times, translations, rotations, morph_weights;
+    std::string primitive;   // mesh 0's primitive (with its targets)
+};
+doc anim_doc(anim_parts *parts = nullptr);
 
 // ------------------------------------------------------------ GLB framing
 

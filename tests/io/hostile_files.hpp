@@ -30,6 +30,9 @@ struct hostile_file {
     std::string name; // in DIR/asset
     std::string what;
     std::string expect;
+    // for files refused with MVR_ERROR_INVALID_ASSET by what they are (the
+    // skin / morph / animation ones): a part of the message naming the object
+    std::string refused_naming;
 };
 
 struct files {
@@ -40,7 +43,8 @@ struct files {
     std::string long_b64_value;  // 50 KB of base64 letters, in the bad data URIs
     std::string path(const std::string &name) const { return asset + "/" + name; }
     // Writes DIR/asset/name and lists it in the index.
-    void text(const std::string &name, const std::string &content, const std::string &what, const std::string &expect);
+    void text(const std::string &name, const std::string &content, const std::string &what, const std::string &expect,
+              const std::string &refused_naming = "");
     void bytes(const std::string &name, const std::vector<uint8_t> &b, const std::string &what,
                const std::string &expect);
 };

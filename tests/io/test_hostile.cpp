@@ -623,6 +623,65 @@ void read_callback_replaces_file_access(mvr_test_state *t)
     }
 }
 
+// Skins, morph targets and animations (hostile_files.cpp, anim_*): each
+// broken file refused with a message naming the object; the valid one loads
+// (and renders); unknown channel paths are warned about once each.
+void skins_morphs_and_animations_are_checked(mvr_test_state *t)
+{
+    const files &f = F();
+    size_t refused = 0;
+    for (const auto &h : f.list) {
+        if (h.refused_naming.empty())
+            continue;
+        ++refused;
+        const char *n = h.name.c_str();
+        outcome o = load(t, f.path(h.name), defaults());
+        CHECK_MSG(t, o.r == MVR_ERROR_INVALID_ASSET, "%s: %s, expected MVR_ERROR_INVALID_ASSET (%s)", n,
+                  mvr_result_name(o.r), o.msg.c_str());
+        CHECK_MSG(t, has(o.msg, h.refused_naming), "%s: the message lacks '%s': %s", n, h.refused_naming.c_str(),
+                  o.msg.c_str());
+        CHECK_MSG(t, o.scene == nullptr, "%s: a scene on failure", n);
+    }
+    CHECK_MSG(t, refused >= 30, "%zu anim_* files refused", refused);
+    {
+        outcome o = load(t, f.path("anim_valid.gltf"), defaults());
+        CHECK_MSG(t, o.r == MVR_OK && o.warnings.empty(), "anim_valid: %s %s", o.msg.c_str(),
+                  o.warnings.empty() ? "" : o.warnings[0].c_str());
+        if (o.scene) {
+            mvr_scene_info si;
+            mvr_scene_get_info(o.scene, &si);
+            CHECK(t, si.skins == 1 && si.joints == 2 && si.morph_targets == 2 && si.animations == 1);
+            mvr_animation_info ai;
+            CHECK(t, mvr_scene_get_animation_info(o.scene, 0, &ai) == MVR_OK && std::strcmp(ai.name, "wave") == 0 &&
+                         ai.start == 0 && ai.end == 1 && ai.channels == 3 && ai.samplers == 3);
+            CHECK(t, mvr_scene_apply_animation(o.scene, 0, 0.75, MVR_ANIMATION_LOOP) == MVR_OK);
+            std::vector<uint8_t> px = render(t, o.scene, "anim_valid");
+            CHECK_MSG(t, px.empty() || drawn(px) > 50, "anim_valid: %zu pixels drawn", drawn(px));
+        }
+    }
+    {
+        outcome o = load(t, f.path("anim_unknown_paths.gltf"), defaults());
+        CHECK_MSG(t, o.r == MVR_OK, "anim_unknown_paths: %s", o.msg.c_str());
+        CHECK_EQ_INT(t, o.info.animation_channels_ignored, 3);
+        size_t pointer = 0, colour = 0;
+        for (const auto &w : o.warnings) {
+            pointer += has(w, "target path 'pointer' (KHR_animation_pointer) is not implemented; channel ignored");
+            colour += has(w, "target path 'color' is not implemented");
+        }
+        CHECK_MSG(t, pointer == 1 && colour == 1 && o.warnings.size() == 2, "%zu pointer, %zu color warnings of %zu",
+                  pointer, colour, o.warnings.size());
+        CHECK(t, o.warnings.empty() || has(o.warnings[0], "animations[0].channels[3]"));
+        mvr_animation_info ai;
+        CHECK(t, o.scene && mvr_scene_get_animation_info(o.scene, 0, &ai) == MVR_OK && ai.channels == 3);
+    }
+    {
+        outcome o = load(t, f.path("anim_pointer_without_node.gltf"), defaults());
+        CHECK_MSG(t, o.r == MVR_OK, "anim_pointer_without_node: %s", o.msg.c_str());
+        CHECK_EQ_INT(t, o.info.animation_channels_ignored, 1);
+        CHECK(t, o.warned("KHR_animation_pointer"));
+    }
+}
+
 }  // namespace
 
 int main(int argc, char **argv)
@@ -652,6 +711,7 @@ int main(int argc, char **argv)
         TEST(valid_files_load),
         TEST(allowed_root_widens_access),
         TEST(read_callback_replaces_file_access),
+        TEST(skins_morphs_and_animations_are_checked),
     };
     int rc = mvr_test_run(cases, sizeof cases / sizeof cases[0]);
     hostile::release_context();

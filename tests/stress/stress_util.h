@@ -61,7 +61,7 @@ static inline mvr_mesh_id stress_add_box(mvr_test_state *t, mvr_scene *s, float 
     }
     mvr_primitive_desc p = {.vertex_count = 24, .positions = pos, .normals = nrm, .texcoords0 = uv,
                             .index_count = 36, .indices16 = idx, .material = material};
-    mvr_mesh_desc md = {&p, 1, "box"};
+    mvr_mesh_desc md = {.primitives = &p, .primitive_count = 1, .name = "box"};
     mvr_mesh_id id = {0};
     CHECK_MSG(t, mvr_scene_add_mesh(s, &md, &id) == MVR_OK, "box: %s", mvr_scene_last_error(s));
     return id;
@@ -76,7 +76,7 @@ static inline mvr_mesh_id stress_add_quad(mvr_test_state *t, mvr_scene *s, mvr_m
     static const uint16_t idx[6] = {0, 1, 2, 0, 2, 3};
     mvr_primitive_desc p = {.vertex_count = 4, .positions = pos, .normals = nrm, .texcoords0 = uv,
                             .index_count = 6, .indices16 = idx, .material = material};
-    mvr_mesh_desc md = {&p, 1, "quad"};
+    mvr_mesh_desc md = {.primitives = &p, .primitive_count = 1, .name = "quad"};
     mvr_mesh_id id = {0};
     CHECK_MSG(t, mvr_scene_add_mesh(s, &md, &id) == MVR_OK, "quad: %s", mvr_scene_last_error(s));
     return id;

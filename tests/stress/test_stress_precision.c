@@ -330,7 +330,7 @@ static void degenerate_meshes(mvr_test_state *t)
         {.vertex_count = 12, .positions = pos, .normals = nrm, .texcoords0 = uv, .material = mat},
         {.vertex_count = 12, .positions = pos, .normals = nrm, .tangents = tan4, .texcoords0 = uv, .material = mat},
     };
-    mvr_mesh_desc md = {prims, 2, "degenerate"};
+    mvr_mesh_desc md = {.primitives = prims, .primitive_count = 2, .name = "degenerate"};
     mvr_mesh_id mesh;
     CHECK_MSG(t, mvr_scene_add_mesh(s, &md, &mesh) == MVR_OK, "%s", mvr_scene_last_error(s));
     mvr_mesh_id box = stress_add_box(t, s, 0.5f, mat);
