@@ -1,4 +1,5 @@
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -142,5 +143,16 @@ bool cli_parse_u32(const char *s, uint32_t lo, uint32_t hi, uint32_t *out)
     if (errno || !end || *end || v < lo || v > hi)
         return false;
     *out = (uint32_t)v;
+    return true;
+}
+
+bool cli_parse_double(const char *s, double *out)
+{
+    char *end = NULL;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (end == s || !end || *end || errno == ERANGE || !isfinite(v))
+        return false;
+    *out = v;
     return true;
 }

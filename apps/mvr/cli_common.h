@@ -30,6 +30,10 @@ bool cli_context_check(const char *command, const mvr_context_desc *desc);
 /* A decimal number in [lo, hi], the whole string; false otherwise. */
 bool cli_parse_u32(const char *s, uint32_t lo, uint32_t hi, uint32_t *out);
 
+/* A finite number, the whole string ("nan", "inf", "1e999" and "2s" are
+ * not); false otherwise. */
+bool cli_parse_double(const char *s, double *out);
+
 /* Creates path and its parents (mkdir -p); prints what failed. */
 bool cli_make_dirs(const char *command, const char *path);
 

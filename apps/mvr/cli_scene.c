@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli_common.h"
 #include "cli_scene.h"
 #include "commands.h"
 #include "mvr/mvr_gltf.h"
@@ -100,6 +101,91 @@ int cli_load_scene(const char *command, const cli_scene_options *o, mvr_scene **
         return err.result == MVR_ERROR_INVALID_ARGUMENT ? MVR_EXIT_USAGE : MVR_EXIT_FAILURE;
     }
     return MVR_EXIT_OK;
+}
+
+/* Prints the scene's animations as "0 'walk', 1 (unnamed), ..." (at most 16). */
+static void list_animations(FILE *out, const mvr_scene *scene)
+{
+    uint32_t count = mvr_scene_animation_count(scene);
+    for (uint32_t i = 0; i < count && i < 16; ++i) {
+        mvr_animation_info ai;
+        if (mvr_scene_get_animation_info(scene, i, &ai) != MVR_OK)
+            break;
+        if (ai.name && ai.name[0])
+            fprintf(out, "%s%u '%s'", i ? ", " : "", i, ai.name);
+        else
+            fprintf(out, "%s%u (unnamed)", i ? ", " : "", i);
+    }
+    if (count > 16)
+        fprintf(out, " and %u more", count - 16);
+}
+
+bool cli_find_animation(const char *command, const char *what, const mvr_scene *scene, const char *spec,
+                        uint32_t *out)
+{
+    uint32_t count = mvr_scene_animation_count(scene);
+    if (count == 0) {
+        fprintf(stderr, "%s: --animation %s: %s has no animations\n", command, spec, what);
+        return false;
+    }
+    if (strcmp(spec, "all") == 0) {
+        *out = MVR_ANIMATION_ALL;
+        return true;
+    }
+    bool number = spec[0] != '\0' && strspn(spec, "0123456789") == strlen(spec);
+    uint32_t k = 0;
+    if (number && cli_parse_u32(spec, 0, count - 1, &k)) {
+        *out = k;
+        return true;
+    }
+    /* by name without mvr_scene_find_animation, which would log the miss
+     * as an error before this prints it */
+    for (uint32_t i = 0; !number && i < count; ++i) {
+        mvr_animation_info ai;
+        if (mvr_scene_get_animation_info(scene, i, &ai) == MVR_OK && ai.name && strcmp(ai.name, spec) == 0) {
+            *out = i;
+            return true;
+        }
+    }
+    if (number)
+        fprintf(stderr, "%s: --animation %s: %s has %u animation%s (0..%u): ", command, spec, what, count,
+                count == 1 ? "" : "s", count - 1);
+    else
+        fprintf(stderr, "%s: --animation %s: %s has no animation named '%s'; its animations: ", command, spec, what,
+                spec);
+    list_animations(stderr, scene);
+    fprintf(stderr, " (a name, an index or all)\n");
+    return false;
+}
+
+bool cli_animation_clip(const mvr_scene *scene, uint32_t index, double *start, double *end)
+{
+    *start = *end = 0.0;
+    uint32_t count = mvr_scene_animation_count(scene);
+    uint32_t first = index == MVR_ANIMATION_ALL ? 0 : index, last = index == MVR_ANIMATION_ALL ? count : index + 1;
+    if (count == 0 || first >= count)
+        return false;
+    bool any = false;
+    for (uint32_t i = first; i < last; ++i) {
+        mvr_animation_info ai;
+        if (mvr_scene_get_animation_info(scene, i, &ai) != MVR_OK)
+            continue;
+        *start = any ? fmin(*start, ai.start) : ai.start;
+        *end = any ? fmax(*end, ai.end) : ai.end;
+        any = true;
+    }
+    return any;
+}
+
+void cli_animation_label(const mvr_scene *scene, uint32_t index, char *buf, size_t size)
+{
+    mvr_animation_info ai;
+    if (index == MVR_ANIMATION_ALL)
+        snprintf(buf, size, "all %u", mvr_scene_animation_count(scene));
+    else if (mvr_scene_get_animation_info(scene, index, &ai) == MVR_OK && ai.name && ai.name[0])
+        snprintf(buf, size, "%u '%s'", index, ai.name);
+    else
+        snprintf(buf, size, "%u (unnamed)", index);
 }
 
 /* Exact sRGB encode (IEC 61966-2-1) of linear floats into display bytes. */

@@ -42,6 +42,22 @@ uint32_t cli_demo_max_views(const char *demo, uint32_t width, uint32_t height);
  * the limit and why (prefixed with command) when not. */
 bool cli_check_demo_views(const char *command, const char *demo, uint32_t views, uint32_t width, uint32_t height);
 
+/* --animation NAME|K|all against a scene's animations: "all" is
+ * MVR_ANIMATION_ALL, a decimal number an index (0-based), anything else a
+ * name (the first animation with it). When the scene has no such animation
+ * (or none at all) prints why, prefixed with command and naming what (the
+ * file or demo), and lists the animations there are; false then. */
+bool cli_find_animation(const char *command, const char *what, const mvr_scene *scene, const char *spec,
+                        uint32_t *out);
+
+/* The clip of animation index in the file's seconds: its first and last
+ * key; MVR_ANIMATION_ALL: from the earliest start to the latest end of all.
+ * false (0, 0) when there is no such animation. */
+bool cli_animation_clip(const mvr_scene *scene, uint32_t index, double *start, double *end);
+
+/* "1 'walk'", "1 (unnamed)", or "all 3" for MVR_ANIMATION_ALL. */
+void cli_animation_label(const mvr_scene *scene, uint32_t index, char *buf, size_t size);
+
 /* The render desc mvr render and mvr-viewer start from: an opaque dark sky
  * as the clear colour, exposure 1; everything else the library's default. */
 void cli_render_desc_defaults(mvr_render_desc *desc);

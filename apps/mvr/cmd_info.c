@@ -1,4 +1,5 @@
-/* mvr info: what GL mvr gets from a context provider, and what it can use. */
+/* mvr info: what GL mvr gets from a context provider, and what it can use;
+ * mvr info FILE: what a glTF file holds (no GL needed). */
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -8,21 +9,30 @@
 #include "commands.h"
 #include "json.h"
 #include "mvr/mvr.h"
+#include "mvr/mvr_gltf.h"
 
 typedef struct info_options {
     mvr_context_desc desc;
     bool json;
     bool require_multiview;
     bool verbose;
+    const char *file;            /* mvr info FILE: the file's contents instead of the GL */
+    uint32_t gltf_scene;         /* --scene K + 1; 0 = the file's default */
+    const char *gl_option;       /* the first GL option given (refused with FILE) */
 } info_options;
 
 static void info_usage(FILE *out)
 {
     fprintf(out,
             "usage: mvr info [options]\n"
+            "       mvr info SCENE.gltf|SCENE.glb [--scene K] [--json]\n"
             "\n"
             "Creates a GL context through a provider and prints its version, the\n"
             "extensions and limits mvr uses, and the known driver bugs it detected.\n"
+            "With a file: what it holds (no GL needed): nodes, meshes, materials,\n"
+            "lights, cameras, skins and joints, morph targets, and each animation\n"
+            "(index, name, start .. end seconds, channels) as mvr render --animation\n"
+            "takes them.\n"
             "\n"
             "options:\n");
     const cli_option *const context[] = {cli_context_options, NULL};
@@ -31,6 +41,7 @@ static void info_usage(FILE *out)
             "  --json              machine-readable output on stdout\n"
             "  --debug             debug context; driver messages go to stderr\n"
             "  --require-multiview exit with status 3 unless GL_OVR_multiview2 is usable\n"
+            "  --scene K           with a file: its K-th scene (0-based; default: its default)\n"
             "  --verbose           log what the library does to stderr\n"
             "  -h, --help          this text\n"
             "\n"
@@ -46,8 +57,30 @@ static int parse(int argc, char **argv, info_options *o)
         int c = cli_context_option("info", argc, argv, &i, &o->desc);
         if (c < 0)
             return MVR_EXIT_USAGE;
-        if (c > 0)
+        if (c > 0) {
+            o->gl_option = o->gl_option ? o->gl_option : a;
             continue;
+        }
+        if (a[0] != '-' || a[1] == '\0') {
+            if (o->file) {
+                fprintf(stderr, "mvr info: one SCENE file at a time (got %s and %s)\n", o->file, a);
+                return MVR_EXIT_USAGE;
+            }
+            o->file = a;
+            continue;
+        }
+        if (strcmp(a, "--scene") == 0) {
+            uint32_t k = 0;
+            if (i + 1 >= argc || !cli_parse_u32(argv[i + 1], 0, 1u << 20, &k)) {
+                fprintf(stderr, "mvr info: --scene takes a scene index K (0-based)\n");
+                return MVR_EXIT_USAGE;
+            }
+            o->gltf_scene = k + 1;
+            ++i;
+            continue;
+        }
+        if (strcmp(a, "--debug") == 0 || strcmp(a, "--require-multiview") == 0)
+            o->gl_option = o->gl_option ? o->gl_option : a;
         if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
             info_usage(stdout);
             return -1;
@@ -66,8 +99,121 @@ static int parse(int argc, char **argv, info_options *o)
             return MVR_EXIT_USAGE;
         }
     }
+    if (o->file && o->gl_option) {
+        fprintf(stderr, "mvr info: %s is about the GL; with a SCENE file mvr info reports the file (no GL): give "
+                        "one or the other\n", o->gl_option);
+        return MVR_EXIT_USAGE;
+    }
+    if (!o->file && o->gltf_scene) {
+        fprintf(stderr, "mvr info: --scene is for a SCENE file\n");
+        return MVR_EXIT_USAGE;
+    }
     if (!cli_context_check("info", &o->desc))
         return MVR_EXIT_USAGE;
+    return MVR_EXIT_OK;
+}
+
+/* mvr info FILE as JSON: the scene's counts and its animations. */
+static void print_scene_json(const char *file, const mvr_scene *scene, const mvr_scene_info *si,
+                             const mvr_gltf_info *gi)
+{
+    json_writer w = {stdout, 0, {false}, {0}};
+    json_begin_object(&w, NULL);
+    json_string(&w, "file", file);
+    json_int(&w, "nodes", si->nodes);
+    json_int(&w, "meshes", si->meshes);
+    json_int(&w, "primitives", si->primitives);
+    json_int(&w, "materials", si->materials);
+    json_int(&w, "images", si->images);
+    json_int(&w, "lights", si->lights);
+    json_int(&w, "cameras", si->cameras);
+    json_int(&w, "skins", si->skins);
+    json_int(&w, "joints", si->joints);
+    json_int(&w, "morph_targets", si->morph_targets);
+    json_begin_array(&w, "bounds_min");
+    for (int k = 0; k < 3; ++k)
+        json_double(&w, NULL, si->bounds_min[k]);
+    json_end_array(&w);
+    json_begin_array(&w, "bounds_max");
+    for (int k = 0; k < 3; ++k)
+        json_double(&w, NULL, si->bounds_max[k]);
+    json_end_array(&w);
+    json_begin_array(&w, "animations");
+    uint32_t count = mvr_scene_animation_count(scene);
+    for (uint32_t i = 0; i < count; ++i) {
+        mvr_animation_info ai;
+        if (mvr_scene_get_animation_info(scene, i, &ai) != MVR_OK)
+            break;
+        json_begin_object(&w, NULL);
+        json_int(&w, "index", i);
+        json_string(&w, "name", ai.name ? ai.name : "");
+        json_double(&w, "start", ai.start);
+        json_double(&w, "end", ai.end);
+        json_int(&w, "channels", ai.channels);
+        json_int(&w, "samplers", ai.samplers);
+        json_end_object(&w);
+    }
+    json_end_array(&w);
+    json_int(&w, "animation_channels_ignored", gi->animation_channels_ignored);
+    json_int(&w, "load_warnings", gi->warnings);
+    json_end_object(&w);
+}
+
+static void print_scene_text(const char *file, const mvr_scene *scene, const mvr_scene_info *si,
+                             const mvr_gltf_info *gi)
+{
+    printf("file          %s\n", file);
+    printf("nodes         %u (%u camera%s, %u light%s)\n", si->nodes, si->cameras, si->cameras == 1 ? "" : "s",
+           si->lights, si->lights == 1 ? "" : "s");
+    printf("meshes        %u (%u primitive%s), %u material%s, %u image%s\n", si->meshes, si->primitives,
+           si->primitives == 1 ? "" : "s", si->materials, si->materials == 1 ? "" : "s", si->images,
+           si->images == 1 ? "" : "s");
+    printf("bounds        (%g, %g, %g) .. (%g, %g, %g)\n", si->bounds_min[0], si->bounds_min[1], si->bounds_min[2],
+           si->bounds_max[0], si->bounds_max[1], si->bounds_max[2]);
+    printf("skins         %u (%u joint%s)\n", si->skins, si->joints, si->joints == 1 ? "" : "s");
+    printf("morph targets %u (summed over primitives)\n", si->morph_targets);
+    uint32_t count = mvr_scene_animation_count(scene);
+    printf("animations    %u", count);
+    if (gi->animation_channels_ignored)
+        printf(" (%u channel%s left out: unknown target paths, or nodes outside the scene)",
+               gi->animation_channels_ignored, gi->animation_channels_ignored == 1 ? "" : "s");
+    printf("\n");
+    for (uint32_t i = 0; i < count; ++i) {
+        mvr_animation_info ai;
+        if (mvr_scene_get_animation_info(scene, i, &ai) != MVR_OK)
+            break;
+        char name[160];
+        if (ai.name && ai.name[0])
+            snprintf(name, sizeof name, "'%s'", ai.name);
+        else
+            snprintf(name, sizeof name, "(unnamed)");
+        printf("  %-4u %-24s %g .. %g s, %u channel%s, %u sampler%s\n", i, name, ai.start, ai.end, ai.channels,
+               ai.channels == 1 ? "" : "s", ai.samplers, ai.samplers == 1 ? "" : "s");
+    }
+}
+
+/* mvr info FILE: loads the file (no GL) and prints what it holds. */
+static int info_file(const info_options *o)
+{
+    mvr_gltf_options go;
+    memset(&go, 0, sizeof go);
+    go.scene = o->gltf_scene;
+    go.logger = o->desc.logger;
+    mvr_gltf_info gi;
+    memset(&gi, 0, sizeof gi);
+    mvr_scene *scene = NULL;
+    mvr_error err;
+    if (mvr_gltf_load_file(o->file, &go, &scene, &gi, &err) != MVR_OK) {
+        fprintf(stderr, "mvr info: %s (%s)\n", err.message, mvr_result_name(err.result));
+        return MVR_EXIT_FAILURE;
+    }
+    mvr_scene_info si;
+    mvr_scene_get_info(scene, &si);
+    if (o->json)
+        print_scene_json(o->file, scene, &si, &gi);
+    else
+        print_scene_text(o->file, scene, &si, &gi);
+    mvr_scene_destroy(scene);
     return MVR_EXIT_OK;
 }
 
@@ -221,6 +367,8 @@ int mvr_cmd_info(int argc, char **argv)
     int rc = parse(argc, argv, &o);
     if (rc != MVR_EXIT_OK)
         return rc < 0 ? MVR_EXIT_OK : rc;
+    if (o.file)
+        return info_file(&o);
     mvr_context *ctx = NULL;
     mvr_error err;
     if (mvr_context_create(&o.desc, &ctx, &err) != MVR_OK) {

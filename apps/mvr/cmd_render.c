@@ -1,11 +1,14 @@
 /* mvr render: a demo scene (or, with the glTF loader, a file) into N views,
  * one PNG per view plus a contact sheet, and the frame's stats. */
+#define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <math.h>
+#include <spawn.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "cli_common.h"
@@ -48,14 +51,34 @@ typedef struct render_options {
     bool quiet;
     bool strict;                 /* glTF: missing or undecodable images are errors */
     uint64_t memory_budget;      /* glTF load budget in bytes; 0 = the loader's default */
+    /* animation: --animation NAME|K|all at --time (+ k / --fps for frame k
+     * of --frames); none given = the file's rest pose */
+    const char *animation;
+    double time, fps;
+    bool time_set, loop, frames_set;
+    const char *video;           /* --video FILE: each view's sequence through ffmpeg */
+    char ffmpeg[4096];           /* with video: the ffmpeg found on PATH */
+    mvr_skinning_path skinning;
 } render_options;
+
+/* What posed the frames (for the summary and the stats). */
+typedef struct render_animation {
+    bool applied;                /* an animation posed the scene */
+    uint32_t index;              /* or MVR_ANIMATION_ALL */
+    char label[192];             /* cli_animation_label */
+    double first_time, last_time;
+    double start, end;           /* its clip */
+} render_animation;
 
 enum {
     R_DEMO = 1, R_VIEWS, R_CAMERA, R_LAYOUT, R_IPD, R_SCENE, R_SIZE, R_OUT, R_VIEW_PATH, R_MATERIAL_PATH, R_DEPTH,
     R_TRANSPARENCY, R_SUPERSAMPLE, R_MSAA, R_AA, R_REFERENCE, R_FORMAT, R_TARGET_FORMAT, R_SHADOWS, R_SHADOW_SIZE,
     R_EXPOSURE, R_EXPOSURE_SCALE, R_CAMERA_EXPOSURE, R_EXPOSURE_PER_VIEW, R_DITHER, R_CLEAR, R_TONE_MAP, R_FRAMES,
-    R_STATS, R_STRICT, R_MEMORY_BUDGET, R_PROGRAM_CACHE, R_QUIET, R_PLAN
+    R_STATS, R_STRICT, R_MEMORY_BUDGET, R_PROGRAM_CACHE, R_QUIET, R_PLAN, R_ANIMATION, R_TIME, R_LOOP, R_FPS, R_VIDEO,
+    R_SKINNING
 };
+
+#define MAX_FRAMES 100000
 
 #define EXPOSURE_GROUP "the exposure"
 #define AA_GROUP "the anti-aliasing"
@@ -148,9 +171,39 @@ static const cli_option render_table[] = {
     END,
 };
 
+/* animation, skins and morph targets */
+static const cli_option render_table_animation[] = {
+    {CLI_OPT_STRING, R_ANIMATION, "--animation", NULL, "A", 0, 0, NULL,
+     "SCENE: pose the file with animation A: its name, its index K\n"
+     "(0-based; mvr info FILE lists them) or all (every animation\n"
+     "at once) (default: none, the file's rest pose; but --time,\n"
+     "--loop and --frames play animation 0 when the file has one)", NULL, NULL, NULL},
+    {CLI_OPT_STRING, R_TIME, "--time", NULL, "T", 0, 0, NULL,
+     "seconds on the file's animation clock, >= 0 (default: 0);\n"
+     "before the clip's first key or after its last, the nearest\n"
+     "key's pose", NULL, NULL, NULL},
+    {CLI_OPT_FLAG, R_LOOP, "--loop", NULL, NULL, 0, 0, NULL,
+     "wrap --time into the clip [start, end) instead of holding\n"
+     "its last pose after the end", NULL, NULL, NULL},
+    {CLI_OPT_U32, R_FRAMES, "--frames", NULL, "N", 1, MAX_FRAMES, NULL,
+     "render N frames at --time T, T + 1/F, T + 2/F, ... and write\n"
+     "each: DIR/view_VV_fFFFF.png (view VV, frame FFFF from 0,\n"
+     "at least 4 digits); contact_sheet.png shows the first frame\n"
+     "(1..100000; default: one frame, view_VV.png)", NULL, NULL, NULL},
+    {CLI_OPT_STRING, R_FPS, "--fps", NULL, "F", 0, 0, NULL, "frames per second of --frames and --video, > 0 (default: 30)",
+     NULL, NULL, NULL},
+    {CLI_OPT_STRING, R_VIDEO, "--video", NULL, "FILE.mp4", 0, 0, NULL,
+     "with --frames: also encode each view's sequence at --fps\n"
+     "with ffmpeg (on PATH) into FILE.mp4 (one view) or\n"
+     "FILE_view_VV.mp4 (several)", NULL, NULL, NULL},
+    {CLI_OPT_CHOICE, R_SKINNING, "--skinning", NULL, "S", 0, 0, "auto|vertex|preskin",
+     "auto | vertex | preskin: where skinning and morphing run (in\n"
+     "each pass's vertex shader, or once per frame by transform\n"
+     "feedback; same pixels) (default: auto; MVR_SKINNING_PATH wins)", NULL, NULL, NULL},
+    END,
+};
+
 static const cli_option render_table_tail[] = {
-    {CLI_OPT_U32, R_FRAMES, "--frames", NULL, "N", 1, 100000, NULL,
-     "render N frames (the last is written; default: 1)", NULL, NULL, NULL},
     {CLI_OPT_STRING, R_STATS, "--stats", NULL, "FILE.json", 0, 0, NULL, "write the last frame's stats as JSON", NULL,
      NULL, NULL},
     {CLI_OPT_FLAG, R_PLAN, "--plan", NULL, NULL, 0, 0, NULL,
@@ -170,8 +223,9 @@ static const cli_option render_table_tail[] = {
     END,
 };
 
-static const cli_option *const render_tables[] = {render_table, cli_env_option_table, render_table_tail,
-                                                  cli_context_options, cli_help_option, NULL};
+static const cli_option *const render_tables[] = {render_table,       cli_env_option_table, render_table_animation,
+                                                  render_table_tail,  cli_context_options,  cli_help_option,
+                                                  NULL};
 
 static void render_usage(FILE *out)
 {
@@ -179,7 +233,8 @@ static void render_usage(FILE *out)
             "usage: mvr render [--demo NAME | SCENE.gltf | SCENE.glb] [options]\n"
             "\n"
             "Renders a scene into N views headless and writes one image per view\n"
-            "(view_00.png, ...) and a contact sheet (PNG) of all views side by side.\n"
+            "(view_00.png, ...) and a contact sheet (PNG) of all views side by side;\n"
+            "with --frames N, a numbered sequence per view (view_00_f0000.png, ...).\n"
             "\n"
             "options:\n");
     cli_print_options(out, render_tables, 20);
@@ -188,9 +243,7 @@ static void render_usage(FILE *out)
 /* A finite number, the whole string. */
 static bool parse_double(const char *v, double *out)
 {
-    char *end = NULL;
-    *out = strtod(v, &end);
-    return end != v && end && !*end && isfinite(*out);
+    return cli_parse_double(v, out);
 }
 
 /* One option's value into the options (the parser checked kinds and ranges). */
@@ -214,7 +267,39 @@ static bool apply(const cli_arg *arg, render_options *o)
             return false;
         }
         break;
-    case R_FRAMES: o->frames = arg->number; break;
+    case R_FRAMES:
+        o->frames = arg->number;
+        o->frames_set = true;
+        break;
+    case R_ANIMATION:
+        if (!v[0]) {
+            fprintf(stderr, "mvr render: --animation takes a name, an index or all (got '')\n");
+            return false;
+        }
+        o->animation = v;
+        break;
+    case R_TIME:
+        if (!parse_double(v, &o->time) || o->time < 0.0) {
+            fprintf(stderr, "mvr render: --time takes seconds >= 0 (got '%s')\n", v);
+            return false;
+        }
+        o->time_set = true;
+        break;
+    case R_LOOP: o->loop = true; break;
+    case R_FPS:
+        if (!parse_double(v, &o->fps) || !(o->fps > 0.0)) {
+            fprintf(stderr, "mvr render: --fps takes frames per second > 0 (got '%s')\n", v);
+            return false;
+        }
+        break;
+    case R_VIDEO:
+        if (!v[0]) {
+            fprintf(stderr, "mvr render: --video takes a file name, e.g. out.mp4 (got '')\n");
+            return false;
+        }
+        o->video = v;
+        break;
+    case R_SKINNING: o->skinning = (mvr_skinning_path)(MVR_SKINNING_PATH_AUTO + arg->choice); break;
     case R_SIZE:
         if (!cli_parse_size(v, 1, 16384, &o->width, &o->height)) {
             fprintf(stderr, "mvr render: --size takes WxH with 1..16384 each, e.g. 640x480\n");
@@ -304,6 +389,25 @@ static bool apply(const cli_arg *arg, render_options *o)
     return true;
 }
 
+/* The first executable name in the directories of $PATH, into buf. */
+static bool find_on_path(const char *name, char *buf, size_t size)
+{
+    const char *path = getenv("PATH");
+    if (!path || !path[0])
+        return false;
+    for (const char *d = path; *d;) {
+        size_t len = strcspn(d, ":");
+        /* an empty entry is the current directory, as the shell takes it */
+        int n = len ? snprintf(buf, size, "%.*s/%s", (int)len, d, name) : snprintf(buf, size, "./%s", name);
+        struct stat st;
+        if (n > 0 && (size_t)n < size && stat(buf, &st) == 0 && S_ISREG(st.st_mode) && access(buf, X_OK) == 0)
+            return true;
+        d += len + (d[len] == ':');
+    }
+    buf[0] = '\0';
+    return false;
+}
+
 static int parse(int argc, char **argv, render_options *o)
 {
     memset(o, 0, sizeof *o);
@@ -311,6 +415,7 @@ static int parse(int argc, char **argv, render_options *o)
     o->width = 640;
     o->height = 480;
     o->frames = 1;
+    o->fps = 30.0;
     o->out_dir = "out";
     o->camera = -1;
     cli_render_desc_defaults(&o->render); /* as mvr-viewer starts */
@@ -352,6 +457,33 @@ static int parse(int argc, char **argv, render_options *o)
         o->camera = CLI_CAMERA_IF_ANY;
     if (!cli_context_check("render", &o->context))
         return MVR_EXIT_USAGE;
+    if (!o->scene_file && o->animation) {
+        fprintf(stderr, "mvr render: --animation is for a SCENE file (the demos have no animations)\n");
+        return MVR_EXIT_USAGE;
+    }
+    if (cli_given(&p, "--fps") && !o->frames_set) {
+        fprintf(stderr, "mvr render: --fps is for --frames N (the time between frames)\n");
+        return MVR_EXIT_USAGE;
+    }
+    if (o->video && !o->frames_set) {
+        fprintf(stderr, "mvr render: --video needs --frames N (it encodes each view's sequence)\n");
+        return MVR_EXIT_USAGE;
+    }
+    if (o->video && o->exr) {
+        fprintf(stderr, "mvr render: --video encodes the PNG sequence: leave out --format exr\n");
+        return MVR_EXIT_USAGE;
+    }
+    if (o->frames_set && !isfinite(o->time + (double)(o->frames - 1) / o->fps)) {
+        fprintf(stderr, "mvr render: --frames %u at --fps %g from --time %g runs past any finite time\n", o->frames,
+                o->fps, o->time);
+        return MVR_EXIT_USAGE;
+    }
+    /* ffmpeg is looked for before anything is rendered */
+    if (o->video && !find_on_path("ffmpeg", o->ffmpeg, sizeof o->ffmpeg)) {
+        fprintf(stderr, "mvr render: --video %s: ffmpeg was not found on PATH (install it, or leave out --video: "
+                        "the PNG sequence is written either way)\n", o->video);
+        return MVR_EXIT_MISSING;
+    }
     if (!cli_env_check("mvr render", &o->env, o->scene_file != NULL))
         return MVR_EXIT_USAGE;
     if (o->exr && !o->format_set)
@@ -413,9 +545,61 @@ static const char *program_cache_dir(const render_options *o, char *buf, size_t 
     return buf;
 }
 
+/* The animation that posed the frames (null: none, the rest pose) and the
+ * last frame's skinning and morphing. */
+static void write_animation_json(json_writer *jw, const render_options *o, const render_animation *a,
+                                 const mvr_frame_stats *s)
+{
+    if (a->applied) {
+        json_begin_object(jw, "animation");
+        if (a->index == MVR_ANIMATION_ALL)
+            json_string(jw, "index", "all");
+        else
+            json_int(jw, "index", a->index);
+        json_string(jw, "label", a->label);
+        json_double(jw, "start", a->start);
+        json_double(jw, "end", a->end);
+        json_bool(jw, "loop", o->loop);
+        json_double(jw, "first_time", a->first_time);
+        json_double(jw, "time", a->last_time);
+        json_end_object(jw);
+    } else {
+        json_null(jw, "animation");
+    }
+    json_int(jw, "frames", o->frames);
+    json_double(jw, "fps", o->fps);
+    json_string(jw, "skinning_path", mvr_skinning_path_name(s->skinning_path));
+    json_int(jw, "joints", s->joints);
+    json_int(jw, "morph_targets_active", s->morph_targets_active);
+    json_int(jw, "animation_upload_bytes", (long long)s->animation_upload_bytes);
+    json_int(jw, "preskin_passes", s->preskin_passes);
+}
+
+/* The first and the last frame's pose, and the last frame's skinning. */
+static void print_animation_summary(const render_options *o, const mvr_scene *scene, const render_animation *a,
+                                    const mvr_frame_stats *s)
+{
+    if (a->applied) {
+        printf("  animation   %s: clip %g .. %g s, ", a->label, a->start, a->end);
+        if (o->frames_set && o->frames > 1)
+            printf("t = %g .. %g s (%u frames at %g fps)", a->first_time, a->last_time, o->frames, o->fps);
+        else
+            printf("t = %g s", a->first_time);
+        printf(", %s\n", o->loop ? "looped" : "clamped");
+    }
+    mvr_scene_info info;
+    mvr_scene_get_info(scene, &info);
+    if (info.skins || info.morph_targets || s->joints || s->morph_targets_active)
+        printf("  skinning    %s: %u joint%s, %u morph target%s active, %llu bytes of joints and weights, %u pre-skin "
+               "pass%s\n",
+               mvr_skinning_path_name(s->skinning_path), s->joints, s->joints == 1 ? "" : "s",
+               s->morph_targets_active, s->morph_targets_active == 1 ? "" : "s",
+               (unsigned long long)s->animation_upload_bytes, s->preskin_passes, s->preskin_passes == 1 ? "" : "es");
+}
+
 static void write_stats_json(FILE *f, const mvr_renderer *r, const mvr_frame_stats *s, const char *demo, uint32_t w,
                              uint32_t h, uint32_t supersample, const mvr_gltf_info *load, const cli_env_used *env,
-                             const mvr_render_desc *rd)
+                             const mvr_render_desc *rd, const render_options *o, const render_animation *anim)
 {
     json_writer jw = {f, 0, {false}, {0}};
     json_begin_object(&jw, NULL);
@@ -541,6 +725,7 @@ static void write_stats_json(FILE *f, const mvr_renderer *r, const mvr_frame_sta
         json_end_object(&jw);
     }
     json_end_array(&jw);
+    write_animation_json(&jw, o, anim, s);
     json_end_object(&jw);
 }
 
@@ -573,6 +758,139 @@ static bool write_contact_sheet(const char *path, uint8_t *const *layers, uint32
         fprintf(stderr, "mvr render: %s\n", err.message);
     free(sheet);
     return ok;
+}
+
+/* Which animation poses the frames: --animation, else animation 0 when
+ * --time, --loop or --frames ask for a time and the file has one; none (the
+ * file's rest pose) otherwise. false (printed) when --animation names none
+ * the file has. */
+static bool choose_animation(const render_options *o, const mvr_scene *scene, render_animation *a)
+{
+    memset(a, 0, sizeof *a);
+    a->first_time = a->last_time = o->time;
+    const char *what = o->scene_file ? o->scene_file : o->demo;
+    if (o->animation) {
+        if (!cli_find_animation("mvr render", what, scene, o->animation, &a->index))
+            return false;
+        a->applied = true;
+    } else if (o->time_set || o->loop || o->frames_set) {
+        a->applied = mvr_scene_animation_count(scene) > 0;
+        if (!a->applied && (o->time_set || o->loop) && !o->quiet)
+            fprintf(stderr, "mvr render: warning: %s has no animations: --time and --loop change nothing\n", what);
+    }
+    if (a->applied) {
+        cli_animation_label(scene, a->index, a->label, sizeof a->label);
+        cli_animation_clip(scene, a->index, &a->start, &a->end);
+    }
+    return true;
+}
+
+/* Digits of a sequence's frame numbers: 4, more past 10000 frames. */
+static int frame_digits(uint32_t frames)
+{
+    int digits = 4;
+    for (uint32_t last = frames - 1; last >= 10000; last /= 10)
+        digits++;
+    return digits;
+}
+
+/* DIR/view_VV.EXT, or frame f of a sequence: DIR/view_VV_fFFFF.EXT. */
+static void view_file(char *buf, size_t size, const render_options *o, uint32_t view, int64_t frame)
+{
+    const char *ext = o->exr ? "exr" : "png";
+    int len;
+    if (frame < 0)
+        len = snprintf(buf, size, "%s/view_%02u.%s", o->out_dir, view, ext);
+    else
+        len = snprintf(buf, size, "%s/view_%02u_f%0*lld.%s", o->out_dir, view, frame_digits(o->frames),
+                       (long long)frame, ext);
+    if (len < 0 || (size_t)len >= size)
+        buf[0] = '\0'; /* --out too long: the write fails, naming no file */
+}
+
+/* Reads every layer as display bytes into layers[k] and writes each view's
+ * image of the frame (-1: not a sequence). */
+static bool write_views(const render_options *o, mvr_renderer *r, mvr_target *t, uint32_t n, uint8_t **layers,
+                        float *floats, int64_t frame)
+{
+    size_t pixels = (size_t)o->width * o->height;
+    uint32_t ss = o->supersample;
+    for (uint32_t k = 0; k < n; ++k) {
+        if (!cli_read_display_layer(r, t, k, o->width, o->height, ss, layers[k], floats)) {
+            fprintf(stderr, "mvr render: reading layer %u: %s\n", k, mvr_renderer_last_error(r));
+            return false;
+        }
+        if (o->exr && ss <= 1 && o->format == MVR_COLOR_FORMAT_RGBA16F)
+            cli_encode_srgb(floats, layers[k], pixels); /* the sheet shows display values */
+        char path[4096];
+        view_file(path, sizeof path, o, k, frame);
+        mvr_image_view view = {o->width, o->height, o->exr ? MVR_PIXEL_F32 : MVR_PIXEL_U8, true,
+                               o->exr ? (const void *)floats : (const void *)layers[k]};
+        mvr_error err;
+        if (mvr_image_write(path, &view, &err) != MVR_OK) {
+            fprintf(stderr, "mvr render: %s\n", err.message);
+            return false;
+        }
+    }
+    return true;
+}
+
+/* --video FILE: FILE itself for one view, else FILE's stem + _view_VV +
+ * its extension. */
+static void video_file(char *buf, size_t size, const char *video, uint32_t view, uint32_t views)
+{
+    const char *slash = strrchr(video, '/'), *dot = strrchr(video, '.');
+    if (dot && (dot == video || (slash && dot <= slash + 1)))
+        dot = NULL; /* a dot in a directory's name, or a hidden file's */
+    if (views == 1)
+        snprintf(buf, size, "%s", video);
+    else
+        snprintf(buf, size, "%.*s_view_%02u%s", dot ? (int)(dot - video) : (int)strlen(video), video, view,
+                 dot ? dot : "");
+}
+
+extern char **environ;
+
+/* Each view's PNG sequence through ffmpeg (found by parse) at --fps; odd
+ * sizes padded to even ones, yuv420p as players expect. */
+static bool encode_videos(const render_options *o, uint32_t n)
+{
+    char rate[32], dir[4096], input[4096 + 64], output[4096];
+    snprintf(rate, sizeof rate, "%.10g", o->fps);
+    /* the input is a pattern: a % in --out's name is written %% */
+    size_t d = 0;
+    for (const char *c = o->out_dir; *c && d + 2 < sizeof dir; ++c) {
+        if (*c == '%')
+            dir[d++] = '%';
+        dir[d++] = *c;
+    }
+    dir[d] = '\0';
+    for (uint32_t k = 0; k < n; ++k) {
+        snprintf(input, sizeof input, "%s/view_%02u_f%%0%dd.png", dir, k, frame_digits(o->frames));
+        video_file(output, sizeof output, o->video, k, n);
+        char *args[] = {"ffmpeg", "-hide_banner", "-loglevel", "error", "-nostdin", "-y", "-framerate", rate,
+                        "-start_number", "0", "-i", input, "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-pix_fmt",
+                        "yuv420p", output, NULL};
+        pid_t pid;
+        int e = posix_spawn(&pid, o->ffmpeg, NULL, NULL, args, environ);
+        if (e != 0) {
+            fprintf(stderr, "mvr render: --video: cannot run %s: %s\n", o->ffmpeg, strerror(e));
+            return false;
+        }
+        int status = 0;
+        while (waitpid(pid, &status, 0) < 0)
+            if (errno != EINTR) {
+                fprintf(stderr, "mvr render: --video: waiting for %s: %s\n", o->ffmpeg, strerror(errno));
+                return false;
+            }
+        if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+            fprintf(stderr, "mvr render: --video: %s failed (%s %d) encoding %s into %s\n", o->ffmpeg,
+                    WIFEXITED(status) ? "exit status" : "signal",
+                    WIFEXITED(status) ? WEXITSTATUS(status) : WTERMSIG(status), input, output);
+            return false;
+        }
+    }
+    return true;
 }
 
 int mvr_cmd_render(int argc, char **argv)
@@ -624,7 +942,7 @@ int mvr_cmd_render(int argc, char **argv)
     char cache_buf[4096];
     mvr_renderer_desc rd = {.context = ctx, .view_path = o.view_path, .logger = o.context.logger,
                             .material_path = o.material_path, .depth_mode = o.depth_mode,
-                            .transparency_order = o.transparency,
+                            .transparency_order = o.transparency, .skinning_path = o.skinning,
                             .program_cache_dir = program_cache_dir(&o, cache_buf, sizeof cache_buf)};
     /* mvr render reads the library's MVR_* debugging variables (docs/guide.md) */
     if (mvr_renderer_overrides_from_env(&rd.overrides, &err) != MVR_OK) {
@@ -643,46 +961,53 @@ int mvr_cmd_render(int argc, char **argv)
         fprintf(stderr, "mvr render: %s\n", mvr_renderer_last_error(renderer));
         goto done;
     }
-    for (uint32_t f = 0; f < o.frames; ++f) {
-        if (mvr_renderer_render(renderer, scene, views, target, &o.render) != MVR_OK) {
-            fprintf(stderr, "mvr render: %s\n", mvr_renderer_last_error(renderer));
-            goto done;
-        }
+    render_animation anim;
+    if (!choose_animation(&o, scene, &anim)) {
+        rc = MVR_EXIT_USAGE;
+        goto done;
     }
     layers = calloc(n, sizeof *layers);
     if (!layers)
         goto done;
     size_t pixels = (size_t)o.width * o.height;
+    for (uint32_t k = 0; k < n; ++k)
+        if (!(layers[k] = malloc(pixels * 4)))
+            goto done;
     float *floats = o.exr ? malloc(pixels * 4 * sizeof *floats) : NULL;
     if (o.exr && !floats)
         goto done;
-    for (uint32_t k = 0; k < n; ++k) {
-        layers[k] = malloc(pixels * 4);
-        bool ok = layers[k] && cli_read_display_layer(renderer, target, k, o.width, o.height, ss, layers[k], floats);
-        if (!ok) {
-            fprintf(stderr, "mvr render: reading layer %u: %s\n", k, mvr_renderer_last_error(renderer));
-            free(floats);
-            goto done;
+    /* frame f at --time + f / --fps; without --frames one frame, written as
+     * view_VV.png */
+    char sheet[4096];
+    snprintf(sheet, sizeof sheet, "%s/contact_sheet.png", o.out_dir);
+    bool frames_ok = true;
+    for (uint32_t f = 0; f < o.frames && frames_ok; ++f) {
+        double t = o.time + (double)f / o.fps;
+        if (anim.applied &&
+            mvr_scene_apply_animation(scene, anim.index, t, o.loop ? MVR_ANIMATION_LOOP : MVR_ANIMATION_CLAMP) !=
+                MVR_OK) {
+            fprintf(stderr, "mvr render: animation %s at %g s: %s\n", anim.label, t, mvr_scene_last_error(scene));
+            frames_ok = false;
+            break;
         }
-        if (o.exr && ss <= 1 && o.format == MVR_COLOR_FORMAT_RGBA16F)
-            cli_encode_srgb(floats, layers[k], pixels); /* the sheet shows display values */
-        char path[4096];
-        snprintf(path, sizeof path, "%s/view_%02u.%s", o.out_dir, k, o.exr ? "exr" : "png");
-        mvr_image_view view = {o.width, o.height, o.exr ? MVR_PIXEL_F32 : MVR_PIXEL_U8, true,
-                               o.exr ? (const void *)floats : (const void *)layers[k]};
-        if (mvr_image_write(path, &view, &err) != MVR_OK) {
-            fprintf(stderr, "mvr render: %s\n", err.message);
-            free(floats);
-            goto done;
+        anim.last_time = t;
+        if (mvr_renderer_render(renderer, scene, views, target, &o.render) != MVR_OK) {
+            fprintf(stderr, "mvr render: %s\n", mvr_renderer_last_error(renderer));
+            frames_ok = false;
+            break;
+        }
+        frames_ok = write_views(&o, renderer, target, n, layers, floats, o.frames_set ? (int64_t)f : -1);
+        /* the contact sheet: the first frame (the one --time alone gives) */
+        if (frames_ok && f == 0 && !write_contact_sheet(sheet, layers, n, o.width, o.height)) {
+            fprintf(stderr, "mvr render: cannot write %s\n", sheet);
+            frames_ok = false;
         }
     }
     free(floats);
-    char sheet[4096];
-    snprintf(sheet, sizeof sheet, "%s/contact_sheet.png", o.out_dir);
-    if (!write_contact_sheet(sheet, layers, n, o.width, o.height)) {
-        fprintf(stderr, "mvr render: cannot write %s\n", sheet);
+    if (!frames_ok)
         goto done;
-    }
+    if (o.video && !encode_videos(&o, n))
+        goto done;
     mvr_frame_stats st;
     mvr_renderer_get_stats(renderer, &st);
     if (o.plan) {
@@ -701,7 +1026,7 @@ int mvr_cmd_render(int argc, char **argv)
             goto done;
         }
         write_stats_json(f, renderer, &st, o.scene_file ? o.scene_file : o.demo, o.width, o.height, ss,
-                         o.scene_file ? &gltf_info : NULL, &env_used, &o.render);
+                         o.scene_file ? &gltf_info : NULL, &env_used, &o.render, &o, &anim);
         fclose(f);
     }
     if (!o.quiet) {
@@ -755,9 +1080,29 @@ int mvr_cmd_render(int argc, char **argv)
             printf("  time        cpu %.2f ms, gpu %.2f ms (last frame)\n", st.cpu_ms, st.gpu_ms);
         else
             printf("  time        cpu %.2f ms, gpu n/a (last frame)\n", st.cpu_ms);
-        printf("  images      %s/view_00.%s .. view_%02u.%s\n", o.out_dir, o.exr ? "exr" : "png", n - 1,
-               o.exr ? "exr" : "png");
-        printf("  contact     %s\n", sheet);
+        print_animation_summary(&o, scene, &anim, &st);
+        char first[4096], last[4096];
+        view_file(first, sizeof first, &o, 0, o.frames_set ? 0 : -1);
+        view_file(last, sizeof last, &o, n - 1, o.frames_set ? (int64_t)o.frames - 1 : -1);
+        const char *last_name = strrchr(last, '/') ? strrchr(last, '/') + 1 : last;
+        if (o.frames_set)
+            printf("  images      %s .. %s (%u frame%s of %u view%s)\n", first, last_name, o.frames,
+                   o.frames == 1 ? "" : "s", n, n == 1 ? "" : "s");
+        else
+            printf("  images      %s .. %s\n", first, last_name);
+        printf("  contact     %s%s\n", sheet, o.frames_set && o.frames > 1 ? " (the first frame)" : "");
+        if (o.video) {
+            char video[4096];
+            video_file(video, sizeof video, o.video, 0, n);
+            if (n == 1) {
+                printf("  video       %s (%u frames at %g fps, ffmpeg %s)\n", video, o.frames, o.fps, o.ffmpeg);
+            } else {
+                char last_video[4096];
+                video_file(last_video, sizeof last_video, o.video, n - 1, n);
+                printf("  video       %s .. %s (%u frames at %g fps, ffmpeg %s)\n", video, last_video, o.frames,
+                       o.fps, o.ffmpeg);
+            }
+        }
     }
     rc = MVR_EXIT_OK;
 done:

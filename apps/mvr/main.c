@@ -13,7 +13,8 @@ static void usage(FILE *out)
             "commands:\n"
             "  render   render a scene into N views headless; one PNG per view\n"
             "  bench    time against error of the configurations, side by side, with a plot\n"
-            "  info     print the GL capabilities mvr sees through a context provider\n"
+            "  info     print the GL capabilities mvr sees through a context provider,\n"
+            "           or what a glTF file holds (mvr info FILE: skins, animations, ...)\n"
             "\n"
             "  mvr <command> --help   options of a command\n"
             "  mvr --version          the version of mvr\n");

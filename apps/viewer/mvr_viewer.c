@@ -6,9 +6,14 @@
  * apps/mvr/cli_scene.c and cli_env.c): a file from its camera or framed by
  * its size, exposed for its lights, lit by the same environment.
  *
+ * A file's animation plays (viewer_playback.c: animation 0, looping, unless
+ * --animation, --time and --paused say otherwise).
+ *
  * mouse: left drag orbits, right drag pans, wheel zooms
  * keys:  [ ] IPD   + - views   P view path   M material path   D display
- *        R reset   Esc quit    (drop a .gltf / .glb on the window to open it) */
+ *        R reset   Esc quit    (drop a .gltf / .glb on the window to open it)
+ *        Space play/pause   Left Right step 1/30 s (Shift: 1/10 of the clip)
+ *        Home clip start    N next animation (Shift+N previous) */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -19,12 +24,14 @@
 #include <GLFW/glfw3.h>
 #include <GLES3/gl3.h>
 
+#include "cli_common.h"
 #include "cli_env.h"
 #include "cli_options.h"
 #include "cli_scene.h"
 #include "commands.h"
 #include "mvr/mvr.h"
 #include "mvr/mvr_image.h"
+#include "viewer_playback.h"
 
 typedef enum display_mode { DISPLAY_STEREO, DISPLAY_GRID, DISPLAY_ANAGLYPH, DISPLAY_SINGLE, DISPLAY_COUNT } display_mode;
 static const char *display_names[DISPLAY_COUNT] = {"stereo", "grid", "anaglyph", "single"};
@@ -92,6 +99,12 @@ typedef struct viewer {
     bool dirty_renderer, dirty_views;
     bool desktop;
     char scene_name[256];
+    viewer_playback playback;
+    /* the command line's playback, for the first scene opened (a file
+     * dropped later plays its animation 0 from the start) */
+    const char *start_animation; /* --animation; NULL: 0 when there is one */
+    double start_time;           /* --time; < 0: the clip's start */
+    bool start_paused;           /* --paused */
 } viewer;
 
 static void log_fn(mvr_log_level level, mvr_log_id id, const char *message, void *user)
@@ -355,6 +368,18 @@ static bool open_scene(viewer *v, const char *file, const char *demo)
         return false;
     }
     mvr_render_desc_choose_exposure(scene, &render); /* after the environment: it weighs in */
+    viewer_playback playback;
+    if (!viewer_playback_open(&playback, scene, file ? file : demo, v->start_animation, v->start_time,
+                              v->start_paused)) {
+        mvr_environment_destroy(env);
+        mvr_view_set_destroy(views);
+        mvr_scene_destroy(scene);
+        return false;
+    }
+    v->playback = playback;
+    v->start_animation = NULL;
+    v->start_time = -1.0;
+    v->start_paused = false;
     snprintf(v->scene_name, sizeof v->scene_name, "%s", file ? file : demo);
     mvr_scene_destroy(v->scene);
     mvr_view_set_destroy(v->views);
@@ -519,11 +544,12 @@ static void update_title(viewer *v, double frame_ms)
 {
     mvr_frame_stats st;
     mvr_renderer_get_stats(v->renderer, &st);
-    char title[512];
+    char anim[320], title[1024];
+    viewer_playback_title(&v->playback, v->scene, anim, sizeof anim);
     snprintf(title, sizeof title,
-             "mvr-viewer: %s | %u views (%s) | %.1f ms | %s, %u passes | %s | %u draws in %u calls | ipd %.3g",
+             "mvr-viewer: %s | %u views (%s) | %.1f ms | %s, %u passes | %s | %u draws in %u calls | ipd %.3g%s",
              v->scene_name, v->view_count, display_names[v->display], frame_ms, mvr_view_path_name(st.view_path),
-             st.passes, mvr_material_path_name(st.material_path), st.draws, st.draw_calls, v->ipd);
+             st.passes, mvr_material_path_name(st.material_path), st.draws, st.draw_calls, v->ipd, anim);
     glfwSetWindowTitle(v->window, title);
 }
 
@@ -585,10 +611,11 @@ static void on_scroll(GLFWwindow *w, double dx, double dy)
 static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
 {
     (void)scancode;
-    (void)mods;
     if (action != GLFW_PRESS && action != GLFW_REPEAT)
         return;
     viewer *v = from(w);
+    if (viewer_playback_key(&v->playback, v->scene, key, mods))
+        return;
     switch (key) {
     case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(w, GLFW_TRUE); break;
     case GLFW_KEY_LEFT_BRACKET: v->ipd /= 1.25; v->dirty_views = true; break;
@@ -631,7 +658,10 @@ static void on_drop(GLFWwindow *w, int count, const char **paths)
         open_scene(v, paths[0], NULL);
 }
 
-enum { V_DEMO = 1, V_VIEWS, V_DISPLAY, V_SINGLE, V_SIZE, V_API, V_VIEW_PATH, V_FRAMES, V_SCREENSHOT };
+enum {
+    V_DEMO = 1, V_VIEWS, V_DISPLAY, V_SINGLE, V_SIZE, V_API, V_VIEW_PATH, V_FRAMES, V_SCREENSHOT, V_ANIMATION, V_TIME,
+    V_PAUSED
+};
 
 /* name, value and range, help; the order is --help's */
 static const cli_option viewer_table[] = {
@@ -649,8 +679,18 @@ static const cli_option viewer_table[] = {
      "gles | desktop: the context GLFW makes (default desktop)", NULL, NULL, NULL},
     {CLI_OPT_CHOICE, V_VIEW_PATH, "--view-path", NULL, "P", 0, 0, "auto|multiview|loop",
      "auto | multiview | loop (default auto)", NULL, NULL, NULL},
+    {CLI_OPT_STRING, V_ANIMATION, "--animation", NULL, "A", 0, 0, NULL,
+     "SCENE: play animation A: its name, its index (0-based) or\n"
+     "all, as mvr render takes them (default: 0 when the file has\n"
+     "animations; they loop)", NULL, NULL, NULL},
+    {CLI_OPT_STRING, V_TIME, "--time", NULL, "T", 0, 0, NULL,
+     "start at T seconds on the file's animation clock, >= 0,\n"
+     "wrapped into the clip (default: the clip's start)", NULL, NULL, NULL},
+    {CLI_OPT_FLAG, V_PAUSED, "--paused", NULL, NULL, 0, 0, NULL, "start paused (Space plays)", NULL, NULL, NULL},
     {CLI_OPT_U32, V_FRAMES, "--frames", NULL, "N", 1, 1000000, NULL,
-     "render N frames, then exit (with --screenshot: save the last)", NULL, NULL, NULL},
+     "render N frames, then exit (with --screenshot: save the last);\n"
+     "playback then steps 1/30 s per frame, not by the clock, so\n"
+     "frame k shows --time + k/30", NULL, NULL, NULL},
     {CLI_OPT_STRING, V_SCREENSHOT, "--screenshot", NULL, "FILE", 0, 0, NULL,
      "the window's contents after the last frame (PNG)", NULL, NULL, NULL},
     {CLI_OPT_END, 0, NULL, NULL, NULL, 0, 0, NULL, NULL, NULL, NULL, NULL},
@@ -670,7 +710,10 @@ static void usage(FILE *out)
             "\n"
             "mouse: left drag orbits, right drag pans, wheel zooms; keys: [ ] IPD, + - views,\n"
             "P view path, M material path, D display, Tab next single view, R reset, Esc quit;\n"
-            "drop a glTF file on the window to open it.\n");
+            "drop a glTF file on the window to open it.\n"
+            "animation: Space play/pause, Left Right step 1/30 s (Shift: a tenth of the clip;\n"
+            "both pause), Home the clip's start, N next animation, Shift+N previous; the\n"
+            "title names the animation and the time.\n");
 }
 
 int main(int argc, char **argv)
@@ -681,6 +724,7 @@ int main(int argc, char **argv)
     viewer v;
     memset(&v, 0, sizeof v);
     v.display = DISPLAY_STEREO;
+    v.start_time = -1.0;
     cli_parser p;
     cli_parser_init(&p, "mvr-viewer", viewer_tables, argc, argv);
     cli_arg arg;
@@ -702,6 +746,20 @@ int main(int argc, char **argv)
         case V_SINGLE: v.single = arg.number; break;
         case V_FRAMES: frames = arg.number; break;
         case V_SCREENSHOT: shot = arg.value; break;
+        case V_ANIMATION:
+            if (!arg.value[0]) {
+                fprintf(stderr, "mvr-viewer: --animation takes a name, an index or all (got '')\n");
+                return 2;
+            }
+            v.start_animation = arg.value;
+            break;
+        case V_TIME:
+            if (!cli_parse_double(arg.value, &v.start_time) || v.start_time < 0.0) {
+                fprintf(stderr, "mvr-viewer: --time takes seconds >= 0 (got '%s')\n", arg.value);
+                return 2;
+            }
+            break;
+        case V_PAUSED: v.start_paused = true; break;
         case V_API: gles = arg.choice == 0; break;
         case V_VIEW_PATH: v.view_path = (mvr_view_path)(MVR_VIEW_PATH_AUTO + arg.choice); break;
         case V_DISPLAY: v.display = (display_mode)arg.choice; break;
@@ -718,6 +776,11 @@ int main(int argc, char **argv)
     if (cli_given(&p, "--single") && v.display != DISPLAY_SINGLE) {
         fprintf(stderr, "mvr-viewer: --single conflicts with --display %s (it is for --display single)\n",
                 display_names[v.display]);
+        return 2;
+    }
+    if (!file && (v.start_animation || cli_given(&p, "--time") || v.start_paused)) {
+        fprintf(stderr, "mvr-viewer: --animation, --time and --paused are for a SCENE file (the demos have no "
+                        "animations)\n");
         return 2;
     }
     if (cli_given(&p, "--screenshot") && !frames) {
@@ -776,6 +839,7 @@ int main(int argc, char **argv)
     glfwSetKeyCallback(v.window, on_key);
     glfwSetDropCallback(v.window, on_drop);
     v.dirty_renderer = true;
+    double last_frame = glfwGetTime();
     for (unsigned f = 0; !glfwWindowShouldClose(v.window) && (frames == 0 || f < frames); ++f) {
         if (v.dirty_renderer) {
             if (!make_renderer(&v))
@@ -788,6 +852,14 @@ int main(int argc, char **argv)
             v.dirty_views = false;
         }
         double t0 = glfwGetTime();
+        /* playback: a fixed 1/30 s per frame with --frames (reproducible
+         * screenshots), else the clock (at most 1/4 s at once: a stall
+         * does not jump) */
+        if (f > 0)
+            viewer_playback_advance(&v.playback, frames ? VIEWER_PLAYBACK_STEP : fmin(t0 - last_frame, 0.25));
+        last_frame = t0;
+        if (!viewer_playback_apply(&v.playback, v.scene))
+            goto done;
         if (mvr_renderer_render(v.renderer, v.scene, v.views, v.target, &v.render) != MVR_OK) {
             fprintf(stderr, "mvr-viewer: %s\n", mvr_renderer_last_error(v.renderer));
             goto done;

@@ -22,6 +22,12 @@
 # single (the whole window one view, --single K), anaglyph with a file.
 # Neighbouring views must differ (differs), so a tile in the wrong place, a
 # view repeated or a blank picture cannot pass.
+# Animation playback: a node-animated file (make_animated_gltf.py: a box
+# sliding over 0..1 s, a bar turning over 0..2 s) paused at 0.25 s and at
+# 0.75 s equals mvr render --animation 0 --time T of the same views within
+# the same 1/255, and the two times differ; playing with --frames steps
+# 1/30 s per frame, so --time 0.65 --frames 4 shows 0.75 s; --animation by
+# name and all as mvr render takes them.
 # usage: test_viewer.sh VIEWER MVR COMPARE OUT [CORPUS]
 set -u
 viewer=$1 mvr=$2 compare=$3 out=$4 corpus=${5:-}
@@ -96,6 +102,40 @@ if [ -n "$corpus" ]; then
         check "$compare" "$out/$f.single.png" "$out/$f.4/view_02.png" --max 1
     fi
 fi
+# animation playback against mvr render at the same times
+here=$(cd "$(dirname "$0")" && pwd)
+anim="$out/animated.gltf"
+if python3 "$here/make_animated_gltf.py" "$anim"; then
+    for t in 0.25 0.75; do
+        "$mvr" render "$anim" --views 2 --size 320x240 --animation 0 --time $t --out "$out/anim_$t" --quiet ||
+            { echo "FAIL: mvr render $anim --time $t"; fail=1; continue; }
+        if view "$anim" --size 640x240 --paused --time $t --frames 2 --screenshot "$out/anim_$t.png"; then
+            check "$compare" "$out/anim_$t.png" "$out/anim_$t/view_00.png" --crop 0,0,320,240 --max 1
+            check "$compare" "$out/anim_$t.png" "$out/anim_$t/view_01.png" --crop 320,0,320,240 --max 1
+        fi
+    done
+    differs "$out/anim_0.25/view_00.png" "$out/anim_0.75/view_00.png" --max 1
+    differs "$out/anim_0.25.png" "$out/anim_0.75.png" --max 1
+    # playing: frame k at --time + k/30, so the 4th frame from 0.65 s is 0.75 s
+    if view "$anim" --size 640x240 --time 0.65 --frames 4 --screenshot "$out/anim_play.png"; then
+        check "$compare" "$out/anim_play.png" "$out/anim_0.75/view_00.png" --crop 0,0,320,240 --max 1
+    fi
+    # by name, and every animation at once
+    if view "$anim" --size 640x240 --animation slide --paused --time 0.25 --frames 1 --screenshot "$out/anim_name.png"; then
+        check "$compare" "$out/anim_name.png" "$out/anim_0.25/view_00.png" --crop 0,0,320,240 --max 1
+    fi
+    "$mvr" render "$anim" --views 2 --size 320x240 --animation all --time 0.5 --out "$out/anim_all" --quiet ||
+        { echo "FAIL: mvr render $anim --animation all"; fail=1; }
+    if view "$anim" --size 640x240 --animation all --paused --time 0.5 --frames 1 --screenshot "$out/anim_all.png"; then
+        check "$compare" "$out/anim_all.png" "$out/anim_all/view_01.png" --crop 320,0,320,240 --max 1
+    fi
+    msg=$("$viewer" "$anim" --animation nope --frames 1 2>&1 >/dev/null); rc=$?
+    if [ $rc -ne 0 ] && printf '%s' "$msg" | grep -q "no animation named 'nope'; its animations: 0 'slide', 1 'spin'"; then
+        echo "ok: viewer --animation nope: $msg"
+    else echo "FAIL: mvr-viewer --animation nope exits $rc: $msg"; fail=1; fi
+else
+    echo "FAIL: make_animated_gltf.py"; fail=1
+fi
 # the environment options are mvr render's: a bad value is named, exit 2
 # (checked before any window opens)
 expect_usage() {
@@ -124,8 +164,11 @@ expect_message "--single conflicts with --display stereo" --single 1
 expect_message "--single conflicts with --display grid" --display grid --single 1
 expect_message "--screenshot needs --frames N" --screenshot "$out/never.png"
 expect_message "one SCENE file at a time" a.gltf b.gltf
+expect_message "--time takes seconds >= 0 (got '-1')" a.gltf --time -1
+expect_message "--time takes seconds >= 0 (got 'nan')" a.gltf --time nan
+expect_message "--animation, --time and --paused are for a SCENE file" --demo stereo --paused
 help=$("$viewer" --help)
-for opt in --demo --views --display --single --env --background-blur "-h, --help"; do
+for opt in --demo --views --display --single --env --background-blur --animation --time --paused "-h, --help"; do
     if printf '%s\n' "$help" | grep -q -- "^  $opt "; then echo "ok: viewer --help lists $opt"
     else echo "FAIL: viewer --help does not list $opt"; fail=1; fi
 done
