@@ -31,6 +31,11 @@ typedef struct bench_options {
     uint32_t reference_samples;          /* --reference-samples */
     /* the MVR_* variables (mvr_renderer_overrides_from_env), in every renderer desc */
     mvr_renderer_overrides overrides;
+    /* a scene with animations: every frame poses it anew (all animations,
+     * alternately at their start and their middle), so skinning and morph
+     * work is redone each frame as in playback */
+    bool animate;
+    double pose_times[2];
 } bench_options;
 
 #define BENCH_MAX_CONFIGS 80
@@ -42,6 +47,7 @@ typedef struct bench_config {
     uint32_t supersample;        /* samples per pixel side (1 = none) */
     uint32_t msaa;               /* multisamples per pixel (0 = none) */
     mvr_transparency_order order;
+    mvr_skinning_path skinning_path; /* AUTO except on the skinning axis (scenes with skins or morphs) */
     bool reference;
     /* Configurations of one group must give the same pixels (they differ
      * only in view or material path): the report checks it. */

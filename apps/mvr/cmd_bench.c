@@ -263,6 +263,7 @@ static void add_config(bench_config *list, uint32_t *n, mvr_view_path vp, mvr_ma
 {
     bench_config *c = &list[(*n)++];
     memset(c, 0, sizeof *c);
+    c->skinning_path = MVR_SKINNING_PATH_AUTO;
     c->view_path = vp;
     c->material_path = mp;
     c->supersample = ss ? ss : 1;
@@ -287,10 +288,29 @@ static void add_config(bench_config *list, uint32_t *n, mvr_view_path vp, mvr_ma
  * anti-aliasing x transparency order (MSAA resolves view by view, so not
  * with multiview). The reference comes first (everything is compared with
  * it). */
-static uint32_t make_matrix(bool full, bench_config *out)
+/* The skinning axis (a scene with skins or morph targets): each view path
+ * with the vertex and the pre-skinning path, no anti-aliasing; one group,
+ * so the report checks they give the same pixels. */
+static void add_skinning_axis(bench_config *out, uint32_t *n)
+{
+    const mvr_view_path vps[3] = {MVR_VIEW_PATH_MULTIVIEW, MVR_VIEW_PATH_LOOP, MVR_VIEW_PATH_AUTO};
+    const mvr_skinning_path sps[2] = {MVR_SKINNING_PATH_VERTEX, MVR_SKINNING_PATH_PRESKIN};
+    for (int v = 0; v < 3; ++v)
+        for (int k = 0; k < 2; ++k) {
+            add_config(out, n, vps[v], MVR_MATERIAL_PATH_ARRAYS, 1, MVR_TRANSPARENCY_ORDER_AUTO, false);
+            bench_config *c = &out[*n - 1];
+            c->skinning_path = sps[k];
+            size_t l = strlen(c->name);
+            snprintf(c->name + l, sizeof c->name - l, "/%s", mvr_skinning_path_name(sps[k]));
+        }
+}
+
+static uint32_t make_matrix(bool full, bool deformed, bench_config *out)
 {
     uint32_t n = 0;
     add_config(out, &n, MVR_VIEW_PATH_LOOP, MVR_MATERIAL_PATH_ARRAYS, 4, MVR_TRANSPARENCY_ORDER_PER_VIEW, true);
+    if (deformed)
+        add_skinning_axis(out, &n);
     const mvr_view_path vps[3] = {MVR_VIEW_PATH_MULTIVIEW, MVR_VIEW_PATH_LOOP, MVR_VIEW_PATH_AUTO};
     const mvr_material_path mps[2] = {MVR_MATERIAL_PATH_ARRAYS, MVR_MATERIAL_PATH_PER_MATERIAL};
     if (!full) {
@@ -337,14 +357,27 @@ double bench_median(double *v, uint32_t n)
 }
 
 /* The frames callgrind counts (collection is toggled around them). */
-__attribute__((noinline)) static bool measured_frames(mvr_renderer *r, mvr_scene *s, mvr_view_set *vs,
-                                                      mvr_target *t, uint32_t frames, double *wall, double *cpu,
-                                                      double *gpu)
+/* An animated scene's pose for a configuration's frame number `frame`
+ * (warm-up frames counted): every configuration's last frame has the same
+ * pose. Outside the timed span: posing is the scene's CPU work, not the
+ * renderer's. */
+static void pose(const bench_options *o, mvr_scene *s, uint32_t frame)
+{
+    if (o->animate)
+        mvr_scene_apply_animation(s, MVR_ANIMATION_ALL, o->pose_times[frame % 2], MVR_ANIMATION_CLAMP);
+}
+
+__attribute__((noinline)) static bool measured_frames(const bench_options *o, uint32_t first, mvr_renderer *r,
+                                                      mvr_scene *s, mvr_view_set *vs, mvr_target *t, uint32_t frames,
+                                                      double *wall, double *cpu, double *gpu)
 {
     bool ok = true;
     CALLGRIND_START_INSTRUMENTATION;
     CALLGRIND_TOGGLE_COLLECT;
     for (uint32_t f = 0; f < frames && ok; ++f) {
+        CALLGRIND_TOGGLE_COLLECT;
+        pose(o, s, first + f);
+        CALLGRIND_TOGGLE_COLLECT;
         double w0 = bench_now_ms(CLOCK_MONOTONIC), c0 = bench_now_ms(CLOCK_THREAD_CPUTIME_ID);
         ok = mvr_renderer_render(r, s, vs, t, NULL) == MVR_OK && mvr_renderer_finish(r) == MVR_OK;
         wall[f] = bench_now_ms(CLOCK_MONOTONIC) - w0;
@@ -391,7 +424,7 @@ static bool setup_config(const bench_options *o, mvr_context *ctx, mvr_scene *sc
     uint32_t n = mvr_view_set_count(vs), w = o->scene.width, h = o->scene.height, ss = c->supersample;
     mvr_renderer_desc rd = {.context = ctx, .view_path = c->view_path, .material_path = c->material_path,
                             .transparency_order = c->order, .logger = o->context.logger,
-                            .overrides = o->overrides};
+                            .overrides = o->overrides, .skinning_path = c->skinning_path};
     mvr_error err;
     if (mvr_renderer_create(&rd, &cr->r, &err) != MVR_OK) {
         fprintf(stderr, "mvr bench: %s: %s\n", c->name, err.message);
@@ -406,8 +439,10 @@ static bool setup_config(const bench_options *o, mvr_context *ctx, mvr_scene *sc
                           0, 0, 0, c->msaa, c->reference ? 0 : (ss > 1 ? ss : 0), MVR_ANTI_ALIASING_DEFAULT};
     cr->times = calloc((size_t)o->frames * 3, sizeof *cr->times);
     bool ok = cr->times && mvr_target_create(cr->r, &td, &cr->t) == MVR_OK;
-    for (uint32_t f = 0; ok && f < o->warmup; ++f)
+    for (uint32_t f = 0; ok && f < o->warmup; ++f) {
+        pose(o, scene, f);
         ok = mvr_renderer_render(cr->r, scene, vs, cr->t, NULL) == MVR_OK;
+    }
     if (!ok) {
         fprintf(stderr, "mvr bench: %s: %s\n", c->name, mvr_renderer_last_error(cr->r));
         release_run(cr);
@@ -423,7 +458,7 @@ static bool measure_config(const bench_options *o, mvr_scene *scene, mvr_view_se
         frames = o->frames - cr->measured;
     double *wall = cr->times, *cpu = cr->times + o->frames, *gpu = cr->times + 2 * o->frames;
     uint32_t at = cr->measured;
-    bool ok = measured_frames(cr->r, scene, vs, cr->t, frames, wall + at, cpu + at, gpu + at);
+    bool ok = measured_frames(o, o->warmup + at, cr->r, scene, vs, cr->t, frames, wall + at, cpu + at, gpu + at);
     cr->measured += frames;
     if (!ok)
         fprintf(stderr, "mvr bench: %s: %s\n", c->name, mvr_renderer_last_error(cr->r));
@@ -642,7 +677,7 @@ int mvr_cmd_bench(int argc, char **argv)
     bench_config configs[BENCH_MAX_CONFIGS];
     bench_result results[BENCH_MAX_CONFIGS];
     memset(results, 0, sizeof results);
-    uint32_t count = o.env_axes ? 0 : make_matrix(o.full, configs);
+    uint32_t count = 0;
     rc = MVR_EXIT_FAILURE;
     if (mvr_context_create(&o.context, &ctx, &err) != MVR_OK) {
         fprintf(stderr, "mvr bench: %s\n", err.message);
@@ -655,6 +690,24 @@ int mvr_cmd_bench(int argc, char **argv)
     rc = cli_load_scene("mvr bench", &o.scene, &scene, &vs);
     if (rc != MVR_EXIT_OK)
         goto done;
+    {
+        mvr_scene_info info;
+        mvr_scene_get_info(scene, &info);
+        count = make_matrix(o.full, info.skins || info.morph_targets, configs);
+        /* an animated scene is posed anew every frame: at the start and the
+         * middle of its animations, alternately */
+        double start = INFINITY, end = -INFINITY;
+        for (uint32_t i = 0; i < info.animations; ++i) {
+            mvr_animation_info ai;
+            if (mvr_scene_get_animation_info(scene, i, &ai) == MVR_OK) {
+                start = fmin(start, ai.start);
+                end = fmax(end, ai.end);
+            }
+        }
+        o.animate = info.animations > 0 && end > start;
+        o.pose_times[0] = o.animate ? start : 0.0;
+        o.pose_times[1] = o.animate ? 0.5 * (start + end) : 0.0;
+    }
     rc = MVR_EXIT_FAILURE;
     uint32_t n_views = mvr_view_set_count(vs);
     size_t pixels = (size_t)n_views * o.scene.width * o.scene.height;

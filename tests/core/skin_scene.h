@@ -36,7 +36,10 @@ static inline void strip_rotate_tip(mvr_scene *s, const skin_scene *k, double de
     mvr_scene_set_node_transform(s, k->tip, t, r, sc);
 }
 
-static inline mvr_result build_skin_scene(mvr_scene *s, skin_scene *out, bool with_strip, bool with_quad)
+/* eight: the strip's tip influence of the row y = 1 moves to a second
+ * set (JOINTS_1 / WEIGHTS_1): the same skin through eight influences. */
+static inline mvr_result build_skin_scene_sets(mvr_scene *s, skin_scene *out, bool with_strip, bool with_quad,
+                                               bool eight)
 {
     memset(out, 0, sizeof *out);
     mvr_result res = MVR_OK;
@@ -52,10 +55,12 @@ static inline mvr_result build_skin_scene(mvr_scene *s, skin_scene *out, bool wi
     if ((res = mvr_scene_add_material(s, &md, &mat)) != MVR_OK)
         return res;
     if (with_strip) {
-        float pos[STRIP_VERTICES * 3], nrm[STRIP_VERTICES * 3], w[STRIP_VERTICES * 4];
-        uint16_t j[STRIP_VERTICES * 4];
+        float pos[STRIP_VERTICES * 3], nrm[STRIP_VERTICES * 3], w[STRIP_VERTICES * 4], w1[STRIP_VERTICES * 4];
+        uint16_t j[STRIP_VERTICES * 4], j1[STRIP_VERTICES * 4];
         memset(w, 0, sizeof w);
         memset(j, 0, sizeof j);
+        memset(w1, 0, sizeof w1);
+        memset(j1, 0, sizeof j1);
         for (int row = 0; row < STRIP_ROWS; ++row)
             for (int side = 0; side < 2; ++side) {
                 int v = row * 2 + side;
@@ -69,9 +74,14 @@ static inline mvr_result build_skin_scene(mvr_scene *s, skin_scene *out, bool wi
                 if (y < 1.0f) {
                     w[v * 4] = 1.0f;
                 } else if (y == 1.0f) {
-                    j[v * 4 + 1] = 1;
                     w[v * 4] = 2.0f;
-                    w[v * 4 + 1] = 2.0f;
+                    if (eight) {
+                        j1[v * 4] = 1;
+                        w1[v * 4] = 2.0f;
+                    } else {
+                        j[v * 4 + 1] = 1;
+                        w[v * 4 + 1] = 2.0f;
+                    }
                 } else {
                     j[v * 4] = 1;
                     w[v * 4] = 1.0f;
@@ -85,7 +95,8 @@ static inline mvr_result build_skin_scene(mvr_scene *s, skin_scene *out, bool wi
         }
         mvr_primitive_desc p = {.vertex_count = STRIP_VERTICES, .positions = pos, .normals = nrm,
                                 .index_count = (STRIP_ROWS - 1) * 6, .indices16 = idx, .material = mat,
-                                .joints0 = j, .weights0 = w};
+                                .joints0 = j, .weights0 = w, .joints1 = eight ? j1 : NULL,
+                                .weights1 = eight ? w1 : NULL};
         mvr_mesh_desc mesh = {.primitives = &p, .primitive_count = 1, .name = "strip"};
         mvr_mesh_id mid;
         if ((res = mvr_scene_add_mesh(s, &mesh, &mid)) != MVR_OK)
@@ -133,6 +144,11 @@ static inline mvr_result build_skin_scene(mvr_scene *s, skin_scene *out, bool wi
             return res;
     }
     return MVR_OK;
+}
+
+static inline mvr_result build_skin_scene(mvr_scene *s, skin_scene *out, bool with_strip, bool with_quad)
+{
+    return build_skin_scene_sets(s, out, with_strip, with_quad, false);
 }
 
 #endif

@@ -309,5 +309,40 @@ static void posed_bounds_keep_it_visible(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
-MVR_TEST_MAIN(TEST(paths_agree_and_match_the_cpu), TEST(upload_bytes_do_not_depend_on_views),
+/* Eight influences (JOINTS_1 / WEIGHTS_1): the same skin with the row
+ * y = 1's tip influence in the second set gives the same bytes on both
+ * paths (adding zero-weighted joints is exact in float). */
+static void eight_influences(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    mvr_scene *four = NULL, *eight = NULL;
+    skin_scene k4, k8;
+    CHECK(t, mvr_scene_create(NULL, &four, NULL) == MVR_OK && mvr_scene_create(NULL, &eight, NULL) == MVR_OK);
+    CHECK(t, build_skin_scene_sets(four, &k4, true, false, false) == MVR_OK);
+    CHECK(t, build_skin_scene_sets(eight, &k8, true, false, true) == MVR_OK);
+    CHECK(t, eight->primitives[0].influence_sets == 2);
+    strip_rotate_tip(four, &k4, 60.0);
+    strip_rotate_tip(eight, &k8, 60.0);
+    mvr_view_set *vs = front_views(t, 2);
+    shot a, b, c;
+    if (render_scene(t, ctx, four, vs, MVR_VIEW_PATH_AUTO, MVR_SKINNING_PATH_VERTEX, false, &a) &&
+        render_scene(t, ctx, eight, vs, MVR_VIEW_PATH_AUTO, MVR_SKINNING_PATH_VERTEX, false, &b) &&
+        render_scene(t, ctx, eight, vs, MVR_VIEW_PATH_AUTO, MVR_SKINNING_PATH_PRESKIN, false, &c)) {
+        size_t pixels = (size_t)2 * W * H;
+        CHECK_EQ_INT(t, count_diff(a.pixels, b.pixels, pixels, 0), 0);
+        CHECK_EQ_INT(t, count_diff(b.pixels, c.pixels, pixels, 0), 0);
+        CHECK(t, covered(a.pixels, pixels) > 200);
+        free(a.pixels);
+        free(b.pixels);
+        free(c.pixels);
+    }
+    mvr_view_set_destroy(vs);
+    mvr_scene_destroy(four);
+    mvr_scene_destroy(eight);
+    mvr_context_destroy(ctx);
+}
+
+MVR_TEST_MAIN(TEST(eight_influences), TEST(paths_agree_and_match_the_cpu), TEST(upload_bytes_do_not_depend_on_views),
               TEST(posed_bounds_keep_it_visible))
