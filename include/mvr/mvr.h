@@ -725,7 +725,10 @@ const char *mvr_material_path_name(mvr_material_path path);
 /* Where skinning and morphing run (scenes without skins or morph targets
  * run neither). Both give the same pixels (tests/gl/test_skinning.c). */
 typedef enum mvr_skinning_path {
-    MVR_SKINNING_PATH_AUTO = 0,      /* see mvr_renderer_desc.skinning_path */
+    /* pre-skinning for more than one view, the vertex path for one: on
+     * llvmpipe 16 skinned meshes drew 25-35% faster pre-skinned at 6 and 16
+     * views and 20% slower at one (docs/benchmarks.md) */
+    MVR_SKINNING_PATH_AUTO = 0,
     /* in the mesh vertex shader of every pass: once per view where the GL
      * loops views inside a multiview draw (llvmpipe), and again in the
      * shadow pass */
