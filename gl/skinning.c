@@ -248,6 +248,14 @@ static mvr_result preskin_buffer(mvr_renderer *r, uint32_t index, const mvr_defo
     return MVR_OK;
 }
 
+/* Whether a deform changes its vertices this frame: skinned, or morphed by
+ * a non-zero weight. One that does not draws its own vertices (the same
+ * as a capture of them would be) and costs no capture. */
+static bool needs_capture(const mvr_deform *d)
+{
+    return d->joint_base >= 0 || d->active_targets > 0;
+}
+
 /* One capture per deform: its vertices, deformed, into its buffer. */
 mvr_result mvr_skinning_capture(mvr_renderer *r)
 {
@@ -259,6 +267,8 @@ mvr_result mvr_skinning_capture(mvr_renderer *r)
     mvr_state_rasterizer_discard(&r->state, true);
     for (uint32_t i = 0; i < f->deform_count && res == MVR_OK; ++i) {
         const mvr_deform *d = &f->deforms[i];
+        if (!needs_capture(d))
+            continue;
         res = preskin_buffer(r, i, d);
         if (res != MVR_OK)
             break;
@@ -313,7 +323,8 @@ mvr_result mvr_skinning_frame(mvr_renderer *r, bool frame_changed)
 GLuint mvr_skinning_vao(const mvr_renderer *r, const mvr_draw *d)
 {
     const mvr_skinning *k = &r->skinning;
-    if (k->path != MVR_SKINNING_PATH_PRESKIN || d->deform == MVR_NO_INDEX || d->deform >= k->buffer_count)
+    if (k->path != MVR_SKINNING_PATH_PRESKIN || d->deform == MVR_NO_INDEX || d->deform >= k->buffer_count ||
+        d->deform >= r->frame.deform_count || !needs_capture(&r->frame.deforms[d->deform]))
         return 0;
     return k->buffers[d->deform].vao;
 }
