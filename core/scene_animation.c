@@ -628,8 +628,15 @@ mvr_result mvr_scene_find_animation(const mvr_scene *s, const char *name, uint32
                 s->animation_count, s->animation_count ? ": " : "", names);
 }
 
-static void apply_one(mvr_scene *s, const scene_animation *a, double time, mvr_animation_wrap wrap)
+static bool same3(mvr_dvec3 a, const double *b)
 {
+    return a.x == b[0] && a.y == b[1] && a.z == b[2];
+}
+
+/* Poses the nodes of one animation; true when a value changed. */
+static bool apply_one(mvr_scene *s, const scene_animation *a, double time, mvr_animation_wrap wrap)
+{
+    bool changed = false;
     double t = mvr_anim_time(time, a->start, a->end, wrap == MVR_ANIMATION_LOOP);
     double value[64];
     double *big = NULL;
@@ -649,20 +656,37 @@ static void apply_one(mvr_scene *s, const scene_animation *a, double time, mvr_a
         }
         mvr_anim_sample(&as, t, out);
         switch (ch->path) {
-        case MVR_ANIMATION_PATH_TRANSLATION: n->translation = mvr_dvec3_make(out[0], out[1], out[2]); break;
-        case MVR_ANIMATION_PATH_ROTATION:
-            n->rotation = mvr_dquat_normalize((mvr_dquat){out[0], out[1], out[2], out[3]});
+        case MVR_ANIMATION_PATH_TRANSLATION:
+            changed |= !same3(n->translation, out);
+            n->translation = mvr_dvec3_make(out[0], out[1], out[2]);
             break;
-        case MVR_ANIMATION_PATH_SCALE: n->scale = mvr_dvec3_make(out[0], out[1], out[2]); break;
+        case MVR_ANIMATION_PATH_ROTATION: {
+            mvr_dquat q = mvr_dquat_normalize((mvr_dquat){out[0], out[1], out[2], out[3]});
+            changed |= q.x != n->rotation.x || q.y != n->rotation.y || q.z != n->rotation.z || q.w != n->rotation.w;
+            n->rotation = q;
+            break;
+        }
+        case MVR_ANIMATION_PATH_SCALE:
+            changed |= !same3(n->scale, out);
+            n->scale = mvr_dvec3_make(out[0], out[1], out[2]);
+            break;
         case MVR_ANIMATION_PATH_WEIGHTS:
-            if (!n->weights)
+            if (!n->weights) {
+                /* from the weights drawn so far (the node's or the mesh's) */
+                const float *before = mvr_scene_node_weights(s, n);
                 n->weights = malloc(ch->components * sizeof *n->weights);
-            for (uint32_t k = 0; n->weights && k < ch->components; ++k)
+                if (n->weights && before)
+                    memcpy(n->weights, before, ch->components * sizeof *n->weights);
+            }
+            for (uint32_t k = 0; n->weights && k < ch->components; ++k) {
+                changed |= n->weights[k] != (float)out[k];
                 n->weights[k] = (float)out[k];
+            }
             break;
         }
     }
     free(big);
+    return changed;
 }
 
 mvr_result mvr_scene_apply_animation(mvr_scene *s, uint32_t index, double time, mvr_animation_wrap wrap)
@@ -675,10 +699,13 @@ mvr_result mvr_scene_apply_animation(mvr_scene *s, uint32_t index, double time, 
     if (index != MVR_ANIMATION_ALL && index >= s->animation_count)
         return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_apply_animation: animation %u out of range (%u)", index,
                     s->animation_count);
+    bool changed = false;
     for (uint32_t i = 0; i < s->animation_count; ++i)
         if (index == MVR_ANIMATION_ALL || index == i)
-            apply_one(s, &s->animations[i], time, wrap);
-    s->transform_version++;
+            changed |= apply_one(s, &s->animations[i], time, wrap);
+    /* the same pose again (a paused player) sends and captures nothing */
+    if (changed)
+        s->transform_version++;
     return MVR_OK;
 }
 

@@ -547,7 +547,8 @@ typedef enum mvr_animation_wrap {
  * every animation, in order, each at that time): the channels' nodes take
  * the sampled translation / rotation / scale / weights. Nodes no channel
  * targets keep their pose. Cheap: no GPU work until the next render, which
- * re-sends joint matrices and weights, never geometry. */
+ * re-sends joint matrices and weights, never geometry; applying the pose
+ * the scene already has (a paused player) changes nothing and sends nothing. */
 mvr_result mvr_scene_apply_animation(mvr_scene *scene, uint32_t index, double time, mvr_animation_wrap wrap);
 /* Back to the rest pose: the transforms and weights that mvr_scene_add_node,
  * mvr_scene_set_node_transform and mvr_scene_set_node_weights last gave

@@ -205,6 +205,12 @@ static void animation_poses_by_time(mvr_test_state *t)
     expect_vertex(t, pos, 9, 0.125 * c - 1.0 * sn, 1.0 + 0.125 * sn + 1.0 * c, 0.0);
     CHECK(t, mvr_scene_posed_positions(s, k.quad.id - 1, 1, quad));
     expect_vertex(t, quad, 2, 2.0, 2.0, 0.0);
+    /* the same pose again changes nothing (a paused player sends nothing) */
+    uint64_t version = s->transform_version;
+    CHECK(t, mvr_scene_apply_animation(s, MVR_ANIMATION_ALL, 0.5, MVR_ANIMATION_CLAMP) == MVR_OK);
+    CHECK(t, s->transform_version == version);
+    CHECK(t, mvr_scene_apply_animation(s, MVR_ANIMATION_ALL, 0.75, MVR_ANIMATION_CLAMP) == MVR_OK);
+    CHECK(t, s->transform_version != version);
     /* loop: 1.25 s is 0.25 s; clamp: 3 s is 1 s */
     CHECK(t, mvr_scene_apply_animation(s, 0, 1.25, MVR_ANIMATION_LOOP) == MVR_OK);
     CHECK(t, mvr_scene_posed_positions(s, k.quad.id - 1, 1, quad));
