@@ -7,7 +7,8 @@
  * its size, exposed for its lights, lit by the same environment.
  *
  * A file's animation plays (viewer_playback.c: animation 0, looping, unless
- * --animation, --time and --paused say otherwise).
+ * --animation, --time and --paused say otherwise); the command line is
+ * viewer_options.c's.
  *
  * mouse: left drag orbits, right drag pans, wheel zooms
  * keys:  [ ] IPD   + - views   P view path   M material path   D display
@@ -31,10 +32,8 @@
 #include "commands.h"
 #include "mvr/mvr.h"
 #include "mvr/mvr_image.h"
+#include "viewer_options.h"
 #include "viewer_playback.h"
-
-typedef enum display_mode { DISPLAY_STEREO, DISPLAY_GRID, DISPLAY_ANAGLYPH, DISPLAY_SINGLE, DISPLAY_COUNT } display_mode;
-static const char *display_names[DISPLAY_COUNT] = {"stereo", "grid", "anaglyph", "single"};
 
 /* The GL entry points the composite needs, loaded through GLFW. */
 typedef struct viewer_gl {
@@ -548,7 +547,7 @@ static void update_title(viewer *v, double frame_ms)
     viewer_playback_title(&v->playback, v->scene, anim, sizeof anim);
     snprintf(title, sizeof title,
              "mvr-viewer: %s | %u views (%s) | %.1f ms | %s, %u passes | %s | %u draws in %u calls | ipd %.3g%s",
-             v->scene_name, v->view_count, display_names[v->display], frame_ms, mvr_view_path_name(st.view_path),
+             v->scene_name, v->view_count, viewer_display_name(v->display), frame_ms, mvr_view_path_name(st.view_path),
              st.passes, mvr_material_path_name(st.material_path), st.draws, st.draw_calls, v->ipd, anim);
     glfwSetWindowTitle(v->window, title);
 }
@@ -658,137 +657,25 @@ static void on_drop(GLFWwindow *w, int count, const char **paths)
         open_scene(v, paths[0], NULL);
 }
 
-enum {
-    V_DEMO = 1, V_VIEWS, V_DISPLAY, V_SINGLE, V_SIZE, V_API, V_VIEW_PATH, V_FRAMES, V_SCREENSHOT, V_ANIMATION, V_TIME,
-    V_PAUSED
-};
-
-/* name, value and range, help; the order is --help's */
-static const cli_option viewer_table[] = {
-    {CLI_OPT_STRING, V_DEMO, "--demo", NULL, "NAME", 0, 0, NULL, "stereo | cube | city | ring (default: stereo)",
-     NULL, NULL, NULL},
-    {CLI_OPT_U32, V_VIEWS, "--views", NULL, "N", 1, 64, NULL,
-     "views (default: the scene's own, 2 for files), 1..64;\n"
-     "--demo stereo and city frame at most 35 at 640x480 layers", NULL, NULL, NULL},
-    {CLI_OPT_CHOICE, V_DISPLAY, "--display", NULL, "D", 0, 0, "stereo|grid|anaglyph|single",
-     "stereo | grid | anaglyph | single (default: stereo)", NULL, NULL, NULL},
-    {CLI_OPT_U32, V_SINGLE, "--single", NULL, "K", 0, 63, NULL, "with --display single: the view shown (default 0)",
-     NULL, NULL, NULL},
-    {CLI_OPT_STRING, V_SIZE, "--size", NULL, "WxH", 0, 0, NULL, "window size (default 1280x480)", NULL, NULL, NULL},
-    {CLI_OPT_CHOICE, V_API, "--api", NULL, "A", 0, 0, "gles|desktop",
-     "gles | desktop: the context GLFW makes (default desktop)", NULL, NULL, NULL},
-    {CLI_OPT_CHOICE, V_VIEW_PATH, "--view-path", NULL, "P", 0, 0, "auto|multiview|loop",
-     "auto | multiview | loop (default auto)", NULL, NULL, NULL},
-    {CLI_OPT_STRING, V_ANIMATION, "--animation", NULL, "A", 0, 0, NULL,
-     "SCENE: play animation A: its name, its index (0-based) or\n"
-     "all, as mvr render takes them (default: 0 when the file has\n"
-     "animations; they loop)", NULL, NULL, NULL},
-    {CLI_OPT_STRING, V_TIME, "--time", NULL, "T", 0, 0, NULL,
-     "start at T seconds on the file's animation clock, >= 0,\n"
-     "wrapped into the clip (default: the clip's start)", NULL, NULL, NULL},
-    {CLI_OPT_FLAG, V_PAUSED, "--paused", NULL, NULL, 0, 0, NULL, "start paused (Space plays)", NULL, NULL, NULL},
-    {CLI_OPT_U32, V_FRAMES, "--frames", NULL, "N", 1, 1000000, NULL,
-     "render N frames, then exit (with --screenshot: save the last);\n"
-     "playback then steps 1/30 s per frame, not by the clock, so\n"
-     "frame k shows --time + k/30", NULL, NULL, NULL},
-    {CLI_OPT_STRING, V_SCREENSHOT, "--screenshot", NULL, "FILE", 0, 0, NULL,
-     "the window's contents after the last frame (PNG)", NULL, NULL, NULL},
-    {CLI_OPT_END, 0, NULL, NULL, NULL, 0, 0, NULL, NULL, NULL, NULL, NULL},
-};
-
-static const cli_option *const viewer_tables[] = {viewer_table, cli_env_option_table, cli_help_option, NULL};
-
-static void usage(FILE *out)
-{
-    fprintf(out, "usage: mvr-viewer [SCENE.gltf | SCENE.glb | --demo NAME] [options]\n\n");
-    cli_print_options(out, viewer_tables, 21);
-    fprintf(out,
-            "\n"
-            "A file opens as mvr render shows it: from its first camera (else framed by its\n"
-            "size), auto-exposed when its lights are in physical units, lit by the same\n"
-            "environment (--env ... as mvr render takes them).\n"
-            "\n"
-            "mouse: left drag orbits, right drag pans, wheel zooms; keys: [ ] IPD, + - views,\n"
-            "P view path, M material path, D display, Tab next single view, R reset, Esc quit;\n"
-            "drop a glTF file on the window to open it.\n"
-            "animation: Space play/pause, Left Right step 1/30 s (Shift: a tenth of the clip;\n"
-            "both pause), Home the clip's start, N next animation, Shift+N previous; the\n"
-            "title names the animation and the time.\n");
-}
-
 int main(int argc, char **argv)
 {
-    const char *file = NULL, *demo = "stereo", *shot = NULL;
-    unsigned win_w = 1280, win_h = 480, frames = 0;
-    bool gles = false;
+    viewer_options o;
+    int parsed = viewer_options_parse(argc, argv, &o);
+    if (parsed != 0)
+        return parsed < 0 ? 0 : parsed;
+    const char *file = o.file, *demo = o.demo, *shot = o.screenshot;
+    uint32_t frames = o.frames;
+    bool gles = o.gles;
     viewer v;
     memset(&v, 0, sizeof v);
-    v.display = DISPLAY_STEREO;
-    v.start_time = -1.0;
-    cli_parser p;
-    cli_parser_init(&p, "mvr-viewer", viewer_tables, argc, argv);
-    cli_arg arg;
-    int c;
-    while ((c = cli_next(&p, &arg)) > 0) {
-        if (!arg.opt) { /* the SCENE (the parser refuses a second) */
-            file = arg.value;
-            continue;
-        }
-        int env_option = cli_env_apply("mvr-viewer", &arg, &v.env_options);
-        if (env_option < 0)
-            return 2;
-        if (env_option > 0)
-            continue;
-        switch (arg.opt->id) {
-        case CLI_ID_HELP: usage(stdout); return 0;
-        case V_DEMO: demo = arg.value; break;
-        case V_VIEWS: v.view_count = arg.number; break;
-        case V_SINGLE: v.single = arg.number; break;
-        case V_FRAMES: frames = arg.number; break;
-        case V_SCREENSHOT: shot = arg.value; break;
-        case V_ANIMATION:
-            if (!arg.value[0]) {
-                fprintf(stderr, "mvr-viewer: --animation takes a name, an index or all (got '')\n");
-                return 2;
-            }
-            v.start_animation = arg.value;
-            break;
-        case V_TIME:
-            if (!cli_parse_double(arg.value, &v.start_time) || v.start_time < 0.0) {
-                fprintf(stderr, "mvr-viewer: --time takes seconds >= 0 (got '%s')\n", arg.value);
-                return 2;
-            }
-            break;
-        case V_PAUSED: v.start_paused = true; break;
-        case V_API: gles = arg.choice == 0; break;
-        case V_VIEW_PATH: v.view_path = (mvr_view_path)(MVR_VIEW_PATH_AUTO + arg.choice); break;
-        case V_DISPLAY: v.display = (display_mode)arg.choice; break;
-        case V_SIZE:
-            if (!cli_parse_size(arg.value, 1, 16384, &win_w, &win_h)) {
-                fprintf(stderr, "mvr-viewer: --size takes WxH with 1..16384 each, e.g. 1280x480\n");
-                return 2;
-            }
-            break;
-        }
-    }
-    if (c < 0)
-        return 2;
-    if (cli_given(&p, "--single") && v.display != DISPLAY_SINGLE) {
-        fprintf(stderr, "mvr-viewer: --single conflicts with --display %s (it is for --display single)\n",
-                display_names[v.display]);
-        return 2;
-    }
-    if (!file && (v.start_animation || cli_given(&p, "--time") || v.start_paused)) {
-        fprintf(stderr, "mvr-viewer: --animation, --time and --paused are for a SCENE file (the demos have no "
-                        "animations)\n");
-        return 2;
-    }
-    if (cli_given(&p, "--screenshot") && !frames) {
-        fprintf(stderr, "mvr-viewer: --screenshot needs --frames N (it saves the last of N frames)\n");
-        return 2;
-    }
-    if (!cli_env_check("mvr-viewer", &v.env_options, file != NULL))
-        return 2;
+    v.display = o.display;
+    v.view_count = o.views;
+    v.single = o.single;
+    v.view_path = o.view_path;
+    v.env_options = o.env;
+    v.start_animation = o.animation;
+    v.start_time = o.time;
+    v.start_paused = o.paused;
     if (!glfwInit()) {
         fprintf(stderr, "mvr-viewer: glfwInit failed (no display?)\n");
         return 1;
@@ -804,7 +691,7 @@ int main(int argc, char **argv)
         glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
         glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
     }
-    v.window = glfwCreateWindow((int)win_w, (int)win_h, "mvr-viewer", NULL, NULL);
+    v.window = glfwCreateWindow((int)o.width, (int)o.height, "mvr-viewer", NULL, NULL);
     if (!v.window) {
         fprintf(stderr, "mvr-viewer: no %s window\n", gles ? "GLES 3.1" : "desktop GL 4.3 core");
         glfwTerminate();

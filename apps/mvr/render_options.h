@@ -1,0 +1,62 @@
+/* mvr render's options as parsed (cmd_render.c) and what posed its frames:
+ * shared by the command and what it writes (render_output.c). */
+#ifndef MVR_APP_RENDER_OPTIONS_H
+#define MVR_APP_RENDER_OPTIONS_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "cli_env.h"
+#include "mvr/mvr.h"
+
+typedef struct render_options {
+    mvr_context_desc context;
+    const char *demo;
+    const char *scene_file;
+    int camera;                  /* -1 = frame the scene with layout */
+    mvr_view_layout layout;
+    double ipd;
+    uint32_t gltf_scene;         /* 1-based; 0 = the file's default */
+    uint32_t views, width, height, frames;
+    const char *out_dir;
+    const char *stats_file;
+    bool plan;                   /* --plan */
+    mvr_view_path view_path;
+    mvr_material_path material_path;
+    mvr_depth_mode depth_mode;
+    mvr_transparency_order transparency;
+    uint32_t supersample;        /* samples per pixel side; 1 = none */
+    uint32_t msaa;               /* multisample count; 0 = none */
+    mvr_anti_aliasing aa;        /* --aa: the library's anti-aliasing choice */
+    bool exposure_set, tone_map_set, layout_set;
+    mvr_tone_map tone_map;       /* --tone-map, when tone_map_set */
+    cli_env_options env;
+    bool reference;
+    mvr_color_format format;
+    bool format_set;
+    bool exr;                    /* output EXR (linear float) instead of PNG */
+    mvr_render_desc render;
+    const char *program_cache;   /* directory; NULL = the user's cache directory; "off" = none */
+    bool quiet;
+    bool strict;                 /* glTF: missing or undecodable images are errors */
+    uint64_t memory_budget;      /* glTF load budget in bytes; 0 = the loader's default */
+    /* animation: --animation NAME|K|all at --time (+ k / --fps for frame k
+     * of --frames); none given = the file's rest pose */
+    const char *animation;
+    double time, fps;
+    bool time_set, loop, frames_set;
+    const char *video;           /* --video FILE: each view's sequence through ffmpeg */
+    char ffmpeg[4096];           /* with video: the ffmpeg found on PATH */
+    mvr_skinning_path skinning;
+} render_options;
+
+/* What posed the frames (for the summary and the stats). */
+typedef struct render_animation {
+    bool applied;                /* an animation posed the scene */
+    uint32_t index;              /* or MVR_ANIMATION_ALL */
+    char label[192];             /* cli_animation_label */
+    double first_time, last_time;
+    double start, end;           /* its clip */
+} render_animation;
+
+#endif

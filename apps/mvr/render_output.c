@@ -1,0 +1,414 @@
+/* What mvr render writes and the frame sequence it writes: which animation
+ * poses the frames, each view's image per frame (view_VV.png or
+ * view_VV_fFFFF.png), the contact sheet, the videos through ffmpeg, the
+ * stats JSON and the summary's animation and file lines. */
+#define _POSIX_C_SOURCE 200809L
+#include "render_output.h"
+
+#include <errno.h>
+#include <spawn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "cli_scene.h"
+#include "json.h"
+#include "mvr/mvr_image.h"
+
+/* The animation that posed the frames (null: none, the rest pose) and the
+ * last frame's skinning and morphing. */
+static void write_animation_json(json_writer *jw, const render_options *o, const render_animation *a,
+                                 const mvr_frame_stats *s)
+{
+    if (a->applied) {
+        json_begin_object(jw, "animation");
+        if (a->index == MVR_ANIMATION_ALL)
+            json_string(jw, "index", "all");
+        else
+            json_int(jw, "index", a->index);
+        json_string(jw, "label", a->label);
+        json_double(jw, "start", a->start);
+        json_double(jw, "end", a->end);
+        json_bool(jw, "loop", o->loop);
+        json_double(jw, "first_time", a->first_time);
+        json_double(jw, "time", a->last_time);
+        json_end_object(jw);
+    } else {
+        json_null(jw, "animation");
+    }
+    json_int(jw, "frames", o->frames);
+    json_double(jw, "fps", o->fps);
+    json_string(jw, "skinning_path", mvr_skinning_path_name(s->skinning_path));
+    json_int(jw, "joints", s->joints);
+    json_int(jw, "morph_targets_active", s->morph_targets_active);
+    json_int(jw, "animation_upload_bytes", (long long)s->animation_upload_bytes);
+    json_int(jw, "preskin_passes", s->preskin_passes);
+}
+
+/* The first and the last frame's pose, and the last frame's skinning. */
+void render_output_print_animation(const render_options *o, const mvr_scene *scene, const render_animation *a,
+                                   const mvr_frame_stats *s)
+{
+    if (a->applied) {
+        printf("  animation   %s: clip %g .. %g s, ", a->label, a->start, a->end);
+        if (o->frames_set && o->frames > 1)
+            printf("t = %g .. %g s (%u frames at %g fps)", a->first_time, a->last_time, o->frames, o->fps);
+        else
+            printf("t = %g s", a->first_time);
+        printf(", %s\n", o->loop ? "looped" : "clamped");
+    }
+    mvr_scene_info info;
+    mvr_scene_get_info(scene, &info);
+    if (info.skins || info.morph_targets || s->joints || s->morph_targets_active)
+        printf("  skinning    %s: %u joint%s, %u morph target%s active, %llu bytes of joints and weights, %u pre-skin "
+               "pass%s\n",
+               mvr_skinning_path_name(s->skinning_path), s->joints, s->joints == 1 ? "" : "s",
+               s->morph_targets_active, s->morph_targets_active == 1 ? "" : "s",
+               (unsigned long long)s->animation_upload_bytes, s->preskin_passes, s->preskin_passes == 1 ? "" : "es");
+}
+
+void render_output_write_stats_json(FILE *f, const mvr_renderer *r, const mvr_frame_stats *s, const char *demo,
+                                    uint32_t w, uint32_t h, uint32_t supersample, const mvr_gltf_info *load,
+                                    const cli_env_used *env, const mvr_render_desc *rd, const render_options *o,
+                                    const render_animation *anim)
+{
+    json_writer jw = {f, 0, {false}, {0}};
+    json_begin_object(&jw, NULL);
+    json_string(&jw, "scene", demo);
+    if (load) {
+        /* the glTF load's own accounting (mvr_gltf_info) */
+        json_begin_object(&jw, "load");
+        json_int(&jw, "warnings", load->warnings);
+        json_int(&jw, "images_missing", load->images_missing);
+        json_int(&jw, "images_decoded", load->images_decoded);
+        json_int(&jw, "buffers_read", load->buffers_read);
+        json_int(&jw, "memory_budget", (long long)load->memory_budget);
+        json_int(&jw, "memory_peak", (long long)load->memory_peak);
+        json_int(&jw, "json_bytes_estimate", (long long)load->json_bytes_estimate);
+        json_end_object(&jw);
+    }
+    json_int(&jw, "width", w);
+    json_int(&jw, "height", h);
+    json_int(&jw, "supersample", supersample);
+    json_string(&jw, "transparency_order", mvr_transparency_order_name(s->transparency_order));
+    json_string(&jw, "view_path", mvr_view_path_name(s->view_path));
+    json_string(&jw, "anti_aliasing", mvr_anti_aliasing_name(s->anti_aliasing));
+    json_bool(&jw, "msaa_multiview", s->msaa_multiview);
+    json_int(&jw, "views", s->views);
+    json_int(&jw, "passes", s->passes);
+    json_int(&jw, "multiview_passes", s->multiview_passes);
+    json_string(&jw, "material_path", mvr_material_path_name(s->material_path));
+    json_int(&jw, "texture_groups", s->texture_groups);
+    json_int(&jw, "culled", s->culled);
+    json_begin_array(&jw, "culled_per_view");
+    for (uint32_t v = 0; v < s->views; ++v)
+        json_int(&jw, NULL, mvr_renderer_view_culled(r, v));
+    json_end_array(&jw);
+    json_begin_object(&jw, "sub_passes");
+    json_int(&jw, "opaque", s->sub_passes[0]);
+    json_int(&jw, "mask", s->sub_passes[1]);
+    json_int(&jw, "blend", s->sub_passes[2]);
+    json_end_object(&jw);
+    json_string(&jw, "exposure_mode", mvr_exposure_mode_name(s->exposure_mode));
+    json_double(&jw, "exposure_ev100", s->exposure_ev100);
+    json_string(&jw, "tone_mapper", mvr_tone_map_name(s->tone_mapper));
+    json_int(&jw, "post_passes", s->post_passes);
+    json_int(&jw, "luminance_passes", s->luminance_passes);
+    /* the environment the frame was lit with (source "none": no IBL) */
+    json_begin_object(&jw, "environment");
+    json_string(&jw, "source", env->present ? mvr_environment_source_name(env->source) : "none");
+    if (env->file)
+        json_string(&jw, "file", env->file);
+    else
+        json_null(&jw, "file");
+    if (env->present) {
+        if (env->file) {
+            json_int(&jw, "width", env->width);
+            json_int(&jw, "height", env->height);
+        }
+        if (env->source == MVR_ENVIRONMENT_UNIFORM) {
+            json_begin_array(&jw, "color");
+            for (int c = 0; c < 3; ++c)
+                json_double(&jw, NULL, env->color[c]);
+            json_end_array(&jw);
+        }
+        json_double(&jw, "intensity", env->intensity);
+        json_double(&jw, "rotation", env->rotation);
+    }
+    json_string(&jw, "background", mvr_background_name(rd->background));
+    if (rd->background == MVR_BACKGROUND_BLUR)
+        json_double(&jw, "background_blur", rd->background_blur > 0.0f ? rd->background_blur : 0.5);
+    json_end_object(&jw);
+    json_int(&jw, "env_prefilter_passes", s->env_prefilter_passes);
+    json_double(&jw, "env_prefilter_ms", s->env_prefilter_ms);
+    json_int(&jw, "background_draws", s->background_draws);
+    json_int(&jw, "shadow_passes", s->shadow_passes);
+    json_int(&jw, "shadow_layers", s->shadow_layers);
+    json_int(&jw, "shadow_draws", s->shadow_draws);
+    json_int(&jw, "draws", s->draws);
+    json_int(&jw, "draw_calls", s->draw_calls);
+    json_int(&jw, "instanced_draw_calls", s->instanced_draw_calls);
+    json_int(&jw, "program_binds", s->program_binds);
+    json_int(&jw, "texture_binds", s->texture_binds);
+    json_int(&jw, "ubo_range_binds", s->ubo_range_binds);
+    json_int(&jw, "upload_bytes", (long long)s->upload_bytes);
+    json_int(&jw, "view_upload_bytes", (long long)s->view_upload_bytes);
+    json_int(&jw, "compacted_bytes", (long long)s->compacted_bytes);
+    json_int(&jw, "sanitized", (long long)s->sanitized);
+    json_int(&jw, "samples", (long long)s->samples);
+    json_int(&jw, "programs_compiled", s->programs_compiled);
+    json_int(&jw, "program_cache_hits", s->program_cache_hits);
+    json_int(&jw, "program_binary_loads", s->program_binary_loads);
+    json_int(&jw, "program_binary_rejects", s->program_binary_rejects);
+    json_begin_array(&jw, "programs");
+    mvr_program_info pi;
+    for (uint32_t i = 0; mvr_renderer_get_program_info(r, i, &pi); ++i) {
+        json_begin_object(&jw, NULL);
+        json_string(&jw, "name", pi.name);
+        json_int(&jw, "views", pi.num_views);
+        json_begin_array(&jw, "features");
+        for (uint32_t bit = 1; bit != 0; bit <<= 1)
+            if ((pi.features & bit) && mvr_program_feature_name(bit))
+                json_string(&jw, NULL, mvr_program_feature_name(bit));
+        json_end_array(&jw);
+        json_bool(&jw, "from_binary_cache", pi.from_binary_cache);
+        json_end_object(&jw);
+    }
+    json_end_array(&jw);
+    json_string(&jw, "depth_mode", mvr_depth_mode_name(s->depth_mode));
+    json_double(&jw, "cpu_ms", s->cpu_ms);
+    if (s->gpu_ms >= 0)
+        json_double(&jw, "gpu_ms", s->gpu_ms);
+    else
+        json_null(&jw, "gpu_ms");
+    json_begin_array(&jw, "pass_stats");
+    mvr_pass_stats ps;
+    for (uint32_t i = 0; mvr_renderer_get_pass_stats(r, i, &ps); ++i) {
+        json_begin_object(&jw, NULL);
+        json_int(&jw, "first_view", ps.first_view);
+        json_int(&jw, "views", ps.views);
+        json_bool(&jw, "multiview", ps.multiview);
+        json_int(&jw, "draws", ps.draws);
+        json_int(&jw, "program_binds", ps.program_binds);
+        json_int(&jw, "texture_binds", ps.texture_binds);
+        json_int(&jw, "ubo_range_binds", ps.ubo_range_binds);
+        json_int(&jw, "texture_groups", ps.texture_groups);
+        json_end_object(&jw);
+    }
+    json_end_array(&jw);
+    write_animation_json(&jw, o, anim, s);
+    json_end_object(&jw);
+}
+
+/* Lays the views out in a grid (side by side up to 4, then ~square). */
+bool render_output_write_contact_sheet(const char *path, uint8_t *const *layers, uint32_t n, uint32_t w, uint32_t h)
+{
+    uint32_t cols = n <= 4 ? n : 1;
+    while (n > 4 && cols * cols < n)
+        cols++;
+    uint32_t rows = (n + cols - 1) / cols;
+    uint32_t gap = 4, W = cols * w + (cols - 1) * gap, H = rows * h + (rows - 1) * gap;
+    uint8_t *sheet = calloc((size_t)W * H, 4);
+    if (!sheet)
+        return false;
+    for (size_t i = 0; i < (size_t)W * H; ++i)
+        sheet[i * 4 + 3] = 255;
+    for (uint32_t k = 0; k < n; ++k) {
+        uint32_t cx = (k % cols) * (w + gap), cy = (k / cols) * (h + gap); /* from the top */
+        for (uint32_t y = 0; y < h; ++y) {
+            /* layers are bottom-up; the sheet is written top-down */
+            const uint8_t *src = layers[k] + (size_t)(h - 1 - y) * w * 4;
+            memcpy(sheet + ((size_t)(cy + y) * W + cx) * 4, src, (size_t)w * 4);
+        }
+    }
+    mvr_image_view view = {W, H, MVR_PIXEL_U8, false, sheet};
+    mvr_error err;
+    bool ok = mvr_image_write(path, &view, &err) == MVR_OK;
+    if (!ok)
+        fprintf(stderr, "mvr render: %s\n", err.message);
+    free(sheet);
+    return ok;
+}
+
+/* Which animation poses the frames: --animation, else animation 0 when
+ * --time, --loop or --frames ask for a time and the file has one; none (the
+ * file's rest pose) otherwise. false (printed) when --animation names none
+ * the file has. */
+bool render_output_choose_animation(const render_options *o, const mvr_scene *scene, render_animation *a)
+{
+    memset(a, 0, sizeof *a);
+    a->first_time = a->last_time = o->time;
+    const char *what = o->scene_file ? o->scene_file : o->demo;
+    if (o->animation) {
+        if (!cli_find_animation("mvr render", what, scene, o->animation, &a->index))
+            return false;
+        a->applied = true;
+    } else if (o->time_set || o->loop || o->frames_set) {
+        a->applied = mvr_scene_animation_count(scene) > 0;
+        if (!a->applied && (o->time_set || o->loop) && !o->quiet)
+            fprintf(stderr, "mvr render: warning: %s has no animations: --time and --loop change nothing\n", what);
+    }
+    if (a->applied) {
+        cli_animation_label(scene, a->index, a->label, sizeof a->label);
+        cli_animation_clip(scene, a->index, &a->start, &a->end);
+    }
+    return true;
+}
+
+/* Digits of a sequence's frame numbers: 4, more past 10000 frames. */
+static int frame_digits(uint32_t frames)
+{
+    int digits = 4;
+    for (uint32_t last = frames - 1; last >= 10000; last /= 10)
+        digits++;
+    return digits;
+}
+
+/* DIR/view_VV.EXT, or frame f of a sequence: DIR/view_VV_fFFFF.EXT. */
+static void view_file(char *buf, size_t size, const render_options *o, uint32_t view, int64_t frame)
+{
+    const char *ext = o->exr ? "exr" : "png";
+    int len;
+    if (frame < 0)
+        len = snprintf(buf, size, "%s/view_%02u.%s", o->out_dir, view, ext);
+    else
+        len = snprintf(buf, size, "%s/view_%02u_f%0*lld.%s", o->out_dir, view, frame_digits(o->frames),
+                       (long long)frame, ext);
+    if (len < 0 || (size_t)len >= size)
+        buf[0] = '\0'; /* --out too long: the write fails, naming no file */
+}
+
+/* Reads every layer as display bytes into layers[k] and writes each view's
+ * image of the frame (-1: not a sequence). */
+bool render_output_write_views(const render_options *o, mvr_renderer *r, mvr_target *t, uint32_t n, uint8_t **layers,
+                               float *floats, int64_t frame)
+{
+    size_t pixels = (size_t)o->width * o->height;
+    uint32_t ss = o->supersample;
+    for (uint32_t k = 0; k < n; ++k) {
+        if (!cli_read_display_layer(r, t, k, o->width, o->height, ss, layers[k], floats)) {
+            fprintf(stderr, "mvr render: reading layer %u: %s\n", k, mvr_renderer_last_error(r));
+            return false;
+        }
+        if (o->exr && ss <= 1 && o->format == MVR_COLOR_FORMAT_RGBA16F)
+            cli_encode_srgb(floats, layers[k], pixels); /* the sheet shows display values */
+        char path[4096];
+        view_file(path, sizeof path, o, k, frame);
+        mvr_image_view view = {o->width, o->height, o->exr ? MVR_PIXEL_F32 : MVR_PIXEL_U8, true,
+                               o->exr ? (const void *)floats : (const void *)layers[k]};
+        mvr_error err;
+        if (mvr_image_write(path, &view, &err) != MVR_OK) {
+            fprintf(stderr, "mvr render: %s\n", err.message);
+            return false;
+        }
+    }
+    return true;
+}
+
+/* --video FILE: FILE itself for one view, else FILE's stem + _view_VV +
+ * its extension. */
+static void video_file(char *buf, size_t size, const char *video, uint32_t view, uint32_t views)
+{
+    const char *slash = strrchr(video, '/'), *dot = strrchr(video, '.');
+    if (dot && (dot == video || (slash && dot <= slash + 1)))
+        dot = NULL; /* a dot in a directory's name, or a hidden file's */
+    if (views == 1)
+        snprintf(buf, size, "%s", video);
+    else
+        snprintf(buf, size, "%.*s_view_%02u%s", dot ? (int)(dot - video) : (int)strlen(video), video, view,
+                 dot ? dot : "");
+}
+
+extern char **environ;
+
+/* Each view's PNG sequence through ffmpeg (found by parse) at --fps; odd
+ * sizes padded to even ones, yuv420p as players expect. */
+bool render_output_encode_videos(const render_options *o, uint32_t n)
+{
+    char rate[32], dir[4096], input[4096 + 64], output[4096];
+    snprintf(rate, sizeof rate, "%.10g", o->fps);
+    /* the input is a pattern: a % in --out's name is written %% */
+    size_t d = 0;
+    for (const char *c = o->out_dir; *c && d + 2 < sizeof dir; ++c) {
+        if (*c == '%')
+            dir[d++] = '%';
+        dir[d++] = *c;
+    }
+    dir[d] = '\0';
+    for (uint32_t k = 0; k < n; ++k) {
+        snprintf(input, sizeof input, "%s/view_%02u_f%%0%dd.png", dir, k, frame_digits(o->frames));
+        video_file(output, sizeof output, o->video, k, n);
+        char *args[] = {"ffmpeg", "-hide_banner", "-loglevel", "error", "-nostdin", "-y", "-framerate", rate,
+                        "-start_number", "0", "-i", input, "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-pix_fmt",
+                        "yuv420p", output, NULL};
+        pid_t pid;
+        int e = posix_spawn(&pid, o->ffmpeg, NULL, NULL, args, environ);
+        if (e != 0) {
+            fprintf(stderr, "mvr render: --video: cannot run %s: %s\n", o->ffmpeg, strerror(e));
+            return false;
+        }
+        int status = 0;
+        while (waitpid(pid, &status, 0) < 0)
+            if (errno != EINTR) {
+                fprintf(stderr, "mvr render: --video: waiting for %s: %s\n", o->ffmpeg, strerror(errno));
+                return false;
+            }
+        if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+            fprintf(stderr, "mvr render: --video: %s failed (%s %d) encoding %s into %s\n", o->ffmpeg,
+                    WIFEXITED(status) ? "exit status" : "signal",
+                    WIFEXITED(status) ? WEXITSTATUS(status) : WTERMSIG(status), input, output);
+            return false;
+        }
+    }
+    return true;
+}
+
+/* The summary's lines naming what was written: the first and the last image,
+ * the contact sheet and the videos. */
+void render_output_print_files(const render_options *o, uint32_t n, const char *sheet)
+{
+    char first[4096], last[4096];
+    view_file(first, sizeof first, o, 0, o->frames_set ? 0 : -1);
+    view_file(last, sizeof last, o, n - 1, o->frames_set ? (int64_t)o->frames - 1 : -1);
+    const char *last_name = strrchr(last, '/') ? strrchr(last, '/') + 1 : last;
+    if (o->frames_set)
+        printf("  images      %s .. %s (%u frame%s of %u view%s)\n", first, last_name, o->frames,
+               o->frames == 1 ? "" : "s", n, n == 1 ? "" : "s");
+    else
+        printf("  images      %s .. %s\n", first, last_name);
+    printf("  contact     %s%s\n", sheet, o->frames_set && o->frames > 1 ? " (the first frame)" : "");
+    if (o->video) {
+        char video[4096];
+        video_file(video, sizeof video, o->video, 0, n);
+        if (n == 1) {
+            printf("  video       %s (%u frames at %g fps, ffmpeg %s)\n", video, o->frames, o->fps, o->ffmpeg);
+        } else {
+            char last_video[4096];
+            video_file(last_video, sizeof last_video, o->video, n - 1, n);
+            printf("  video       %s .. %s (%u frames at %g fps, ffmpeg %s)\n", video, last_video, o->frames,
+                   o->fps, o->ffmpeg);
+        }
+    }
+}
+
+/* The first executable name in the directories of $PATH, into buf. */
+bool render_output_find_on_path(const char *name, char *buf, size_t size)
+{
+    const char *path = getenv("PATH");
+    if (!path || !path[0])
+        return false;
+    for (const char *d = path; *d;) {
+        size_t len = strcspn(d, ":");
+        /* an empty entry is the current directory, as the shell takes it */
+        int n = len ? snprintf(buf, size, "%.*s/%s", (int)len, d, name) : snprintf(buf, size, "./%s", name);
+        struct stat st;
+        if (n > 0 && (size_t)n < size && stat(buf, &st) == 0 && S_ISREG(st.st_mode) && access(buf, X_OK) == 0)
+            return true;
+        d += len + (d[len] == ':');
+    }
+    buf[0] = '\0';
+    return false;
+}
