@@ -561,6 +561,12 @@ int mvr_cmd_render(int argc, char **argv)
     char sheet[4096];
     snprintf(sheet, sizeof sheet, "%s/contact_sheet.png", o.out_dir);
     bool frames_ok = true;
+    /* views from a file's camera follow it when an animation moves it (or
+     * its parents): made again from the posed camera every frame */
+    mvr_node_id camera_node = {0};
+    if (anim.applied && o.scene_file &&
+        (o.camera >= 0 || (o.camera == CLI_CAMERA_IF_ANY && mvr_scene_camera_node_count(scene) > 0)))
+        camera_node = mvr_scene_camera_node(scene, o.camera >= 0 ? (uint32_t)o.camera : 0);
     for (uint32_t f = 0; f < o.frames && frames_ok; ++f) {
         double t = o.time + (double)f / o.fps;
         if (anim.applied &&
@@ -569,6 +575,16 @@ int mvr_cmd_render(int argc, char **argv)
             fprintf(stderr, "mvr render: animation %s at %g s: %s\n", anim.label, t, mvr_scene_last_error(scene));
             frames_ok = false;
             break;
+        }
+        if (camera_node.id) {
+            mvr_view_set *posed = NULL;
+            if (mvr_view_set_from_camera(scene, camera_node, n, o.ipd, &posed, &err) != MVR_OK) {
+                fprintf(stderr, "mvr render: the camera at %g s: %s\n", t, err.message);
+                frames_ok = false;
+                break;
+            }
+            mvr_view_set_destroy(views);
+            views = posed;
         }
         anim.last_time = t;
         if (mvr_renderer_render(renderer, scene, views, target, &o.render) != MVR_OK) {

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes a small node-animated glTF file for the CLI and viewer tests.
 
-usage: make_animated_gltf.py OUT.gltf
+usage: make_animated_gltf.py OUT.gltf [--dolly]
 
 Two boxes and a camera, one embedded base64 buffer, no skins, no morph
 targets (node TRS animation only), two LINEAR animations:
@@ -9,8 +9,10 @@ targets (node TRS animation only), two LINEAR animations:
              from x = -1.5 to x = +1.5 over 0 .. 1 s
   1 'spin':  node 'spinner' (green bar, lower half) turns about +Z from
              0 to 180 degrees over 0 .. 2 s (keys at 0, 1 and 2 s)
-The camera at (0, 0, 4.5) looks down -Z at both. The file is the same bytes
-on every run.
+The camera at (0, 0, 4.5) looks down -Z at both. --dolly adds animation
+  2 'dolly': the camera node moves back from z = 4.5 to z = 8 over 0 .. 1 s
+(views made from the file's camera must follow it). The file is the same
+bytes on every run.
 """
 import base64
 import json
@@ -43,8 +45,9 @@ def box():
 
 
 def main():
-    if len(sys.argv) != 2:
-        sys.exit("usage: make_animated_gltf.py OUT.gltf")
+    if len(sys.argv) not in (2, 3) or (len(sys.argv) == 3 and sys.argv[2] != "--dolly"):
+        sys.exit("usage: make_animated_gltf.py OUT.gltf [--dolly]")
+    dolly = len(sys.argv) == 3
     positions, normals, indices = box()
     chunks, views, accessors = [], [], []
 
@@ -83,6 +86,7 @@ def main():
     sv = accessor(add(floats(flat(slide_v))), 5126, 2, "VEC3")
     rt = accessor(add(floats(spin_t)), 5126, 3, "SCALAR", [0.0], [2.0])
     rv = accessor(add(floats(flat(spin_v))), 5126, 3, "VEC4")
+    dv = accessor(add(floats([0.0, 0.0, 4.5, 0.0, 0.0, 8.0])), 5126, 2, "VEC3") if dolly else None
 
     data = b"".join(chunks)
     doc = {
@@ -118,6 +122,10 @@ def main():
         "buffers": [{"byteLength": len(data),
                      "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode("ascii")}],
     }
+    if dolly:
+        doc["animations"].append(
+            {"name": "dolly", "samplers": [{"input": st, "output": dv, "interpolation": "LINEAR"}],
+             "channels": [{"sampler": 0, "target": {"node": 2, "path": "translation"}}]})
     with open(sys.argv[1], "w", encoding="ascii") as f:
         json.dump(doc, f, indent=1)
         f.write("\n")
