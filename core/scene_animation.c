@@ -405,10 +405,17 @@ void mvr_scene_posed_bounds(const mvr_scene *s, const scene_node *n, const scene
     grow_box(world, mvr_dvec3_sub(p->bounds_min, grow), mvr_dvec3_add(p->bounds_max, grow), lo, hi);
 }
 
-bool mvr_scene_posed_positions(const mvr_scene *s, uint32_t node, uint32_t primitive, double *out)
+/* The CPU reference of deform.glsl for one attribute: positions (points
+ * through the joint matrices) or normals (directions through their normal
+ * matrices). */
+static bool posed_attribute(const mvr_scene *s, uint32_t node, uint32_t primitive, bool normals, double *out)
 {
     const scene_node *n = &s->nodes[node];
     const scene_primitive *p = &s->primitives[primitive];
+    const float *base = normals ? p->normals : p->positions;
+    const float *deltas = normals ? p->target_normals : p->target_positions;
+    if (!base)
+        return false;
     mvr_dmat4 *world = malloc((s->node_count ? s->node_count : 1) * sizeof *world);
     bool skinned = mvr_scene_draw_skinned(s, n, p);
     mvr_dmat4 *joints = skinned ? malloc(s->skins[n->skin].joint_count * sizeof *joints) : NULL;
@@ -418,29 +425,34 @@ bool mvr_scene_posed_positions(const mvr_scene *s, uint32_t node, uint32_t primi
         return false;
     }
     mvr_scene_world_matrices(s, world);
-    if (skinned)
+    if (skinned) {
         mvr_scene_skin_matrices(s, n->skin, world, joints);
+        for (uint32_t j = 0; normals && j < s->skins[n->skin].joint_count; ++j)
+            joints[j] = mvr_dmat4_normal_matrix(&joints[j]);
+    }
+    mvr_dmat4 place = normals ? mvr_dmat4_normal_matrix(&world[node]) : world[node];
     const float *w = p->target_count ? mvr_scene_node_weights(s, n) : NULL;
     size_t per_target = (size_t)p->vertex_count * 3;
     for (uint32_t v = 0; v < p->vertex_count; ++v) {
-        double pos[3];
-        for (int c = 0; c < 3; ++c)
-            pos[c] = p->positions[(size_t)v * 3 + (size_t)c];
-        for (uint32_t t = 0; w && p->target_positions && t < p->target_count; ++t)
-            for (int c = 0; c < 3; ++c)
-                pos[c] += (double)w[t] * p->target_positions[t * per_target + (size_t)v * 3 + (size_t)c];
-        mvr_dvec3 local = mvr_dvec3_make(pos[0], pos[1], pos[2]), at = mvr_dvec3_make(0, 0, 0);
+        double a[3];
+        for (size_t c = 0; c < 3; ++c)
+            a[c] = base[(size_t)v * 3 + c];
+        for (uint32_t t = 0; w && deltas && t < p->target_count; ++t)
+            for (size_t c = 0; c < 3; ++c)
+                a[c] += (double)w[t] * deltas[t * per_target + (size_t)v * 3 + c];
+        mvr_dvec3 local = mvr_dvec3_make(a[0], a[1], a[2]), at = mvr_dvec3_make(0, 0, 0);
         if (skinned) {
             for (uint32_t set = 0; set < p->influence_sets; ++set)
                 for (size_t c = 0; c < 4; ++c) {
                     double wt = p->weights[set][(size_t)v * 4 + c];
+                    const mvr_dmat4 *m = &joints[p->joints[set][(size_t)v * 4 + c]];
                     if (wt != 0.0)
-                        at = mvr_dvec3_add(at, mvr_dvec3_scale(mvr_dmat4_transform_point(
-                                                                   &joints[p->joints[set][(size_t)v * 4 + c]], local),
+                        at = mvr_dvec3_add(at, mvr_dvec3_scale(normals ? mvr_dmat4_transform_dir(m, local)
+                                                                       : mvr_dmat4_transform_point(m, local),
                                                                wt));
                 }
         } else {
-            at = mvr_dmat4_transform_point(&world[node], local);
+            at = normals ? mvr_dmat4_transform_dir(&place, local) : mvr_dmat4_transform_point(&place, local);
         }
         out[(size_t)v * 3] = at.x;
         out[(size_t)v * 3 + 1] = at.y;
@@ -449,6 +461,16 @@ bool mvr_scene_posed_positions(const mvr_scene *s, uint32_t node, uint32_t primi
     free(world);
     free(joints);
     return true;
+}
+
+bool mvr_scene_posed_positions(const mvr_scene *s, uint32_t node, uint32_t primitive, double *out)
+{
+    return posed_attribute(s, node, primitive, false, out);
+}
+
+bool mvr_scene_posed_normals(const mvr_scene *s, uint32_t node, uint32_t primitive, double *out)
+{
+    return posed_attribute(s, node, primitive, true, out);
 }
 
 /* ---- animations */

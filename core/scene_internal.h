@@ -177,6 +177,10 @@ void mvr_scene_skin_matrices(const mvr_scene *scene, uint32_t skin, const mvr_dm
  * skinned by its skin, else placed by the node), out[3 * vertex_count].
  * Tests compare the GPU's paths with it. False when out of memory. */
 bool mvr_scene_posed_positions(const mvr_scene *scene, uint32_t node, uint32_t primitive, double *out);
+/* The same for normals (the primitive has them; else false): morphed by
+ * the weights' deltas, then through the weighted sum of the joints' normal
+ * matrices (else the node's), left unnormalised as deform.glsl leaves them. */
+bool mvr_scene_posed_normals(const mvr_scene *scene, uint32_t node, uint32_t primitive, double *out);
 
 /* World-space box of one primitive as node draws it this frame: posed by
  * its skin (joint_matrices: that skin's, from mvr_scene_skin_matrices) and

@@ -59,6 +59,12 @@ static void two_bone_skin_90_degrees(mvr_test_state *t)
         else
             expect_vertex(t, pos, v, -(y - 1.0), 1.0 + x, 0.0); /* the tip's 90 degrees */
     }
+    /* normals: a rotation about Z keeps +Z; a node rotated about Y turns
+     * an unskinned mesh's normals with it */
+    double nrm[STRIP_VERTICES * 3];
+    CHECK(t, mvr_scene_posed_normals(s, k.body.id - 1, 0, nrm));
+    for (int v = 0; v < STRIP_VERTICES; ++v)
+        expect_vertex(t, nrm, v, 0.0, 0.0, 1.0);
     /* the weights 2 and 2 were normalised */
     const scene_primitive *p = &s->primitives[0];
     CHECK(t, p->weights[0][4 * 4] == 0.5f && p->weights[0][4 * 4 + 1] == 0.5f);
@@ -76,6 +82,14 @@ static void morph_weight_half_moves_halfway(mvr_test_state *t)
     CHECK(t, mvr_scene_posed_positions(s, k.quad.id - 1, 0, pos));
     expect_vertex(t, pos, 0, -1, -1, 0);
     expect_vertex(t, pos, 2, 1, 1.5, 0); /* the mesh's default weight 0.5 */
+    const double tr[3] = {0, 0, 0}, ry[4] = {0, sqrt(0.5), 0, sqrt(0.5)}, one[3] = {1, 1, 1};
+    mvr_scene_set_node_transform(s, k.quad, tr, ry, one);
+    double nrm[12];
+    CHECK(t, mvr_scene_posed_normals(s, k.quad.id - 1, 0, nrm));
+    expect_vertex(t, nrm, 0, 1.0, 0.0, 0.0); /* +Z turned 90 degrees about +Y is +X */
+    mvr_scene_reset_pose(s);
+    const double identity[4] = {0, 0, 0, 1};
+    mvr_scene_set_node_transform(s, k.quad, tr, identity, one);
     const float w[2] = {1.0f, 0.25f};
     CHECK(t, mvr_scene_set_node_weights(s, k.quad, w, 2) == MVR_OK);
     CHECK(t, mvr_scene_posed_positions(s, k.quad.id - 1, 0, pos));

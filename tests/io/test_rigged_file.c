@@ -12,10 +12,9 @@
  * adds, so the skinned and morphed normals matter) and unlit; the poses
  * differ from each other; and each matches a CPU reference, the vertices
  * posed in double by mvr_scene_posed_positions drawn as a plain mesh: unlit
- * (the file's material made unlit) with the file's bind-pose normals, since
- * mvr_scene_posed_positions poses positions only and an unlit material
- * ignores normals; and lit, with normals the test poses itself
- * (posed_normals, the same maths as deform.glsl). Bound: at most 0.5% of
+ * (the file's material made unlit) with the file's bind-pose normals, which
+ * an unlit material ignores; and lit, with the normals posed by
+ * mvr_scene_posed_normals (the same maths as deform.glsl). Bound: at most 0.5% of
  * the pixels differ by more than 2/255 (measured: none at all, lit or
  * unlit, on llvmpipe). One renderer playing the clip forward and back gives
  * a fresh renderer's bytes. The frame stats count 3 joints, the active
@@ -138,60 +137,11 @@ static bool render_scene(mvr_test_state *t, mvr_context *ctx, mvr_scene *scene, 
     return ok;
 }
 
-/* Normals posed as deform.glsl poses them, in double: the morphed normal
- * (base + weight x delta) through the weighted sum of the joints' normal
- * matrices (inverse-transpose of each joint matrix), left unnormalised. */
-static bool posed_normals(const mvr_scene *s, uint32_t node, uint32_t primitive, float *out)
-{
-    const scene_node *n = &s->nodes[node];
-    const scene_primitive *p = &s->primitives[primitive];
-    if (!p->normals || !mvr_scene_draw_skinned(s, n, p))
-        return false;
-    const scene_skin *skin = &s->skins[n->skin];
-    mvr_dmat4 *world = malloc(s->node_count * sizeof *world);
-    mvr_dmat4 *joints = malloc(skin->joint_count * sizeof *joints);
-    if (!world || !joints) {
-        free(world);
-        free(joints);
-        return false;
-    }
-    mvr_scene_world_matrices(s, world);
-    mvr_scene_skin_matrices(s, n->skin, world, joints);
-    for (uint32_t j = 0; j < skin->joint_count; ++j)
-        joints[j] = mvr_dmat4_normal_matrix(&joints[j]);
-    const float *w = p->target_count ? mvr_scene_node_weights(s, n) : NULL;
-    const size_t per_target = (size_t)p->vertex_count * 3;
-    for (uint32_t v = 0; v < p->vertex_count; ++v) {
-        double nv[3];
-        for (int c = 0; c < 3; ++c)
-            nv[c] = p->normals[(size_t)v * 3 + (size_t)c];
-        for (uint32_t k = 0; w && p->target_normals && k < p->target_count; ++k)
-            for (int c = 0; c < 3; ++c)
-                nv[c] += (double)w[k] * p->target_normals[k * per_target + (size_t)v * 3 + (size_t)c];
-        mvr_dvec3 local = mvr_dvec3_make(nv[0], nv[1], nv[2]), at = mvr_dvec3_make(0, 0, 0);
-        for (uint32_t set = 0; set < p->influence_sets; ++set)
-            for (size_t c = 0; c < 4; ++c) {
-                double wt = p->weights[set][(size_t)v * 4 + c];
-                if (wt != 0.0)
-                    at = mvr_dvec3_add(at, mvr_dvec3_scale(mvr_dmat4_transform_dir(
-                                                               &joints[p->joints[set][(size_t)v * 4 + c]], local),
-                                                           wt));
-            }
-        out[(size_t)v * 3] = (float)at.x;
-        out[(size_t)v * 3 + 1] = (float)at.y;
-        out[(size_t)v * 3 + 2] = (float)at.z;
-    }
-    free(world);
-    free(joints);
-    return true;
-}
-
 /* The CPU reference: the posed vertices (double, narrowed once) as a plain
  * mesh. Unlit: the file's (bind-pose) normals, which the unlit material
- * ignores: mvr_scene_posed_positions poses positions only, so this is the
- * comparison that needs nothing but that. Lit: normals posed by the test
- * itself (posed_normals, a second CPU model of deform.glsl), the file's
- * material and the same light. */
+ * ignores, so this comparison needs posed positions only. Lit: the posed
+ * normals too (mvr_scene_posed_normals), the file's material and the same
+ * light. */
 static mvr_scene *reference_scene(mvr_test_state *t, const mvr_scene *posed, bool lit)
 {
     mvr_scene *s = NULL;
@@ -212,10 +162,15 @@ static mvr_scene *reference_scene(mvr_test_state *t, const mvr_scene *posed, boo
             double *pos = malloc((size_t)p->vertex_count * 3 * sizeof *pos);
             float *fpos = malloc((size_t)p->vertex_count * 3 * sizeof *fpos);
             float *fnrm = lit ? malloc((size_t)p->vertex_count * 3 * sizeof *fnrm) : NULL;
+            double *nrm = lit ? malloc((size_t)p->vertex_count * 3 * sizeof *nrm) : NULL;
             CHECK(t, pos && fpos && mvr_scene_posed_positions(posed, n, m->first_primitive + k, pos));
-            CHECK(t, !lit || (fnrm && posed_normals(posed, n, m->first_primitive + k, fnrm)));
-            for (uint32_t i = 0; i < p->vertex_count * 3; ++i)
+            CHECK(t, !lit || (fnrm && nrm && mvr_scene_posed_normals(posed, n, m->first_primitive + k, nrm)));
+            for (uint32_t i = 0; i < p->vertex_count * 3; ++i) {
                 fpos[i] = (float)pos[i];
+                if (fnrm && nrm)
+                    fnrm[i] = (float)nrm[i];
+            }
+            free(nrm);
             mvr_primitive_desc pd = {.vertex_count = p->vertex_count, .positions = fpos,
                                      .normals = lit ? fnrm : p->normals, .index_count = p->index_count,
                                      .indices32 = p->indices, .material = mat};
