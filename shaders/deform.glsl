@@ -1,7 +1,8 @@
-// deform.glsl: skinning and morph targets in the vertex stage: the mesh
+// deform.glsl: a vertex's geometry (position, normal, tangent) as the
+// vertex stage reads it, with skinning and morph targets: the mesh
 // program's (the vertex path: once per view and pass) or the pre-skinning
-// program's (once per frame, captured by transform feedback). Both run this
-// one function, so both paths give the same vertices.
+// program's (once per frame, captured by transform feedback). Both run
+// mvr_vertex_geometry, so both paths give the same vertices.
 //
 // Per-frame data is one RGBA32F texture shared by every view (uploaded once
 // per frame): joint matrices of every skin, relative to the view origin
@@ -10,6 +11,14 @@
 // attributes per target, slots) then its active (target, weight) pairs, two
 // per texel. Morph deltas (uploaded once per scene) are another texture:
 // delta texel = base + (target * attributes + slot) * vertices + vertex.
+layout(location = 0) in vec3 a_position;
+#ifdef MVR_NORMALS
+layout(location = 1) in vec3 a_normal;
+#endif
+#ifdef MVR_TANGENTS
+layout(location = 2) in vec4 a_tangent;
+#endif
+
 #if defined(MVR_SKIN) || defined(MVR_MORPH)
 #define MVR_DATA_WIDTH_LOG2 10
 uniform highp sampler2D mvr_anim_data;
@@ -106,3 +115,24 @@ void mvr_deform(int joint_base, int morph_base, int delta_base, inout vec3 posit
 #endif
 }
 #endif
+
+// The vertex's geometry in the space its draw's model matrix places: local
+// (plain and morph-only draws), or world relative to the view origin
+// (skinned: the model is the identity). info as mvr_draw_data.info.
+void mvr_vertex_geometry(ivec4 info, out vec3 position, out vec3 normal, out vec4 tangent)
+{
+    position = a_position;
+#ifdef MVR_NORMALS
+    normal = a_normal;
+#else
+    normal = vec3(0.0);
+#endif
+#ifdef MVR_TANGENTS
+    tangent = a_tangent;
+#else
+    tangent = vec4(0.0);
+#endif
+#if defined(MVR_SKIN) || defined(MVR_MORPH)
+    mvr_deform(info.y, info.z, info.w, position, normal, tangent);
+#endif
+}

@@ -20,13 +20,8 @@ layout(std140) uniform mvr_draw {
     mvr_draw_data mvr_draws[MVR_DRAW_CAPACITY];
 };
 
-layout(location = 0) in vec3 a_position;
-#ifdef MVR_NORMALS
-layout(location = 1) in vec3 a_normal;
-#endif
-#ifdef MVR_TANGENTS
-layout(location = 2) in vec4 a_tangent;
-#endif
+// locations 0-2 (position, normal, tangent) and 6-9 (joints, weights):
+// deform.glsl
 #ifdef MVR_UV0
 layout(location = 3) in vec2 a_uv0;
 #endif
@@ -63,21 +58,9 @@ void main()
 {
     int view = mvr_view_index();
     mat4 mvr_model = mvr_draws[gl_InstanceID].model;
-    vec3 position = a_position;
-#ifdef MVR_NORMALS
-    vec3 normal = a_normal;
-#else
-    vec3 normal = vec3(0.0);
-#endif
-#ifdef MVR_TANGENTS
-    vec4 tangent = a_tangent;
-#else
-    vec4 tangent = vec4(0.0);
-#endif
-#if defined(MVR_SKIN) || defined(MVR_MORPH)
-    ivec4 deform = mvr_draws[gl_InstanceID].info;
-    mvr_deform(deform.y, deform.z, deform.w, position, normal, tangent);
-#endif
+    vec3 position, normal;
+    vec4 tangent;
+    mvr_vertex_geometry(mvr_draws[gl_InstanceID].info, position, normal, tangent);
     vec4 world = mvr_model * vec4(position, 1.0);
     v_position = world.xyz;
     v_to_eye = mvr_eye_position[view].xyz - world.xyz;
