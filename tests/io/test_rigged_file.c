@@ -30,6 +30,7 @@
 #include <string.h>
 
 #include "gl/gl_test_util.h"
+#include "gl/skin_render.h"
 #include "mvr/mvr.h"
 #include "mvr/mvr_gltf.h"
 #include "scene_internal.h"
@@ -44,11 +45,6 @@
 
 static const double times[] = {0.0, 0.5, 1.0, 1.7};
 #define TIMES (sizeof times / sizeof times[0])
-
-typedef struct shot {
-    uint8_t *pixels;
-    mvr_frame_stats stats;
-} shot;
 
 static mvr_scene *load_rigged(mvr_test_state *t)
 {
@@ -104,37 +100,7 @@ static mvr_view_set *camera_views(mvr_test_state *t, const mvr_scene *s, uint32_
 static bool render_scene(mvr_test_state *t, mvr_context *ctx, mvr_scene *scene, mvr_view_set *vs,
                          mvr_view_path path, mvr_skinning_path skin, shot *out)
 {
-    memset(out, 0, sizeof *out);
-    uint32_t views = mvr_view_set_count(vs);
-    mvr_renderer_desc rd = {.context = ctx, .view_path = path, .skinning_path = skin};
-    mvr_renderer *r = NULL;
-    mvr_target *target = NULL;
-    mvr_error err;
-    mvr_target_desc td = {.width = W, .height = H, .layers = views};
-    bool ok = mvr_renderer_create(&rd, &r, &err) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK;
-    CHECK_MSG(t, ok, "renderer / target: %s", r ? mvr_renderer_last_error(r) : err.message);
-    mvr_render_desc desc = {.clear_color = {0.05f, 0.05f, 0.05f, 1.0f}, .exposure = 1.0f};
-    if (ok) {
-        ok = mvr_renderer_render(r, scene, vs, target, &desc) == MVR_OK;
-        CHECK_MSG(t, ok, "render (%s, %s): %s", mvr_view_path_name(path), mvr_skinning_path_name(skin),
-                  mvr_renderer_last_error(r));
-        if (ok)
-            mvr_renderer_get_stats(r, &out->stats);
-    }
-    if (ok) {
-        out->pixels = malloc((size_t)views * W * H * 4);
-        for (uint32_t k = 0; ok && k < views; ++k)
-            ok = mvr_renderer_read_layer(r, target, k, MVR_READBACK_RGBA8, out->pixels + (size_t)k * W * H * 4,
-                                         (size_t)W * H * 4) == MVR_OK;
-        CHECK(t, ok);
-        if (!ok) {
-            free(out->pixels);
-            out->pixels = NULL;
-        }
-    }
-    mvr_target_destroy(target);
-    mvr_renderer_destroy(r);
-    return ok;
+    return render_shot(t, ctx, scene, vs, path, skin, false, W, H, 1, out);
 }
 
 /* The CPU reference: the posed vertices (double, narrowed once) as a plain
@@ -188,18 +154,6 @@ static mvr_scene *reference_scene(mvr_test_state *t, const mvr_scene *posed, boo
     if (lit)
         add_light(s);
     return s;
-}
-
-static uint32_t count_diff(const uint8_t *a, const uint8_t *b, size_t pixels, int tolerance)
-{
-    uint32_t n = 0;
-    for (size_t i = 0; i < pixels; ++i)
-        for (size_t c = 0; c < 4; ++c)
-            if (abs((int)a[i * 4 + c] - (int)b[i * 4 + c]) > tolerance) {
-                n++;
-                break;
-            }
-    return n;
 }
 
 /* Pixels the (orange) tube covers: red well above the dark grey clear (~63). */

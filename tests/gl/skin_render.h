@@ -1,0 +1,72 @@
+/* Rendering helpers of the skinning tests (tests/gl/test_skinning.c,
+ * tests/io/test_rigged_file.c): one render of a view set with forced view
+ * and skinning paths, read back; pixel differences. */
+#ifndef MVR_TEST_SKIN_RENDER_H
+#define MVR_TEST_SKIN_RENDER_H
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "mvr/mvr.h"
+#include "mvr_test.h"
+
+typedef struct shot {
+    uint8_t *pixels;             /* views x width x height RGBA8, NULL when the render failed */
+    mvr_frame_stats stats;       /* of the first frame */
+} shot;
+
+/* frames renders (the last one is read back; the stats are the first's)
+ * of every view into width x height layers; shadows from every
+ * directional light when asked. */
+static inline bool render_shot(mvr_test_state *t, mvr_context *ctx, mvr_scene *scene, mvr_view_set *vs,
+                               mvr_view_path path, mvr_skinning_path skin, bool shadows, uint32_t width,
+                               uint32_t height, int frames, shot *out)
+{
+    memset(out, 0, sizeof *out);
+    uint32_t views = mvr_view_set_count(vs);
+    mvr_renderer_desc rd = {.context = ctx, .view_path = path, .skinning_path = skin};
+    mvr_renderer *r = NULL;
+    mvr_target *target = NULL;
+    mvr_error err;
+    mvr_target_desc td = {.width = width, .height = height, .layers = views};
+    bool ok = mvr_renderer_create(&rd, &r, &err) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK;
+    CHECK_MSG(t, ok, "renderer / target: %s", r ? mvr_renderer_last_error(r) : err.message);
+    mvr_render_desc desc = {.clear_color = {0.05f, 0.05f, 0.05f, 1.0f}, .exposure = 1.0f};
+    desc.shadows.mode = shadows ? MVR_SHADOWS_ALL : MVR_SHADOWS_OFF;
+    for (int frame = 0; ok && frame < frames; ++frame) {
+        ok = mvr_renderer_render(r, scene, vs, target, &desc) == MVR_OK;
+        CHECK_MSG(t, ok, "render (%s, %s): %s", mvr_view_path_name(path), mvr_skinning_path_name(skin),
+                  mvr_renderer_last_error(r));
+        if (ok && frame == 0)
+            mvr_renderer_get_stats(r, &out->stats);
+    }
+    size_t layer = (size_t)width * height * 4;
+    if (ok && (out->pixels = malloc(views * layer)) != NULL) {
+        for (uint32_t k = 0; ok && k < views; ++k)
+            ok = mvr_renderer_read_layer(r, target, k, MVR_READBACK_RGBA8, out->pixels + k * layer, layer) ==
+                 MVR_OK;
+        CHECK(t, ok);
+        if (!ok) {
+            free(out->pixels);
+            out->pixels = NULL;
+        }
+    }
+    mvr_target_destroy(target);
+    mvr_renderer_destroy(r);
+    return ok && out->pixels;
+}
+
+/* Pixels whose RGBA differs by more than tolerance in some channel. */
+static inline uint32_t count_diff(const uint8_t *a, const uint8_t *b, size_t pixels, int tolerance)
+{
+    uint32_t n = 0;
+    for (size_t i = 0; i < pixels; ++i)
+        for (size_t c = 0; c < 4; ++c)
+            if (abs((int)a[i * 4 + c] - (int)b[i * 4 + c]) > tolerance) {
+                n++;
+                break;
+            }
+    return n;
+}
+
+#endif
