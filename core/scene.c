@@ -6,8 +6,7 @@
 
 #include "scene_internal.h"
 
-static mvr_result fail(mvr_scene *s, mvr_result r, const char *fmt, ...) MVR_PRINTF(3, 4);
-static mvr_result fail(mvr_scene *s, mvr_result r, const char *fmt, ...)
+mvr_result mvr_scene_fail(mvr_scene *s, mvr_result r, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
@@ -16,7 +15,6 @@ static mvr_result fail(mvr_scene *s, mvr_result r, const char *fmt, ...)
     return r;
 }
 
-#define GROW(s, field, count, cap) mvr_array_grow((void **)&(s)->field, &(s)->cap, (s)->count, sizeof *(s)->field)
 
 static void *copy_floats(const float *src, uint32_t count, uint32_t per, bool *oom)
 {
@@ -120,26 +118,26 @@ const char *mvr_scene_last_error(const mvr_scene *s)
 mvr_result mvr_scene_add_image(mvr_scene *s, const mvr_image_desc *d, mvr_image_id *out)
 {
     if (!s || !d || !out)
-        return s ? fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_image: NULL argument")
+        return s ? mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_image: NULL argument")
                  : MVR_ERROR_INVALID_ARGUMENT;
     out->id = 0;
     if (d->width == 0 || d->height == 0 || d->width > 16384 || d->height > 16384)
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
                     "mvr_scene_add_image(%s): size %ux%u is not within 1..16384",
                     d->name ? d->name : "", d->width, d->height);
     if (!d->rgba8)
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_image(%s): no pixels",
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_image(%s): no pixels",
                     d->name ? d->name : "");
     size_t bytes;
     if (!mvr_size_mul((size_t)d->width * d->height, 4, &bytes))
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_image: size overflows");
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_image: size overflows");
     if (!GROW(s, images, image_count, image_cap))
-        return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_image: out of memory");
+        return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_image: out of memory");
     scene_image *img = &s->images[s->image_count];
     memset(img, 0, sizeof *img);
     img->rgba = malloc(bytes);
     if (!img->rgba)
-        return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_image: out of memory (%zu bytes)", bytes);
+        return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_image: out of memory (%zu bytes)", bytes);
     memcpy(img->rgba, d->rgba8, bytes);
     img->width = d->width;
     img->height = d->height;
@@ -162,7 +160,7 @@ mvr_material_desc mvr_material_defaults(void)
     return m;
 }
 
-static bool finite_floats(const float *v, size_t n)
+bool mvr_finite_floats(const float *v, size_t n)
 {
     for (size_t i = 0; i < n; ++i)
         if (!isfinite(v[i]))
@@ -170,26 +168,28 @@ static bool finite_floats(const float *v, size_t n)
     return true;
 }
 
+
 static mvr_result check_texture(mvr_scene *s, const mvr_texture_ref *t, const char *role,
                                 const char *material)
 {
     if (t->image.id > s->image_count)
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
                     "mvr_scene_add_material(%s): %s texture names image %u; the scene has %u",
                     material, role, t->image.id, s->image_count);
     if (t->texcoord > 1)
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
                     "mvr_scene_add_material(%s): %s texture uses TEXCOORD_%u; 0 and 1 are supported",
                     material, role, t->texcoord);
     if ((unsigned)t->sampler.mag_filter > MVR_FILTER_LINEAR_MIPMAP_LINEAR ||
         (unsigned)t->sampler.min_filter > MVR_FILTER_LINEAR_MIPMAP_LINEAR ||
         (unsigned)t->sampler.wrap_s > MVR_WRAP_MIRRORED_REPEAT ||
         (unsigned)t->sampler.wrap_t > MVR_WRAP_MIRRORED_REPEAT)
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_material(%s): %s sampler has an unknown enum",
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                              "mvr_scene_add_material(%s): %s sampler has an unknown enum",
                     material, role);
-    if (!finite_floats(t->transform.offset, 2) || !finite_floats(t->transform.scale, 2) ||
+    if (!mvr_finite_floats(t->transform.offset, 2) || !mvr_finite_floats(t->transform.scale, 2) ||
         !isfinite(t->transform.rotation))
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
                     "mvr_scene_add_material(%s): %s texture transform is not finite", material, role);
     return MVR_OK;
 }
@@ -197,12 +197,12 @@ static mvr_result check_texture(mvr_scene *s, const mvr_texture_ref *t, const ch
 mvr_result mvr_scene_add_material(mvr_scene *s, const mvr_material_desc *d, mvr_material_id *out)
 {
     if (!s || !d || !out)
-        return s ? fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_material: NULL argument")
+        return s ? mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_material: NULL argument")
                  : MVR_ERROR_INVALID_ARGUMENT;
     out->id = 0;
     const char *name = d->name ? d->name : "";
     if ((unsigned)d->alpha_mode > MVR_ALPHA_BLEND)
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_material(%s): unknown alpha mode %d",
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_material(%s): unknown alpha mode %d",
                     name, (int)d->alpha_mode);
     const struct { const mvr_texture_ref *t; const char *role; } roles[] = {
         {&d->base_color, "base color"}, {&d->metallic_roughness, "metallic-roughness"},
@@ -213,7 +213,7 @@ mvr_result mvr_scene_add_material(mvr_scene *s, const mvr_material_desc *d, mvr_
             return r;
     }
     if (!GROW(s, materials, material_count, material_cap))
-        return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_material: out of memory");
+        return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_material: out of memory");
     scene_material *m = &s->materials[s->material_count];
     m->desc = *d;
     m->desc.name = NULL;
@@ -328,37 +328,37 @@ static uint32_t sanitize_vertices(scene_primitive *p)
 static mvr_result add_primitive(mvr_scene *s, const mvr_primitive_desc *d, const char *mesh, uint32_t k)
 {
     if (d->vertex_count == 0 || !d->positions)
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
                     "mvr_scene_add_mesh(%s): primitive %u has no positions", mesh, k);
     if ((unsigned)d->mode > MVR_PRIMITIVE_POINTS)
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_mesh(%s): primitive %u: unknown mode",
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_mesh(%s): primitive %u: unknown mode",
                     mesh, k);
     if (d->material.id > s->material_count)
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
                     "mvr_scene_add_mesh(%s): primitive %u names material %u; the scene has %u",
                     mesh, k, d->material.id, s->material_count);
-    if (!finite_floats(d->positions, (size_t)d->vertex_count * 3))
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+    if (!mvr_finite_floats(d->positions, (size_t)d->vertex_count * 3))
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
                     "mvr_scene_add_mesh(%s): primitive %u has NaN or infinite positions", mesh, k);
     uint32_t count = d->index_count ? d->index_count : d->vertex_count;
     uint32_t per = d->mode == MVR_PRIMITIVE_TRIANGLES ? 3u : d->mode == MVR_PRIMITIVE_LINES ? 2u : 1u;
     if (count % per != 0)
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
                     "mvr_scene_add_mesh(%s): primitive %u: %u %s is not a multiple of %u",
                     mesh, k, count, d->index_count ? "indices" : "vertices", per);
     if (d->index_count && !d->indices16 == !d->indices32)
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
                     "mvr_scene_add_mesh(%s): primitive %u: give exactly one of indices16 / indices32",
                     mesh, k);
     for (uint32_t i = 0; i < d->index_count; ++i) {
         uint32_t v = d->indices16 ? d->indices16[i] : d->indices32[i];
         if (v >= d->vertex_count)
-            return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+            return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
                         "mvr_scene_add_mesh(%s): primitive %u: index %u at %u is out of range (%u vertices)",
                         mesh, k, v, i, d->vertex_count);
     }
     if (!GROW(s, primitives, primitive_count, primitive_cap))
-        return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_mesh: out of memory");
+        return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_mesh: out of memory");
     scene_primitive *p = &s->primitives[s->primitive_count];
     memset(p, 0, sizeof *p);
     bool oom = false;
@@ -384,7 +384,7 @@ static mvr_result add_primitive(mvr_scene *s, const mvr_primitive_desc *d, const
     }
     if (oom) {
         free_primitive(p);
-        return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_mesh(%s): out of memory", mesh);
+        return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_mesh(%s): out of memory", mesh);
     }
     mvr_result dr = mvr_scene_primitive_deformers(s, p, d, mesh, k);
     if (dr != MVR_OK) {
@@ -418,14 +418,14 @@ static mvr_result add_primitive(mvr_scene *s, const mvr_primitive_desc *d, const
 mvr_result mvr_scene_add_mesh(mvr_scene *s, const mvr_mesh_desc *d, mvr_mesh_id *out)
 {
     if (!s || !d || !out)
-        return s ? fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_mesh: NULL argument")
+        return s ? mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_mesh: NULL argument")
                  : MVR_ERROR_INVALID_ARGUMENT;
     out->id = 0;
     const char *name = d->name ? d->name : "";
     if (d->primitive_count == 0 || !d->primitives)
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_mesh(%s): no primitives", name);
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_mesh(%s): no primitives", name);
     if (!GROW(s, meshes, mesh_count, mesh_cap))
-        return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_mesh: out of memory");
+        return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_mesh: out of memory");
     uint32_t first = s->primitive_count;
     for (uint32_t k = 0; k < d->primitive_count; ++k) {
         mvr_result r = add_primitive(s, &d->primitives[k], name, k);
@@ -443,7 +443,7 @@ mvr_result mvr_scene_add_mesh(mvr_scene *s, const mvr_mesh_desc *d, mvr_mesh_id 
             bad = "its primitives have different numbers of morph targets";
     if (!bad && d->weight_count && (d->weight_count != targets || !d->weights))
         bad = "its default weights are not one per morph target";
-    if (!bad && d->weight_count && !finite_floats(d->weights, d->weight_count))
+    if (!bad && d->weight_count && !mvr_finite_floats(d->weights, d->weight_count))
         bad = "its default weights are not finite";
     float *weights = NULL;
     if (!bad && targets) {
@@ -456,7 +456,8 @@ mvr_result mvr_scene_add_mesh(mvr_scene *s, const mvr_mesh_desc *d, mvr_mesh_id 
     if (bad) {
         while (s->primitive_count > first)
             free_primitive(&s->primitives[--s->primitive_count]);
-        return fail(s, weights || strcmp(bad, "out of memory") ? MVR_ERROR_INVALID_ARGUMENT : MVR_ERROR_OUT_OF_MEMORY,
+        return mvr_scene_fail(s, weights || strcmp(bad,
+                              "out of memory") ? MVR_ERROR_INVALID_ARGUMENT : MVR_ERROR_OUT_OF_MEMORY,
                     "mvr_scene_add_mesh(%s): %s (%u targets, %u weights)", name, bad, targets, d->weight_count);
     }
     for (uint32_t k = 0; k < d->primitive_count; ++k) {
@@ -487,17 +488,17 @@ mvr_result mvr_scene_add_mesh(mvr_scene *s, const mvr_mesh_desc *d, mvr_mesh_id 
 mvr_result mvr_scene_add_light(mvr_scene *s, const mvr_light_desc *d, mvr_light_id *out)
 {
     if (!s || !d || !out)
-        return s ? fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_light: NULL argument")
+        return s ? mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_light: NULL argument")
                  : MVR_ERROR_INVALID_ARGUMENT;
     out->id = 0;
     if ((unsigned)d->type > MVR_LIGHT_SPOT)
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_light: unknown type %d", (int)d->type);
-    if (!finite_floats(d->color, 3) || !isfinite(d->intensity) || d->intensity < 0 ||
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_light: unknown type %d", (int)d->type);
+    if (!mvr_finite_floats(d->color, 3) || !isfinite(d->intensity) || d->intensity < 0 ||
         !isfinite(d->range) || d->range < 0)
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
                     "mvr_scene_add_light: color, intensity and range must be finite and >= 0");
     if (!GROW(s, lights, light_count, light_cap))
-        return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_light: out of memory");
+        return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_light: out of memory");
     mvr_light_desc l = *d;
     if (l.color[0] == 0 && l.color[1] == 0 && l.color[2] == 0)
         l.color[0] = l.color[1] = l.color[2] = 1.0f;
@@ -514,14 +515,14 @@ mvr_result mvr_scene_add_light(mvr_scene *s, const mvr_light_desc *d, mvr_light_
 mvr_result mvr_scene_add_camera(mvr_scene *s, const mvr_projection *p, mvr_camera_id *out)
 {
     if (!s || !p || !out)
-        return s ? fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_camera: NULL argument")
+        return s ? mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_camera: NULL argument")
                  : MVR_ERROR_INVALID_ARGUMENT;
     out->id = 0;
     if ((unsigned)p->type > MVR_PROJECTION_MATRIX)
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_camera: unknown projection %d",
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_camera: unknown projection %d",
                     (int)p->type);
     if (!GROW(s, cameras, camera_count, camera_cap))
-        return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_camera: out of memory");
+        return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_camera: out of memory");
     s->cameras[s->camera_count++] = *p;
     out->id = s->camera_count;
     return MVR_OK;
@@ -566,13 +567,13 @@ static void set_trs(mvr_scene *s, scene_node *n, const char *where, const double
 mvr_result mvr_scene_add_node(mvr_scene *s, const mvr_node_desc *d, mvr_node_id *out)
 {
     if (!s || !d || !out)
-        return s ? fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_node: NULL argument")
+        return s ? mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_node: NULL argument")
                  : MVR_ERROR_INVALID_ARGUMENT;
     out->id = 0;
     const char *name = d->name ? d->name : "";
     if (d->parent.id > s->node_count || d->mesh.id > s->mesh_count ||
         d->light.id > s->light_count || d->camera.id > s->camera_count)
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
                     "mvr_scene_add_node(%s): parent %u / mesh %u / light %u / camera %u out of range "
                     "(%u nodes, %u meshes, %u lights, %u cameras)",
                     name, d->parent.id, d->mesh.id, d->light.id, d->camera.id, s->node_count,
@@ -580,9 +581,9 @@ mvr_result mvr_scene_add_node(mvr_scene *s, const mvr_node_desc *d, mvr_node_id 
     if (d->use_matrix ? !finite_doubles(d->matrix, 16)
                       : !(finite_doubles(d->translation, 3) && finite_doubles(d->rotation, 4) &&
                           finite_doubles(d->scale, 3)))
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_node(%s): transform is not finite", name);
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_node(%s): transform is not finite", name);
     if (!GROW(s, nodes, node_count, node_cap))
-        return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_node: out of memory");
+        return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_node: out of memory");
     scene_node *n = &s->nodes[s->node_count];
     memset(n, 0, sizeof *n);
     n->parent = d->parent.id ? d->parent.id - 1 : MVR_NO_INDEX;
@@ -609,13 +610,13 @@ mvr_result mvr_scene_set_node_transform(mvr_scene *s, mvr_node_id node, const do
                                         const double r[4], const double sc[3])
 {
     if (!s || !t || !r || !sc)
-        return s ? fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_set_node_transform: NULL argument")
+        return s ? mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_set_node_transform: NULL argument")
                  : MVR_ERROR_INVALID_ARGUMENT;
     if (node.id == 0 || node.id > s->node_count)
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_set_node_transform: node %u out of range",
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_set_node_transform: node %u out of range",
                     node.id);
     if (!finite_doubles(t, 3) || !finite_doubles(r, 4) || !finite_doubles(sc, 3))
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_set_node_transform: not finite");
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_set_node_transform: not finite");
     scene_node *n = &s->nodes[node.id - 1];
     n->use_matrix = false;
     set_trs(s, n, "mvr_scene_set_node_transform", t, r, sc);
@@ -628,7 +629,7 @@ mvr_result mvr_scene_set_node_transform(mvr_scene *s, mvr_node_id node, const do
 
 void mvr_scene_set_ambient(mvr_scene *s, const float rgb[3])
 {
-    if (!s || !rgb || !finite_floats(rgb, 3))
+    if (!s || !rgb || !mvr_finite_floats(rgb, 3))
         return;
     memcpy(s->ambient, rgb, sizeof s->ambient);
     s->transform_version++;

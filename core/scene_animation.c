@@ -8,25 +8,6 @@
 #include "animation.h"
 #include "scene_internal.h"
 
-static mvr_result fail(mvr_scene *s, mvr_result r, const char *fmt, ...) MVR_PRINTF(3, 4);
-static mvr_result fail(mvr_scene *s, mvr_result r, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    mvr_error_record(s->last_error, sizeof s->last_error, &s->logger, r, fmt, ap);
-    va_end(ap);
-    return r;
-}
-
-#define GROW(s, field, count, cap) mvr_array_grow((void **)&(s)->field, &(s)->cap, (s)->count, sizeof *(s)->field)
-
-static bool finite_run(const float *v, size_t n)
-{
-    for (size_t i = 0; i < n; ++i)
-        if (!isfinite(v[i]))
-            return false;
-    return true;
-}
 
 /* n elements of `size` bytes, NULL (and *oom) when the size overflows or
  * malloc fails */
@@ -68,7 +49,7 @@ static mvr_result copy_skinning(mvr_scene *s, scene_primitive *p, const mvr_prim
     if (!d->joints0 && !d->weights0 && !d->joints1 && !d->weights1)
         return MVR_OK;
     if (!d->joints0 || !d->weights0 || !d->joints1 != !d->weights1)
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
                     "mvr_scene_add_mesh(%s): primitive %u: joints and weights come in pairs, set 0 first", mesh, k);
     uint32_t sets = d->joints1 ? 2u : 1u;
     size_t n = (size_t)p->vertex_count * 4;
@@ -77,7 +58,7 @@ static mvr_result copy_skinning(mvr_scene *s, scene_primitive *p, const mvr_prim
     for (uint32_t set = 0; set < sets; ++set)
         for (size_t i = 0; i < n; ++i)
             if (!isfinite(w[set][i]) || w[set][i] < 0.0f)
-                return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
                             "mvr_scene_add_mesh(%s): primitive %u: weights%u of vertex %zu is %g (finite, >= 0)",
                             mesh, k, set, i / 4, (double)w[set][i]);
     bool oom = false;
@@ -85,7 +66,7 @@ static mvr_result copy_skinning(mvr_scene *s, scene_primitive *p, const mvr_prim
         p->joints[set] = alloc_array(n, sizeof(uint16_t), &oom);
         p->weights[set] = alloc_array(n, sizeof(float), &oom);
         if (oom)
-            return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_mesh(%s): out of memory", mesh);
+            return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_mesh(%s): out of memory", mesh);
         memcpy(p->joints[set], j[set], n * sizeof(uint16_t));
         memcpy(p->weights[set], w[set], n * sizeof(float));
     }
@@ -122,7 +103,7 @@ static mvr_result copy_skinning(mvr_scene *s, scene_primitive *p, const mvr_prim
     p->joint_min = alloc_array((size_t)max_joint + 1, sizeof *p->joint_min, &oom);
     p->joint_max = alloc_array((size_t)max_joint + 1, sizeof *p->joint_max, &oom);
     if (oom)
-        return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_mesh(%s): out of memory", mesh);
+        return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_mesh(%s): out of memory", mesh);
     for (uint32_t i = 0; i <= max_joint; ++i) {
         p->joint_min[i] = mvr_dvec3_make(INFINITY, INFINITY, INFINITY);
         p->joint_max[i] = mvr_dvec3_make(-INFINITY, -INFINITY, -INFINITY);
@@ -148,11 +129,13 @@ static mvr_result copy_targets(mvr_scene *s, scene_primitive *p, const mvr_primi
     if (d->target_count == 0)
         return MVR_OK;
     if (!d->targets)
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_mesh(%s): primitive %u: %u targets, NULL array",
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                              "mvr_scene_add_mesh(%s): primitive %u: %u targets, NULL array",
                     mesh, k, d->target_count);
     size_t per_target = (size_t)p->vertex_count * 3, total;
     if (!mvr_size_mul(per_target, d->target_count, &total))
-        return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_mesh(%s): primitive %u: too many targets", mesh, k);
+        return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY,
+                              "mvr_scene_add_mesh(%s): primitive %u: too many targets", mesh, k);
     bool any[3] = {false, false, false};
     for (uint32_t t = 0; t < d->target_count; ++t) {
         const mvr_morph_target_desc *td = &d->targets[t];
@@ -161,14 +144,14 @@ static mvr_result copy_targets(mvr_scene *s, scene_primitive *p, const mvr_primi
             if (!attr[a])
                 continue;
             any[a] = true;
-            if (!finite_run(attr[a], per_target))
-                return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+            if (!mvr_finite_floats(attr[a], per_target))
+                return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
                             "mvr_scene_add_mesh(%s): primitive %u: target %u has NaN or infinite %s deltas", mesh, k,
                             t, a == 0 ? "position" : a == 1 ? "normal" : "tangent");
         }
     }
     if ((any[1] && !p->normals) || (any[2] && !p->tangents))
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
                     "mvr_scene_add_mesh(%s): primitive %u: a target moves %s the primitive does not have", mesh, k,
                     any[1] && !p->normals ? "normals" : "tangents");
     bool oom = false;
@@ -178,7 +161,7 @@ static mvr_result copy_targets(mvr_scene *s, scene_primitive *p, const mvr_primi
             continue;
         *dst[a] = alloc_array(total, sizeof(float), &oom);
         if (oom)
-            return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_mesh(%s): out of memory (targets)", mesh);
+            return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_mesh(%s): out of memory (targets)", mesh);
         for (uint32_t t = 0; t < d->target_count; ++t) {
             const mvr_morph_target_desc *td = &d->targets[t];
             const float *src = a == 0 ? td->positions : a == 1 ? td->normals : td->tangents;
@@ -191,7 +174,7 @@ static mvr_result copy_targets(mvr_scene *s, scene_primitive *p, const mvr_primi
     }
     p->target_extent = alloc_array(d->target_count, sizeof *p->target_extent, &oom);
     if (oom)
-        return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_mesh(%s): out of memory (targets)", mesh);
+        return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_mesh(%s): out of memory (targets)", mesh);
     for (uint32_t t = 0; t < d->target_count; ++t) {
         double e[3] = {0, 0, 0};
         const float *pd = p->target_positions ? p->target_positions + (size_t)t * per_target : NULL;
@@ -238,15 +221,17 @@ void mvr_scene_free_skins_and_animations(mvr_scene *s)
 mvr_result mvr_scene_add_skin(mvr_scene *s, const mvr_skin_desc *d, mvr_skin_id *out)
 {
     if (!s || !d || !out)
-        return s ? fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_skin: NULL argument")
+        return s ? mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_skin: NULL argument")
                  : MVR_ERROR_INVALID_ARGUMENT;
     out->id = 0;
     const char *name = d->name ? d->name : "";
     if (d->joint_count == 0 || d->joint_count > 65536 || !d->joints)
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_skin(%s): %u joints (1 .. 65536, array given)",
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                              "mvr_scene_add_skin(%s): %u joints (1 .. 65536, array given)",
                     name, d->joint_count);
     if (d->skeleton.id > s->node_count)
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_skin(%s): skeleton node %u out of range (%u nodes)",
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                              "mvr_scene_add_skin(%s): skeleton node %u out of range (%u nodes)",
                     name, d->skeleton.id, s->node_count);
     bool oom = false;
     uint8_t *seen = calloc(s->node_count ? s->node_count : 1, 1);
@@ -256,7 +241,7 @@ mvr_result mvr_scene_add_skin(mvr_scene *s, const mvr_skin_desc *d, mvr_skin_id 
         free(seen);
         free(joints);
         free(ibm);
-        return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_skin(%s): out of memory", name);
+        return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_skin(%s): out of memory", name);
     }
     const char *why = NULL;
     uint32_t bad = 0;
@@ -283,7 +268,7 @@ mvr_result mvr_scene_add_skin(mvr_scene *s, const mvr_skin_desc *d, mvr_skin_id 
     if (why) {
         free(joints);
         free(ibm);
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_skin(%s): joint %u (node %u) %s", name, bad,
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_skin(%s): joint %u (node %u) %s", name, bad,
                     d->joints[bad].id, why);
     }
     scene_skin *sk = &s->skins[s->skin_count];
@@ -303,11 +288,12 @@ mvr_result mvr_scene_set_node_skin(mvr_scene *s, mvr_node_id node, mvr_skin_id s
     if (!s)
         return MVR_ERROR_INVALID_ARGUMENT;
     if (node.id == 0 || node.id > s->node_count || skin.id > s->skin_count)
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_set_node_skin: node %u / skin %u out of range "
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_set_node_skin: node %u / skin %u out of range "
                     "(%u nodes, %u skins)", node.id, skin.id, s->node_count, s->skin_count);
     scene_node *n = &s->nodes[node.id - 1];
     if (skin.id && n->mesh == MVR_NO_INDEX)
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_set_node_skin: node %u '%s' has no mesh to skin",
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                              "mvr_scene_set_node_skin: node %u '%s' has no mesh to skin",
                     node.id, n->name);
     if (skin.id) {
         const scene_skin *sk = &s->skins[skin.id - 1];
@@ -315,7 +301,7 @@ mvr_result mvr_scene_set_node_skin(mvr_scene *s, mvr_node_id node, mvr_skin_id s
         for (uint32_t k = 0; k < m->primitive_count; ++k) {
             const scene_primitive *p = &s->primitives[m->first_primitive + k];
             if (p->influence_sets && p->max_joint >= sk->joint_count)
-                return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
                             "mvr_scene_set_node_skin: node %u '%s': mesh '%s' primitive %u uses joint %u; skin %u "
                             "'%s' has %u joints", node.id, n->name, m->name, k, p->max_joint, skin.id, sk->name,
                             sk->joint_count);
@@ -331,7 +317,8 @@ mvr_result mvr_scene_set_node_weights(mvr_scene *s, mvr_node_id node, const floa
     if (!s)
         return MVR_ERROR_INVALID_ARGUMENT;
     if (node.id == 0 || node.id > s->node_count)
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_set_node_weights: node %u out of range", node.id);
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                              "mvr_scene_set_node_weights: node %u out of range", node.id);
     scene_node *n = &s->nodes[node.id - 1];
     if (count == 0) {
         free(n->weights);
@@ -341,8 +328,8 @@ mvr_result mvr_scene_set_node_weights(mvr_scene *s, mvr_node_id node, const floa
         return MVR_OK;
     }
     uint32_t targets = n->mesh == MVR_NO_INDEX ? 0 : s->meshes[n->mesh].target_count;
-    if (!weights || count != targets || !finite_run(weights, count))
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+    if (!weights || count != targets || !mvr_finite_floats(weights, count))
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
                     "mvr_scene_set_node_weights: node %u '%s': %u weights given, its mesh has %u morph targets "
                     "(finite weights, one per target)", node.id, n->name, count, targets);
     if (!n->weights)
@@ -350,7 +337,7 @@ mvr_result mvr_scene_set_node_weights(mvr_scene *s, mvr_node_id node, const floa
     if (!n->rest_weights)
         n->rest_weights = malloc((size_t)count * sizeof *n->rest_weights);
     if (!n->weights || !n->rest_weights)
-        return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_set_node_weights: out of memory");
+        return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_set_node_weights: out of memory");
     memcpy(n->weights, weights, (size_t)count * sizeof *weights);
     memcpy(n->rest_weights, weights, (size_t)count * sizeof *weights);
     s->transform_version++;
@@ -499,17 +486,18 @@ static void free_animation(scene_animation *a)
 mvr_result mvr_scene_add_animation(mvr_scene *s, const mvr_animation_desc *d, uint32_t *out_index)
 {
     if (!s || !d)
-        return s ? fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_animation: NULL argument")
+        return s ? mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_animation: NULL argument")
                  : MVR_ERROR_INVALID_ARGUMENT;
     const char *name = d->name ? d->name : "";
     if ((d->sampler_count && !d->samplers) || (d->channel_count && !d->channels))
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_animation(%s): NULL samplers or channels", name);
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                              "mvr_scene_add_animation(%s): NULL samplers or channels", name);
     /* channels first: they say how many components each sampler holds */
     for (uint32_t c = 0; c < d->channel_count; ++c) {
         const mvr_animation_channel_desc *ch = &d->channels[c];
         if (ch->sampler >= d->sampler_count || ch->node.id == 0 || ch->node.id > s->node_count ||
             !mvr_animation_path_name(ch->path))
-            return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+            return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
                         "mvr_scene_add_animation(%s): channel %u: sampler %u / node %u / path %d out of range "
                         "(%u samplers, %u nodes)", name, c, ch->sampler, ch->node.id, (int)ch->path,
                         d->sampler_count, s->node_count);
@@ -518,11 +506,11 @@ mvr_result mvr_scene_add_animation(mvr_scene *s, const mvr_animation_desc *d, ui
         if (ch->path == MVR_ANIMATION_PATH_WEIGHTS) {
             comps = n->mesh == MVR_NO_INDEX ? 0 : s->meshes[n->mesh].target_count;
             if (comps == 0)
-                return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
                             "mvr_scene_add_animation(%s): channel %u animates the weights of node %u '%s', whose "
                             "mesh has no morph targets", name, c, ch->node.id, n->name);
         } else if (n->use_matrix) {
-            return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+            return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
                         "mvr_scene_add_animation(%s): channel %u animates the %s of node %u '%s', which has a "
                         "matrix (glTF 3.5.2: animated nodes use TRS)", name, c, mvr_animation_path_name(ch->path),
                         ch->node.id, n->name);
@@ -532,13 +520,13 @@ mvr_result mvr_scene_add_animation(mvr_scene *s, const mvr_animation_desc *d, ui
         if ((unsigned)sd->interpolation > MVR_INTERPOLATION_CUBICSPLINE ||
             !mvr_anim_sampler_value_count(sd->key_count, comps, sd->interpolation, &need) ||
             need != sd->value_count)
-            return fail(s, MVR_ERROR_INVALID_ARGUMENT,
+            return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
                         "mvr_scene_add_animation(%s): sampler %u has %u values for %u keys; channel %u (%s of node "
                         "%u) needs %zu", name, ch->sampler, sd->value_count, sd->key_count, c,
                         mvr_animation_path_name(ch->path), ch->node.id, need);
     }
     if (!GROW(s, animations, animation_count, animation_cap))
-        return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_animation: out of memory");
+        return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_animation: out of memory");
     scene_animation a;
     memset(&a, 0, sizeof a);
     bool oom = false;
@@ -546,7 +534,7 @@ mvr_result mvr_scene_add_animation(mvr_scene *s, const mvr_animation_desc *d, ui
     a.channels = alloc_array(d->channel_count, sizeof *a.channels, &oom);
     if (!a.samplers || oom) {
         free_animation(&a);
-        return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_animation(%s): out of memory", name);
+        return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_animation(%s): out of memory", name);
     }
     a.sampler_count = d->sampler_count;
     a.start = INFINITY;
@@ -556,14 +544,15 @@ mvr_result mvr_scene_add_animation(mvr_scene *s, const mvr_animation_desc *d, ui
         scene_anim_sampler *sa = &a.samplers[k];
         if (sd->key_count == 0 || !sd->times || (sd->value_count && !sd->values)) {
             free_animation(&a);
-            return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_animation(%s): sampler %u has no keys or values",
+            return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                                  "mvr_scene_add_animation(%s): sampler %u has no keys or values",
                         name, k);
         }
         sa->times = alloc_array(sd->key_count, sizeof(double), &oom);
         sa->values = alloc_array(sd->value_count, sizeof(double), &oom);
         if (oom) {
             free_animation(&a);
-            return fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_animation(%s): out of memory", name);
+            return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_animation(%s): out of memory", name);
         }
         for (uint32_t i = 0; i < sd->key_count; ++i)
             sa->times[i] = sd->times[i];
@@ -584,7 +573,8 @@ mvr_result mvr_scene_add_animation(mvr_scene *s, const mvr_animation_desc *d, ui
         char why[160];
         if (!mvr_anim_sampler_valid(&as, why, sizeof why)) {
             free_animation(&a);
-            return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_animation(%s): sampler %u: %s", name, k, why);
+            return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                                  "mvr_scene_add_animation(%s): sampler %u: %s", name, k, why);
         }
         a.start = fmin(a.start, sa->times[0]);
         a.end = fmax(a.end, sa->times[sa->key_count - 1]);
@@ -621,7 +611,7 @@ mvr_result mvr_scene_get_animation_info(const mvr_scene *s, uint32_t index, mvr_
         return MVR_ERROR_INVALID_ARGUMENT;
     memset(out, 0, sizeof *out);
     if (index >= s->animation_count)
-        return fail((mvr_scene *)s, MVR_ERROR_INVALID_ARGUMENT,
+        return mvr_scene_fail((mvr_scene *)s, MVR_ERROR_INVALID_ARGUMENT,
                     "mvr_scene_get_animation_info: animation %u out of range (%u)", index, s->animation_count);
     const scene_animation *a = &s->animations[index];
     out->name = a->name;
@@ -646,7 +636,8 @@ mvr_result mvr_scene_find_animation(const mvr_scene *s, const char *name, uint32
         size_t used = strlen(names);
         mvr_str_format(names + used, sizeof names - used, "%s'%s'", i ? ", " : "", s->animations[i].name);
     }
-    return fail((mvr_scene *)s, MVR_ERROR_INVALID_ARGUMENT, "no animation named '%s' (%u animations%s%s)", name,
+    return mvr_scene_fail((mvr_scene *)s, MVR_ERROR_INVALID_ARGUMENT, "no animation named '%s' (%u animations%s%s)",
+                          name,
                 s->animation_count, s->animation_count ? ": " : "", names);
 }
 
@@ -716,10 +707,12 @@ mvr_result mvr_scene_apply_animation(mvr_scene *s, uint32_t index, double time, 
     if (!s)
         return MVR_ERROR_INVALID_ARGUMENT;
     if ((unsigned)wrap > MVR_ANIMATION_LOOP || isnan(time))
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_apply_animation: wrap %d / time %g invalid", (int)wrap,
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                              "mvr_scene_apply_animation: wrap %d / time %g invalid", (int)wrap,
                     time);
     if (index != MVR_ANIMATION_ALL && index >= s->animation_count)
-        return fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_apply_animation: animation %u out of range (%u)", index,
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                              "mvr_scene_apply_animation: animation %u out of range (%u)", index,
                     s->animation_count);
     bool changed = false;
     for (uint32_t i = 0; i < s->animation_count; ++i)

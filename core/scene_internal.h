@@ -141,6 +141,14 @@ struct mvr_scene {
 
 uint64_t mvr_scene_serial(const mvr_scene *scene);
 
+/* Records a failure of a scene call (its message, logged) and returns r. */
+mvr_result mvr_scene_fail(mvr_scene *scene, mvr_result r, const char *fmt, ...) MVR_PRINTF(3, 4);
+/* Every one of n floats is finite. */
+bool mvr_finite_floats(const float *v, size_t n);
+
+/* Grows the array scene->field (count used, cap allocated) by one slot. */
+#define GROW(s, field, count, cap) mvr_array_grow((void **)&(s)->field, &(s)->cap, (s)->count, sizeof *(s)->field)
+
 /* The resolved default material (glTF's defaults). */
 const mvr_material_desc *mvr_scene_material(const mvr_scene *scene, uint32_t index);
 
