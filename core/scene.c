@@ -123,11 +123,11 @@ mvr_result mvr_scene_add_image(mvr_scene *s, const mvr_image_desc *d, mvr_image_
     out->id = 0;
     if (d->width == 0 || d->height == 0 || d->width > 16384 || d->height > 16384)
         return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                    "mvr_scene_add_image(%s): size %ux%u is not within 1..16384",
-                    d->name ? d->name : "", d->width, d->height);
+                              "mvr_scene_add_image(%s): size %ux%u is not within 1..16384",
+                              d->name ? d->name : "", d->width, d->height);
     if (!d->rgba8)
         return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_image(%s): no pixels",
-                    d->name ? d->name : "");
+                              d->name ? d->name : "");
     size_t bytes;
     if (!mvr_size_mul((size_t)d->width * d->height, 4, &bytes))
         return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_image: size overflows");
@@ -174,23 +174,23 @@ static mvr_result check_texture(mvr_scene *s, const mvr_texture_ref *t, const ch
 {
     if (t->image.id > s->image_count)
         return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                    "mvr_scene_add_material(%s): %s texture names image %u; the scene has %u",
-                    material, role, t->image.id, s->image_count);
+                              "mvr_scene_add_material(%s): %s texture names image %u; the scene has %u",
+                              material, role, t->image.id, s->image_count);
     if (t->texcoord > 1)
         return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                    "mvr_scene_add_material(%s): %s texture uses TEXCOORD_%u; 0 and 1 are supported",
-                    material, role, t->texcoord);
+                              "mvr_scene_add_material(%s): %s texture uses TEXCOORD_%u; 0 and 1 are supported",
+                              material, role, t->texcoord);
     if ((unsigned)t->sampler.mag_filter > MVR_FILTER_LINEAR_MIPMAP_LINEAR ||
         (unsigned)t->sampler.min_filter > MVR_FILTER_LINEAR_MIPMAP_LINEAR ||
         (unsigned)t->sampler.wrap_s > MVR_WRAP_MIRRORED_REPEAT ||
         (unsigned)t->sampler.wrap_t > MVR_WRAP_MIRRORED_REPEAT)
         return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
                               "mvr_scene_add_material(%s): %s sampler has an unknown enum",
-                    material, role);
+                              material, role);
     if (!mvr_finite_floats(t->transform.offset, 2) || !mvr_finite_floats(t->transform.scale, 2) ||
         !isfinite(t->transform.rotation))
         return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                    "mvr_scene_add_material(%s): %s texture transform is not finite", material, role);
+                              "mvr_scene_add_material(%s): %s texture transform is not finite", material, role);
     return MVR_OK;
 }
 
@@ -203,7 +203,7 @@ mvr_result mvr_scene_add_material(mvr_scene *s, const mvr_material_desc *d, mvr_
     const char *name = d->name ? d->name : "";
     if ((unsigned)d->alpha_mode > MVR_ALPHA_BLEND)
         return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_material(%s): unknown alpha mode %d",
-                    name, (int)d->alpha_mode);
+                              name, (int)d->alpha_mode);
     const struct { const mvr_texture_ref *t; const char *role; } roles[] = {
         {&d->base_color, "base color"}, {&d->metallic_roughness, "metallic-roughness"},
         {&d->normal, "normal"}, {&d->occlusion, "occlusion"}, {&d->emissive, "emissive"}};
@@ -329,33 +329,33 @@ static mvr_result add_primitive(mvr_scene *s, const mvr_primitive_desc *d, const
 {
     if (d->vertex_count == 0 || !d->positions)
         return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                    "mvr_scene_add_mesh(%s): primitive %u has no positions", mesh, k);
+                              "mvr_scene_add_mesh(%s): primitive %u has no positions", mesh, k);
     if ((unsigned)d->mode > MVR_PRIMITIVE_POINTS)
         return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_mesh(%s): primitive %u: unknown mode",
-                    mesh, k);
+                              mesh, k);
     if (d->material.id > s->material_count)
         return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                    "mvr_scene_add_mesh(%s): primitive %u names material %u; the scene has %u",
-                    mesh, k, d->material.id, s->material_count);
+                              "mvr_scene_add_mesh(%s): primitive %u names material %u; the scene has %u",
+                              mesh, k, d->material.id, s->material_count);
     if (!mvr_finite_floats(d->positions, (size_t)d->vertex_count * 3))
         return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                    "mvr_scene_add_mesh(%s): primitive %u has NaN or infinite positions", mesh, k);
+                              "mvr_scene_add_mesh(%s): primitive %u has NaN or infinite positions", mesh, k);
     uint32_t count = d->index_count ? d->index_count : d->vertex_count;
     uint32_t per = d->mode == MVR_PRIMITIVE_TRIANGLES ? 3u : d->mode == MVR_PRIMITIVE_LINES ? 2u : 1u;
     if (count % per != 0)
         return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                    "mvr_scene_add_mesh(%s): primitive %u: %u %s is not a multiple of %u",
-                    mesh, k, count, d->index_count ? "indices" : "vertices", per);
+                              "mvr_scene_add_mesh(%s): primitive %u: %u %s is not a multiple of %u",
+                              mesh, k, count, d->index_count ? "indices" : "vertices", per);
     if (d->index_count && !d->indices16 == !d->indices32)
         return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                    "mvr_scene_add_mesh(%s): primitive %u: give exactly one of indices16 / indices32",
-                    mesh, k);
+                              "mvr_scene_add_mesh(%s): primitive %u: give exactly one of indices16 / indices32",
+                              mesh, k);
     for (uint32_t i = 0; i < d->index_count; ++i) {
         uint32_t v = d->indices16 ? d->indices16[i] : d->indices32[i];
         if (v >= d->vertex_count)
             return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                        "mvr_scene_add_mesh(%s): primitive %u: index %u at %u is out of range (%u vertices)",
-                        mesh, k, v, i, d->vertex_count);
+                                  "mvr_scene_add_mesh(%s): primitive %u: index %u at %u is out of range (%u vertices)",
+                                  mesh, k, v, i, d->vertex_count);
     }
     if (!GROW(s, primitives, primitive_count, primitive_cap))
         return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_mesh: out of memory");
@@ -456,9 +456,9 @@ mvr_result mvr_scene_add_mesh(mvr_scene *s, const mvr_mesh_desc *d, mvr_mesh_id 
     if (bad) {
         while (s->primitive_count > first)
             free_primitive(&s->primitives[--s->primitive_count]);
-        return mvr_scene_fail(s, weights || strcmp(bad,
-                              "out of memory") ? MVR_ERROR_INVALID_ARGUMENT : MVR_ERROR_OUT_OF_MEMORY,
-                    "mvr_scene_add_mesh(%s): %s (%u targets, %u weights)", name, bad, targets, d->weight_count);
+        return mvr_scene_fail(s, strcmp(bad, "out of memory") ? MVR_ERROR_INVALID_ARGUMENT : MVR_ERROR_OUT_OF_MEMORY,
+                              "mvr_scene_add_mesh(%s): %s (%u targets, %u weights)", name, bad, targets,
+                              d->weight_count);
     }
     for (uint32_t k = 0; k < d->primitive_count; ++k) {
         scene_primitive *p = &s->primitives[first + k];
@@ -496,7 +496,7 @@ mvr_result mvr_scene_add_light(mvr_scene *s, const mvr_light_desc *d, mvr_light_
     if (!mvr_finite_floats(d->color, 3) || !isfinite(d->intensity) || d->intensity < 0 ||
         !isfinite(d->range) || d->range < 0)
         return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                    "mvr_scene_add_light: color, intensity and range must be finite and >= 0");
+                              "mvr_scene_add_light: color, intensity and range must be finite and >= 0");
     if (!GROW(s, lights, light_count, light_cap))
         return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_light: out of memory");
     mvr_light_desc l = *d;
@@ -520,7 +520,7 @@ mvr_result mvr_scene_add_camera(mvr_scene *s, const mvr_projection *p, mvr_camer
     out->id = 0;
     if ((unsigned)p->type > MVR_PROJECTION_MATRIX)
         return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_camera: unknown projection %d",
-                    (int)p->type);
+                              (int)p->type);
     if (!GROW(s, cameras, camera_count, camera_cap))
         return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_camera: out of memory");
     s->cameras[s->camera_count++] = *p;
@@ -574,10 +574,10 @@ mvr_result mvr_scene_add_node(mvr_scene *s, const mvr_node_desc *d, mvr_node_id 
     if (d->parent.id > s->node_count || d->mesh.id > s->mesh_count ||
         d->light.id > s->light_count || d->camera.id > s->camera_count)
         return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                    "mvr_scene_add_node(%s): parent %u / mesh %u / light %u / camera %u out of range "
-                    "(%u nodes, %u meshes, %u lights, %u cameras)",
-                    name, d->parent.id, d->mesh.id, d->light.id, d->camera.id, s->node_count,
-                    s->mesh_count, s->light_count, s->camera_count);
+                              "mvr_scene_add_node(%s): parent %u / mesh %u / light %u / camera %u out of range "
+                              "(%u nodes, %u meshes, %u lights, %u cameras)",
+                              name, d->parent.id, d->mesh.id, d->light.id, d->camera.id, s->node_count,
+                              s->mesh_count, s->light_count, s->camera_count);
     if (d->use_matrix ? !finite_doubles(d->matrix, 16)
                       : !(finite_doubles(d->translation, 3) && finite_doubles(d->rotation, 4) &&
                           finite_doubles(d->scale, 3)))
@@ -614,7 +614,7 @@ mvr_result mvr_scene_set_node_transform(mvr_scene *s, mvr_node_id node, const do
                  : MVR_ERROR_INVALID_ARGUMENT;
     if (node.id == 0 || node.id > s->node_count)
         return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_set_node_transform: node %u out of range",
-                    node.id);
+                              node.id);
     if (!finite_doubles(t, 3) || !finite_doubles(r, 4) || !finite_doubles(sc, 3))
         return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_set_node_transform: not finite");
     scene_node *n = &s->nodes[node.id - 1];

@@ -8,7 +8,6 @@
 #include "animation.h"
 #include "scene_internal.h"
 
-
 /* n elements of `size` bytes, NULL (and *oom) when the size overflows or
  * malloc fails */
 static void *alloc_array(size_t n, size_t size, bool *oom)
@@ -50,7 +49,8 @@ static mvr_result copy_skinning(mvr_scene *s, scene_primitive *p, const mvr_prim
         return MVR_OK;
     if (!d->joints0 || !d->weights0 || !d->joints1 != !d->weights1)
         return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                    "mvr_scene_add_mesh(%s): primitive %u: joints and weights come in pairs, set 0 first", mesh, k);
+                              "mvr_scene_add_mesh(%s): primitive %u: joints and weights come in pairs, set 0 first",
+                              mesh, k);
     uint32_t sets = d->joints1 ? 2u : 1u;
     size_t n = (size_t)p->vertex_count * 4;
     const float *w[2] = {d->weights0, d->weights1};
@@ -58,9 +58,10 @@ static mvr_result copy_skinning(mvr_scene *s, scene_primitive *p, const mvr_prim
     for (uint32_t set = 0; set < sets; ++set)
         for (size_t i = 0; i < n; ++i)
             if (!isfinite(w[set][i]) || w[set][i] < 0.0f)
-                return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                            "mvr_scene_add_mesh(%s): primitive %u: weights%u of vertex %zu is %g (finite, >= 0)",
-                            mesh, k, set, i / 4, (double)w[set][i]);
+                return mvr_scene_fail(
+                    s, MVR_ERROR_INVALID_ARGUMENT,
+                    "mvr_scene_add_mesh(%s): primitive %u: weights%u of vertex %zu is %g (finite, >= 0)", mesh, k, set,
+                    i / 4, (double)w[set][i]);
     bool oom = false;
     for (uint32_t set = 0; set < sets; ++set) {
         p->joints[set] = alloc_array(n, sizeof(uint16_t), &oom);
@@ -97,7 +98,8 @@ static mvr_result copy_skinning(mvr_scene *s, scene_primitive *p, const mvr_prim
         s->sanitized += repaired;
         mvr_log(&s->logger, MVR_LOG_WARNING, MVR_LOG_ID_GENERAL,
                 "mvr_scene_add_mesh(%s): primitive %u: %u vertices have all skin weights 0 (they follow joint 0 "
-                "of their first set)", mesh, k, repaired);
+                "of their first set)",
+                mesh, k, repaired);
     }
     p->max_joint = max_joint;
     p->joint_min = alloc_array((size_t)max_joint + 1, sizeof *p->joint_min, &oom);
@@ -130,12 +132,11 @@ static mvr_result copy_targets(mvr_scene *s, scene_primitive *p, const mvr_primi
         return MVR_OK;
     if (!d->targets)
         return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                              "mvr_scene_add_mesh(%s): primitive %u: %u targets, NULL array",
-                    mesh, k, d->target_count);
+                              "mvr_scene_add_mesh(%s): primitive %u: %u targets, NULL array", mesh, k, d->target_count);
     size_t per_target = (size_t)p->vertex_count * 3, total;
     if (!mvr_size_mul(per_target, d->target_count, &total))
-        return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY,
-                              "mvr_scene_add_mesh(%s): primitive %u: too many targets", mesh, k);
+        return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_mesh(%s): primitive %u: too many targets",
+                              mesh, k);
     bool any[3] = {false, false, false};
     for (uint32_t t = 0; t < d->target_count; ++t) {
         const mvr_morph_target_desc *td = &d->targets[t];
@@ -146,14 +147,17 @@ static mvr_result copy_targets(mvr_scene *s, scene_primitive *p, const mvr_primi
             any[a] = true;
             if (!mvr_finite_floats(attr[a], per_target))
                 return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                            "mvr_scene_add_mesh(%s): primitive %u: target %u has NaN or infinite %s deltas", mesh, k,
-                            t, a == 0 ? "position" : a == 1 ? "normal" : "tangent");
+                                      "mvr_scene_add_mesh(%s): primitive %u: target %u has NaN or infinite %s deltas",
+                                      mesh, k, t,
+                                      a == 0   ? "position"
+                                      : a == 1 ? "normal"
+                                               : "tangent");
         }
     }
     if ((any[1] && !p->normals) || (any[2] && !p->tangents))
         return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                    "mvr_scene_add_mesh(%s): primitive %u: a target moves %s the primitive does not have", mesh, k,
-                    any[1] && !p->normals ? "normals" : "tangents");
+                              "mvr_scene_add_mesh(%s): primitive %u: a target moves %s the primitive does not have",
+                              mesh, k, any[1] && !p->normals ? "normals" : "tangents");
     bool oom = false;
     float **dst[3] = {&p->target_positions, &p->target_normals, &p->target_tangents};
     for (int a = 0; a < 3; ++a) {
@@ -227,12 +231,11 @@ mvr_result mvr_scene_add_skin(mvr_scene *s, const mvr_skin_desc *d, mvr_skin_id 
     const char *name = d->name ? d->name : "";
     if (d->joint_count == 0 || d->joint_count > 65536 || !d->joints)
         return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                              "mvr_scene_add_skin(%s): %u joints (1 .. 65536, array given)",
-                    name, d->joint_count);
+                              "mvr_scene_add_skin(%s): %u joints (1 .. 65536, array given)", name, d->joint_count);
     if (d->skeleton.id > s->node_count)
         return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                              "mvr_scene_add_skin(%s): skeleton node %u out of range (%u nodes)",
-                    name, d->skeleton.id, s->node_count);
+                              "mvr_scene_add_skin(%s): skeleton node %u out of range (%u nodes)", name, d->skeleton.id,
+                              s->node_count);
     bool oom = false;
     uint8_t *seen = calloc(s->node_count ? s->node_count : 1, 1);
     uint32_t *joints = alloc_array(d->joint_count, sizeof *joints, &oom);
@@ -269,7 +272,7 @@ mvr_result mvr_scene_add_skin(mvr_scene *s, const mvr_skin_desc *d, mvr_skin_id 
         free(joints);
         free(ibm);
         return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_skin(%s): joint %u (node %u) %s", name, bad,
-                    d->joints[bad].id, why);
+                              d->joints[bad].id, why);
     }
     scene_skin *sk = &s->skins[s->skin_count];
     memset(sk, 0, sizeof *sk);
@@ -288,23 +291,25 @@ mvr_result mvr_scene_set_node_skin(mvr_scene *s, mvr_node_id node, mvr_skin_id s
     if (!s)
         return MVR_ERROR_INVALID_ARGUMENT;
     if (node.id == 0 || node.id > s->node_count || skin.id > s->skin_count)
-        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_set_node_skin: node %u / skin %u out of range "
-                    "(%u nodes, %u skins)", node.id, skin.id, s->node_count, s->skin_count);
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                              "mvr_scene_set_node_skin: node %u / skin %u out of range "
+                              "(%u nodes, %u skins)",
+                              node.id, skin.id, s->node_count, s->skin_count);
     scene_node *n = &s->nodes[node.id - 1];
     if (skin.id && n->mesh == MVR_NO_INDEX)
         return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                              "mvr_scene_set_node_skin: node %u '%s' has no mesh to skin",
-                    node.id, n->name);
+                              "mvr_scene_set_node_skin: node %u '%s' has no mesh to skin", node.id, n->name);
     if (skin.id) {
         const scene_skin *sk = &s->skins[skin.id - 1];
         const scene_mesh *m = &s->meshes[n->mesh];
         for (uint32_t k = 0; k < m->primitive_count; ++k) {
             const scene_primitive *p = &s->primitives[m->first_primitive + k];
             if (p->influence_sets && p->max_joint >= sk->joint_count)
-                return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                            "mvr_scene_set_node_skin: node %u '%s': mesh '%s' primitive %u uses joint %u; skin %u "
-                            "'%s' has %u joints", node.id, n->name, m->name, k, p->max_joint, skin.id, sk->name,
-                            sk->joint_count);
+                return mvr_scene_fail(
+                    s, MVR_ERROR_INVALID_ARGUMENT,
+                    "mvr_scene_set_node_skin: node %u '%s': mesh '%s' primitive %u uses joint %u; skin %u "
+                    "'%s' has %u joints",
+                    node.id, n->name, m->name, k, p->max_joint, skin.id, sk->name, sk->joint_count);
         }
     }
     n->skin = skin.id ? skin.id - 1 : MVR_NO_INDEX;
@@ -317,8 +322,8 @@ mvr_result mvr_scene_set_node_weights(mvr_scene *s, mvr_node_id node, const floa
     if (!s)
         return MVR_ERROR_INVALID_ARGUMENT;
     if (node.id == 0 || node.id > s->node_count)
-        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                              "mvr_scene_set_node_weights: node %u out of range", node.id);
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_set_node_weights: node %u out of range",
+                              node.id);
     scene_node *n = &s->nodes[node.id - 1];
     if (count == 0) {
         free(n->weights);
@@ -329,9 +334,11 @@ mvr_result mvr_scene_set_node_weights(mvr_scene *s, mvr_node_id node, const floa
     }
     uint32_t targets = n->mesh == MVR_NO_INDEX ? 0 : s->meshes[n->mesh].target_count;
     if (!weights || count != targets || !mvr_finite_floats(weights, count))
-        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                    "mvr_scene_set_node_weights: node %u '%s': %u weights given, its mesh has %u morph targets "
-                    "(finite weights, one per target)", node.id, n->name, count, targets);
+        return mvr_scene_fail(
+            s, MVR_ERROR_INVALID_ARGUMENT,
+            "mvr_scene_set_node_weights: node %u '%s': %u weights given, its mesh has %u morph targets "
+            "(finite weights, one per target)",
+            node.id, n->name, count, targets);
     if (!n->weights)
         n->weights = malloc((size_t)count * sizeof *n->weights);
     if (!n->rest_weights)
@@ -368,8 +375,8 @@ static void grow_box(const mvr_dmat4 *m, mvr_dvec3 lo, mvr_dvec3 hi, mvr_dvec3 *
     }
 }
 
-void mvr_scene_posed_bounds(const mvr_scene *s, const scene_node *n, const scene_primitive *p,
-                            const mvr_dmat4 *world, const mvr_dmat4 *joint_matrices, mvr_dvec3 *lo, mvr_dvec3 *hi)
+void mvr_scene_posed_bounds(const mvr_scene *s, const scene_node *n, const scene_primitive *p, const mvr_dmat4 *world,
+                            const mvr_dmat4 *joint_matrices, mvr_dvec3 *lo, mvr_dvec3 *hi)
 {
     /* morphing moves a vertex by sum_t w_t d_t: at most sum_t |w_t| times
      * each target's largest delta per axis */
@@ -384,8 +391,8 @@ void mvr_scene_posed_bounds(const mvr_scene *s, const scene_node *n, const scene
          * of it, each inside that joint's transformed box: inside the union */
         for (uint32_t j = 0; j <= p->max_joint; ++j)
             if (p->joint_min[j].x <= p->joint_max[j].x)
-                grow_box(&joint_matrices[j], mvr_dvec3_sub(p->joint_min[j], grow),
-                         mvr_dvec3_add(p->joint_max[j], grow), lo, hi);
+                grow_box(&joint_matrices[j], mvr_dvec3_sub(p->joint_min[j], grow), mvr_dvec3_add(p->joint_max[j], grow),
+                         lo, hi);
         if (lo->x <= hi->x)
             return;
     }
@@ -490,40 +497,45 @@ mvr_result mvr_scene_add_animation(mvr_scene *s, const mvr_animation_desc *d, ui
                  : MVR_ERROR_INVALID_ARGUMENT;
     const char *name = d->name ? d->name : "";
     if ((d->sampler_count && !d->samplers) || (d->channel_count && !d->channels))
-        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                              "mvr_scene_add_animation(%s): NULL samplers or channels", name);
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_animation(%s): NULL samplers or channels",
+                              name);
     /* channels first: they say how many components each sampler holds */
     for (uint32_t c = 0; c < d->channel_count; ++c) {
         const mvr_animation_channel_desc *ch = &d->channels[c];
         if (ch->sampler >= d->sampler_count || ch->node.id == 0 || ch->node.id > s->node_count ||
             !mvr_animation_path_name(ch->path))
-            return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                        "mvr_scene_add_animation(%s): channel %u: sampler %u / node %u / path %d out of range "
-                        "(%u samplers, %u nodes)", name, c, ch->sampler, ch->node.id, (int)ch->path,
-                        d->sampler_count, s->node_count);
+            return mvr_scene_fail(
+                s, MVR_ERROR_INVALID_ARGUMENT,
+                "mvr_scene_add_animation(%s): channel %u: sampler %u / node %u / path %d out of range "
+                "(%u samplers, %u nodes)",
+                name, c, ch->sampler, ch->node.id, (int)ch->path, d->sampler_count, s->node_count);
         const scene_node *n = &s->nodes[ch->node.id - 1];
         uint32_t comps = ch->path == MVR_ANIMATION_PATH_ROTATION ? 4u : 3u;
         if (ch->path == MVR_ANIMATION_PATH_WEIGHTS) {
             comps = n->mesh == MVR_NO_INDEX ? 0 : s->meshes[n->mesh].target_count;
             if (comps == 0)
-                return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                            "mvr_scene_add_animation(%s): channel %u animates the weights of node %u '%s', whose "
-                            "mesh has no morph targets", name, c, ch->node.id, n->name);
+                return mvr_scene_fail(
+                    s, MVR_ERROR_INVALID_ARGUMENT,
+                    "mvr_scene_add_animation(%s): channel %u animates the weights of node %u '%s', whose "
+                    "mesh has no morph targets",
+                    name, c, ch->node.id, n->name);
         } else if (n->use_matrix) {
-            return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                        "mvr_scene_add_animation(%s): channel %u animates the %s of node %u '%s', which has a "
-                        "matrix (glTF 3.5.2: animated nodes use TRS)", name, c, mvr_animation_path_name(ch->path),
-                        ch->node.id, n->name);
+            return mvr_scene_fail(
+                s, MVR_ERROR_INVALID_ARGUMENT,
+                "mvr_scene_add_animation(%s): channel %u animates the %s of node %u '%s', which has a "
+                "matrix (glTF 3.5.2: animated nodes use TRS)",
+                name, c, mvr_animation_path_name(ch->path), ch->node.id, n->name);
         }
         const mvr_animation_sampler_desc *sd = &d->samplers[ch->sampler];
         size_t need;
         if ((unsigned)sd->interpolation > MVR_INTERPOLATION_CUBICSPLINE ||
-            !mvr_anim_sampler_value_count(sd->key_count, comps, sd->interpolation, &need) ||
-            need != sd->value_count)
-            return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                        "mvr_scene_add_animation(%s): sampler %u has %u values for %u keys; channel %u (%s of node "
-                        "%u) needs %zu", name, ch->sampler, sd->value_count, sd->key_count, c,
-                        mvr_animation_path_name(ch->path), ch->node.id, need);
+            !mvr_anim_sampler_value_count(sd->key_count, comps, sd->interpolation, &need) || need != sd->value_count)
+            return mvr_scene_fail(
+                s, MVR_ERROR_INVALID_ARGUMENT,
+                "mvr_scene_add_animation(%s): sampler %u has %u values for %u keys; channel %u (%s of node "
+                "%u) needs %zu",
+                name, ch->sampler, sd->value_count, sd->key_count, c, mvr_animation_path_name(ch->path), ch->node.id,
+                need);
     }
     if (!GROW(s, animations, animation_count, animation_cap))
         return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_animation: out of memory");
@@ -545,8 +557,7 @@ mvr_result mvr_scene_add_animation(mvr_scene *s, const mvr_animation_desc *d, ui
         if (sd->key_count == 0 || !sd->times || (sd->value_count && !sd->values)) {
             free_animation(&a);
             return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                                  "mvr_scene_add_animation(%s): sampler %u has no keys or values",
-                        name, k);
+                                  "mvr_scene_add_animation(%s): sampler %u has no keys or values", name, k);
         }
         sa->times = alloc_array(sd->key_count, sizeof(double), &oom);
         sa->values = alloc_array(sd->value_count, sizeof(double), &oom);
@@ -563,7 +574,11 @@ mvr_result mvr_scene_add_animation(mvr_scene *s, const mvr_animation_desc *d, ui
         sa->interpolation = sd->interpolation;
         /* times and values: the sampler module's own check (components 1:
          * the channels checked the count) */
-        mvr_anim_sampler as = {sa->times, sa->values, sa->key_count, sa->value_count, 1,
+        mvr_anim_sampler as = {sa->times,
+                               sa->values,
+                               sa->key_count,
+                               sa->value_count,
+                               1,
                                (unsigned)sd->interpolation <= MVR_INTERPOLATION_CUBICSPLINE ? sd->interpolation
                                                                                             : MVR_INTERPOLATION_LINEAR,
                                false};
@@ -573,8 +588,8 @@ mvr_result mvr_scene_add_animation(mvr_scene *s, const mvr_animation_desc *d, ui
         char why[160];
         if (!mvr_anim_sampler_valid(&as, why, sizeof why)) {
             free_animation(&a);
-            return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                                  "mvr_scene_add_animation(%s): sampler %u: %s", name, k, why);
+            return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_animation(%s): sampler %u: %s", name, k,
+                                  why);
         }
         a.start = fmin(a.start, sa->times[0]);
         a.end = fmax(a.end, sa->times[sa->key_count - 1]);
@@ -612,7 +627,8 @@ mvr_result mvr_scene_get_animation_info(const mvr_scene *s, uint32_t index, mvr_
     memset(out, 0, sizeof *out);
     if (index >= s->animation_count)
         return mvr_scene_fail((mvr_scene *)s, MVR_ERROR_INVALID_ARGUMENT,
-                    "mvr_scene_get_animation_info: animation %u out of range (%u)", index, s->animation_count);
+                              "mvr_scene_get_animation_info: animation %u out of range (%u)", index,
+                              s->animation_count);
     const scene_animation *a = &s->animations[index];
     out->name = a->name;
     out->start = a->start;
@@ -637,8 +653,7 @@ mvr_result mvr_scene_find_animation(const mvr_scene *s, const char *name, uint32
         mvr_str_format(names + used, sizeof names - used, "%s'%s'", i ? ", " : "", s->animations[i].name);
     }
     return mvr_scene_fail((mvr_scene *)s, MVR_ERROR_INVALID_ARGUMENT, "no animation named '%s' (%u animations%s%s)",
-                          name,
-                s->animation_count, s->animation_count ? ": " : "", names);
+                          name, s->animation_count, s->animation_count ? ": " : "", names);
 }
 
 static bool same3(mvr_dvec3 a, const double *b)
@@ -657,8 +672,13 @@ static bool apply_one(mvr_scene *s, const scene_animation *a, double time, mvr_a
         const scene_anim_channel *ch = &a->channels[c];
         const scene_anim_sampler *sa = &a->samplers[ch->sampler];
         scene_node *n = &s->nodes[ch->node];
-        mvr_anim_sampler as = {sa->times, sa->values, sa->key_count, sa->value_count, ch->components,
-                               sa->interpolation, ch->path == MVR_ANIMATION_PATH_ROTATION};
+        mvr_anim_sampler as = {sa->times,
+                               sa->values,
+                               sa->key_count,
+                               sa->value_count,
+                               ch->components,
+                               sa->interpolation,
+                               ch->path == MVR_ANIMATION_PATH_ROTATION};
         double *out = value;
         if (ch->components > MVR_ARRAY_COUNT(value)) {
             double *p = realloc(big, ch->components * sizeof *p);
@@ -707,13 +727,11 @@ mvr_result mvr_scene_apply_animation(mvr_scene *s, uint32_t index, double time, 
     if (!s)
         return MVR_ERROR_INVALID_ARGUMENT;
     if ((unsigned)wrap > MVR_ANIMATION_LOOP || isnan(time))
-        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                              "mvr_scene_apply_animation: wrap %d / time %g invalid", (int)wrap,
-                    time);
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_apply_animation: wrap %d / time %g invalid",
+                              (int)wrap, time);
     if (index != MVR_ANIMATION_ALL && index >= s->animation_count)
         return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                              "mvr_scene_apply_animation: animation %u out of range (%u)", index,
-                    s->animation_count);
+                              "mvr_scene_apply_animation: animation %u out of range (%u)", index, s->animation_count);
     bool changed = false;
     for (uint32_t i = 0; i < s->animation_count; ++i)
         if (index == MVR_ANIMATION_ALL || index == i)
