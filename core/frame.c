@@ -241,6 +241,9 @@ static bool grow_buffer(void **p, size_t *cap, size_t need, size_t elem)
 
 static bool deform_texels(mvr_frame *f, uint32_t count, float **out)
 {
+    *out = NULL;
+    if (count == 0)
+        return true;
     size_t need = ((size_t)f->deform_texels + count) * 4;
     if (!grow_buffer((void **)&f->deform_data, &f->deform_data_cap, need, sizeof(float)))
         return false;
