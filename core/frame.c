@@ -39,10 +39,17 @@ uint32_t mvr_draw_features(const scene_primitive *p, const mvr_material_desc *m)
         f |= MVR_FEATURE_DOUBLE_SIDED;
     if (m->unlit)
         f |= MVR_FEATURE_UNLIT;
+    /* the extensions' code only where a material departs from glTF's core
+     * values (ior 1.5, no specular extension, no clearcoat) */
+    if (m->ior != 1.5f || m->specular.enabled)
+        f |= MVR_FEATURE_SPECULAR;
+    if (m->clearcoat.factor > 0.0f)
+        f |= MVR_FEATURE_CLEARCOAT;
     if (m->unlit)
         /* unlit reads no normal, tangent or lighting texture */
         f &= ~(uint32_t)(MVR_FEATURE_NORMALS | MVR_FEATURE_TANGENTS | MVR_FEATURE_NORMAL_TEX |
-                         MVR_FEATURE_METAL_ROUGH_TEX | MVR_FEATURE_OCCLUSION_TEX | MVR_FEATURE_EMISSIVE_TEX);
+                         MVR_FEATURE_METAL_ROUGH_TEX | MVR_FEATURE_OCCLUSION_TEX | MVR_FEATURE_EMISSIVE_TEX |
+                         MVR_FEATURE_SPECULAR | MVR_FEATURE_CLEARCOAT);
     return f;
 }
 
@@ -86,6 +93,8 @@ static const mvr_block_member material_members[] = {
     MEMBER("extra", IVEC4, MVR_MATERIAL_EXTRA_OFFSET),
     ARRAY("uv_transform", VEC4, MVR_MATERIAL_UV_TRANSFORM_OFFSET, MVR_MATERIAL_UV_TRANSFORM_COUNT,
           MVR_MATERIAL_UV_TRANSFORM_STRIDE),
+    MEMBER("specular", VEC4, MVR_MATERIAL_SPECULAR_OFFSET),
+    MEMBER("clearcoat", VEC4, MVR_MATERIAL_CLEARCOAT_OFFSET),
 };
 static const mvr_block_member light_members[] = {
     MEMBER("position_range", VEC4, MVR_LIGHT_POSITION_RANGE_OFFSET),
@@ -160,6 +169,25 @@ void mvr_material_pack(const mvr_material_desc *m, uint8_t out[MVR_MATERIAL_BLOC
         uv_rows(&roles[i]->transform, rows);
         put_f(out + MVR_MATERIAL_UV_TRANSFORM_OFFSET + (size_t)i * 2 * MVR_MATERIAL_UV_TRANSFORM_STRIDE, rows, 8);
     }
+    /* KHR_materials_ior / _specular, as the Khronos glTF Sample Renderer
+     * takes them: F0 = min(((ior - 1) / (ior + 1))^2 * specular color, 1),
+     * weight = specular factor (F90 of the dielectric, and its F0's scale) */
+    float f0 = mvr_material_ior_f0(m->ior);
+    float spec[4] = {f0, f0, f0, 1.0f};
+    if (m->specular.enabled) {
+        for (int c = 0; c < 3; ++c)
+            spec[c] = fminf(f0 * m->specular.color_factor[c], 1.0f);
+        spec[3] = m->specular.factor;
+    }
+    put_f(out + MVR_MATERIAL_SPECULAR_OFFSET, spec, 4);
+    float coat[4] = {m->clearcoat.factor, m->clearcoat.roughness_factor, f0, 0.0f};
+    put_f(out + MVR_MATERIAL_CLEARCOAT_OFFSET, coat, 4);
+}
+
+float mvr_material_ior_f0(float ior)
+{
+    float r = (ior - 1.0f) / (ior + 1.0f);
+    return r * r;
 }
 
 static bool reserve_draws(mvr_frame *f, uint32_t count)

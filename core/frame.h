@@ -37,7 +37,9 @@
 #define MVR_MATERIAL_UV_TRANSFORM_OFFSET 80u  /* vec4 uv_transform[10] */
 #define MVR_MATERIAL_UV_TRANSFORM_COUNT 10u   /* two rows per texture role */
 #define MVR_MATERIAL_UV_TRANSFORM_STRIDE 16u
-#define MVR_MATERIAL_BLOCK_SIZE 240u
+#define MVR_MATERIAL_SPECULAR_OFFSET 240u     /* vec4 specular: rgb dielectric F0, a: specular weight */
+#define MVR_MATERIAL_CLEARCOAT_OFFSET 256u    /* vec4 clearcoat: x factor, y roughness, z F0 */
+#define MVR_MATERIAL_BLOCK_SIZE 272u
 
 /* mvr_lights (shaders/mesh.frag.glsl): an array of struct mvr_light */
 #define MVR_LIGHT_POSITION_RANGE_OFFSET 0u /* vec4 position_range */
@@ -235,6 +237,9 @@ static inline bool mvr_visible(const mvr_visibility *vis, uint32_t view, uint32_
 
 /* Mesh feature bits of a primitive drawn with a material. */
 uint32_t mvr_draw_features(const scene_primitive *prim, const mvr_material_desc *material);
+
+/* A dielectric's F0 at normal incidence from its index of refraction. */
+float mvr_material_ior_f0(float ior);
 
 /* Packs a material into its std140 block (MVR_MATERIAL_BLOCK_SIZE bytes). */
 void mvr_material_pack(const mvr_material_desc *material, uint8_t out[MVR_MATERIAL_BLOCK_SIZE]);

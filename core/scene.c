@@ -230,7 +230,10 @@ mvr_result mvr_scene_add_material(mvr_scene *s, const mvr_material_desc *d, mvr_
         {&m->desc.emissive_factor[0], 0, 0, 1}, {&m->desc.emissive_factor[1], 0, 0, 1},
         {&m->desc.emissive_factor[2], 0, 0, 1}, {&m->desc.emissive_strength, 0, 0, 1e30f},
         {&m->desc.normal_scale, 0, -1e30f, 1e30f}, {&m->desc.occlusion_strength, 0, 0, 1},
-        {&m->desc.alpha_cutoff, 0, 0, 1e30f}};
+        {&m->desc.alpha_cutoff, 0, 0, 1e30f}, {&m->desc.ior, 0, 0, 1e30f},
+        {&m->desc.specular.factor, 1, 0, 1}, {&m->desc.specular.color_factor[0], 1, 0, 1e30f},
+        {&m->desc.specular.color_factor[1], 1, 0, 1e30f}, {&m->desc.specular.color_factor[2], 1, 0, 1e30f},
+        {&m->desc.clearcoat.factor, 0, 0, 1}, {&m->desc.clearcoat.roughness_factor, 0, 0, 1}};
     uint32_t repaired = 0;
     for (size_t i = 0; i < MVR_ARRAY_COUNT(factors); ++i) {
         float v = *factors[i].v;
@@ -257,6 +260,16 @@ mvr_result mvr_scene_add_material(mvr_scene *s, const mvr_material_desc *d, mvr_
         m->desc.occlusion_strength = 1.0f;
     if (m->desc.alpha_cutoff == 0.0f)
         m->desc.alpha_cutoff = 0.5f;
+    /* KHR_materials_ior: 0 is "not given" (1.5); below 1 is no index of
+     * refraction (F0 would rise again): 1, no reflection */
+    if (m->desc.ior == 0.0f)
+        m->desc.ior = 1.5f;
+    else if (m->desc.ior < 1.0f)
+        m->desc.ior = 1.0f;
+    if (!m->desc.specular.enabled) {
+        m->desc.specular.factor = 1.0f;
+        m->desc.specular.color_factor[0] = m->desc.specular.color_factor[1] = m->desc.specular.color_factor[2] = 1.0f;
+    }
     s->material_count++;
     s->material_version++;
     out->id = s->material_count;
@@ -265,10 +278,15 @@ mvr_result mvr_scene_add_material(mvr_scene *s, const mvr_material_desc *d, mvr_
 
 const mvr_material_desc *mvr_scene_material(const mvr_scene *s, uint32_t index)
 {
-    static const mvr_material_desc fallback = {
-        {1.0f, 1.0f, 1.0f, 1.0f}, 1.0f, 1.0f, {0, 0, 0}, 1.0f, 1.0f, 1.0f, 0.5f,
-        MVR_ALPHA_OPAQUE, false, false, {{0}, {0}, 0, {0}}, {{0}, {0}, 0, {0}},
-        {{0}, {0}, 0, {0}}, {{0}, {0}, 0, {0}}, {{0}, {0}, 0, {0}}, NULL};
+    static const mvr_material_desc fallback = {.base_color_factor = {1.0f, 1.0f, 1.0f, 1.0f},
+                                               .metallic_factor = 1.0f,
+                                               .roughness_factor = 1.0f,
+                                               .emissive_strength = 1.0f,
+                                               .normal_scale = 1.0f,
+                                               .occlusion_strength = 1.0f,
+                                               .alpha_cutoff = 0.5f,
+                                               .ior = 1.5f,
+                                               .specular = {false, 1.0f, {1.0f, 1.0f, 1.0f}}};
     return index < s->material_count ? &s->materials[index].desc : &fallback;
 }
 

@@ -37,6 +37,8 @@ static const feature_define mesh_defines[] = {
     {MVR_FEATURE_SKIN, "MVR_SKIN"},
     {MVR_FEATURE_SKIN8, "MVR_SKIN8"},
     {MVR_FEATURE_MORPH, "MVR_MORPH"},
+    {MVR_FEATURE_SPECULAR, "MVR_SPECULAR"},
+    {MVR_FEATURE_CLEARCOAT, "MVR_CLEARCOAT"},
 };
 
 /* the mesh bits the pre-skinning program shares (MVR_PRESKIN_FEATURES) */

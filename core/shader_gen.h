@@ -55,7 +55,9 @@ typedef enum mvr_mesh_feature {
     MVR_FEATURE_SKIN = 1u << 22,            /* skinning in the vertex stage, four influences (JOINTS_0) */
     MVR_FEATURE_SKIN8 = 1u << 23,           /* with SKIN: eight influences (JOINTS_1) */
     MVR_FEATURE_MORPH = 1u << 24,           /* morph targets in the vertex stage */
-    MVR_MESH_FEATURE_ALL_ = (1u << 25) - 1u
+    MVR_FEATURE_SPECULAR = 1u << 25,        /* KHR_materials_ior / _specular: the dielectric's F0 and weight */
+    MVR_FEATURE_CLEARCOAT = 1u << 26,       /* KHR_materials_clearcoat */
+    MVR_MESH_FEATURE_ALL_ = (1u << 27) - 1u
 } mvr_mesh_feature;
 
 /* What the pre-skinning program does: the mesh bits it shares (same

@@ -14,7 +14,9 @@ struct mvr_material {
     ivec4 layers;            // array layers: base color, metal-rough, normal, occlusion
     ivec4 extra;             // x: emissive layer, y: bit i set = role i reads TEXCOORD_1
     vec4 uv_transform[10];   // per role: two rows of a 2x3 affine (KHR_texture_transform)
-};                           // 240 bytes in std140, whatever the features
+    vec4 specular;           // rgb: dielectric F0 (KHR_materials_ior x _specular color), a: specular weight
+    vec4 clearcoat;          // x: factor, y: roughness, z: F0 (KHR_materials_clearcoat)
+};                           // 272 bytes in std140, whatever the features
 
 layout(std140) uniform mvr_materials {
     mvr_material mvr_material_table[MVR_MAX_MATERIALS];
@@ -136,6 +138,47 @@ vec3 mvr_brdf(vec3 n, vec3 v, vec3 l, vec3 base, float metallic, float alpha)
     return (diffuse + specular) * n_dot_l;
 }
 
+#ifdef MVR_SPECULAR
+// KHR_materials_ior and _specular, as the Khronos glTF Sample Renderer
+// evaluates them: the dielectric's Fresnel is Schlick's with F0 = f0 * w and
+// F90 = w (f0 from the index of refraction, tinted), the metal's with the
+// base color and 1; diffuse under the dielectric's Fresnel. With f0 = 0.04
+// and w = 1 it is mvr_brdf.
+vec3 mvr_brdf_specular(vec3 n, vec3 v, vec3 l, vec3 base, float metallic, float alpha, vec3 f0, float w)
+{
+    float n_dot_l = clamp(dot(n, l), 0.0, 1.0);
+    if (n_dot_l <= 0.0)
+        return vec3(0.0);
+    vec3 h = mvr_safe_normalize(l + v, n);
+    float n_dot_v = clamp(abs(dot(n, v)), 1e-4, 1.0);
+    float n_dot_h = clamp(dot(n, h), 0.0, 1.0);
+    float v_dot_h = clamp(dot(v, h), 0.0, 1.0);
+    float x5 = pow(1.0 - v_dot_h, 5.0);
+    vec3 f_dielectric = f0 * w + (w - f0 * w) * x5;
+    vec3 f_metal = base + (1.0 - base) * x5;
+    vec3 diffuse = (1.0 - f_dielectric) * base / MVR_PI;
+    float ggx = mvr_d_ggx(n_dot_h, alpha) * mvr_v_smith_ggx_correlated(n_dot_l, n_dot_v, alpha);
+    vec3 dielectric = diffuse + f_dielectric * ggx;
+    return mix(dielectric, f_metal * ggx, metallic) * n_dot_l;
+}
+#endif
+
+#ifdef MVR_CLEARCOAT
+// KHR_materials_clearcoat's layer for one light: GGX of the coat's
+// roughness about the geometry's normal, without Fresnel (the layer is
+// blended in by factor x Fresnel(n.v), as the Khronos renderer does).
+vec3 mvr_clearcoat_brdf(vec3 n, vec3 v, vec3 l, float alpha)
+{
+    float n_dot_l = clamp(dot(n, l), 0.0, 1.0);
+    if (n_dot_l <= 0.0)
+        return vec3(0.0);
+    vec3 h = mvr_safe_normalize(l + v, n);
+    float n_dot_v = clamp(abs(dot(n, v)), 1e-4, 1.0);
+    float n_dot_h = clamp(dot(n, h), 0.0, 1.0);
+    return vec3(mvr_d_ggx(n_dot_h, alpha) * mvr_v_smith_ggx_correlated(n_dot_l, n_dot_v, alpha) * n_dot_l);
+}
+#endif
+
 #ifdef MVR_IBL
 // The environment (gl/environment.c): diffuse from third-order spherical
 // harmonics of its irradiance (Ramamoorthi and Hanrahan 2001; coefficients
@@ -179,6 +222,32 @@ vec3 mvr_ibl_fresnel(float n_dot_v, float roughness, vec3 f0)
     vec3 fms_ems = ems * fss_ess * f_avg / (1.0 - f_avg * ems);
     return fss_ess + fms_ems;
 }
+
+#ifdef MVR_SPECULAR
+// The same with the specular weight w of KHR_materials_specular (the
+// Khronos renderer's getIBLGGXFresnel with specularWeight).
+vec3 mvr_ibl_fresnel_weighted(float n_dot_v, float roughness, vec3 f0, float w)
+{
+    vec2 ab = texture(mvr_env_dfg, clamp(vec2(n_dot_v, roughness), 0.0, 1.0)).rg;
+    vec3 fr = max(vec3(1.0 - roughness), f0) - f0;
+    vec3 k_s = f0 + fr * pow(1.0 - n_dot_v, 5.0);
+    vec3 fss_ess = w * (k_s * ab.x + ab.y);
+    float ems = 1.0 - (ab.x + ab.y);
+    vec3 f_avg = w * (f0 + (1.0 - f0) / 21.0);
+    vec3 fms_ems = ems * fss_ess * f_avg / (1.0 - f_avg * ems);
+    return fss_ess + fms_ems;
+}
+#endif
+
+#ifdef MVR_CLEARCOAT
+// The coat's prefiltered radiance along its reflection (blended in by
+// factor x Fresnel(n.v) as for the lights).
+vec3 mvr_ibl_clearcoat(vec3 n, vec3 v, float roughness)
+{
+    vec3 r = reflect(-v, n);
+    return textureLod(mvr_env_specular, mvr_env_rotation * r, roughness * mvr_env_max_lod).rgb * mvr_env_intensity;
+}
+#endif
 
 #ifdef MVR_IBL_REFERENCE
 // The ground truth of mvr_ibl (mvr render --reference): the environment
@@ -250,6 +319,19 @@ vec3 mvr_ibl(vec3 n, vec3 v, vec3 base, float metallic, float roughness)
     vec3 metal = specular * mvr_ibl_fresnel(n_dot_v, roughness, base);
     return mix(dielectric, metal, metallic) * mvr_env_intensity;
 }
+
+#ifdef MVR_SPECULAR
+vec3 mvr_ibl_specular(vec3 n, vec3 v, vec3 base, float metallic, float roughness, vec3 f0, float w)
+{
+    float n_dot_v = clamp(dot(n, v), 0.0, 1.0);
+    vec3 r = reflect(-v, n);
+    vec3 diffuse = mvr_env_diffuse(mvr_env_rotation * n) * base;
+    vec3 specular = textureLod(mvr_env_specular, mvr_env_rotation * r, roughness * mvr_env_max_lod).rgb;
+    vec3 dielectric = mix(diffuse, specular, mvr_ibl_fresnel_weighted(n_dot_v, roughness, f0, w));
+    vec3 metal = specular * mvr_ibl_fresnel(n_dot_v, roughness, base);
+    return mix(dielectric, metal, metallic) * mvr_env_intensity;
+}
+#endif
 #endif // MVR_IBL_REFERENCE
 #endif
 
@@ -363,6 +445,11 @@ void main()
         n = -n;
 #endif
     vec3 n_offset = n;       // shadow receivers move along the surface normal, not the normal map's
+#ifdef MVR_CLEARCOAT
+    vec3 n_coat = n;         // the coat's normal: the geometry's (no clearcoat normal texture yet)
+    float coat = m.clearcoat.x;
+    float coat_alpha = max(m.clearcoat.y * m.clearcoat.y, 1e-3);
+#endif
 
 #ifdef MVR_NORMAL_TEX
     // The tangent frame is the front side's; a back face of a double-sided
@@ -406,6 +493,11 @@ void main()
 
     vec3 v = mvr_safe_normalize(v_to_eye, n);
     vec3 color = vec3(0.0);
+#ifdef MVR_CLEARCOAT
+    // the coat's Fresnel at n.v: how much of what lies under it shows
+    float cf = m.clearcoat.z + (1.0 - m.clearcoat.z) * pow(1.0 - clamp(dot(n_coat, v), 0.0, 1.0), 5.0);
+    float coat_mix = coat * cf;
+#endif
 #if MVR_LIGHT_COUNT > 0
 #ifdef MVR_LIGHT_MASKS
     int light_mask = mvr_view_info[v_view].x;
@@ -436,7 +528,15 @@ void main()
         if (attenuation > 0.0)
             attenuation *= mvr_shadow(i, v_position, n_offset, dist);
 #endif
-        color += light.color.rgb * attenuation * mvr_brdf(n, v, l, base.rgb, metallic, alpha);
+#ifdef MVR_SPECULAR
+        vec3 lit = mvr_brdf_specular(n, v, l, base.rgb, metallic, alpha, m.specular.rgb, m.specular.a);
+#else
+        vec3 lit = mvr_brdf(n, v, l, base.rgb, metallic, alpha);
+#endif
+#ifdef MVR_CLEARCOAT
+        lit = mix(lit, mvr_clearcoat_brdf(n_coat, v, l, coat_alpha), coat_mix);
+#endif
+        color += light.color.rgb * attenuation * lit;
     }
 #endif
     float ao = 1.0;
@@ -445,12 +545,22 @@ void main()
 #endif
     vec3 ambient = mvr_ambient * base.rgb;
 #ifdef MVR_IBL
+#if defined(MVR_SPECULAR) && !defined(MVR_IBL_REFERENCE)
+    ambient += mvr_ibl_specular(n, v, base.rgb, metallic, roughness, m.specular.rgb, m.specular.a);
+#else
     ambient += mvr_ibl(n, v, base.rgb, metallic, roughness);
+#endif
+#if defined(MVR_CLEARCOAT) && !defined(MVR_IBL_REFERENCE)
+    ambient = mix(ambient, mvr_ibl_clearcoat(n_coat, v, m.clearcoat.y), coat_mix);
+#endif
 #endif
     color += ambient * ao;
     vec3 emissive = m.emissive.rgb;
 #ifdef MVR_EMISSIVE_TEX
     emissive *= MVR_SAMPLE(mvr_emissive_tex, mvr_uv(4, m), m.extra.x).rgb;
+#endif
+#ifdef MVR_CLEARCOAT
+    emissive *= 1.0 - coat_mix; // under the coat
 #endif
     o_color = mvr_output(vec4(color + emissive, base.a));
 #endif

@@ -87,6 +87,8 @@ struct converter {
     mvr_texture_ref texture(const tinygltf::TextureInfo &info, const std::string &what);
     mvr_texture_ref texture_ref(int index, int texcoord, const tinygltf::ExtensionMap &ext, const std::string &what);
     mvr_material_id material(int index);
+    void pbr_extensions(const tinygltf::Material &g, const std::string &w, mvr_material_desc &d);
+    bool warned_extension_textures = false;
     mvr_mesh_id mesh(int index);
     void node(int index, mvr_node_id parent, std::vector<char> &state, uint32_t depth);
 

@@ -75,6 +75,7 @@ namespace {
 // Extensions mvr implements (a required one outside this list is an error).
 const std::set<std::string> implemented = {
     "KHR_lights_punctual", "KHR_materials_unlit", "KHR_texture_transform", "KHR_materials_emissive_strength",
+    "KHR_materials_ior", "KHR_materials_specular", "KHR_materials_clearcoat",
     "KHR_mesh_quantization"};
 
 void count_scene_warning(mvr_log_level level, mvr_log_id id, const char *message, void *user)

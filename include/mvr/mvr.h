@@ -328,6 +328,23 @@ typedef struct mvr_material_desc {
     bool unlit;                  /* KHR_materials_unlit */
     mvr_texture_ref base_color, metallic_roughness, normal, occlusion, emissive;
     const char *name;
+    /* KHR_materials_ior: the dielectric's index of refraction, F0 =
+     * ((ior - 1) / (ior + 1))^2 (also the clearcoat's); 0 = 1.5 (F0 0.04) */
+    float ior;
+    /* KHR_materials_specular (enabled: the extension is present): factor
+     * scales the dielectric's specular (its F0 and F90), color_factor tints
+     * its F0 (min(F0(ior) * color, 1)); absent: 1 and (1, 1, 1) */
+    struct mvr_material_specular {
+        bool enabled;
+        float factor;
+        float color_factor[3];
+    } specular;
+    /* KHR_materials_clearcoat: a second GGX layer (F0 from ior, the
+     * geometry's normal) over the material; factor 0 = none */
+    struct mvr_material_clearcoat {
+        float factor;
+        float roughness_factor;
+    } clearcoat;
 } mvr_material_desc;
 
 /* glTF's defaults: base color (1,1,1,1), metallic 1, roughness 1, opaque. */

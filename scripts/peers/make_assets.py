@@ -5,6 +5,10 @@
                                0.5, 0.75, 1 across; rows top to bottom: dielectric white, dielectric
                                tinted (0.9, 0.6, 0.3), metal white, metal tinted; one perspective camera
                                (node 20) framing the grid; no lights.
+  coated.gltf                  4 x 3 of the spheres' mesh (spheres.bin) with KHR_materials_clearcoat (a rough
+                               red dielectric bare, then under a coat of roughness 0, 0.25, 0.5), _ior (a
+                               dark glossy dielectric of ior 1, 1.33, 2, 3) and _specular (factor 0, 0.5,
+                               a tinted F0, a tinted F0 with ior 1.8); one camera (node 12); no lights.
   uniform.hdr                  64 x 32 Radiance RGBE, radiance 1.0 everywhere.
   sky.hdr                      512 x 256 Radiance RGBE (run-length encoded): a blue sky gradient, a
                                warm sun disc of radiance 50, a horizon band and a ground of eight
@@ -193,7 +197,7 @@ def sphere_buffers(radius, seg_u, seg_v):
     return blob, views, accessors
 
 
-def write_gltf(name, blob, views, accessors, materials, nodes, cameras, scene_nodes, bin_name=None):
+def write_gltf(name, blob, views, accessors, materials, nodes, cameras, scene_nodes, bin_name=None, extensions=None):
     doc = {
         "asset": {"version": "2.0", "generator": "mvr scripts/peers/make_assets.py"},
         "scene": 0,
@@ -207,6 +211,8 @@ def write_gltf(name, blob, views, accessors, materials, nodes, cameras, scene_no
         "bufferViews": views,
         "buffers": [{"byteLength": len(blob)}],
     }
+    if extensions:
+        doc["extensionsUsed"] = extensions
     if bin_name:
         doc["buffers"][0]["uri"] = bin_name
         with open(os.path.join(OUT, bin_name), 'wb') as f:
@@ -242,6 +248,48 @@ def make_spheres():
                list(range(cam_node + 1)), bin_name="spheres.bin")
 
 
+def make_coated():
+    # KHR_materials_clearcoat, _ior and _specular on the spheres' mesh, 4 x 3
+    blob, views, accessors = sphere_buffers(0.42, 64, 32)
+    red = [0.8, 0.12, 0.08, 1.0]
+    dark = [0.05, 0.05, 0.06, 1.0]
+    cells = []
+    # row 1: a rough red dielectric under a clearcoat of roughness 0, 0.25, 0.5 (and none)
+    for cr in (None, 0.0, 0.25, 0.5):
+        m = {"name": "coat_%s" % ("none" if cr is None else "r%03d" % int(cr * 100)),
+             "pbrMetallicRoughness": {"baseColorFactor": red, "metallicFactor": 0.0, "roughnessFactor": 0.6}}
+        if cr is not None:
+            m["extensions"] = {"KHR_materials_clearcoat": {"clearcoatFactor": 1.0, "clearcoatRoughnessFactor": cr}}
+        cells.append(m)
+    # row 2: a dark glossy dielectric of ior 1.0, 1.33, 2.0, 3.0
+    for ior in (1.0, 1.33, 2.0, 3.0):
+        cells.append({"name": "ior_%03d" % int(ior * 100),
+                      "pbrMetallicRoughness": {"baseColorFactor": dark, "metallicFactor": 0.0, "roughnessFactor": 0.2},
+                      "extensions": {"KHR_materials_ior": {"ior": ior}}})
+    # row 3: KHR_materials_specular: factor 0, 0.5, a tinted F0, both with ior 1.8
+    for name, ext in (("spec_000", {"specularFactor": 0.0}), ("spec_050", {"specularFactor": 0.5}),
+                      ("spec_tint", {"specularColorFactor": [1.0, 0.4, 0.1]}),
+                      ("spec_tint_ior", {"specularFactor": 0.8, "specularColorFactor": [0.2, 0.6, 1.0]})):
+        m = {"name": name,
+             "pbrMetallicRoughness": {"baseColorFactor": [0.3, 0.3, 0.3, 1.0], "metallicFactor": 0.0,
+                                      "roughnessFactor": 0.3},
+             "extensions": {"KHR_materials_specular": ext}}
+        if name == "spec_tint_ior":
+            m["extensions"]["KHR_materials_ior"] = {"ior": 1.8}
+        cells.append(m)
+    nodes = []
+    for i, m in enumerate(cells):
+        r, c = divmod(i, 4)
+        nodes.append({"name": m["name"], "mesh": i, "translation": [c - 1.5, 1.0 - r, 0.0]})
+    cam_node = len(nodes)
+    nodes.append({"name": "camera", "camera": 0, "translation": [0.0, 0.0, 6.5]})
+    cameras = [{"type": "perspective", "name": "grid",
+                "perspective": {"yfov": 0.62, "aspectRatio": 1.0, "znear": 0.1, "zfar": 100.0}}]
+    write_gltf("coated.gltf", blob, views, accessors, cells, nodes, cameras, list(range(cam_node + 1)),
+               bin_name="spheres.bin", extensions=["KHR_materials_clearcoat", "KHR_materials_ior",
+                                                   "KHR_materials_specular"])
+
+
 def make_diag_mirror():
     # the spheres' mesh (radius 0.42) and buffer, scaled to radius 1
     blob, views, accessors = sphere_buffers(0.42, 64, 32)
@@ -261,6 +309,7 @@ def main():
     write_hdr(os.path.join(OUT, "sky.hdr"), 512, 256, lambda x, y: sky_pixel(dir_of_pixel(x, y, 512, 256)))
     write_hdr(os.path.join(OUT, "diag_axes.hdr"), 64, 32, lambda x, y: axes_pixel(dir_of_pixel(x, y, 64, 32)))
     make_spheres()
+    make_coated()
     make_diag_mirror()
     for n in sorted(os.listdir(OUT)):
         print("%-22s %8d bytes" % (n, os.path.getsize(os.path.join(OUT, n))))

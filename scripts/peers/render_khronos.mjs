@@ -45,6 +45,7 @@ const CHROMIUM_FLAGS = ['--headless=new', '--use-angle=gl-egl', '--ignore-gpu-bl
 const ASSETS = [
     { name: 'spheres', file: 'spheres.gltf', camera: 0 },
     { name: 'textured', file: 'textured.gltf', camera: 0 },
+    { name: 'coated', file: 'coated.gltf', camera: 0 },
 ];
 const ENVS = [
     { name: 'uniform', file: 'uniform.hdr' },
