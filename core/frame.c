@@ -497,7 +497,7 @@ mvr_result mvr_frame_build(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin, u
             }
             d->primitive = pi;
             d->material = p->material;
-            d->features = mvr_draw_features(p, mat);
+            d->features = mvr_draw_features(p, mat) & ~f->disabled_features;
             d->block = f->draw_count;
             d->node = i;
             d->pass = mat->alpha_mode == MVR_ALPHA_BLEND  ? MVR_PASS_BLEND

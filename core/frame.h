@@ -184,6 +184,9 @@ typedef struct mvr_frame {
      * out of the draws' programs (no SKIN, SKIN8, MORPH bits): they draw
      * the vertices its pass captured */
     bool preskin;
+    /* set before mvr_frame_build: feature bits taken out of every draw
+     * (overrides.disable_features: material extensions drawn as absent) */
+    uint32_t disabled_features;
 } mvr_frame;
 
 /* Builds the frame's draws, blocks and lights for a scene seen from origin.

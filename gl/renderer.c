@@ -162,6 +162,35 @@ static bool valid_ubo_alignment(unsigned long a)
     return a >= 1 && a <= 4096 && (a & (a - 1)) == 0;
 }
 
+/* The mesh feature bits an override may take out: material extensions,
+ * whose absence is a valid (if different) look, never what a draw needs. */
+#define DISABLEABLE_FEATURES (MVR_FEATURE_SPECULAR | MVR_FEATURE_CLEARCOAT)
+
+/* "SPECULAR,CLEARCOAT" -> feature bits; names as mvr_program_feature_name. */
+static mvr_result parse_feature_list(const char *var, const char *value, uint32_t *out, mvr_error *error)
+{
+    *out = 0;
+    const char *p = value;
+    for (;;) {
+        size_t n = strcspn(p, ",");
+        uint32_t bit = 0;
+        for (uint32_t b = 1; b && !bit; b <<= 1) {
+            const char *name = (b & DISABLEABLE_FEATURES) ? mvr_program_feature_name(b) : NULL;
+            if (name && strlen(name) == n && strncmp(name, p, n) == 0)
+                bit = b;
+        }
+        if (!bit)
+            return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
+                                 "%s=%s: '%.*s' is not a feature that can be disabled (SPECULAR, CLEARCOAT)", var,
+                                 value, (int)n, p);
+        *out |= bit;
+        p += n;
+        if (*p != ',')
+            return MVR_OK;
+        ++p; /* a name must follow: "CLEARCOAT," is refused as '' */
+    }
+}
+
 mvr_result mvr_renderer_overrides_from_env(mvr_renderer_overrides *out, mvr_error *error)
 {
     if (!out)
@@ -175,10 +204,11 @@ mvr_result mvr_renderer_overrides_from_env(mvr_renderer_overrides *out, mvr_erro
     static const char *const features[] = {"inert"};
     static const char *const skinning_paths[] = {"auto", "vertex", "preskin"};
     enum { VIEW_PATH, MATERIAL_PATH, DEPTH, CULLING, INSTANCING, MSAA_MULTIVIEW, FORCE_FEATURES, UBO_ALIGNMENT,
-           SKINNING_PATH, COUNT };
-    static const char *const names[COUNT] = {"MVR_VIEW_PATH", "MVR_MATERIAL_PATH", "MVR_DEPTH",
-                                             "MVR_CULLING", "MVR_INSTANCING", "MVR_MSAA_MULTIVIEW",
-                                             "MVR_FORCE_FEATURES", "MVR_UBO_ALIGNMENT", "MVR_SKINNING_PATH"};
+           SKINNING_PATH, DISABLE_FEATURES, COUNT };
+    static const char *const names[COUNT] = {"MVR_VIEW_PATH",      "MVR_MATERIAL_PATH", "MVR_DEPTH",
+                                             "MVR_CULLING",        "MVR_INSTANCING",    "MVR_MSAA_MULTIVIEW",
+                                             "MVR_FORCE_FEATURES", "MVR_UBO_ALIGNMENT", "MVR_SKINNING_PATH",
+                                             "MVR_DISABLE_FEATURES"};
     mvr_renderer_overrides o;
     memset(&o, 0, sizeof o);
     for (int v = 0; v < COUNT; ++v) {
@@ -210,6 +240,9 @@ mvr_result mvr_renderer_overrides_from_env(mvr_renderer_overrides *out, mvr_erro
         case SKINNING_PATH:
             res = parse_choice(names[v], value, skinning_paths, 3, &k, error);
             o.skinning_path = (mvr_skinning_path_override)k;
+            break;
+        case DISABLE_FEATURES:
+            res = parse_feature_list(names[v], value, &o.disable_features, error);
             break;
         case FORCE_FEATURES:
             res = parse_choice(names[v], value, features, 1, &k, error);
@@ -245,6 +278,8 @@ static mvr_result check_overrides(const mvr_renderer_overrides *o, mvr_error *er
         field = "depth_mode", value = (int)o->depth_mode;
     else if ((unsigned)o->skinning_path > MVR_SKINNING_PATH_OVERRIDE_PRESKIN)
         field = "skinning_path", value = (int)o->skinning_path;
+    else if (o->disable_features & ~(uint32_t)DISABLEABLE_FEATURES)
+        field = "disable_features", value = (int)o->disable_features;
     else if ((unsigned)o->culling > MVR_OVERRIDE_ON)
         field = "culling", value = (int)o->culling;
     else if ((unsigned)o->instancing > MVR_OVERRIDE_ON)
@@ -332,6 +367,7 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
     if (r->material_path == MVR_MATERIAL_PATH_AUTO)
         r->material_path = MVR_MATERIAL_PATH_ARRAYS;
     r->force_inert_features = ov->force_inert_features;
+    r->frame.disabled_features = ov->disable_features;
     r->culling = ov->culling ? ov->culling == MVR_OVERRIDE_ON : !desc->disable_culling;
     r->msaa_multiview_off = ov->msaa_multiview == MVR_OVERRIDE_OFF;
     r->blend_policy = desc->transparency_order;

@@ -36,6 +36,9 @@ typedef struct bench_options {
      * work is redone each frame as in playback */
     bool animate;
     double pose_times[2];
+    /* the frame matrix's render settings: the environment mvr render would
+     * take (--env, default neutral for a glTF file, none for a demo) */
+    mvr_render_desc render;
 } bench_options;
 
 #define BENCH_MAX_CONFIGS 80
@@ -48,6 +51,7 @@ typedef struct bench_config {
     uint32_t msaa;               /* multisamples per pixel (0 = none) */
     mvr_transparency_order order;
     mvr_skinning_path skinning_path; /* AUTO except on the skinning axis (scenes with skins or morphs) */
+    uint32_t disable_features;   /* material extensions drawn as absent (overrides.disable_features) */
     bool reference;
     /* Configurations of one group must give the same pixels (they differ
      * only in view or material path): the report checks it. */

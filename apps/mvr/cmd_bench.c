@@ -69,7 +69,13 @@ static const cli_option bench_table[] = {
      NULL},
     /* internal: --callgrind runs each configuration alone in a child */
     {CLI_OPT_U32, B_ONLY, "--only", NULL, "K", 0, 1000, NULL, NULL, NULL, NULL, NULL},
-    {CLI_OPT_TEXT, 0, NULL, NULL, NULL, 0, 0, NULL, "\nenvironment prefilter axes:\n", NULL, NULL, NULL},
+    {CLI_OPT_TEXT, 0, NULL, NULL, NULL, 0, 0, NULL,
+     "\nThe matrix renders under the environment mvr render takes (--env\n"
+     "below; neutral for a glTF file, none for a demo). A scene with skins\n"
+     "or morph targets adds each view path with --skinning vertex and\n"
+     "preskin; one whose materials use KHR_materials_specular / _ior or\n"
+     "_clearcoat adds auto/arrays/noaa with each drawn as absent (no_...).\n"
+     "\nenvironment prefilter axes:\n", NULL, NULL, NULL},
     {CLI_OPT_FLAG, B_ENV_AXES, "--env-axes", NULL, NULL, 0, 0, NULL,
      "instead of the matrix above: the image-based lighting's\n"
      "prefilter, specular map size x GGX samples per texel\n"
@@ -224,11 +230,9 @@ static int parse(int argc, char **argv, bench_options *o)
     if (!cli_context_check("mvr bench", &o->context))
         return MVR_EXIT_USAGE;
     if (!o->env_axes) {
-        if (o->env_option) {
-            fprintf(stderr, "mvr bench: %s is for --env-axes (the frame matrix renders without an environment)\n",
-                    o->env_option);
+        /* the frame matrix renders under the environment mvr render takes */
+        if (!cli_env_check("mvr bench", &o->env, !o->demo_set))
             return MVR_EXIT_USAGE;
-        }
     } else {
         if (!cli_env_check("mvr bench", &o->env, !o->demo_set))
             return MVR_EXIT_USAGE;
@@ -288,6 +292,19 @@ static void add_config(bench_config *list, uint32_t *n, mvr_view_path vp, mvr_ma
  * anti-aliasing x transparency order (MSAA resolves view by view, so not
  * with multiview). The reference comes first (everything is compared with
  * it). */
+/* The feature bits of the material extensions a configuration may draw as
+ * absent (overrides.disable_features), found by their public names. */
+static uint32_t extension_features(void)
+{
+    uint32_t bits = 0;
+    for (uint32_t b = 1; b; b <<= 1) {
+        const char *name = mvr_program_feature_name(b);
+        if (name && (strcmp(name, "SPECULAR") == 0 || strcmp(name, "CLEARCOAT") == 0))
+            bits |= b;
+    }
+    return bits;
+}
+
 /* The skinning axis (a scene with skins or morph targets): each view path
  * with the vertex and the pre-skinning path, no anti-aliasing; one group,
  * so the report checks they give the same pixels. */
@@ -379,7 +396,7 @@ __attribute__((noinline)) static bool measured_frames(const bench_options *o, ui
         pose(o, s, first + f);
         CALLGRIND_TOGGLE_COLLECT;
         double w0 = bench_now_ms(CLOCK_MONOTONIC), c0 = bench_now_ms(CLOCK_THREAD_CPUTIME_ID);
-        ok = mvr_renderer_render(r, s, vs, t, NULL) == MVR_OK && mvr_renderer_finish(r) == MVR_OK;
+        ok = mvr_renderer_render(r, s, vs, t, &o->render) == MVR_OK && mvr_renderer_finish(r) == MVR_OK;
         wall[f] = bench_now_ms(CLOCK_MONOTONIC) - w0;
         cpu[f] = bench_now_ms(CLOCK_THREAD_CPUTIME_ID) - c0;
         mvr_frame_stats st;
@@ -425,6 +442,7 @@ static bool setup_config(const bench_options *o, mvr_context *ctx, mvr_scene *sc
     mvr_renderer_desc rd = {.context = ctx, .view_path = c->view_path, .material_path = c->material_path,
                             .transparency_order = c->order, .logger = o->context.logger,
                             .overrides = o->overrides, .skinning_path = c->skinning_path};
+    rd.overrides.disable_features |= c->disable_features;
     mvr_error err;
     if (mvr_renderer_create(&rd, &cr->r, &err) != MVR_OK) {
         fprintf(stderr, "mvr bench: %s: %s\n", c->name, err.message);
@@ -441,7 +459,7 @@ static bool setup_config(const bench_options *o, mvr_context *ctx, mvr_scene *sc
     bool ok = cr->times && mvr_target_create(cr->r, &td, &cr->t) == MVR_OK;
     for (uint32_t f = 0; ok && f < o->warmup; ++f) {
         pose(o, scene, f);
-        ok = mvr_renderer_render(cr->r, scene, vs, cr->t, NULL) == MVR_OK;
+        ok = mvr_renderer_render(cr->r, scene, vs, cr->t, &o->render) == MVR_OK;
     }
     if (!ok) {
         fprintf(stderr, "mvr bench: %s: %s\n", c->name, mvr_renderer_last_error(cr->r));
@@ -674,6 +692,7 @@ int mvr_cmd_bench(int argc, char **argv)
     mvr_context *ctx = NULL;
     mvr_scene *scene = NULL;
     mvr_view_set *vs = NULL;
+    mvr_environment *env = NULL;
     bench_config configs[BENCH_MAX_CONFIGS];
     bench_result results[BENCH_MAX_CONFIGS];
     memset(results, 0, sizeof results);
@@ -688,6 +707,11 @@ int mvr_cmd_bench(int argc, char **argv)
         goto done;
     }
     rc = cli_load_scene("mvr bench", &o.scene, &scene, &vs);
+    if (rc != MVR_EXIT_OK)
+        goto done;
+    memset(&o.render, 0, sizeof o.render);
+    o.render.exposure = 1.0f;
+    rc = cli_env_create("mvr bench", &o.env, o.scene.scene_file != NULL, &o.render, &env, NULL);
     if (rc != MVR_EXIT_OK)
         goto done;
     {
@@ -723,9 +747,29 @@ int mvr_cmd_bench(int argc, char **argv)
         mvr_frame_stats st;
         memset(&st, 0, sizeof st);
         if (mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &t) == MVR_OK &&
-            mvr_renderer_render(r, scene, vs, t, NULL) == MVR_OK)
+            mvr_renderer_render(r, scene, vs, t, &o.render) == MVR_OK)
             mvr_renderer_get_stats(r, &st);
         has_blend = st.sub_passes[2] > 0; /* [2]: blended sub-passes */
+        /* the material extensions the scene's programs use: each gets a
+         * configuration with it drawn as absent (what it costs, what it
+         * changes) */
+        uint32_t extensions = 0;
+        for (uint32_t i = 0; r && i < mvr_renderer_program_count(r); ++i) {
+            mvr_program_info info;
+            if (mvr_renderer_get_program_info(r, i, &info) && info.mesh)
+                extensions |= info.features & extension_features();
+        }
+        for (uint32_t bit = 1; bit && count < BENCH_MAX_CONFIGS; bit <<= 1) {
+            if (!(extensions & bit))
+                continue;
+            add_config(configs, &count, MVR_VIEW_PATH_AUTO, MVR_MATERIAL_PATH_ARRAYS, 1, MVR_TRANSPARENCY_ORDER_AUTO,
+                       false);
+            bench_config *c = &configs[count - 1];
+            c->disable_features = bit;
+            size_t l = strlen(c->name);
+            snprintf(c->name + l, sizeof c->name - l, "/no_%s", mvr_program_feature_name(bit));
+            snprintf(c->group, sizeof c->group, "no_%s", mvr_program_feature_name(bit));
+        }
         mvr_target_destroy(t);
         mvr_renderer_destroy(r);
     }
@@ -832,6 +876,7 @@ done:
         free(results[k].display);
     mvr_view_set_destroy(vs);
     mvr_scene_destroy(scene);
+    mvr_environment_destroy(env);
     mvr_context_destroy(ctx);
     return rc;
 }

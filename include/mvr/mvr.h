@@ -882,6 +882,11 @@ typedef struct mvr_renderer_overrides {
     uint32_t ubo_alignment;
     /* MVR_SKINNING_PATH=auto|vertex|preskin */
     mvr_skinning_path_override skinning_path;
+    /* MVR_DISABLE_FEATURES=SPECULAR,CLEARCOAT: material extensions drawn as
+     * if absent (mesh feature bits, as mvr_program_feature_name names them;
+     * only these two may be disabled): what an extension costs, and what it
+     * changes, in `mvr bench`. 0 = none */
+    uint32_t disable_features;
 } mvr_renderer_overrides;
 
 /* The one place mvr reads the environment, and only when an application

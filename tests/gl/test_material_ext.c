@@ -206,6 +206,40 @@ static void clearcoat_mixes_by_its_fresnel(mvr_test_state *t)
     }
     mvr_view_set_destroy(two);
     mvr_scene_destroy(c2);
+    /* overrides.disable_features: the coated sphere drawn as the bare one,
+     * with no clearcoat code (mvr bench's "extension off") */
+    {
+        mvr_renderer_desc rd = {.context = ctx, .view_path = MVR_VIEW_PATH_LOOP,
+                                .overrides = {.disable_features = MVR_FEATURE_CLEARCOAT | MVR_FEATURE_SPECULAR}};
+        mvr_renderer_desc plain = {.context = ctx, .view_path = MVR_VIEW_PATH_LOOP};
+        const mvr_renderer_desc *descs[2] = {&rd, &plain};
+        mvr_scene *scenes[2] = {b, a};
+        uint8_t *px[2] = {NULL, NULL};
+        for (int k = 0; k < 2; ++k) {
+            mvr_renderer *r = NULL;
+            mvr_target *tg = NULL;
+            mvr_target_desc td = {.width = W, .height = H, .layers = 1};
+            mvr_render_desc desc = {.exposure = 1.0f};
+            bool ok = mvr_renderer_create(descs[k], &r, NULL) == MVR_OK && mvr_target_create(r, &td, &tg) == MVR_OK &&
+                      mvr_renderer_render(r, scenes[k], vs, tg, &desc) == MVR_OK;
+            CHECK(t, ok);
+            px[k] = malloc((size_t)W * H * 4);
+            CHECK(t, ok && mvr_renderer_read_layer(r, tg, 0, MVR_READBACK_RGBA8, px[k], (size_t)W * H * 4) == MVR_OK);
+            for (uint32_t i = 0; r && i < mvr_renderer_program_count(r); ++i) {
+                mvr_program_info info;
+                if (mvr_renderer_get_program_info(r, i, &info))
+                    CHECK(t, !(info.features & (MVR_FEATURE_CLEARCOAT | MVR_FEATURE_SPECULAR)));
+            }
+            mvr_target_destroy(tg);
+            mvr_renderer_destroy(r);
+        }
+        CHECK_EQ_INT(t, count_diff(px[0], px[1], (size_t)W * H, 0), 0);
+        free(px[0]);
+        free(px[1]);
+        mvr_renderer_desc bad = {.context = ctx, .overrides = {.disable_features = MVR_FEATURE_NORMALS}};
+        mvr_renderer *r = NULL;
+        CHECK(t, mvr_renderer_create(&bad, &r, NULL) == MVR_ERROR_INVALID_ARGUMENT && !r);
+    }
     mvr_scene_destroy(a);
     mvr_scene_destroy(b);
     mvr_view_set_destroy(vs);

@@ -11,10 +11,12 @@
 
 #include "gl_test_util.h"
 #include "renderer_internal.h"
+#include "shader_gen.h"
 
 static const char *const variables[] = {"MVR_VIEW_PATH",   "MVR_MATERIAL_PATH",  "MVR_DEPTH",
                                         "MVR_CULLING",     "MVR_INSTANCING",     "MVR_MSAA_MULTIVIEW",
-                                        "MVR_FORCE_FEATURES", "MVR_UBO_ALIGNMENT"};
+                                        "MVR_FORCE_FEATURES", "MVR_UBO_ALIGNMENT", "MVR_SKINNING_PATH",
+                                        "MVR_DISABLE_FEATURES"};
 
 static void clear_variables(void)
 {
@@ -46,7 +48,11 @@ static void from_env_parses_every_variable(mvr_test_state *t)
     setenv("MVR_MSAA_MULTIVIEW", "off", 1);
     setenv("MVR_FORCE_FEATURES", "inert", 1);
     setenv("MVR_UBO_ALIGNMENT", "256", 1);
+    setenv("MVR_SKINNING_PATH", "preskin", 1);
+    setenv("MVR_DISABLE_FEATURES", "CLEARCOAT,SPECULAR", 1);
     CHECK(t, mvr_renderer_overrides_from_env(&o, &err) == MVR_OK);
+    CHECK_EQ_INT(t, o.skinning_path, MVR_SKINNING_PATH_OVERRIDE_PRESKIN);
+    CHECK_EQ_INT(t, o.disable_features, MVR_FEATURE_CLEARCOAT | MVR_FEATURE_SPECULAR);
     CHECK_EQ_INT(t, o.view_path, MVR_VIEW_PATH_OVERRIDE_LOOP);
     CHECK_EQ_INT(t, o.material_path, MVR_MATERIAL_PATH_OVERRIDE_PER_MATERIAL);
     CHECK_EQ_INT(t, o.depth_mode, MVR_DEPTH_MODE_OVERRIDE_STANDARD);
@@ -62,7 +68,11 @@ static void from_env_parses_every_variable(mvr_test_state *t)
     setenv("MVR_INSTANCING", "off", 1);
     setenv("MVR_MSAA_MULTIVIEW", "on", 1);
     setenv("MVR_UBO_ALIGNMENT", "4096", 1);
+    setenv("MVR_SKINNING_PATH", "vertex", 1);
+    setenv("MVR_DISABLE_FEATURES", "CLEARCOAT", 1);
     CHECK(t, mvr_renderer_overrides_from_env(&o, &err) == MVR_OK);
+    CHECK_EQ_INT(t, o.skinning_path, MVR_SKINNING_PATH_OVERRIDE_VERTEX);
+    CHECK_EQ_INT(t, o.disable_features, MVR_FEATURE_CLEARCOAT);
     CHECK_EQ_INT(t, o.view_path, MVR_VIEW_PATH_OVERRIDE_AUTO);
     CHECK_EQ_INT(t, o.material_path, MVR_MATERIAL_PATH_OVERRIDE_PER_DRAW);
     CHECK_EQ_INT(t, o.depth_mode, MVR_DEPTH_MODE_OVERRIDE_REVERSED_Z);
@@ -82,7 +92,9 @@ static void from_env_refuses_bad_values(mvr_test_state *t)
     } bad[] = {{"MVR_VIEW_PATH", "bogus"},       {"MVR_MATERIAL_PATH", "bogus"}, {"MVR_DEPTH", "reversed"},
                {"MVR_CULLING", "0"},             {"MVR_INSTANCING", "OFF"},      {"MVR_MSAA_MULTIVIEW", "no"},
                {"MVR_FORCE_FEATURES", "all"},    {"MVR_UBO_ALIGNMENT", "100"},   {"MVR_UBO_ALIGNMENT", "8192"},
-               {"MVR_UBO_ALIGNMENT", "256x"},    {"MVR_UBO_ALIGNMENT", "-256"},  {"MVR_UBO_ALIGNMENT", "0"}};
+               {"MVR_UBO_ALIGNMENT", "256x"},    {"MVR_UBO_ALIGNMENT", "-256"},  {"MVR_UBO_ALIGNMENT", "0"},
+               {"MVR_SKINNING_PATH", "gpu"},     {"MVR_DISABLE_FEATURES", "NORMALS"},
+               {"MVR_DISABLE_FEATURES", "CLEARCOAT,"}, {"MVR_DISABLE_FEATURES", "clearcoat"}};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
         clear_variables();
         setenv("MVR_VIEW_PATH", "loop", 1); /* a good one beside it */
