@@ -180,12 +180,19 @@ static mvr_result copy_targets(mvr_scene *s, scene_primitive *p, const mvr_primi
     if (oom)
         return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_mesh(%s): out of memory (targets)", mesh);
     for (uint32_t t = 0; t < d->target_count; ++t) {
-        double e[3] = {0, 0, 0};
+        /* the largest |delta| per axis, in float (exact: |x| of a float is
+         * one), kept scalar: GCC 12's aarch64 vectorizer crashes (internal
+         * compiler error in vect_transform_reduction) on this max reduction
+         * over a small array */
+        float ex = 0.0f, ey = 0.0f, ez = 0.0f;
         const float *pd = p->target_positions ? p->target_positions + (size_t)t * per_target : NULL;
-        for (uint32_t v = 0; pd && v < p->vertex_count; ++v)
-            for (size_t c = 0; c < 3; ++c)
-                e[c] = fmax(e[c], fabs((double)pd[(size_t)v * 3 + c]));
-        p->target_extent[t] = mvr_dvec3_make(e[0], e[1], e[2]);
+        for (uint32_t v = 0; pd && v < p->vertex_count; ++v) {
+            const float *dv = pd + (size_t)v * 3;
+            ex = fabsf(dv[0]) > ex ? fabsf(dv[0]) : ex;
+            ey = fabsf(dv[1]) > ey ? fabsf(dv[1]) : ey;
+            ez = fabsf(dv[2]) > ez ? fabsf(dv[2]) : ez;
+        }
+        p->target_extent[t] = mvr_dvec3_make(ex, ey, ez);
     }
     p->target_count = d->target_count;
     return MVR_OK;
