@@ -40,7 +40,9 @@
  * bufferView (zeros), missing indices, KHR_mesh_quantization;
  * metallic-roughness materials with all texture roles, samplers,
  * TEXCOORD_0/1; perspective and orthographic cameras; KHR_lights_punctual,
- * KHR_materials_unlit, KHR_texture_transform, KHR_materials_emissive_strength;
+ * KHR_materials_unlit, KHR_texture_transform, KHR_materials_emissive_strength,
+ * KHR_materials_ior, KHR_materials_specular and KHR_materials_clearcoat (their
+ * factors; their textures are warned about once and not sampled);
  * skins (JOINTS_0/1 + WEIGHTS_0/1: up to 8 influences per vertex, more sets
  * are ignored with a warning; the skins of the nodes in the loaded scene, each
  * joint a node of that scene), morph targets (POSITION / NORMAL / TANGENT
