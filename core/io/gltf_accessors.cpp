@@ -37,7 +37,7 @@ uint32_t component_bit(int t)
     }
 }
 
-static uint32_t component_size(int t)
+uint32_t component_size(int t)
 {
     switch (t) {
     case TINYGLTF_COMPONENT_TYPE_BYTE:
@@ -50,7 +50,7 @@ static uint32_t component_size(int t)
     }
 }
 
-static int type_components(int type)
+int type_components(int type)
 {
     switch (type) {
     case TINYGLTF_TYPE_SCALAR: return 1;
@@ -113,12 +113,16 @@ const unsigned char *view_bytes(context &cx, int view_index, uint64_t *length, u
         refuse(what + ": " + vname + " (bytes " + std::to_string(v.byteOffset) + ".." + std::to_string(end) +
                ") reads past the end of buffer " + std::to_string(v.buffer) + " (" +
                std::to_string(cx.res.buffers[size_t(v.buffer)].byte_length) + " bytes)");
-    byte_span data = cx.buffer(v.buffer, what + " (" + vname + ")");
     if (v.byteStride != 0 && (v.byteStride < 4 || v.byteStride > 252 || v.byteStride % 4 != 0))
         refuse(what + ": " + vname + " byteStride " + std::to_string(v.byteStride) +
                " is not a multiple of 4 in 4..252");
     *length = uint64_t(v.byteLength);
     *stride = uint64_t(v.byteStride);
+    // EXT_meshopt_compression: byteLength decoded bytes in the view's layout
+    // (its own buffer may be a fallback without data, never read)
+    if (cx.res.meshopt_views.count(view_index))
+        return meshopt_view_bytes(cx, view_index, what);
+    byte_span data = cx.buffer(v.buffer, what + " (" + vname + ")");
     return data.data + v.byteOffset;
 }
 
@@ -236,8 +240,16 @@ std::vector<float> read_floats(context &cx, int index, int components, const std
     // every check before the allocation: a small file cannot make us allocate
     // for a count its buffers do not hold
     const unsigned char *base = nullptr;
-    uint64_t stride = 0;
-    if (a.bufferView >= 0) {
+    uint64_t stride = 0, offset = uint64_t(a.byteOffset);
+    auto decoded = cx.decoded_accessors.find(index);
+    if (decoded != cx.decoded_accessors.end()) {
+        // KHR_draco_mesh_compression: the decoded data, tightly packed (the
+        // accessor's bufferView and byteOffset are ignored)
+        base = decoded->second->bytes.data();
+        stride = elem;
+        offset = 0;
+        check_span(0, stride, count, elem, decoded->second->bytes.size(), what, aname, "the decoded Draco data");
+    } else if (a.bufferView >= 0) {
         uint64_t length = 0;
         base = view_bytes(cx, a.bufferView, &length, &stride, what);
         if (stride == 0)
@@ -253,7 +265,7 @@ std::vector<float> read_floats(context &cx, int index, int components, const std
     cx.mesh_bytes += floats * sizeof(float);
     std::vector<float> out(size_t(floats), 0.0f);
     if (base)
-        read_elements(base + a.byteOffset, stride, count, comps, a.componentType, a.normalized, out.data());
+        read_elements(base + offset, stride, count, comps, a.componentType, a.normalized, out.data());
     if (a.sparse.isSparse) {
         sparse_data sp = sparse_of(cx, a, count, elem, what, aname);
         uint64_t scount = sp.count;
@@ -289,7 +301,14 @@ std::vector<uint32_t> read_indices(context &cx, int index, const std::string &wh
     uint64_t cs = component_size(t);
     // glTF 2.0, 3.6.2.1: an accessor without a bufferView is zeros (sparse may replace some)
     std::vector<uint32_t> out(static_cast<size_t>(count), 0u);
-    if (a.bufferView >= 0) {
+    auto decoded = cx.decoded_accessors.find(index);
+    if (decoded != cx.decoded_accessors.end()) {
+        // KHR_draco_mesh_compression: the decoded indices, tightly packed
+        const std::vector<unsigned char> &b = decoded->second->bytes;
+        check_span(0, cs, count, cs, b.size(), what, aname, "the decoded Draco data");
+        for (uint64_t i = 0; i < count; ++i)
+            out[i] = index_value(b.data() + i * cs, cs);
+    } else if (a.bufferView >= 0) {
         uint64_t length = 0, stride = 0;
         const unsigned char *base = view_bytes(cx, a.bufferView, &length, &stride, what);
         if (stride != 0 && stride != cs)

@@ -61,6 +61,12 @@ struct converter {
     bool warned_joints2 = false, warned_target_attr = false, warned_target_dropped = false;
     std::set<std::string> warned_paths;      // unknown animation paths, each warned once
     bool missing_texture = false;   // set when a texture's image was left out
+    struct image_failure {
+        mvr_result result;
+        std::string message;
+        bool warned, noted;   // warned (no fallback) / noted (fallback used), each once
+    };
+    std::map<int, image_failure> failed_images;   // images left out, and why
     // cameras and lights that failed their checks: an error only if a node uses them
     std::map<int, std::string> bad_cameras, bad_lights;
 
@@ -81,9 +87,11 @@ struct converter {
 
     // The scene image of images[index], decoded once (also when several
     // images name one file). A missing or undecodable image is left out
-    // with a warning (id 0: its textures take the role's default) unless
-    // strict; the budget is never waived.
-    mvr_image_id image(int index, const std::string &what);
+    // with a warning, once per image (id 0: its textures take the role's
+    // default, or the fallback) unless strict; the budget is never waived.
+    // fallback: the image tried next ("" = none), for messages; an image
+    // mvr cannot decode (MVR_ERROR_UNSUPPORTED) with a fallback is no warning.
+    mvr_image_id image(int index, const std::string &what, const std::string &fallback = std::string());
     mvr_texture_ref texture(const tinygltf::TextureInfo &info, const std::string &what);
     mvr_texture_ref texture_ref(int index, int texcoord, const tinygltf::ExtensionMap &ext, const std::string &what);
     mvr_material_id material(int index);

@@ -29,6 +29,9 @@ struct load_error : std::runtime_error {
 // A value from the file, quoted for a message: at most 80 characters
 // (longer values end in "..."), control characters escaped.
 std::string quote(const std::string &value);
+// A JSON member name from the file for a message path ("attributes." + it):
+// as it is if it is a plain identifier of at most 64 characters, else quoted.
+std::string key_name(const std::string &key);
 
 struct caps {
     uint64_t max_file_bytes, max_vertices, max_indices;
@@ -66,6 +69,7 @@ struct buffer_source {
     bool has_uri = false;
     std::string uri;
     uint64_t byte_length = 0;
+    bool meshopt_fallback = false;        // extensions.EXT_meshopt_compression.fallback: true
     bool loaded = false;
     byte_span span;                       // byteLength bytes, once read
     std::shared_ptr<const void> owner;    // keeps them (shared by buffers naming one file)
@@ -78,8 +82,26 @@ struct image_source {
     std::string mime_type;
 };
 
+// EXT_meshopt_compression on a bufferView, as the pre-pass read it from the
+// JSON (tinygltf narrows integers to int); checked when the view is read.
+struct meshopt_source {
+    std::string problem;                  // what is wrong with the extension's JSON ("" if nothing)
+    int64_t buffer = -1, byte_offset = 0, byte_length = 0, byte_stride = 0, count = 0;
+    std::string mode, filter = "NONE";
+};
+
+// KHR_draco_mesh_compression on a primitive, as the pre-pass read it.
+struct draco_source {
+    std::string problem;
+    int64_t buffer_view = -1;
+    std::vector<std::pair<std::string, int64_t>> attributes;   // glTF attribute name -> Draco unique id
+};
+
 struct resources {
     std::vector<buffer_source> buffers;
+    std::map<int, meshopt_source> meshopt_views;                   // by bufferView
+    std::map<std::pair<int, int>, draco_source> draco_primitives;  // by (mesh, primitive)
+    std::vector<std::string> extensions_required, extensions_used;
     std::vector<image_source> images;
     // accessors without a bufferView (zeros): tinygltf 2.7 refuses such an
     // index accessor, so the pre-pass gives them a placeholder view it drops again
@@ -94,6 +116,13 @@ struct resources {
 };
 
 class file_resolver;
+
+// Bytes decoded at load (gltf_codecs.cpp), charged to the budget while they live.
+struct decoded_bytes {
+    charged charge;
+    std::vector<unsigned char> bytes;
+    decoded_bytes(budget &b, uint64_t n, const std::string &what) : charge(b, n, what) { bytes.resize(size_t(n)); }
+};
 
 struct context {
     const tinygltf::Model *model = nullptr;
@@ -110,6 +139,11 @@ struct context {
     uint64_t mesh_bytes = 0;              // charged for the mesh being read (released once in the scene)
     bool quantization_declared = false;   // KHR_mesh_quantization in extensionsUsed
     uint32_t channels_ignored = 0;        // animation channels left out (see gltf_animation.cpp)
+    // EXT_meshopt_compression bufferViews, decoded on first use and kept for the load
+    std::map<int, std::unique_ptr<decoded_bytes>> decoded_views;
+    // the KHR_draco_mesh_compression primitive being read: its accessors' data
+    // (the accessors' own layout, tightly packed), by accessor (see draco_scope)
+    std::map<int, std::unique_ptr<decoded_bytes>> decoded_accessors;
     void warn(const std::string &msg);
     void debug(const std::string &msg);   // MVR_LOG_DEBUG, not counted as a warning
     // The byteLength bytes of buffers[index], read on first use; what names the reader.
@@ -159,6 +193,34 @@ struct scoped_reads {
 
 // Bit of a glTF component type in an allowed mask.
 uint32_t component_bit(int component_type);
+// Bytes of one component (0: not a glTF component type); components of an
+// accessor type (0: not a glTF type).
+uint32_t component_size(int component_type);
+int type_components(int type);
+
+// ---- compressed geometry (gltf_codecs.cpp) ----
+
+// The decoded bytes of bufferViews[view_index], which has
+// EXT_meshopt_compression (res.meshopt_views): its JSON checked, the
+// compressed range read from its source buffer, decoded (and filtered) into
+// byteLength bytes, charged to the budget; decoded once per load.
+const unsigned char *meshopt_view_bytes(context &cx, int view_index, const std::string &what);
+
+// While it lives, the accessors of primitive `prim` of mesh `mesh` that its
+// KHR_draco_mesh_compression names (attributes and indices) read the decoded
+// Draco mesh instead of their bufferViews (cx.decoded_accessors); nothing if
+// the primitive has no such extension. Counts, component counts, point and
+// face indices are checked against the accessors before any is used.
+struct draco_scope {
+    context &cx;
+    draco_scope(context &c, int mesh, int prim, const tinygltf::Primitive &p, const std::string &pw);
+    ~draco_scope() { cx.decoded_accessors.clear(); }
+    draco_scope(const draco_scope &) = delete;
+    draco_scope &operator=(const draco_scope &) = delete;
+
+private:
+    void decode(int mesh, int prim, const tinygltf::Primitive &p, const std::string &pw);
+};
 constexpr uint32_t ANY_FLOAT = 1u << 6;
 
 // Overflow-checked 64-bit arithmetic: refuses with the message on overflow.

@@ -43,6 +43,9 @@ byte_span context::buffer(int index, const std::string &what)
     if (b.loaded)
         return b.span;
     std::string w = "buffers[" + std::to_string(index) + "]";
+    if (!b.has_uri && b.meshopt_fallback && !(res.glb && index == 0))
+        refuse(w + " is EXT_meshopt_compression's fallback buffer and has no data; only bufferViews with that "
+               "extension may use it (read by " + what + ")");
     if (!b.has_uri) {
         // glTF 2.0, 4.4.3.3: only buffers[0] may refer to the GLB's BIN chunk
         if (!res.glb)
@@ -74,9 +77,30 @@ namespace {
 
 // Extensions mvr implements (a required one outside this list is an error).
 const std::set<std::string> implemented = {
+    "EXT_meshopt_compression", "KHR_draco_mesh_compression",   // gltf_codecs.cpp
     "KHR_lights_punctual", "KHR_materials_unlit", "KHR_texture_transform", "KHR_materials_emissive_strength",
     "KHR_materials_ior", "KHR_materials_specular", "KHR_materials_clearcoat",
-    "KHR_mesh_quantization"};
+    "KHR_mesh_quantization",
+    "KHR_texture_basisu", "EXT_texture_webp"};   // gltf_materials.cpp: their source, else the fallback
+
+// glTF 2.0, 3.12: a required extension mvr does not implement refuses the
+// file, naming it; one that is only used is warned about once and left out
+// (the file's fallback renders). Checked on the pre-pass's lists, before
+// tinygltf parses: an unsupported extension's JSON never gets to fail first.
+void check_extensions(context &cx)
+{
+    for (const auto &e : cx.res.extensions_required)
+        if (!implemented.count(e))
+            throw load_error(MVR_ERROR_UNSUPPORTED,
+                             "the file requires extension " + quote(e) + ", which mvr does not implement");
+    std::set<std::string> warned;
+    for (const auto &e : cx.res.extensions_used) {
+        if (e == "KHR_mesh_quantization")
+            cx.quantization_declared = true;
+        else if (!implemented.count(e) && warned.insert(e).second)
+            cx.warn("extension " + quote(e) + " is used but not implemented; the file renders without it");
+    }
+}
 
 void count_scene_warning(mvr_log_level level, mvr_log_id id, const char *message, void *user)
 {
@@ -203,6 +227,8 @@ mvr_mesh_id converter::mesh(int index)
             cx.warn(pw + " has no POSITION; skipped");
             continue;
         }
+        // KHR_draco_mesh_compression: its accessors read the decoded mesh until the primitive is read
+        draco_scope draco(cx, index, int(k), p, pw);
         prim_data d;
         // glTF 2.0 3.7.2.1 + KHR_mesh_quantization: the component types allowed per attribute
         uint32_t quant_pos = FLOAT | I8 | U8 | I16 | U16;
@@ -510,6 +536,7 @@ mvr_result load(const unsigned char *bytes, size_t size, const std::string &base
         {
             uint64_t model_size = 0;
             std::string rewritten = extract_resources(json, cx.res, &model_size);
+            check_extensions(cx);
             cx.mem.charge(model_size, "tinygltf's model of the JSON");
             json_estimate += model_size;
             tinygltf::TinyGLTF loader;
@@ -545,16 +572,6 @@ mvr_result load(const unsigned char *bytes, size_t size, const std::string &base
             }
         }
         cx.model = &model;
-        for (const auto &e : model.extensionsRequired)
-            if (!implemented.count(e))
-                throw load_error(MVR_ERROR_UNSUPPORTED,
-                                 "the file requires extension " + quote(e) + ", which mvr does not implement");
-        for (const auto &e : model.extensionsUsed) {
-            if (e == "KHR_mesh_quantization")
-                cx.quantization_declared = true;
-            else if (!implemented.count(e))
-                cx.warn("extension " + quote(e) + " is used but not implemented; the file renders without it");
-        }
         // the scene's node records: a fixed cost each (see core/scene.c)
         cx.mem.charge(uint64_t(model.nodes.size()) * 512, std::to_string(model.nodes.size()) + " nodes");
         if (model.nodes.size() > cx.limits.max_nodes)

@@ -1,13 +1,21 @@
 // glTF materials, textures and images into the scene (glTF 2.0, 3.8 - 3.9):
-// samplers, KHR_texture_transform, images decoded once from bytes mvr read,
-// and images that cannot be had left out with a warning.
+// samplers, KHR_texture_transform, images decoded once from bytes mvr read
+// (PNG, JPEG, WebP through mvr_image; KTX2 through ktx2.cpp), textures'
+// extension sources (KHR_texture_basisu, EXT_texture_webp) with their
+// fallbacks, and images that cannot be had left out with a warning.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 
 #include "gltf_convert.hpp"
 #include "gltf_files.hpp"
+#include "ktx2.hpp"
 #include "mvr/mvr_image.h"
+
+extern "C" {
+#include "core_util.h"
+}
 
 namespace mvr_gltf {
 
@@ -45,26 +53,80 @@ double number(const tinygltf::Value &v, const char *key, double fallback)
     return n.IsNumber() ? n.GetNumberAsDouble() : fallback;
 }
 
-mvr_image_id converter::image(int index, const std::string &what)
+mvr_image_id converter::image(int index, const std::string &what, const std::string &fallback)
 {
     auto found = images.find(index);
-    if (found != images.end())
+    if (found != images.end() && found->second.id != 0)
         return found->second;
     if (index < 0 || size_t(index) >= cx.res.images.size())
         refuse(what + ": image " + std::to_string(index) + " does not exist");
-    std::string iname = "images[" + std::to_string(index) + "]";
-    mvr_image_id id = {0};
-    try {
-        id = decode_image(size_t(index), iname);
-    } catch (const load_error &e) {
-        if (e.result == MVR_ERROR_OUT_OF_MEMORY || cx.strict)
-            throw;
-        cx.warn(std::string(e.what()) + "; left out, its textures take their defaults");
-        ++cx.images_missing;
+    auto failed = failed_images.find(index);
+    if (found == images.end()) {
+        std::string iname = "images[" + std::to_string(index) + "]";
+        try {
+            mvr_image_id id = decode_image(size_t(index), iname);
+            images[index] = id;
+            return id;
+        } catch (const load_error &e) {
+            if (e.result == MVR_ERROR_OUT_OF_MEMORY)
+                throw;   // the budget is never waived
+            images[index] = mvr_image_id{0};
+            failed = failed_images.emplace(index, image_failure{e.result, e.what(), false, false}).first;
+        }
     }
-    images[index] = id;
-    return id;
+    // Left out. A payload mvr cannot decode (MVR_ERROR_UNSUPPORTED: Basis
+    // Universal, GPU block formats, WebP without a reader) beside a fallback
+    // is what the fallback is for: noted (info), not a warning, not missing,
+    // not an error when strict. Anything else (missing, broken) is warned
+    // once per image and counted, or an error when strict.
+    image_failure &f = failed->second;
+    if (!fallback.empty() && f.result == MVR_ERROR_UNSUPPORTED) {
+        if (!f.noted) {
+            f.noted = true;
+            mvr_log(&cx.logger, MVR_LOG_INFO, MVR_LOG_ID_GENERAL, "mvr_gltf: %s; %s falls back to %s",
+                    f.message.c_str(), what.c_str(), fallback.c_str());
+        }
+        return mvr_image_id{0};
+    }
+    if (cx.strict)
+        throw load_error(f.result, f.message);
+    if (!f.warned) {
+        f.warned = true;
+        ++cx.images_missing;
+        cx.warn(f.message + (fallback.empty() ? "; left out, its textures take their defaults"
+                                              : "; left out, " + what + " falls back to " + fallback));
+    }
+    return mvr_image_id{0};
 }
+
+namespace {
+
+// A KTX2 container's level 0 (ktx2.hpp) as an image: what the loader
+// needs to charge the budget before decoding, and the decoding itself.
+struct ktx2_image {
+    const unsigned char *bytes;
+    size_t size;
+    mvr_ktx2::info info;
+};
+
+ktx2_image parse_ktx2(const unsigned char *bytes, uint64_t size, const std::string &mime, const std::string &iname)
+{
+    ktx2_image k{bytes, size_t(size), {}};
+    bool declared = mime == "image/ktx2";
+    if (!mvr_ktx2::is_ktx2(bytes, size_t(size)))
+        refuse(iname + ": mimeType " + quote(mime) + " but the bytes are not a KTX2 file");
+    if (!mime.empty() && !declared)
+        refuse(iname + ": mimeType " + quote(mime) + " but the bytes are KTX2 (image/ktx2)");
+    std::string why;
+    if (mvr_ktx2::parse(bytes, size_t(size), &k.info, &why) != mvr_ktx2::status::ok)
+        refuse(iname + ": " + why);
+    std::string reason = mvr_ktx2::unsupported_reason(k.info);
+    if (!reason.empty())
+        throw load_error(MVR_ERROR_UNSUPPORTED, iname + ": KTX2 " + reason);
+    return k;
+}
+
+}  // namespace
 
 mvr_image_id converter::decode_image(size_t index, const std::string &iname)
 {
@@ -91,31 +153,68 @@ mvr_image_id converter::decode_image(size_t index, const std::string &iname)
     if (size == 0)
         refuse(iname + ": no image data");
     const std::string &mime = !src.mime_type.empty() ? src.mime_type : file.media_type;
+    // The decoder comes from the bytes (and must agree with the mimeType):
+    // KTX2 here (ktx2.cpp), PNG / JPEG / WebP through mvr_image.
+    bool ktx2 = mvr_ktx2::is_ktx2(bytes, size_t(size)) || mime == "image/ktx2";
+    ktx2_image k{};
     mvr_image_header h;
     mvr_error err;
-    mvr_result r = mvr_image_probe(bytes, size_t(size), mime.c_str(), &h, &err);
-    if (r != MVR_OK)
-        throw load_error(r == MVR_ERROR_UNSUPPORTED ? r : MVR_ERROR_INVALID_ASSET, iname + ": " + err.message);
+    uint64_t raw = 0;   // what decoding holds besides the RGBA8 result
+    if (ktx2) {
+        k = parse_ktx2(bytes, size, mime, iname);
+        h.width = k.info.width;
+        h.height = k.info.height;
+        h.channels = k.info.components;
+        raw = mvr_ktx2::scratch_bytes(k.info);
+    } else {
+        mvr_result r = mvr_image_probe(bytes, size_t(size), mime.c_str(), &h, &err);
+        if (r != MVR_OK)
+            throw load_error(r == MVR_ERROR_UNSUPPORTED ? r : MVR_ERROR_INVALID_ASSET, iname + ": " + err.message);
+        raw = uint64_t(h.width) * h.height * uint64_t(h.channels);
+    }
     if (h.width > cx.limits.max_image_dimension || h.height > cx.limits.max_image_dimension)
         refuse(iname + ": " + std::to_string(h.width) + "x" + std::to_string(h.height) + " is over the cap of " +
                std::to_string(cx.limits.max_image_dimension) + " (mvr_gltf_options.max_image_dimension)");
     if (decoded.size() >= cx.limits.max_images)
         refuse(iname + ": more than " + std::to_string(cx.limits.max_images) +
                " images (mvr_gltf_options.max_images)");
-    // Decoding holds the stored channels and the RGBA8 result; adding it to
-    // the scene, the result and the scene's copy; then the copy stays. The
-    // larger of the two phases is charged before anything is allocated.
-    uint64_t texels = uint64_t(h.width) * h.height;
-    uint64_t rgba = texels * 4, raw = texels * uint64_t(h.channels);
+    // Decoding holds the stored channels (or the inflated KTX2 level) and the
+    // RGBA8 result; adding it to the scene, the result and the scene's copy;
+    // then the copy stays. The larger of the two phases is charged before
+    // anything is allocated.
+    uint64_t rgba = uint64_t(h.width) * h.height * 4;
     mvr_image_id id = {0};
     {
         charged decoding(cx.mem, rgba + std::max(raw, rgba),
                          iname + " (" + std::to_string(h.width) + "x" + std::to_string(h.height) + ", decoding)");
         mvr_image_data pixels;
-        if (mvr_image_decode(bytes, size_t(size), mime.c_str(), cx.limits.max_image_dimension, &pixels, &err) !=
-            MVR_OK)
-            throw load_error(err.result == MVR_ERROR_OUT_OF_MEMORY ? err.result : MVR_ERROR_INVALID_ASSET,
+        std::memset(&pixels, 0, sizeof pixels);
+        if (ktx2) {
+            // Whether the image is sRGB comes from its role (base colour and
+            // emissive are sRGB-encoded, glTF 2.0, 3.9.2), as for PNG / JPEG:
+            // the KTX2 format's _SRGB / _UNORM (k.info.srgb) is informational.
+            pixels.pixels = std::malloc(size_t(rgba));
+            if (!pixels.pixels)
+                throw load_error(MVR_ERROR_OUT_OF_MEMORY, iname + ": out of memory decoding KTX2");
+            pixels.width = h.width;
+            pixels.height = h.height;
+            pixels.type = MVR_PIXEL_U8;
+            std::string why;
+            mvr_ktx2::status st = mvr_ktx2::decode(k.bytes, k.size, k.info, static_cast<unsigned char *>(pixels.pixels), &why);
+            if (st != mvr_ktx2::status::ok) {
+                mvr_image_free(&pixels);
+                throw load_error(st == mvr_ktx2::status::out_of_memory ? MVR_ERROR_OUT_OF_MEMORY
+                                 : st == mvr_ktx2::status::unsupported ? MVR_ERROR_UNSUPPORTED
+                                                                       : MVR_ERROR_INVALID_ASSET,
+                                 iname + ": " + why);
+            }
+        } else if (mvr_image_decode(bytes, size_t(size), mime.c_str(), cx.limits.max_image_dimension, &pixels, &err) !=
+                   MVR_OK) {
+            throw load_error(err.result == MVR_ERROR_OUT_OF_MEMORY || err.result == MVR_ERROR_UNSUPPORTED
+                                 ? err.result
+                                 : MVR_ERROR_INVALID_ASSET,
                              iname + ": " + err.message);
+        }
         const std::string &name = m.images.size() > index ? m.images[index].name : std::string();
         mvr_image_desc d = {pixels.width, pixels.height, static_cast<const uint8_t *>(pixels.pixels), name.c_str()};
         mvr_result added = mvr_scene_add_image(scene, &d, &id);
@@ -193,11 +292,40 @@ mvr_texture_ref converter::texture_ref(int index, int texcoord, const tinygltf::
                std::to_string(m.textures.size()) + " textures)");
     const tinygltf::Texture &t = m.textures[size_t(index)];
     std::string tname = "textures[" + std::to_string(index) + "]";
-    if (t.source < 0) {
-        cx.warn(tname + " has no source image (or only an extension's); " + what + " is left untextured");
+    // The texture's images in the order mvr tries them: the extensions'
+    // (EXT_texture_webp, KHR_texture_basisu: WebP or KTX2, decoded like any
+    // image), then `source`, their fallback (the extensions' specifications:
+    // a client that cannot use the extension's image uses `source`).
+    struct candidate {
+        int image;
+        std::string via;
+    };
+    std::vector<candidate> sources;
+    for (const char *e : {"EXT_texture_webp", "KHR_texture_basisu"}) {
+        auto it = t.extensions.find(e);
+        if (it == t.extensions.end())
+            continue;
+        std::string via = tname + ".extensions." + e + ".source";
+        const tinygltf::Value &v = it->second;
+        if (!v.IsObject() || !v.Has("source") || !v.Get("source").IsNumber())
+            refuse(via + " is missing or not a number");
+        double s = v.Get("source").GetNumberAsDouble();
+        if (!(s >= 0 && s <= double(INT32_MAX)) || s != std::floor(s))
+            refuse(via + " is not a valid image index");
+        sources.push_back({int(s), via});
+    }
+    if (t.source >= 0)
+        sources.push_back({t.source, tname + ".source"});
+    if (sources.empty()) {
+        cx.warn(tname + " has no source image; " + what + " is left untextured");
         return ref;
     }
-    ref.image = image(t.source, tname);
+    for (size_t i = 0; i < sources.size() && ref.image.id == 0; ++i) {
+        std::string fallback;
+        if (i + 1 < sources.size())
+            fallback = "images[" + std::to_string(sources[i + 1].image) + "] (" + sources[i + 1].via + ")";
+        ref.image = image(sources[i].image, sources[i].via, fallback);
+    }
     if (ref.image.id == 0) {
         missing_texture = true;
         return ref;

@@ -190,6 +190,134 @@ static uint64_t model_bytes(const nlohmann::json &doc)
            count("textures") * sizeof(Texture);
 }
 
+// An integer member in lo..hi: its value, or -1 with *problem set (absent
+// and optional: fallback).
+static int64_t integer_member(const nlohmann::json &o, const char *key, int64_t lo, int64_t hi, bool required,
+                              int64_t fallback, std::string *problem)
+{
+    auto it = o.find(key);
+    if (it == o.end()) {
+        if (required && problem->empty())
+            *problem = std::string(key) + " is missing";
+        return fallback;
+    }
+    // (nlohmann reads a non-negative integer as unsigned, a negative one as signed)
+    bool ok = it->is_number_integer() &&
+              (it->is_number_unsigned() ? it->get<uint64_t>() <= uint64_t(hi) && it->get<uint64_t>() >= uint64_t(lo)
+                                        : it->get<int64_t>() <= hi && it->get<int64_t>() >= lo);
+    if (!ok) {
+        if (problem->empty())
+            *problem = std::string(key) + " is not an integer in " + std::to_string(lo) + ".." + std::to_string(hi);
+        return -1;
+    }
+    return it->is_number_unsigned() ? int64_t(it->get<uint64_t>()) : it->get<int64_t>();
+}
+
+// extensionsRequired and extensionsUsed (their strings; the loader checks
+// them before tinygltf parses, so an unsupported extension is named even
+// where its JSON would make tinygltf fail).
+static void extension_lists(const nlohmann::json &doc, resources &res)
+{
+    for (auto list : {std::make_pair("extensionsRequired", &res.extensions_required),
+                      std::make_pair("extensionsUsed", &res.extensions_used)}) {
+        auto it = doc.find(list.first);
+        if (it == doc.end() || !it->is_array())
+            continue;
+        for (const auto &e : *it)
+            if (e.is_string())
+                list.second->push_back(e.get<std::string>());
+    }
+}
+
+// bufferViews[i].extensions.EXT_meshopt_compression, read here (tinygltf
+// narrows its integers to int); its problems are reported when the view is read.
+static void compressed_views(const nlohmann::json &doc, resources &res)
+{
+    auto views = doc.find("bufferViews");
+    if (views == doc.end() || !views->is_array())
+        return;
+    const int64_t max = INT64_MAX / 2;
+    for (size_t i = 0; i < views->size() && i <= size_t(INT32_MAX); ++i) {
+        const nlohmann::json &v = (*views)[i];
+        if (!v.is_object())
+            continue;
+        auto ext = v.find("extensions");
+        if (ext == v.end() || !ext->is_object())
+            continue;
+        auto mo = ext->find("EXT_meshopt_compression");
+        if (mo == ext->end())
+            continue;
+        meshopt_source &m = res.meshopt_views[int(i)];
+        if (!mo->is_object()) {
+            m.problem = "not an object";
+            continue;
+        }
+        m.buffer = integer_member(*mo, "buffer", 0, INT32_MAX, true, -1, &m.problem);
+        m.byte_offset = integer_member(*mo, "byteOffset", 0, max, false, 0, &m.problem);
+        m.byte_length = integer_member(*mo, "byteLength", 1, max, true, 0, &m.problem);
+        m.byte_stride = integer_member(*mo, "byteStride", 1, max, true, 0, &m.problem);
+        m.count = integer_member(*mo, "count", 1, max, true, 0, &m.problem);
+        auto mode = mo->find("mode");
+        if (mode == mo->end() || !mode->is_string()) {
+            if (m.problem.empty())
+                m.problem = "mode is missing or not a string";
+        } else {
+            m.mode = mode->get<std::string>();
+        }
+        auto filter = mo->find("filter");
+        if (filter != mo->end()) {
+            if (filter->is_string())
+                m.filter = filter->get<std::string>();
+            else if (m.problem.empty())
+                m.problem = "filter is not a string";
+        }
+    }
+}
+
+// meshes[i].primitives[k].extensions.KHR_draco_mesh_compression, read here
+// like the views'; problems are reported when the primitive is read.
+static void draco_primitives(const nlohmann::json &doc, resources &res)
+{
+    auto meshes = doc.find("meshes");
+    if (meshes == doc.end() || !meshes->is_array())
+        return;
+    for (size_t i = 0; i < meshes->size() && i <= size_t(INT32_MAX); ++i) {
+        const nlohmann::json &mesh = (*meshes)[i];
+        auto prims = mesh.is_object() ? mesh.find("primitives") : mesh.end();
+        if (!mesh.is_object() || prims == mesh.end() || !prims->is_array())
+            continue;
+        for (size_t k = 0; k < prims->size() && k <= size_t(INT32_MAX); ++k) {
+            const nlohmann::json &p = (*prims)[k];
+            auto ext = p.is_object() ? p.find("extensions") : p.end();
+            if (!p.is_object() || ext == p.end() || !ext->is_object())
+                continue;
+            auto dr = ext->find("KHR_draco_mesh_compression");
+            if (dr == ext->end())
+                continue;
+            draco_source &d = res.draco_primitives[{int(i), int(k)}];
+            if (!dr->is_object()) {
+                d.problem = "not an object";
+                continue;
+            }
+            d.buffer_view = integer_member(*dr, "bufferView", 0, INT32_MAX, true, -1, &d.problem);
+            auto attrs = dr->find("attributes");
+            if (attrs == dr->end() || !attrs->is_object()) {
+                if (d.problem.empty())
+                    d.problem = "attributes is missing or not an object";
+                continue;
+            }
+            for (auto a = attrs->begin(); a != attrs->end(); ++a) {
+                std::string why;
+                int64_t id = integer_member(*attrs, a.key().c_str(), 0, UINT32_MAX, true, -1, &why);
+                if (!why.empty() && d.problem.empty())
+                    d.problem =
+                        "attributes." + key_name(a.key()) + " is not an integer in 0.." + std::to_string(UINT32_MAX);
+                d.attributes.push_back({a.key(), id});
+            }
+        }
+    }
+}
+
 std::string extract_resources(const json_text &text, resources &res, uint64_t *model_size)
 {
     nlohmann::json doc;
@@ -223,10 +351,21 @@ std::string extract_resources(const json_text &text, resources &res, uint64_t *m
                 src.has_uri = true;
                 src.uri = uri->get<std::string>();
             }
+            auto ext = b.find("extensions");
+            if (ext != b.end() && ext->is_object()) {
+                auto mo = ext->find("EXT_meshopt_compression");
+                if (mo != ext->end() && mo->is_object()) {
+                    auto fb = mo->find("fallback");
+                    src.meshopt_fallback = fb != mo->end() && fb->is_boolean() && fb->get<bool>();
+                }
+            }
             b["uri"] = placeholder_buffer;
             b["byteLength"] = 1;
         }
     }
+    extension_lists(doc, res);
+    compressed_views(doc, res);
+    draco_primitives(doc, res);
     auto images = doc.find("images");
     if (images != doc.end()) {
         if (!images->is_array())

@@ -63,6 +63,26 @@ bool mime_agrees(const char *mime, const image_format *f)
     return m == f->mime;
 }
 
+// Whether this OpenImageIO build reads the format (WebP is optional in
+// OpenImageIO's builds; Debian 12's has it): its input_format_list.
+bool has_reader(const image_format *f)
+{
+    std::string list = std::string(OIIO::get_string_attribute("input_format_list"));
+    std::string want = f->oiio_name + 6;   /* "image.webp" -> "webp" */
+    if (want == "jpg")
+        want = "jpeg";
+    size_t at = 0;
+    while (at <= list.size()) {
+        size_t end = list.find(',', at);
+        if (end == std::string::npos)
+            end = list.size();
+        if (list.compare(at, end - at, want) == 0)
+            return true;
+        at = end + 1;
+    }
+    return false;
+}
+
 // At most 80 characters of a value that came from a file, for a message.
 std::string short_value(const char *v)
 {
@@ -191,6 +211,9 @@ mvr_result with_encoded(const void *data, size_t size, const char *mime, const c
         if (!mime_agrees(mime, f))
             return fail(error, MVR_ERROR_INVALID_ASSET,
                         std::string(who) + ": mimeType " + short_value(mime) + " but the bytes are " + f->name);
+        if (!has_reader(f))
+            return fail(error, MVR_ERROR_UNSUPPORTED,
+                        std::string(who) + ": this OpenImageIO build has no " + f->name + " reader");
         std::string why;
         if (std::strcmp(f->name, "png") == 0 && !png_framing_ok(bytes, size, &why))
             return fail(error, MVR_ERROR_INVALID_ASSET, std::string(who) + ": " + why);

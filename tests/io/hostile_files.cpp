@@ -14,7 +14,9 @@
 #include <functional>
 #include <stdexcept>
 
+#include "hostile_codecs.hpp"
 #include "hostile_docs.hpp"
+#include "hostile_ktx2.hpp"
 
 namespace hostile {
 
@@ -268,6 +270,136 @@ static void anim_files(files &f)
         f.text(A + "pointer_without_node.gltf", e.json(), "a KHR_animation_pointer channel (no target.node)",
                "loads; warned; 1 channel ignored");
     }
+}
+
+// KTX2 containers (core/io/ktx2.cpp): a valid one, and each field of the
+// header, the index, the DFD, the key/value data and the levels made to lie
+// (offsets and lengths past the end or wrapping around 2^64, counts, sizes
+// that do not match the format, Zstandard frames that inflate to other
+// sizes, a decompression bomb); and valid shapes mvr does not decode.
+static void ktx2_files(files &f)
+{
+    std::vector<uint8_t> px(8 * 8 * 4);
+    for (size_t i = 0; i < px.size(); i += 4)
+        px[i] = 250, px[i + 1] = 140, px[i + 2] = 20, px[i + 3] = 255;   // orange
+    const ktx2_desc base = ktx2_from_rgba(px, 8, 8, VK_R8G8B8A8_SRGB, 4);
+    const std::vector<uint8_t> valid = ktx2_file(base);
+    auto put = [&](const std::string &name, const std::vector<uint8_t> &bytes, const std::string &what,
+                   const std::string &expect) {
+        write_bytes(f.asset + "/" + name + ".ktx2", bytes.data(), bytes.size());
+        f.text(name + ".gltf", textured_doc("{\"uri\":\"" + name + ".ktx2\",\"mimeType\":\"image/ktx2\"}").json(),
+               what, expect);
+    };
+    const std::string left_out = "loads, images[0] left out with a warning; strict: refused naming images[0]";
+    auto edited = [&](const std::string &name, const std::string &what,
+                      const std::function<void(std::vector<uint8_t> &)> &edit) {
+        std::vector<uint8_t> b = valid;
+        edit(b);
+        put(name, b, what, left_out);
+    };
+    auto dfd_of = [](const std::vector<uint8_t> &b) { return size_t(b[KTX2_DFD_OFFSET]) | size_t(b[KTX2_DFD_OFFSET + 1]) << 8; };
+    put("ktx2_valid", valid, "an 8x8 orange RGBA8 KTX2 with 4 levels", "loads, decoded, orange");
+    put("ktx2_short_header", std::vector<uint8_t>(valid.begin(), valid.begin() + 40), "the first 40 bytes of a KTX2",
+        left_out);
+    edited("ktx2_level_past_end", "level 0's byteLength reaches past the end", [](std::vector<uint8_t> &b) {
+        put_le64(b, ktx2_level_entry(0) + 8, b.size());
+        put_le64(b, ktx2_level_entry(0) + 16, b.size());
+    });
+    edited("ktx2_level_offset_wraps", "level 0 at offset 2^64 - 16, 256 bytes (the sum wraps)",
+           [](std::vector<uint8_t> &b) { put_le64(b, ktx2_level_entry(0), ~uint64_t(0) - 15); });
+    edited("ktx2_level_count_huge", "levelCount 0xFFFFFFFF",
+           [](std::vector<uint8_t> &b) { put_le32(b, KTX2_LEVEL_COUNT, 0xFFFFFFFFu); });
+    put("ktx2_level_index_past_end", std::vector<uint8_t>(valid.begin(), valid.begin() + 100),
+        "levelCount 4, the file ends inside the level index", left_out);
+    edited("ktx2_dfd_outside", "dfdByteOffset 0xFFFFFFF0",
+           [](std::vector<uint8_t> &b) { put_le32(b, KTX2_DFD_OFFSET, 0xFFFFFFF0u); });
+    edited("ktx2_dfd_total_mismatch", "dfdTotalSize differs from dfdByteLength",
+           [&](std::vector<uint8_t> &b) { put_le32(b, dfd_of(b), 0x7FFFFFFFu); });
+    edited("ktx2_dfd_block_too_big", "the descriptor block's size runs past the DFD",
+           [&](std::vector<uint8_t> &b) { put_le32(b, dfd_of(b) + 8, 2u | 0xFFFCu << 16); });
+    {
+        ktx2_desc k = base;
+        k.orientation = "rd";
+        std::vector<uint8_t> b = ktx2_file(k);
+        size_t kvd = size_t(b[KTX2_KVD_OFFSET]) | size_t(b[KTX2_KVD_OFFSET + 1]) << 8;
+        std::vector<uint8_t> runaway = b, no_nul = b;
+        put_le32(runaway, kvd, 0xFFFFFFF0u);
+        for (size_t i = kvd + 4; i < kvd + 4 + 18; ++i)
+            no_nul[i] = 'K';
+        put("ktx2_kvd_runaway", runaway, "a key/value pair of 0xFFFFFFF0 bytes", left_out);
+        put("ktx2_kvd_no_nul", no_nul, "a key without its NUL", left_out);
+    }
+    edited("ktx2_sgd_outside", "supercompression global data at 2^63", [](std::vector<uint8_t> &b) {
+        put_le64(b, 64, uint64_t(1) << 63);
+        put_le64(b, 72, 16);
+    });
+    edited("ktx2_level_size_lie", "level 0 holds 16 bytes for 8x8 RGBA8 (256)", [](std::vector<uint8_t> &b) {
+        put_le64(b, ktx2_level_entry(0) + 8, 16);
+        put_le64(b, ktx2_level_entry(0) + 16, 16);
+    });
+    edited("ktx2_faces_3", "faceCount 3", [](std::vector<uint8_t> &b) { put_le32(b, 36, 3); });
+    edited("ktx2_height0_depth", "pixelHeight 0 with pixelDepth 5", [](std::vector<uint8_t> &b) {
+        put_le32(b, 24, 0);
+        put_le32(b, 28, 5);
+    });
+    edited("ktx2_width0", "pixelWidth 0", [](std::vector<uint8_t> &b) { put_le32(b, 20, 0); });
+    edited("ktx2_basislz_rgba8", "BasisLZ supercompression of VK_FORMAT_R8G8B8A8_SRGB",
+           [](std::vector<uint8_t> &b) { put_le32(b, 44, 1); });
+    {
+        // 100000 x 100000 RGBA8 whose level index claims the 40 GB it would take
+        ktx2_desc k = base;
+        k.width = k.height = 100000;
+        k.level_count = 1;
+        k.levels.resize(1);
+        std::vector<uint8_t> b = ktx2_file(k);
+        put_le64(b, ktx2_level_entry(0) + 8, uint64_t(100000) * 100000 * 4);
+        put_le64(b, ktx2_level_entry(0) + 16, uint64_t(100000) * 100000 * 4);
+        put("ktx2_dims_huge", b, "100000x100000 RGBA8, level 0 claims 40 GB", left_out);
+    }
+    // Zstandard: frames of other sizes, garbage, a bomb
+    auto zstd_level = [&](size_t raw_bytes, uint32_t w, uint32_t h, uint64_t claim) {
+        ktx2_desc k = base;
+        k.width = w;
+        k.height = h;
+        k.level_count = 1;
+        k.levels.assign(1, std::vector<uint8_t>(raw_bytes, 7));
+        ktx2_zstd(k);
+        k.uncompressed[0] = claim;
+        return ktx2_file(k);
+    };
+    put("ktx2_zstd_short", zstd_level(100, 8, 8, 256), "8x8 RGBA8 whose Zstandard level inflates to 100 of 256 bytes",
+        left_out);
+    put("ktx2_zstd_long", zstd_level(4096, 8, 8, 256), "8x8 RGBA8 whose Zstandard level inflates to 4096 of 256 bytes",
+        left_out);
+    {
+        ktx2_desc k = base;
+        k.level_count = 1;
+        k.levels.assign(1, std::vector<uint8_t>(300));
+        for (size_t i = 0; i < 300; ++i)
+            k.levels[0][i] = uint8_t(i * 37 + 11);
+        k.supercompression = 2;
+        k.uncompressed = {256};
+        put("ktx2_zstd_garbage", ktx2_file(k), "8x8 RGBA8, a Zstandard level of 300 bytes that are no frame", left_out);
+    }
+    put("ktx2_zstd_bomb_16k", zstd_level(1024, 16384, 16384, uint64_t(16384) * 16384 * 4),
+        "16384x16384 RGBA8 (1 GiB) in a Zstandard frame that inflates to 1 KB",
+        "OUT_OF_MEMORY naming images[0] (64 MiB and default budgets), never allocated");
+    put("ktx2_zstd_over_cap", zstd_level(1024, 20000, 20000, uint64_t(20000) * 20000 * 4),
+        "20000x20000 RGBA8 (over max_image_dimension) in a small Zstandard frame", left_out);
+    // valid containers of shapes and formats mvr does not decode: left out as unsupported
+    auto shape = [&](const std::string &name, const std::string &what, const std::function<void(ktx2_desc &)> &edit,
+                     size_t level_bytes) {
+        ktx2_desc k = base;
+        k.level_count = 1;
+        k.levels.assign(1, std::vector<uint8_t>(level_bytes, 9));
+        edit(k);
+        put(name, ktx2_file(k), what, left_out);
+    };
+    shape("ktx2_cubemap", "a valid cubemap", [](ktx2_desc &k) { k.faces = 6; }, 8 * 8 * 4 * 6);
+    shape("ktx2_3d", "a valid 3D texture (depth 2)", [](ktx2_desc &k) { k.depth = 2; }, 8 * 8 * 4 * 2);
+    shape("ktx2_array", "a valid array texture of 3 layers", [](ktx2_desc &k) { k.layers = 3; }, 8 * 8 * 4 * 3);
+    shape("ktx2_rgba16f", "VK_FORMAT_R16G16B16A16_SFLOAT",
+          [](ktx2_desc &k) { k.vk_format = VK_R16G16B16A16_SFLOAT, k.type_size = 2, k.texel_bytes = 8; }, 8 * 8 * 8);
 }
 
 files write_all(const std::string &root_in)
@@ -790,6 +922,8 @@ files write_all(const std::string &root_in)
     }
 
     anim_files(f);
+    codec_files(f);   // hostile_codecs.cpp: compressed geometry, extension messages
+    ktx2_files(f);
 
     std::string index = "file\twhat\texpect\n";
     for (const auto &h : f.list)

@@ -682,6 +682,141 @@ void skins_morphs_and_animations_are_checked(mvr_test_state *t)
     }
 }
 
+// KTX2 containers (ktx2_* files, tests/io/hostile_files.cpp): every lie in
+// the header, index, DFD, key/value data or levels leaves the image out
+// (a warning naming images[0], the untextured picture) and is refused when
+// strict; nothing is read out of bounds (the sanitizer build) and nothing
+// large is allocated before the budget allows it.
+void ktx2_containers_are_checked(mvr_test_state *t)
+{
+    const files &f = F();
+    {
+        outcome o = load(t, f.path("ktx2_valid.gltf"), defaults());
+        CHECK_MSG(t, o.r == MVR_OK && o.info.images_decoded == 1 && o.warnings.empty(), "ktx2_valid: %s, decoded %u",
+                  o.msg.c_str(), o.info.images_decoded);
+        size_t orange = count_pixels(render(t, o.scene, "ktx2_valid"),
+                                     [](const uint8_t *p) { return p[0] > 240 && p[1] > 120 && p[1] < 160 && p[2] < 40; });
+        CHECK_MSG(t, orange > 200, "ktx2_valid: %zu orange pixels", orange);
+    }
+    const char *left_out[] = {
+        "ktx2_short_header.gltf",    "ktx2_level_past_end.gltf",  "ktx2_level_offset_wraps.gltf",
+        "ktx2_level_count_huge.gltf", "ktx2_level_index_past_end.gltf", "ktx2_dfd_outside.gltf",
+        "ktx2_dfd_total_mismatch.gltf", "ktx2_dfd_block_too_big.gltf", "ktx2_kvd_runaway.gltf",
+        "ktx2_kvd_no_nul.gltf",      "ktx2_sgd_outside.gltf",     "ktx2_level_size_lie.gltf",
+        "ktx2_faces_3.gltf",         "ktx2_height0_depth.gltf",   "ktx2_width0.gltf",
+        "ktx2_basislz_rgba8.gltf",   "ktx2_dims_huge.gltf",       "ktx2_zstd_short.gltf",
+        "ktx2_zstd_long.gltf",       "ktx2_zstd_garbage.gltf",    "ktx2_zstd_over_cap.gltf",
+        "ktx2_cubemap.gltf",         "ktx2_3d.gltf",              "ktx2_array.gltf",
+        "ktx2_rgba16f.gltf"};
+    for (const char *n : left_out) {
+        outcome o = load(t, f.path(n), defaults());
+        left_out_and_clean(t, o, n);
+        CHECK_MSG(t, o.ms < 2000, "%s: %.0f ms", n, o.ms);
+        CHECK_MSG(t, o.rss_growth_kb < 64 * 1024, "%s: peak RSS grew by %ld KB", n, o.rss_growth_kb);
+        outcome s = load(t, f.path(n), strict(), (std::string(n) + " strict").c_str());
+        CHECK_MSG(t, (s.r == MVR_ERROR_INVALID_ASSET || s.r == MVR_ERROR_UNSUPPORTED) && has(s.msg, "images[0]"),
+                  "%s strict: %s %s", n, mvr_result_name(s.r), s.msg.c_str());
+    }
+    // the bomb: 1 GiB declared, a frame of 1 KB; refused before the level is inflated
+    for (uint64_t b : {64 * MiB, uint64_t(0)}) {
+        for (bool st : {false, true}) {
+            mvr_gltf_options o = b ? budget(b) : defaults();
+            o.strict = st;
+            std::string label = std::string("ktx2_zstd_bomb_16k") + (b ? " 64M" : " default") + (st ? " strict" : "");
+            outcome r = load(t, f.path("ktx2_zstd_bomb_16k.gltf"), o, label.c_str());
+            CHECK_MSG(t, r.r == MVR_ERROR_OUT_OF_MEMORY && has(r.msg, "memory_budget") && has(r.msg, "images[0]"),
+                      "%s: %s %s", label.c_str(), mvr_result_name(r.r), r.msg.c_str());
+            CHECK_MSG(t, r.rss_growth_kb < 200 * 1024, "%s: peak RSS grew by %ld KB", label.c_str(), r.rss_growth_kb);
+        }
+    }
+}
+
+// Compressed geometry (hostile_codecs.cpp: codec_*, made with meshoptimizer's
+// and Draco's own encoders): each broken file refused with a message naming
+// the object, never a crash; the valid ones load, draw, and decode inside the
+// budget. Extension messages (ext_*): a required extension mvr lacks is named
+// (MVR_ERROR_UNSUPPORTED), a used one is warned about once.
+void compressed_geometry_is_checked(mvr_test_state *t)
+{
+    const files &f = F();
+    size_t refused = 0;
+    for (const auto &h : f.list) {
+        if (h.name.rfind("codec_", 0) != 0 || h.refused_naming.empty())
+            continue;
+        ++refused;
+        const char *n = h.name.c_str();
+        outcome o = load(t, f.path(h.name), defaults());
+        CHECK_MSG(t, o.r == MVR_ERROR_INVALID_ASSET, "%s: %s, expected MVR_ERROR_INVALID_ASSET (%s)", n,
+                  mvr_result_name(o.r), o.msg.c_str());
+        CHECK_MSG(t, has(o.msg, h.refused_naming), "%s: the message lacks '%s': %s", n, h.refused_naming.c_str(),
+                  o.msg.c_str());
+    }
+    CHECK_MSG(t, refused >= 30, "%zu codec_* files refused", refused);
+    // valid: an unlit orange quad (meshopt) and blue Suzanne (Draco), framed
+    struct valid {
+        const char *name;
+        bool (*colour)(const uint8_t *);
+    };
+    const valid files_ok[] = {
+        {"codec_meshopt_valid.gltf",
+         [](const uint8_t *p) { return p[0] > 200 && p[1] > 100 && p[1] < 220 && p[2] < 40; }},
+        {"codec_draco_valid.gltf", [](const uint8_t *p) { return p[0] < 40 && p[1] > 100 && p[2] > 200; }},
+    };
+    for (const valid &v : files_ok) {
+        outcome o = load(t, f.path(v.name), defaults());
+        CHECK_MSG(t, o.r == MVR_OK && o.warnings.empty(), "%s: %s %s", v.name, o.msg.c_str(),
+                  o.warnings.empty() ? "" : o.warnings[0].c_str());
+        if (!o.scene)
+            continue;
+        std::vector<uint8_t> px = render(t, o.scene, v.name);
+        size_t coloured = count_pixels(px, v.colour);
+        CHECK_MSG(t, px.empty() || (coloured > 400 && coloured + 200 > drawn(px)),
+                  "%s: %zu of %zu drawn pixels coloured", v.name, coloured, drawn(px));
+        // decoded inside the budget: a budget just under the load's own peak refuses it
+        outcome b = load(t, f.path(v.name), budget(o.info.memory_peak - 1), (std::string(v.name) + " peak-1").c_str());
+        CHECK_MSG(t, b.r == MVR_ERROR_OUT_OF_MEMORY && has(b.msg, "memory_budget"), "%s under its peak: %s %s", v.name,
+                  mvr_result_name(b.r), b.msg.c_str());
+    }
+    {
+        outcome o = load(t, f.path("codec_meshopt_fallback_unread.gltf"), defaults());
+        CHECK_MSG(t, o.r == MVR_OK && o.warnings.empty() && o.info.buffers_read == 1,
+                  "codec_meshopt_fallback_unread: %s, %zu warnings, %u buffers read", o.msg.c_str(), o.warnings.size(),
+                  o.info.buffers_read);
+    }
+    {
+        outcome o = load(t, f.path("codec_meshopt_huge.gltf"), defaults());
+        CHECK_MSG(t, o.r == MVR_ERROR_OUT_OF_MEMORY && has(o.msg, "memory_budget") &&
+                         has(o.msg, "bufferViews[0].extensions.EXT_meshopt_compression"),
+                  "codec_meshopt_huge: %s %s", mvr_result_name(o.r), o.msg.c_str());
+        CHECK_MSG(t, o.rss_growth_kb < 64 * 1024, "codec_meshopt_huge: peak RSS grew by %ld KB", o.rss_growth_kb);
+    }
+    {
+        // Draco's own allocations are bounded: a lying count fails fast, within
+        // the budget (and under a small budget, by it)
+        outcome o = load(t, f.path("codec_draco_allocation_bomb.gltf"), defaults());
+        CHECK_MSG(t, o.ms < 2000 && o.rss_growth_kb < 64 * 1024,
+                  "codec_draco_allocation_bomb: %.0f ms, RSS grew %ld KB", o.ms, o.rss_growth_kb);
+        outcome b = load(t, f.path("codec_draco_allocation_bomb.gltf"), budget(4 * MiB),
+                         "codec_draco_allocation_bomb 4M");
+        CHECK_MSG(t, b.r == MVR_ERROR_OUT_OF_MEMORY && has(b.msg, "memory_budget") &&
+                         has(b.msg, "KHR_draco_mesh_compression"),
+                  "codec_draco_allocation_bomb 4M: %s %s", mvr_result_name(b.r), b.msg.c_str());
+    }
+    for (const char *n : {"ext_required_unknown.gltf", "ext_required_before_parse.gltf"}) {
+        outcome o = load(t, f.path(n), defaults());
+        CHECK_MSG(t, o.r == MVR_ERROR_UNSUPPORTED && has(o.msg, "requires extension 'EXT_mvr_unknown'"), "%s: %s %s", n,
+                  mvr_result_name(o.r), o.msg.c_str());
+    }
+    {
+        outcome o = load(t, f.path("ext_used_unknown.gltf"), defaults());
+        size_t named = 0;
+        for (const auto &w : o.warnings)
+            named += has(w, "'EXT_mvr_optional'");
+        CHECK_MSG(t, o.r == MVR_OK && named == 1 && o.warnings.size() == 1,
+                  "ext_used_unknown: %s, %zu warnings (%zu naming it)", o.msg.c_str(), o.warnings.size(), named);
+    }
+}
+
 }  // namespace
 
 int main(int argc, char **argv)
@@ -712,6 +847,8 @@ int main(int argc, char **argv)
         TEST(allowed_root_widens_access),
         TEST(read_callback_replaces_file_access),
         TEST(skins_morphs_and_animations_are_checked),
+        TEST(compressed_geometry_is_checked),
+        TEST(ktx2_containers_are_checked),
     };
     int rc = mvr_test_run(cases, sizeof cases / sizeof cases[0]);
     hostile::release_context();
