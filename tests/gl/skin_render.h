@@ -9,6 +9,7 @@
 
 #include "mvr/mvr.h"
 #include "mvr_test.h"
+#include "scene_internal.h"
 
 typedef struct shot {
     uint8_t *pixels;             /* views x width x height RGBA8, NULL when the render failed */
@@ -54,6 +55,41 @@ static inline bool render_shot(mvr_test_state *t, mvr_context *ctx, mvr_scene *s
     mvr_target_destroy(target);
     mvr_renderer_destroy(r);
     return ok && out->pixels;
+}
+
+/* The CPU reference of one primitive as node `node` of `posed` draws it:
+ * a plain mesh (and node) in `s` at its posed vertices (double, narrowed
+ * once), with its posed normals (posed_normals) or its own bind-pose ones. */
+static inline void add_posed_copy(mvr_test_state *t, mvr_scene *s, const mvr_scene *posed, uint32_t node,
+                                  uint32_t primitive, mvr_material_id mat, bool posed_normals)
+{
+    const scene_primitive *p = &posed->primitives[primitive];
+    size_t n = (size_t)p->vertex_count * 3;
+    double *pos = malloc(n * sizeof *pos), *nrm = posed_normals ? malloc(n * sizeof *nrm) : NULL;
+    float *fpos = malloc(n * sizeof *fpos), *fnrm = posed_normals ? malloc(n * sizeof *fnrm) : NULL;
+    bool ok = pos && fpos && mvr_scene_posed_positions(posed, node, primitive, pos);
+    ok = ok && (!posed_normals || (nrm && fnrm && mvr_scene_posed_normals(posed, node, primitive, nrm)));
+    CHECK(t, ok);
+    for (size_t i = 0; ok && i < n; ++i) {
+        fpos[i] = (float)pos[i];
+        if (fnrm)
+            fnrm[i] = (float)nrm[i];
+    }
+    if (ok) {
+        mvr_primitive_desc pd = {.vertex_count = p->vertex_count, .positions = fpos,
+                                 .normals = posed_normals ? fnrm : p->normals, .index_count = p->index_count,
+                                 .indices32 = p->indices, .material = mat};
+        mvr_mesh_desc mesh = {.primitives = &pd, .primitive_count = 1, .name = "posed"};
+        mvr_mesh_id mid;
+        CHECK(t, mvr_scene_add_mesh(s, &mesh, &mid) == MVR_OK);
+        mvr_node_desc nd = {.mesh = mid};
+        mvr_node_id id;
+        CHECK(t, mvr_scene_add_node(s, &nd, &id) == MVR_OK);
+    }
+    free(pos);
+    free(nrm);
+    free(fpos);
+    free(fnrm);
 }
 
 /* Pixels whose RGBA differs by more than tolerance in some channel. */

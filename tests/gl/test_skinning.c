@@ -93,24 +93,8 @@ static mvr_scene *reference_scene(mvr_test_state *t, mvr_scene *posed, bool ligh
         const scene_node *node = &posed->nodes[n];
         if (node->mesh == MVR_NO_INDEX || strcmp(node->name, "wall") == 0)
             continue;
-        const scene_mesh *m = &posed->meshes[node->mesh];
-        const scene_primitive *p = &posed->primitives[m->first_primitive];
-        double *pos = malloc((size_t)p->vertex_count * 3 * sizeof *pos);
-        float *fpos = malloc((size_t)p->vertex_count * 3 * sizeof *fpos);
-        CHECK(t, mvr_scene_posed_positions(posed, n, m->first_primitive, pos));
-        for (uint32_t i = 0; i < p->vertex_count * 3; ++i)
-            fpos[i] = (float)pos[i];
         /* normals stay +Z: the strip bends about Z, the quad is flat */
-        mvr_primitive_desc pd = {.vertex_count = p->vertex_count, .positions = fpos, .normals = p->normals,
-                                 .index_count = p->index_count, .indices32 = p->indices, .material = mat};
-        mvr_mesh_desc mesh = {.primitives = &pd, .primitive_count = 1, .name = m->name};
-        mvr_mesh_id mid;
-        CHECK(t, mvr_scene_add_mesh(s, &mesh, &mid) == MVR_OK);
-        mvr_node_desc nd = {.mesh = mid};
-        mvr_node_id id;
-        CHECK(t, mvr_scene_add_node(s, &nd, &id) == MVR_OK);
-        free(pos);
-        free(fpos);
+        add_posed_copy(t, s, posed, n, posed->meshes[node->mesh].first_primitive, mat, false);
     }
     if (light)
         add_light(s);

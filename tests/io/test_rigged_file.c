@@ -124,31 +124,7 @@ static mvr_scene *reference_scene(mvr_test_state *t, const mvr_scene *posed, boo
             continue;
         const scene_mesh *m = &posed->meshes[node->mesh];
         for (uint32_t k = 0; k < m->primitive_count; ++k) {
-            const scene_primitive *p = &posed->primitives[m->first_primitive + k];
-            double *pos = malloc((size_t)p->vertex_count * 3 * sizeof *pos);
-            float *fpos = malloc((size_t)p->vertex_count * 3 * sizeof *fpos);
-            float *fnrm = lit ? malloc((size_t)p->vertex_count * 3 * sizeof *fnrm) : NULL;
-            double *nrm = lit ? malloc((size_t)p->vertex_count * 3 * sizeof *nrm) : NULL;
-            CHECK(t, pos && fpos && mvr_scene_posed_positions(posed, n, m->first_primitive + k, pos));
-            CHECK(t, !lit || (fnrm && nrm && mvr_scene_posed_normals(posed, n, m->first_primitive + k, nrm)));
-            for (uint32_t i = 0; i < p->vertex_count * 3; ++i) {
-                fpos[i] = (float)pos[i];
-                if (fnrm && nrm)
-                    fnrm[i] = (float)nrm[i];
-            }
-            free(nrm);
-            mvr_primitive_desc pd = {.vertex_count = p->vertex_count, .positions = fpos,
-                                     .normals = lit ? fnrm : p->normals, .index_count = p->index_count,
-                                     .indices32 = p->indices, .material = mat};
-            mvr_mesh_desc mesh = {.primitives = &pd, .primitive_count = 1, .name = m->name};
-            mvr_mesh_id mid;
-            CHECK(t, mvr_scene_add_mesh(s, &mesh, &mid) == MVR_OK);
-            mvr_node_desc nd = {.mesh = mid};
-            mvr_node_id id;
-            CHECK(t, mvr_scene_add_node(s, &nd, &id) == MVR_OK);
-            free(pos);
-            free(fpos);
-            free(fnrm);
+            add_posed_copy(t, s, posed, n, m->first_primitive + k, mat, lit);
         }
     }
     if (lit)
