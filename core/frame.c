@@ -504,20 +504,21 @@ mvr_result mvr_frame_build(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin, u
                       : mat->alpha_mode == MVR_ALPHA_MASK ? MVR_PASS_MASK
                                                           : MVR_PASS_OPAQUE;
             d->mirrored = mirrored;
-            mvr_dvec3 center = mvr_dvec3_scale(mvr_dvec3_add(p->bounds_min, p->bounds_max), 0.5);
-            mvr_dvec3 world_center = mvr_dvec3_sub(mvr_dmat4_transform_point(w, center), origin);
-            d->depth = (float)mvr_dvec3_length(world_center);
-            /* bounding sphere: the box's half diagonal scaled by the largest
-             * axis scale of the world matrix (conservative under shear too) */
-            double half = 0.5 * mvr_dvec3_length(mvr_dvec3_sub(p->bounds_max, p->bounds_min));
-            double sx = mvr_dvec3_length(mvr_dmat4_transform_dir(w, mvr_dvec3_make(1, 0, 0)));
-            double sy = mvr_dvec3_length(mvr_dmat4_transform_dir(w, mvr_dvec3_make(0, 1, 0)));
-            double sz = mvr_dvec3_length(mvr_dmat4_transform_dir(w, mvr_dvec3_make(0, 0, 1)));
-            d->center[0] = world_center.x;
-            d->center[1] = world_center.y;
-            d->center[2] = world_center.z;
-            d->radius = half * fmax(sx, fmax(sy, sz)) * (1.0 + 1e-6) + 1e-9;
-            if (d->deform != MVR_NO_INDEX) {
+            if (d->deform == MVR_NO_INDEX) {
+                mvr_dvec3 center = mvr_dvec3_scale(mvr_dvec3_add(p->bounds_min, p->bounds_max), 0.5);
+                mvr_dvec3 world_center = mvr_dvec3_sub(mvr_dmat4_transform_point(w, center), origin);
+                d->depth = (float)mvr_dvec3_length(world_center);
+                /* bounding sphere: the box's half diagonal scaled by the largest
+                 * axis scale of the world matrix (conservative under shear too) */
+                double half = 0.5 * mvr_dvec3_length(mvr_dvec3_sub(p->bounds_max, p->bounds_min));
+                double sx = mvr_dvec3_length(mvr_dmat4_transform_dir(w, mvr_dvec3_make(1, 0, 0)));
+                double sy = mvr_dvec3_length(mvr_dmat4_transform_dir(w, mvr_dvec3_make(0, 1, 0)));
+                double sz = mvr_dvec3_length(mvr_dmat4_transform_dir(w, mvr_dvec3_make(0, 0, 1)));
+                d->center[0] = world_center.x;
+                d->center[1] = world_center.y;
+                d->center[2] = world_center.z;
+                d->radius = half * fmax(sx, fmax(sy, sz)) * (1.0 + 1e-6) + 1e-9;
+            } else {
                 /* posed: the skeleton's and the weights' bounds, never the
                  * bind pose's (a posed character is never culled while
                  * visible); the same box shadows fit */
