@@ -753,11 +753,11 @@ int mvr_cmd_bench(int argc, char **argv)
         /* the material extensions the scene's programs use: each gets a
          * configuration with it drawn as absent (what it costs, what it
          * changes) */
-        uint32_t extensions = 0;
+        uint32_t extensions = 0, extension_bits = extension_features();
         for (uint32_t i = 0; r && i < mvr_renderer_program_count(r); ++i) {
             mvr_program_info info;
             if (mvr_renderer_get_program_info(r, i, &info) && info.mesh)
-                extensions |= info.features & extension_features();
+                extensions |= info.features & extension_bits;
         }
         for (uint32_t bit = 1; bit && count < BENCH_MAX_CONFIGS; bit <<= 1) {
             if (!(extensions & bit))
