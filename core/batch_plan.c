@@ -4,28 +4,6 @@
 #include "batch_plan.h"
 #include "shader_gen.h"
 
-static const char *const role_names[MVR_ROLE_COUNT] = {"base color", "metallic-roughness", "normal", "occlusion",
-                                                       "emissive"};
-static const uint32_t role_bits[MVR_ROLE_COUNT] = {MVR_FEATURE_BASE_COLOR_TEX, MVR_FEATURE_METAL_ROUGH_TEX,
-                                                   MVR_FEATURE_NORMAL_TEX, MVR_FEATURE_OCCLUSION_TEX,
-                                                   MVR_FEATURE_EMISSIVE_TEX};
-
-const mvr_texture_ref *mvr_material_role(const mvr_material_desc *m, uint32_t role)
-{
-    switch (role) {
-    case 0: return &m->base_color;
-    case 1: return &m->metallic_roughness;
-    case 2: return &m->normal;
-    case 3: return &m->occlusion;
-    default: return &m->emissive;
-    }
-}
-
-bool mvr_role_is_srgb(uint32_t role)
-{
-    return role == 0 || role == 4;
-}
-
 bool mvr_sampler_uses_mipmaps(const mvr_sampler_desc *s)
 {
     switch (s->min_filter) {
@@ -118,21 +96,48 @@ static void explain(mvr_batch_plan *p, const mvr_texture_group *first, uint32_t 
                     bool full)
 {
     if (full)
-        note(p, "%s image %u (material %u): group %u is full (GL_MAX_ARRAY_TEXTURE_LAYERS)", role_names[role],
+        note(p, "%s image %u (material %u): group %u is full (GL_MAX_ARRAY_TEXTURE_LAYERS)", mvr_role_name(role),
              image, material, (unsigned)(first - p->groups));
     else if (first->width != w || first->height != h)
-        note(p, "%s image %u (material %u): size %ux%u differs from group %u (%ux%u)", role_names[role], image,
+        note(p, "%s image %u (material %u): size %ux%u differs from group %u (%ux%u)", mvr_role_name(role), image,
              material, w, h, (unsigned)(first - p->groups), first->width, first->height);
     else if (first->srgb != srgb)
-        note(p, "%s image %u (material %u): format differs from group %u", role_names[role], image, material,
+        note(p, "%s image %u (material %u): format differs from group %u", mvr_role_name(role), image, material,
              (unsigned)(first - p->groups));
     else if (first->levels != levels)
-        note(p, "%s image %u (material %u): mip count %u differs from group %u (%u)", role_names[role], image,
+        note(p, "%s image %u (material %u): mip count %u differs from group %u (%u)", mvr_role_name(role), image,
              material, levels, (unsigned)(first - p->groups), first->levels);
     else
         note(p, "%s image %u (material %u): sampler (filters %d/%d, wrap %d/%d) differs from group %u",
-             role_names[role], image, material, (int)s->mag_filter, (int)s->min_filter, (int)s->wrap_s,
+             mvr_role_name(role), image, material, (int)s->mag_filter, (int)s->min_filter, (int)s->wrap_s,
              (int)s->wrap_t, (unsigned)(first - p->groups));
+}
+
+static int compare_groups(const void *pa, const void *pb)
+{
+    const mvr_material_slots *a = *(const mvr_material_slots *const *)pa, *b = *(const mvr_material_slots *const *)pb;
+    int c = memcmp(a->group, b->group, sizeof a->group);
+    return c ? c : (a < b ? -1 : a > b);
+}
+
+/* Numbers the distinct group tuples, in the order of the tuples (so draws
+ * sorted by the number bind arrays in a stable order). */
+static mvr_result number_group_sets(mvr_batch_plan *p)
+{
+    mvr_material_slots **order = malloc(p->material_count * sizeof *order);
+    if (!order)
+        return MVR_ERROR_OUT_OF_MEMORY;
+    for (uint32_t m = 0; m < p->material_count; ++m)
+        order[m] = &p->materials[m];
+    qsort(order, p->material_count, sizeof *order, compare_groups);
+    uint32_t set = 0;
+    for (uint32_t k = 0; k < p->material_count; ++k) {
+        if (k && memcmp(order[k]->group, order[k - 1]->group, sizeof order[k]->group) != 0)
+            set++;
+        order[k]->group_set = set;
+    }
+    free(order);
+    return MVR_OK;
 }
 
 mvr_result mvr_batch_plan_build(mvr_batch_plan *p, const mvr_scene *s, uint32_t max_layers)
@@ -145,15 +150,18 @@ mvr_result mvr_batch_plan_build(mvr_batch_plan *p, const mvr_scene *s, uint32_t 
     if (!p->materials)
         return MVR_ERROR_OUT_OF_MEMORY;
     for (uint32_t m = 0; m < p->material_count; ++m)
-        for (int r = 0; r < MVR_ROLE_COUNT; ++r)
+    {
+        for (uint32_t r = 0; r < MVR_ROLE_COUNT; ++r)
             p->materials[m].group[r] = p->materials[m].layer[r] = MVR_NO_GROUP;
+        p->materials[m].extension_textures = false;
+    }
 
     for (uint32_t m = 0; m < s->material_count; ++m) {
         const mvr_material_desc *md = &s->materials[m].desc;
         for (uint32_t role = 0; role < MVR_ROLE_COUNT; ++role) {
-            const mvr_texture_ref *t = mvr_material_role(md, role);
-            if (!t->image.id)
+            if (!mvr_material_samples_role(md, role))
                 continue;
+            const mvr_texture_ref *t = mvr_material_role(md, role);
             uint32_t image = t->image.id - 1;
             const scene_image *img = &s->images[image];
             mvr_sampler_desc smp = normalized(t->sampler);
@@ -199,6 +207,8 @@ mvr_result mvr_batch_plan_build(mvr_batch_plan *p, const mvr_scene *s, uint32_t 
                 return MVR_ERROR_OUT_OF_MEMORY;
             p->materials[m].group[role] = (uint16_t)(fit - p->groups);
             p->materials[m].layer[role] = (uint16_t)layer;
+            if (role >= MVR_CORE_ROLE_COUNT)
+                p->materials[m].extension_textures = true;
         }
     }
 
@@ -207,9 +217,10 @@ mvr_result mvr_batch_plan_build(mvr_batch_plan *p, const mvr_scene *s, uint32_t 
      * for both kinds. White is exact for base color, metallic-roughness,
      * occlusion and emissive (the factor times 1.0); a "flat" normal texel
      * (128, 128, 255) is not exactly (0, 0, 1), so normal maps keep their own
-     * variant. */
-    for (uint32_t role = 0; role < MVR_ROLE_COUNT; ++role) {
-        if (role == 2)
+     * variant. The extensions' roles need no white layer: their shader code
+     * samples only where the material's block says it has a texture. */
+    for (uint32_t role = 0; role < MVR_CORE_ROLE_COUNT; ++role) {
+        if (role == MVR_ROLE_NORMAL)
             continue;
         mvr_texture_group *first = NULL;
         for (uint32_t g = 0; g < p->group_count && !first; ++g)
@@ -231,7 +242,7 @@ mvr_result mvr_batch_plan_build(mvr_batch_plan *p, const mvr_scene *s, uint32_t 
             p->materials[m].layer[role] = (uint16_t)first->neutral_layer;
         }
     }
-    return MVR_OK;
+    return number_group_sets(p);
 }
 
 void mvr_batch_plan_free(mvr_batch_plan *p)
@@ -251,20 +262,15 @@ uint32_t mvr_batch_plan_neutral_features(const mvr_batch_plan *p, uint32_t slot)
     uint32_t f = 0;
     if (slot >= p->material_count)
         return 0;
-    for (int r = 0; r < MVR_ROLE_COUNT; ++r) {
+    for (uint32_t r = 0; r < MVR_CORE_ROLE_COUNT; ++r) {
         uint16_t g = p->materials[slot].group[r];
         if (g != MVR_NO_GROUP && p->groups[g].neutral_layer == p->materials[slot].layer[r])
-            f |= role_bits[r];
+            f |= mvr_role_feature(r);
     }
     return f;
 }
 
 uint64_t mvr_batch_plan_group_key(const mvr_batch_plan *p, uint32_t slot)
 {
-    uint64_t k = 0;
-    if (slot >= p->material_count)
-        return 0;
-    for (int r = 0; r < MVR_ROLE_COUNT; ++r)
-        k = k << 12 | (uint64_t)(p->materials[slot].group[r] & 0xFFFu);
-    return k;
+    return slot < p->material_count ? p->materials[slot].group_set : 0;
 }

@@ -8,9 +8,9 @@
 #ifndef MVR_BATCH_PLAN_H
 #define MVR_BATCH_PLAN_H
 
+#include "material.h"
 #include "scene_internal.h"
 
-#define MVR_ROLE_COUNT 5 /* base color, metallic-roughness, normal, occlusion, emissive */
 #define MVR_NO_GROUP UINT16_MAX
 
 typedef struct mvr_texture_group {
@@ -27,6 +27,8 @@ typedef struct mvr_texture_group {
 typedef struct mvr_material_slots {
     uint16_t group[MVR_ROLE_COUNT];   /* MVR_NO_GROUP: the role is not sampled */
     uint16_t layer[MVR_ROLE_COUNT];
+    uint32_t group_set;               /* equal for materials with equal groups in every role */
+    bool extension_textures;          /* an extension's role is sampled from an array */
 } mvr_material_slots;
 
 typedef struct mvr_batch_plan {
@@ -46,14 +48,8 @@ void mvr_batch_plan_free(mvr_batch_plan *plan);
  * the array path (roles it has no texture in; never the normal role). */
 uint32_t mvr_batch_plan_neutral_features(const mvr_batch_plan *plan, uint32_t material_slot);
 
-/* A sort key of a material's groups (equal keys bind the same arrays). */
+/* A sort key of a material's groups: equal keys bind the same arrays. */
 uint64_t mvr_batch_plan_group_key(const mvr_batch_plan *plan, uint32_t material_slot);
-
-/* The texture ref of a role of a material (0 base color .. 4 emissive). */
-const mvr_texture_ref *mvr_material_role(const mvr_material_desc *m, uint32_t role);
-
-/* Whether a role is stored sRGB-encoded (base color and emissive, glTF 2.0 3.9.2). */
-bool mvr_role_is_srgb(uint32_t role);
 
 /* Levels of a full mip chain of a w x h image. */
 uint32_t mvr_mip_levels(uint32_t w, uint32_t h);

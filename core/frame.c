@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "frame.h"
+#include "material.h"
 
 uint32_t mvr_draw_features(const scene_primitive *p, const mvr_material_desc *m)
 {
@@ -11,25 +12,28 @@ uint32_t mvr_draw_features(const scene_primitive *p, const mvr_material_desc *m)
         f |= MVR_FEATURE_NORMALS;
     if (p->colors)
         f |= MVR_FEATURE_COLOR0;
-    const struct { const mvr_texture_ref *t; uint32_t bit; } roles[] = {
-        {&m->base_color, MVR_FEATURE_BASE_COLOR_TEX},
-        {&m->metallic_roughness, MVR_FEATURE_METAL_ROUGH_TEX},
-        {&m->normal, MVR_FEATURE_NORMAL_TEX},
-        {&m->occlusion, MVR_FEATURE_OCCLUSION_TEX},
-        {&m->emissive, MVR_FEATURE_EMISSIVE_TEX}};
-    for (size_t i = 0; i < MVR_ARRAY_COUNT(roles); ++i) {
-        const mvr_texture_ref *t = roles[i].t;
-        if (!t->image.id)
+    /* the extensions' code only where a material departs from glTF's core model */
+    uint32_t extensions = mvr_material_extension_features(m);
+    f |= extensions;
+    for (uint32_t role = 0; role < MVR_ROLE_COUNT; ++role) {
+        if (!mvr_material_samples_role(m, role))
             continue;
-        /* A texture whose coordinate set the primitive lacks cannot be sampled. */
+        /* A texture whose coordinate set the primitive lacks cannot be
+         * sampled (a core role is then not sampled; an extension's role
+         * reads texture coordinate 0 or (0, 0): glTF forbids the case) */
+        const mvr_texture_ref *t = mvr_material_role(m, role);
         const float *uv = t->texcoord == 1 ? p->uv1 : p->uv0;
         if (!uv)
             continue;
-        f |= roles[i].bit | (t->texcoord == 1 ? MVR_FEATURE_UV1 : MVR_FEATURE_UV0);
+        f |= (role < MVR_CORE_ROLE_COUNT ? mvr_role_feature(role) : 0u) |
+             (t->texcoord == 1 ? MVR_FEATURE_UV1 : MVR_FEATURE_UV0);
         if (t->transform.enabled)
             f |= MVR_FEATURE_TEXTURE_TRANSFORM;
     }
-    if ((f & MVR_FEATURE_NORMAL_TEX) && p->tangents && p->normals)
+    if ((f & (MVR_FEATURE_NORMAL_TEX | MVR_FEATURE_ANISOTROPY)) && p->tangents && p->normals)
+        f |= MVR_FEATURE_TANGENTS;
+    if ((f & MVR_FEATURE_CLEARCOAT) && mvr_material_samples_role(m, MVR_ROLE_CLEARCOAT_NORMAL) && p->tangents &&
+        p->normals)
         f |= MVR_FEATURE_TANGENTS;
     if (m->alpha_mode == MVR_ALPHA_MASK)
         f |= MVR_FEATURE_ALPHA_MASK;
@@ -37,19 +41,13 @@ uint32_t mvr_draw_features(const scene_primitive *p, const mvr_material_desc *m)
         f |= MVR_FEATURE_ALPHA_BLEND;
     if (m->double_sided)
         f |= MVR_FEATURE_DOUBLE_SIDED;
-    if (m->unlit)
+    if (m->unlit) {
+        /* unlit reads no normal, tangent or lighting texture, and no extension */
         f |= MVR_FEATURE_UNLIT;
-    /* the extensions' code only where a material departs from glTF's core
-     * values (ior 1.5, no specular extension, no clearcoat) */
-    if (m->ior != 1.5f || m->specular.enabled)
-        f |= MVR_FEATURE_SPECULAR;
-    if (m->clearcoat.factor > 0.0f)
-        f |= MVR_FEATURE_CLEARCOAT;
-    if (m->unlit)
-        /* unlit reads no normal, tangent or lighting texture */
         f &= ~(uint32_t)(MVR_FEATURE_NORMALS | MVR_FEATURE_TANGENTS | MVR_FEATURE_NORMAL_TEX |
                          MVR_FEATURE_METAL_ROUGH_TEX | MVR_FEATURE_OCCLUSION_TEX | MVR_FEATURE_EMISSIVE_TEX |
-                         MVR_FEATURE_SPECULAR | MVR_FEATURE_CLEARCOAT);
+                         extensions);
+    }
     return f;
 }
 
@@ -89,12 +87,17 @@ static const mvr_block_member material_members[] = {
     MEMBER("base_color_factor", VEC4, MVR_MATERIAL_BASE_COLOR_OFFSET),
     MEMBER("emissive", VEC4, MVR_MATERIAL_EMISSIVE_OFFSET),
     MEMBER("params", VEC4, MVR_MATERIAL_PARAMS_OFFSET),
-    MEMBER("layers", IVEC4, MVR_MATERIAL_LAYERS_OFFSET),
-    MEMBER("extra", IVEC4, MVR_MATERIAL_EXTRA_OFFSET),
+    ARRAY("layers", IVEC4, MVR_MATERIAL_LAYERS_OFFSET, MVR_MATERIAL_LAYERS_COUNT, 16u),
+    MEMBER("uv", IVEC4, MVR_MATERIAL_UV_OFFSET),
     ARRAY("uv_transform", VEC4, MVR_MATERIAL_UV_TRANSFORM_OFFSET, MVR_MATERIAL_UV_TRANSFORM_COUNT,
           MVR_MATERIAL_UV_TRANSFORM_STRIDE),
     MEMBER("specular", VEC4, MVR_MATERIAL_SPECULAR_OFFSET),
     MEMBER("clearcoat", VEC4, MVR_MATERIAL_CLEARCOAT_OFFSET),
+    MEMBER("sheen", VEC4, MVR_MATERIAL_SHEEN_OFFSET),
+    MEMBER("transmission", VEC4, MVR_MATERIAL_TRANSMISSION_OFFSET),
+    MEMBER("volume", VEC4, MVR_MATERIAL_VOLUME_OFFSET),
+    MEMBER("iridescence", VEC4, MVR_MATERIAL_IRIDESCENCE_OFFSET),
+    MEMBER("anisotropy", VEC4, MVR_MATERIAL_ANISOTROPY_OFFSET),
 };
 static const mvr_block_member light_members[] = {
     MEMBER("position_range", VEC4, MVR_LIGHT_POSITION_RANGE_OFFSET),
@@ -121,73 +124,6 @@ const mvr_block_layout *mvr_block_layouts(uint32_t *count)
 {
     *count = (uint32_t)MVR_ARRAY_COUNT(block_layouts);
     return block_layouts;
-}
-
-/* Two rows of the 2x3 affine of KHR_texture_transform: uv' = T * R * S * uv
- * with R = mat3(cos, sin, 0, -sin, cos, 0, 0, 0, 1) in column-major GLSL, as
- * the ratified extension text writes it. */
-static void uv_rows(const mvr_texture_transform *t, float out[8])
-{
-    float sx = t->scale[0] != 0.0f ? t->scale[0] : 1.0f;
-    float sy = t->scale[1] != 0.0f ? t->scale[1] : 1.0f;
-    float c = 1.0f, s = 0.0f, ox = 0.0f, oy = 0.0f;
-    if (t->enabled) {
-        c = cosf(t->rotation);
-        s = sinf(t->rotation);
-        ox = t->offset[0];
-        oy = t->offset[1];
-    } else {
-        sx = sy = 1.0f;
-    }
-    float rows[8] = {c * sx, -s * sy, ox, 0.0f, s * sx, c * sy, oy, 0.0f};
-    memcpy(out, rows, sizeof rows);
-}
-
-void mvr_material_pack(const mvr_material_desc *m, uint8_t out[MVR_MATERIAL_BLOCK_SIZE])
-{
-    memset(out, 0, MVR_MATERIAL_BLOCK_SIZE);
-    put_f(out + MVR_MATERIAL_BASE_COLOR_OFFSET, m->base_color_factor, 4);
-    float emissive[4] = {m->emissive_factor[0] * m->emissive_strength,
-                         m->emissive_factor[1] * m->emissive_strength,
-                         m->emissive_factor[2] * m->emissive_strength, m->alpha_cutoff};
-    put_f(out + MVR_MATERIAL_EMISSIVE_OFFSET, emissive, 4);
-    float params[4] = {m->metallic_factor, m->roughness_factor, m->normal_scale, m->occlusion_strength};
-    put_f(out + MVR_MATERIAL_PARAMS_OFFSET, params, 4);
-    /* layers: 0 on the per-material path (one 2D texture per role) */
-    int32_t layers[4] = {0, 0, 0, 0};
-    put_i(out + MVR_MATERIAL_LAYERS_OFFSET, layers, 4);
-    const mvr_texture_ref *roles[5] = {&m->base_color, &m->metallic_roughness, &m->normal,
-                                       &m->occlusion, &m->emissive};
-    int32_t uv1_bits = 0;
-    for (int i = 0; i < 5; ++i)
-        if (roles[i]->texcoord == 1)
-            uv1_bits |= 1 << i;
-    int32_t extra[4] = {0, uv1_bits, 0, 0};
-    put_i(out + MVR_MATERIAL_EXTRA_OFFSET, extra, 4);
-    for (int i = 0; i < 5; ++i) {
-        float rows[8];
-        uv_rows(&roles[i]->transform, rows);
-        put_f(out + MVR_MATERIAL_UV_TRANSFORM_OFFSET + (size_t)i * 2 * MVR_MATERIAL_UV_TRANSFORM_STRIDE, rows, 8);
-    }
-    /* KHR_materials_ior / _specular, as the Khronos glTF Sample Renderer
-     * takes them: F0 = min(((ior - 1) / (ior + 1))^2 * specular color, 1),
-     * weight = specular factor (F90 of the dielectric, and its F0's scale) */
-    float f0 = mvr_material_ior_f0(m->ior);
-    float spec[4] = {f0, f0, f0, 1.0f};
-    if (m->specular.enabled) {
-        for (int c = 0; c < 3; ++c)
-            spec[c] = fminf(f0 * m->specular.color_factor[c], 1.0f);
-        spec[3] = m->specular.factor;
-    }
-    put_f(out + MVR_MATERIAL_SPECULAR_OFFSET, spec, 4);
-    float coat[4] = {m->clearcoat.factor, m->clearcoat.roughness_factor, f0, 0.0f};
-    put_f(out + MVR_MATERIAL_CLEARCOAT_OFFSET, coat, 4);
-}
-
-float mvr_material_ior_f0(float ior)
-{
-    float r = (ior - 1.0f) / (ior + 1.0f);
-    return r * r;
 }
 
 static bool reserve_draws(mvr_frame *f, uint32_t count)
@@ -554,7 +490,7 @@ mvr_result mvr_frame_build(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin, u
                 /* the array bit only where something is sampled: a draw
                  * without textures keeps the key (and program) it has on
                  * every material path */
-                if (d->features & MVR_TEXTURE_FEATURES)
+                if ((d->features & MVR_TEXTURE_FEATURES) || plan->materials[material_slot].extension_textures)
                     d->features |= MVR_FEATURE_MATERIAL_ARRAYS;
                 d->group_key = mvr_batch_plan_group_key(plan, material_slot);
             }

@@ -28,18 +28,31 @@
                                              joint base, morph header, morph delta base (-1: none) */
 #define MVR_DRAW_BLOCK_SIZE 144u          /* the struct without padding */
 
-/* mvr_materials (shaders/mesh.frag.glsl): an array of struct mvr_material */
+/* mvr_materials (shaders/mesh.frag.glsl): an array of struct mvr_material.
+ * Per texture role r (core/material.h): its array layer is 16 bits of
+ * layers[r / 8][(r / 2) % 4] (the high half for odd r); its uv field is
+ * 4 bits of uv[r / 8] at bit 4 * (r % 8) (bit 0: TEXCOORD_1, bits 1-3: the
+ * transform slot, whose two rows are uv_transform[2 * slot], [2 * slot + 1]);
+ * bit r of uv.w: the material has a texture in the role. */
 #define MVR_MATERIAL_BASE_COLOR_OFFSET 0u     /* vec4 base_color_factor */
-#define MVR_MATERIAL_EMISSIVE_OFFSET 16u      /* vec4 emissive */
-#define MVR_MATERIAL_PARAMS_OFFSET 32u        /* vec4 params */
-#define MVR_MATERIAL_LAYERS_OFFSET 48u        /* ivec4 layers */
-#define MVR_MATERIAL_EXTRA_OFFSET 64u         /* ivec4 extra */
-#define MVR_MATERIAL_UV_TRANSFORM_OFFSET 80u  /* vec4 uv_transform[10] */
-#define MVR_MATERIAL_UV_TRANSFORM_COUNT 10u   /* two rows per texture role */
+#define MVR_MATERIAL_EMISSIVE_OFFSET 16u      /* vec4 emissive: rgb factor * strength, a: alpha cutoff */
+#define MVR_MATERIAL_PARAMS_OFFSET 32u        /* vec4 params: metallic, roughness (spec-gloss: glossiness),
+                                                 normal scale, occlusion strength */
+#define MVR_MATERIAL_LAYERS_OFFSET 48u        /* ivec4 layers[3] */
+#define MVR_MATERIAL_LAYERS_COUNT 3u
+#define MVR_MATERIAL_UV_OFFSET 96u            /* ivec4 uv */
+#define MVR_MATERIAL_UV_TRANSFORM_OFFSET 112u /* vec4 uv_transform[16] */
+#define MVR_MATERIAL_UV_TRANSFORM_COUNT 16u   /* two rows per transform slot */
 #define MVR_MATERIAL_UV_TRANSFORM_STRIDE 16u
-#define MVR_MATERIAL_SPECULAR_OFFSET 240u     /* vec4 specular: rgb dielectric F0, a: specular weight */
-#define MVR_MATERIAL_CLEARCOAT_OFFSET 256u    /* vec4 clearcoat: x factor, y roughness, z F0 */
-#define MVR_MATERIAL_BLOCK_SIZE 272u
+#define MVR_MATERIAL_SPECULAR_OFFSET 368u     /* vec4 specular: rgb dielectric F0, a: specular weight */
+#define MVR_MATERIAL_CLEARCOAT_OFFSET 384u    /* vec4 clearcoat: factor, roughness, F0, normal scale */
+#define MVR_MATERIAL_SHEEN_OFFSET 400u        /* vec4 sheen: rgb color, a roughness */
+#define MVR_MATERIAL_TRANSMISSION_OFFSET 416u /* vec4 transmission: factor, thickness, attenuation
+                                                 distance (0: none), dispersion */
+#define MVR_MATERIAL_VOLUME_OFFSET 432u       /* vec4 volume: rgb attenuation color, a ior */
+#define MVR_MATERIAL_IRIDESCENCE_OFFSET 448u  /* vec4 iridescence: factor, ior, thickness min, max (nm) */
+#define MVR_MATERIAL_ANISOTROPY_OFFSET 464u   /* vec4 anisotropy: strength, cos, sin of the rotation */
+#define MVR_MATERIAL_BLOCK_SIZE 480u
 
 /* mvr_lights (shaders/mesh.frag.glsl): an array of struct mvr_light */
 #define MVR_LIGHT_POSITION_RANGE_OFFSET 0u /* vec4 position_range */
@@ -241,10 +254,5 @@ static inline bool mvr_visible(const mvr_visibility *vis, uint32_t view, uint32_
 /* Mesh feature bits of a primitive drawn with a material. */
 uint32_t mvr_draw_features(const scene_primitive *prim, const mvr_material_desc *material);
 
-/* A dielectric's F0 at normal incidence from its index of refraction. */
-float mvr_material_ior_f0(float ior);
-
-/* Packs a material into its std140 block (MVR_MATERIAL_BLOCK_SIZE bytes). */
-void mvr_material_pack(const mvr_material_desc *material, uint8_t out[MVR_MATERIAL_BLOCK_SIZE]);
 
 #endif

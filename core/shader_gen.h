@@ -28,37 +28,42 @@ typedef enum mvr_program_kind {
     MVR_PROGRAM_KIND_COUNT
 } mvr_program_kind;
 
-/* Feature bits of the mesh program; each compiles code in with a #define. */
-typedef enum mvr_mesh_feature {
-    MVR_FEATURE_NORMALS = 1u << 0,          /* vertex normals (else face normals) */
-    MVR_FEATURE_TANGENTS = 1u << 1,         /* vertex tangents (else derived) */
-    MVR_FEATURE_UV0 = 1u << 2,
-    MVR_FEATURE_UV1 = 1u << 3,
-    MVR_FEATURE_COLOR0 = 1u << 4,           /* vertex colors */
-    MVR_FEATURE_BASE_COLOR_TEX = 1u << 5,
-    MVR_FEATURE_METAL_ROUGH_TEX = 1u << 6,
-    MVR_FEATURE_NORMAL_TEX = 1u << 7,
-    MVR_FEATURE_OCCLUSION_TEX = 1u << 8,
-    MVR_FEATURE_EMISSIVE_TEX = 1u << 9,
-    MVR_FEATURE_TEXTURE_TRANSFORM = 1u << 10,
-    MVR_FEATURE_ALPHA_MASK = 1u << 11,
-    MVR_FEATURE_ALPHA_BLEND = 1u << 12,
-    MVR_FEATURE_DOUBLE_SIDED = 1u << 13,
-    MVR_FEATURE_UNLIT = 1u << 14,
-    MVR_FEATURE_MATERIAL_ARRAYS = 1u << 15, /* texture arrays + layer index (batcher path) */
-    MVR_FEATURE_SRGB_OUTPUT = 1u << 16,     /* shader encodes sRGB (UNORM targets) */
-    MVR_FEATURE_SHADOWS = 1u << 17,         /* lights read shadow map layers (PCF) */
-    MVR_FEATURE_LIGHT_MASKS = 1u << 18,     /* per-view light masks (render layers) */
-    MVR_FEATURE_SHADOW_CASTER = 1u << 19,   /* depth only: the shadow map pass (alpha test at most) */
-    MVR_FEATURE_IBL = 1u << 20,             /* image-based lighting from a prefiltered environment */
-    MVR_FEATURE_IBL_REFERENCE = 1u << 21,   /* with IBL: the environment integrated per pixel (ground truth) */
-    MVR_FEATURE_SKIN = 1u << 22,            /* skinning in the vertex stage, four influences (JOINTS_0) */
-    MVR_FEATURE_SKIN8 = 1u << 23,           /* with SKIN: eight influences (JOINTS_1) */
-    MVR_FEATURE_MORPH = 1u << 24,           /* morph targets in the vertex stage */
-    MVR_FEATURE_SPECULAR = 1u << 25,        /* KHR_materials_ior / _specular: the dielectric's F0 and weight */
-    MVR_FEATURE_CLEARCOAT = 1u << 26,       /* KHR_materials_clearcoat */
-    MVR_MESH_FEATURE_ALL_ = (1u << 27) - 1u
-} mvr_mesh_feature;
+/* Feature bits of the mesh program; each compiles code in with a #define.
+ * (Macros, not an enum: bit 31 is not an int, which C11 enumerators must be.) */
+#define MVR_FEATURE_NORMALS (1u << 0)       /* vertex normals (else face normals) */
+#define MVR_FEATURE_TANGENTS (1u << 1)      /* vertex tangents (else derived) */
+#define MVR_FEATURE_UV0 (1u << 2)
+#define MVR_FEATURE_UV1 (1u << 3)
+#define MVR_FEATURE_COLOR0 (1u << 4)        /* vertex colors */
+#define MVR_FEATURE_BASE_COLOR_TEX (1u << 5)
+#define MVR_FEATURE_METAL_ROUGH_TEX (1u << 6)
+#define MVR_FEATURE_NORMAL_TEX (1u << 7)
+#define MVR_FEATURE_OCCLUSION_TEX (1u << 8)
+#define MVR_FEATURE_EMISSIVE_TEX (1u << 9)
+#define MVR_FEATURE_TEXTURE_TRANSFORM (1u << 10)
+#define MVR_FEATURE_ALPHA_MASK (1u << 11)
+#define MVR_FEATURE_ALPHA_BLEND (1u << 12)
+#define MVR_FEATURE_DOUBLE_SIDED (1u << 13)
+#define MVR_FEATURE_UNLIT (1u << 14)
+#define MVR_FEATURE_MATERIAL_ARRAYS (1u << 15) /* texture arrays + layer index (batcher path) */
+#define MVR_FEATURE_SRGB_OUTPUT (1u << 16)  /* shader encodes sRGB (UNORM targets) */
+#define MVR_FEATURE_SHADOWS (1u << 17)      /* lights read shadow map layers (PCF) */
+#define MVR_FEATURE_LIGHT_MASKS (1u << 18)  /* per-view light masks (render layers) */
+#define MVR_FEATURE_SHADOW_CASTER (1u << 19) /* depth only: the shadow map pass (alpha test at most) */
+#define MVR_FEATURE_IBL (1u << 20)          /* image-based lighting from a prefiltered environment */
+#define MVR_FEATURE_IBL_REFERENCE (1u << 21) /* with IBL: the environment integrated per pixel (ground truth) */
+#define MVR_FEATURE_SKIN (1u << 22)         /* skinning in the vertex stage, four influences (JOINTS_0) */
+#define MVR_FEATURE_SKIN8 (1u << 23)        /* with SKIN: eight influences (JOINTS_1) */
+#define MVR_FEATURE_MORPH (1u << 24)        /* morph targets in the vertex stage */
+#define MVR_FEATURE_SPECULAR (1u << 25)     /* KHR_materials_ior / _specular: the dielectric's F0 and weight */
+#define MVR_FEATURE_CLEARCOAT (1u << 26)    /* KHR_materials_clearcoat */
+#define MVR_FEATURE_SHEEN (1u << 27)        /* KHR_materials_sheen */
+#define MVR_FEATURE_TRANSMISSION (1u << 28) /* KHR_materials_transmission (+ _volume, _dispersion) */
+#define MVR_FEATURE_IRIDESCENCE (1u << 29)  /* KHR_materials_iridescence */
+#define MVR_FEATURE_ANISOTROPY (1u << 30)   /* KHR_materials_anisotropy */
+#define MVR_FEATURE_SPEC_GLOSS (1u << 31)   /* KHR_materials_pbrSpecularGlossiness */
+/* every bit of the 32 is taken: a further feature needs a wider key */
+#define MVR_MESH_FEATURE_ALL_ 0xFFFFFFFFu
 
 /* What the pre-skinning program does: the mesh bits it shares (same
  * #defines: NORMALS, TANGENTS, SKIN, SKIN8, MORPH). */

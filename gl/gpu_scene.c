@@ -81,11 +81,11 @@ static bool image_needs_mipmaps(const mvr_scene *s, uint32_t image)
 {
     for (uint32_t i = 0; i < s->material_count; ++i) {
         const mvr_material_desc *m = &s->materials[i].desc;
-        const mvr_texture_ref *roles[5] = {&m->base_color, &m->metallic_roughness, &m->normal, &m->occlusion,
-                                           &m->emissive};
-        for (int k = 0; k < 5; ++k)
-            if (roles[k]->image.id == image + 1 && mvr_sampler_uses_mipmaps(&roles[k]->sampler))
+        for (uint32_t role = 0; role < MVR_ROLE_COUNT; ++role) {
+            const mvr_texture_ref *t = mvr_material_role(m, role);
+            if (t->image.id == image + 1 && mvr_sampler_uses_mipmaps(&t->sampler))
                 return true;
+        }
     }
     return false;
 }
@@ -355,9 +355,6 @@ static mvr_result texture_for(mvr_renderer *r, const mvr_scene *s, uint32_t imag
     return MVR_OK;
 }
 
-static const char *const role_names[MVR_ROLE_COUNT] = {"base color", "metallic-roughness", "normal", "occlusion",
-                                                       "emissive"};
-
 /* Array path: one GL_TEXTURE_2D_ARRAY per plan group, layers in plan order,
  * white for a group's neutral layer; mips generated for the whole array. */
 static mvr_result upload_arrays(mvr_renderer *r, const mvr_scene *s)
@@ -379,7 +376,7 @@ static mvr_result upload_arrays(mvr_renderer *r, const mvr_scene *s)
                            .width = grp->width, .height = grp->height, .layer_images = grp->layer_images,
                            .layer_count = grp->layer_count};
         char prefix[64];
-        mvr_str_format(prefix, sizeof prefix, "%s texture array %u (%u layers) of image%s", role_names[grp->role], k,
+        mvr_str_format(prefix, sizeof prefix, "%s texture array %u (%u layers) of image%s", mvr_role_name(grp->role), k,
                        grp->layer_count, grp->layer_count - (grp->neutral_layer != MVR_NO_INDEX) > 1 ? "s" : "");
         describe_images(job.what, sizeof job.what, prefix, s, grp->layer_images, grp->layer_count);
         res = make_texture(r, s, &job, &g->group_textures[k]);
@@ -569,30 +566,20 @@ static mvr_result upload_materials(mvr_renderer *r, const mvr_scene *s)
     for (uint32_t i = 0; i < slots; ++i) {
         const mvr_material_desc *m = mvr_scene_material(s, i < s->material_count ? i : MVR_NO_INDEX);
         size_t at = (size_t)(i / cap) * (size_t)g->material_page_stride + (size_t)(i % cap) * MVR_MATERIAL_BLOCK_SIZE;
-        mvr_material_pack(m, data + at);
-        if (g->arrays) {
-            /* the array layers of each role (std140: ivec4 layers, extra.x) */
-            const mvr_material_slots *ms = &g->plan.materials[i];
-            int32_t layers[4], emissive;
-            for (int k = 0; k < 4; ++k)
-                layers[k] = ms->layer[k] == MVR_NO_GROUP ? 0 : ms->layer[k];
-            emissive = ms->layer[4] == MVR_NO_GROUP ? 0 : ms->layer[4];
-            memcpy(data + at + MVR_MATERIAL_LAYERS_OFFSET, layers, sizeof layers);
-            memcpy(data + at + MVR_MATERIAL_EXTRA_OFFSET, &emissive, sizeof emissive);
+        /* the array path: each role's layer in its group's array */
+        mvr_material_pack(m, g->arrays ? g->plan.materials[i].layer : NULL, data + at);
+        if (g->arrays)
             continue;
-        }
-        const mvr_texture_ref *roles[5] = {&m->base_color, &m->metallic_roughness, &m->normal,
-                                           &m->occlusion, &m->emissive};
-        for (int k = 0; k < 5; ++k) {
-            if (!roles[k]->image.id)
+        for (uint32_t k = 0; k < MVR_ROLE_COUNT; ++k) {
+            if (!mvr_material_samples_role(m, k))
                 continue;
-            bool srgb = k == 0 || k == 4; /* base color and emissive are sRGB (glTF 2.0 3.9.2) */
-            mvr_result res = texture_for(r, s, roles[k]->image.id - 1, srgb, &g->materials[i].textures[k]);
+            const mvr_texture_ref *t = mvr_material_role(m, k);
+            mvr_result res = texture_for(r, s, t->image.id - 1, mvr_role_is_srgb(k), &g->materials[i].textures[k]);
             if (res != MVR_OK) {
                 free(data);
                 return res;
             }
-            g->materials[i].samplers[k] = sampler_for(r, &roles[k]->sampler);
+            g->materials[i].samplers[k] = sampler_for(r, &t->sampler);
             if (!g->materials[i].samplers[k]) {
                 free(data);
                 return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "samplers: out of memory");

@@ -218,7 +218,7 @@ static mvr_result upload_frame(mvr_renderer *r, const mvr_view_set *views, const
             return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "per-draw materials: out of memory");
         for (uint32_t i = 0; i < f->draw_count; ++i) {
             const mvr_draw *d = &f->draws[i];
-            mvr_material_pack(mvr_scene_material(r->gpu.scene, d->material),
+            mvr_material_pack(mvr_scene_material(r->gpu.scene, d->material), NULL,
                               mats + (size_t)d->block * (size_t)lay->draw_material_stride);
         }
         gl->BufferSubData(GL_UNIFORM_BUFFER, lay->draw_materials,
@@ -404,10 +404,6 @@ static mvr_result bind_program(pass_context *pc, uint32_t features)
     return MVR_OK;
 }
 
-static const uint32_t role_bits[5] = {MVR_FEATURE_BASE_COLOR_TEX, MVR_FEATURE_METAL_ROUGH_TEX,
-                                      MVR_FEATURE_NORMAL_TEX, MVR_FEATURE_OCCLUSION_TEX,
-                                      MVR_FEATURE_EMISSIVE_TEX};
-
 /* Instancing: how many visible draws from position i of a pass list form
  * one instanced draw (*instances), and how many list positions that spans
  * (the return value). The draws' blocks must be consecutive: the frame
@@ -461,12 +457,13 @@ void mvr_bind_draw_textures(mvr_renderer *r, const mvr_draw *d, uint32_t feature
     if (g->arrays) {
         /* one array per role and group: binds change only at group boundaries */
         const mvr_material_slots *ms = &g->plan.materials[slot];
-        for (GLuint k = 0; k < 5; ++k) {
-            if (!(features & role_bits[k]) || ms->group[k] == MVR_NO_GROUP)
+        for (uint32_t k = 0; k < MVR_ROLE_COUNT; ++k) {
+            if (!(features & mvr_role_feature(k)) || ms->group[k] == MVR_NO_GROUP)
                 continue;
             uint16_t grp = ms->group[k];
-            mvr_state_texture(st, k, GL_TEXTURE_2D_ARRAY, g->group_textures[grp]);
-            mvr_state_sampler(st, k, g->group_samplers[grp]);
+            GLuint unit = (GLuint)mvr_role_unit(k);
+            mvr_state_texture(st, unit, GL_TEXTURE_2D_ARRAY, g->group_textures[grp]);
+            mvr_state_sampler(st, unit, g->group_samplers[grp]);
             if (groups_used && !groups_used[grp]) {
                 groups_used[grp] = 1;
                 (*groups_used_count)++;
@@ -474,11 +471,13 @@ void mvr_bind_draw_textures(mvr_renderer *r, const mvr_draw *d, uint32_t feature
         }
     } else {
         const mvr_gpu_material *m = &g->materials[slot];
-        for (GLuint k = 0; k < 5; ++k) {
-            if (!(features & role_bits[k]))
+        for (uint32_t k = 0; k < MVR_ROLE_COUNT; ++k) {
+            /* an extension's role without a texture is not sampled (its bit in the block is clear) */
+            if (!(features & mvr_role_feature(k)) || (k >= MVR_CORE_ROLE_COUNT && !m->textures[k]))
                 continue;
-            mvr_state_texture(st, k, GL_TEXTURE_2D, m->textures[k]);
-            mvr_state_sampler(st, k, m->samplers[k]);
+            GLuint unit = (GLuint)mvr_role_unit(k);
+            mvr_state_texture(st, unit, GL_TEXTURE_2D, m->textures[k]);
+            mvr_state_sampler(st, unit, m->samplers[k]);
         }
     }
 }

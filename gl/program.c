@@ -211,11 +211,9 @@ mvr_result mvr_gl_program_build_cached(mvr_context *ctx, const mvr_shader_varian
     /* ES 3.0 sets sampler units only on the current program; it stays current
      * (restoring the previous one by name is wrong when that one was deleted) */
     gl->UseProgram(program);
-    bind_sampler(gl, program, "mvr_base_color_tex", MVR_UNIT_BASE_COLOR);
-    bind_sampler(gl, program, "mvr_metal_rough_tex", MVR_UNIT_METAL_ROUGH);
-    bind_sampler(gl, program, "mvr_normal_tex", MVR_UNIT_NORMAL);
-    bind_sampler(gl, program, "mvr_occlusion_tex", MVR_UNIT_OCCLUSION);
-    bind_sampler(gl, program, "mvr_emissive_tex", MVR_UNIT_EMISSIVE);
+    for (uint32_t role = 0; role < MVR_ROLE_COUNT; ++role)
+        bind_sampler(gl, program, mvr_role_sampler(role), mvr_role_unit(role));
+    bind_sampler(gl, program, "mvr_transmission_source", MVR_UNIT_TRANSMISSION);
     bind_sampler(gl, program, "mvr_shadow_map", MVR_UNIT_SHADOW_MAP);
     bind_sampler(gl, program, "mvr_source", MVR_UNIT_COMPOSITE_SOURCE);
     bind_sampler(gl, program, "mvr_depth", MVR_UNIT_COMPOSITE_DEPTH);

@@ -3,6 +3,7 @@
 #define MVR_PROGRAM_H
 
 #include "context_internal.h"
+#include "material.h"
 #include "shader_gen.h"
 
 /* Uniform block binding points, fixed for every program. */
@@ -28,10 +29,18 @@ enum {
                                     mesh draws after it in the pass keep theirs) */
     MVR_UNIT_ANIM_DATA = 9,      /* mesh and pre-skinning vertex stages: joints and morph weights */
     MVR_UNIT_MORPH_DELTAS = 10,  /* mesh and pre-skinning vertex stages: morph target deltas */
+    MVR_UNIT_EXTENSION_ROLES = 11, /* mesh: the extensions' texture roles, 11 + role - 5 (to 23) */
+    MVR_UNIT_TRANSMISSION = 24,  /* mesh: the opaque colour behind transmissive surfaces */
     MVR_UNIT_COMPOSITE_SOURCE = 0,
     MVR_UNIT_COMPOSITE_DEPTH = 1,
     MVR_UNIT_ENV_INPUT = 0       /* environment program: the equirect image or the source cube */
 };
+
+/* The texture unit of a material texture role (core/material.h). */
+static inline GLint mvr_role_unit(uint32_t role)
+{
+    return role < MVR_CORE_ROLE_COUNT ? (GLint)role : (GLint)(MVR_UNIT_EXTENSION_ROLES + role - MVR_CORE_ROLE_COUNT);
+}
 
 /* Builds the variant into a linked program with its blocks and samplers bound.
  * On failure ctx's last error holds the compile / link log. On success the

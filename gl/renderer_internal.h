@@ -37,8 +37,6 @@ typedef struct mvr_gpu_primitive {
     GLintptr attribute_offset[MVR_VERTEX_ATTRIBUTES];
     GLenum mode, index_type;
     GLsizei count;
-    uint32_t textures[5];        /* index into gpu_scene textures + 1 per role; 0 = none */
-    uint32_t samplers[5];        /* index into sampler cache + 1 */
 } mvr_gpu_primitive;
 
 typedef struct mvr_gpu_texture {
@@ -54,8 +52,8 @@ typedef struct mvr_gpu_sampler {
 
 /* Per-material texture bindings (the per-material path: one 2D texture per image). */
 typedef struct mvr_gpu_material {
-    GLuint textures[5];          /* 0 = role unused */
-    GLuint samplers[5];
+    GLuint textures[MVR_ROLE_COUNT]; /* 0 = role unused */
+    GLuint samplers[MVR_ROLE_COUNT];
 } mvr_gpu_material;
 
 /* What the renderer has uploaded of one scene. `scene` is an identity (with

@@ -10,13 +10,41 @@
 struct mvr_material {
     vec4 base_color_factor;
     vec4 emissive;           // rgb: emissive factor * strength, a: alpha cutoff
-    vec4 params;             // x: metallic, y: roughness, z: normal scale, w: occlusion strength
-    ivec4 layers;            // array layers: base color, metal-rough, normal, occlusion
-    ivec4 extra;             // x: emissive layer, y: bit i set = role i reads TEXCOORD_1
-    vec4 uv_transform[10];   // per role: two rows of a 2x3 affine (KHR_texture_transform)
-    vec4 specular;           // rgb: dielectric F0 (KHR_materials_ior x _specular color), a: specular weight
-    vec4 clearcoat;          // x: factor, y: roughness, z: F0 (KHR_materials_clearcoat)
-};                           // 272 bytes in std140, whatever the features
+    vec4 params;             // x: metallic, y: roughness (spec-gloss: glossiness), z: normal scale,
+                             // w: occlusion strength
+    ivec4 layers[3];         // per texture role: its array layer, 16 bits each (mvr_layer)
+    ivec4 uv;                // xyz: per role 4 bits (TEXCOORD_1, transform slot); w: bit per role
+                             // with a texture (mvr_uv, mvr_has_texture)
+    vec4 uv_transform[16];   // per transform slot: two rows of a 2x3 affine (KHR_texture_transform)
+    vec4 specular;           // rgb: dielectric F0 (KHR_materials_ior x _specular color, unclamped),
+                             // a: specular weight
+    vec4 clearcoat;          // factor, roughness, F0, normal scale (KHR_materials_clearcoat)
+    vec4 sheen;              // rgb: color, a: roughness (KHR_materials_sheen)
+    vec4 transmission;       // factor, thickness, attenuation distance (0: none), dispersion
+    vec4 volume;             // rgb: attenuation color, a: ior
+    vec4 iridescence;        // factor, ior, thickness minimum, maximum (nm)
+    vec4 anisotropy;         // strength, cos and sin of the rotation
+};                           // 480 bytes in std140, whatever the features (core/frame.h)
+
+// The texture roles (core/material.h)
+#define MVR_ROLE_BASE_COLOR 0
+#define MVR_ROLE_METAL_ROUGH 1
+#define MVR_ROLE_NORMAL 2
+#define MVR_ROLE_OCCLUSION 3
+#define MVR_ROLE_EMISSIVE 4
+#define MVR_ROLE_CLEARCOAT 5
+#define MVR_ROLE_CLEARCOAT_ROUGHNESS 6
+#define MVR_ROLE_CLEARCOAT_NORMAL 7
+#define MVR_ROLE_SHEEN_COLOR 8
+#define MVR_ROLE_SHEEN_ROUGHNESS 9
+#define MVR_ROLE_SPECULAR 10
+#define MVR_ROLE_SPECULAR_COLOR 11
+#define MVR_ROLE_TRANSMISSION 12
+#define MVR_ROLE_THICKNESS 13
+#define MVR_ROLE_IRIDESCENCE 14
+#define MVR_ROLE_IRIDESCENCE_THICKNESS 15
+#define MVR_ROLE_ANISOTROPY 16
+#define MVR_ROLE_SPEC_GLOSS 17
 
 layout(std140) uniform mvr_materials {
     mvr_material mvr_material_table[MVR_MAX_MATERIALS];
@@ -70,6 +98,15 @@ uniform MVR_SAMPLER mvr_occlusion_tex;
 #ifdef MVR_EMISSIVE_TEX
 uniform MVR_SAMPLER mvr_emissive_tex;
 #endif
+#ifdef MVR_SPECULAR
+uniform MVR_SAMPLER mvr_specular_tex;
+uniform MVR_SAMPLER mvr_specular_color_tex;
+#endif
+#ifdef MVR_CLEARCOAT
+uniform MVR_SAMPLER mvr_clearcoat_tex;
+uniform MVR_SAMPLER mvr_clearcoat_roughness_tex;
+uniform MVR_SAMPLER mvr_clearcoat_normal_tex;
+#endif
 
 in vec3 v_position;
 in vec3 v_to_eye;
@@ -95,23 +132,70 @@ in vec4 v_color0;
 
 layout(location = 0) out vec4 o_color;
 
-// Texture coordinates of texture role `role` (0 base color .. 4 emissive).
+// The array layer of texture role `role` (0 on the per-material path).
+int mvr_layer(mvr_material m, int role)
+{
+    return (m.layers[role >> 3][(role >> 1) & 3] >> ((role & 1) * 16)) & 0xFFFF;
+}
+
+// Whether the material has a texture in role `role` (the extensions' roles
+// are sampled only then: a uniform branch per draw).
+bool mvr_has_texture(mvr_material m, int role)
+{
+    return ((m.uv.w >> role) & 1) != 0;
+}
+
+// Texture coordinates of texture role `role`.
 vec2 mvr_uv(int role, mvr_material m)
 {
+    int field = (m.uv[role >> 3] >> ((role & 7) * 4)) & 15;
     vec2 uv = vec2(0.0);
 #ifdef MVR_UV0
     uv = v_uv0;
 #endif
 #ifdef MVR_UV1
-    if (((m.extra.y >> role) & 1) != 0)
+    if ((field & 1) != 0)
         uv = v_uv1;
 #endif
 #ifdef MVR_TEXTURE_TRANSFORM
+    int slot = field >> 1;
     vec3 h = vec3(uv, 1.0);
-    uv = vec2(dot(m.uv_transform[2 * role].xyz, h), dot(m.uv_transform[2 * role + 1].xyz, h));
+    uv = vec2(dot(m.uv_transform[2 * slot].xyz, h), dot(m.uv_transform[2 * slot + 1].xyz, h));
 #endif
     return uv;
 }
+
+#define MVR_SAMPLE_ROLE(s, role, m) MVR_SAMPLE(s, mvr_uv(role, m), mvr_layer(m, role))
+
+#if defined(MVR_NORMAL_TEX) || defined(MVR_CLEARCOAT)
+// The tangent and bitangent of a normal map sampled at uv, about the
+// (front side's) normal nf: the vertex tangents where given; else t =
+// dP/du from position and UV derivatives and b = n x t, turned to point
+// towards -v (image up: glTF normal maps are +Y up with uv (0,0) at the
+// image's top-left). Degenerate UVs (zero determinant) give t = b = 0,
+// which leaves the normal unperturbed.
+void mvr_tangent_frame(vec3 nf, vec2 uv, out vec3 t, out vec3 b)
+{
+#ifdef MVR_TANGENTS
+    t = mvr_safe_normalize(v_tangent.xyz - nf * dot(nf, v_tangent.xyz), vec3(0.0));
+    b = cross(nf, t) * (v_tangent.w < 0.0 ? -1.0 : 1.0);
+#else
+    vec3 dp1 = dFdx(v_position), dp2 = dFdy(v_position);
+    vec2 duv1 = dFdx(uv), duv2 = dFdy(uv);
+    float det = duv1.x * duv2.y - duv1.y * duv2.x;
+    t = vec3(0.0);
+    b = vec3(0.0);
+    if (abs(det) > 1e-20) {
+        vec3 dpdu = (dp1 * duv2.y - dp2 * duv1.y) / det;
+        vec3 dpdv = (dp2 * duv1.x - dp1 * duv2.x) / det;
+        t = mvr_safe_normalize(dpdu - nf * dot(nf, dpdu), vec3(0.0));
+        b = cross(nf, t);
+        if (dot(b, dpdv) > 0.0)
+            b = -b;
+    }
+#endif
+}
+#endif
 
 float mvr_v_smith_ggx_correlated(float n_dot_l, float n_dot_v, float alpha)
 {
@@ -390,7 +474,7 @@ void main()
     alpha *= v_color0.a;
 #endif
 #ifdef MVR_BASE_COLOR_TEX
-    alpha *= MVR_SAMPLE(mvr_base_color_tex, mvr_uv(0, m), m.layers.x).a;
+    alpha *= MVR_SAMPLE_ROLE(mvr_base_color_tex, MVR_ROLE_BASE_COLOR, m).a;
 #endif
     if (alpha < m.emissive.a)
         discard;
@@ -406,7 +490,7 @@ void main()
     base *= v_color0;
 #endif
 #ifdef MVR_BASE_COLOR_TEX
-    base *= MVR_SAMPLE(mvr_base_color_tex, mvr_uv(0, m), m.layers.x);
+    base *= MVR_SAMPLE_ROLE(mvr_base_color_tex, MVR_ROLE_BASE_COLOR, m);
 #endif
 
 #ifdef MVR_ALPHA_MASK
@@ -424,7 +508,7 @@ void main()
     float metallic = m.params.x;
     float roughness = m.params.y;
 #ifdef MVR_METAL_ROUGH_TEX
-    vec4 mr = MVR_SAMPLE(mvr_metal_rough_tex, mvr_uv(1, m), m.layers.y);
+    vec4 mr = MVR_SAMPLE_ROLE(mvr_metal_rough_tex, MVR_ROLE_METAL_ROUGH, m);
     roughness *= mr.g;
     metallic *= mr.b;
 #endif
@@ -445,13 +529,7 @@ void main()
         n = -n;
 #endif
     vec3 n_offset = n;       // shadow receivers move along the surface normal, not the normal map's
-#ifdef MVR_CLEARCOAT
-    vec3 n_coat = n;         // the coat's normal: the geometry's (no clearcoat normal texture yet)
-    float coat = m.clearcoat.x;
-    float coat_alpha = max(m.clearcoat.y * m.clearcoat.y, 1e-3);
-#endif
-
-#ifdef MVR_NORMAL_TEX
+#if defined(MVR_NORMAL_TEX) || defined(MVR_CLEARCOAT)
     // The tangent frame is the front side's; a back face of a double-sided
     // material takes the whole frame negated (t, b and n), so its relief is
     // the front's seen from behind, as in the Khronos glTF Sample Viewer.
@@ -464,29 +542,47 @@ void main()
         nf = -n;
     }
 #endif
-    vec2 nuv = mvr_uv(2, m);
-#ifdef MVR_TANGENTS
-    vec3 t = mvr_safe_normalize(v_tangent.xyz - nf * dot(nf, v_tangent.xyz), vec3(0.0));
-    vec3 b = cross(nf, t) * (v_tangent.w < 0.0 ? -1.0 : 1.0);
-#else
-    // No tangents: t = dP/du from position and UV derivatives; b = n x t,
-    // turned to point towards -v (image up: glTF normal maps are +Y up with
-    // uv (0,0) at the image's top-left). Degenerate UVs (zero determinant)
-    // leave n unperturbed.
-    vec3 dp1 = dFdx(v_position), dp2 = dFdy(v_position);
-    vec2 duv1 = dFdx(nuv), duv2 = dFdy(nuv);
-    float det = duv1.x * duv2.y - duv1.y * duv2.x;
-    vec3 t = vec3(0.0), b = vec3(0.0);
-    if (abs(det) > 1e-20) {
-        vec3 dpdu = (dp1 * duv2.y - dp2 * duv1.y) / det;
-        vec3 dpdv = (dp2 * duv1.x - dp1 * duv2.x) / det;
-        t = mvr_safe_normalize(dpdu - nf * dot(nf, dpdu), vec3(0.0));
-        b = cross(nf, t);
-        if (dot(b, dpdv) > 0.0)
-            b = -b;
-    }
 #endif
-    vec3 tn = MVR_SAMPLE(mvr_normal_tex, nuv, m.layers.z).xyz * 2.0 - 1.0;
+#ifdef MVR_CLEARCOAT
+    // KHR_materials_clearcoat: the coat's normal is the geometry's, or its
+    // own normal map's (in the same tangent frame); its factor and roughness
+    // scaled by the R and G of their textures
+    vec3 n_coat = n;
+    float coat = m.clearcoat.x;
+    float coat_roughness = m.clearcoat.y;
+    vec2 cuv = mvr_uv(MVR_ROLE_CLEARCOAT_NORMAL, m);
+    vec3 ct, cb;
+    mvr_tangent_frame(nf, cuv, ct, cb); // derivatives outside the branch
+    if (mvr_has_texture(m, MVR_ROLE_CLEARCOAT_NORMAL)) {
+        vec3 ctn = MVR_SAMPLE(mvr_clearcoat_normal_tex, cuv, mvr_layer(m, MVR_ROLE_CLEARCOAT_NORMAL)).xyz * 2.0 - 1.0;
+        ctn.xy *= m.clearcoat.w;
+        n_coat = mvr_safe_normalize(side * (ct * ctn.x + cb * ctn.y + nf * ctn.z), n);
+    }
+    if (mvr_has_texture(m, MVR_ROLE_CLEARCOAT))
+        coat *= MVR_SAMPLE_ROLE(mvr_clearcoat_tex, MVR_ROLE_CLEARCOAT, m).r;
+    if (mvr_has_texture(m, MVR_ROLE_CLEARCOAT_ROUGHNESS))
+        coat_roughness *= MVR_SAMPLE_ROLE(mvr_clearcoat_roughness_tex, MVR_ROLE_CLEARCOAT_ROUGHNESS, m).g;
+    coat = clamp(coat, 0.0, 1.0);
+    coat_roughness = clamp(coat_roughness, 0.0, 1.0);
+    float coat_alpha = max(coat_roughness * coat_roughness, 1e-3);
+#endif
+#ifdef MVR_SPECULAR
+    // KHR_materials_specular: the weight scaled by its texture's A, the
+    // dielectric's F0 tinted by its color texture, then clamped to 1
+    vec3 spec_f0 = m.specular.rgb;
+    float spec_w = m.specular.a;
+    if (mvr_has_texture(m, MVR_ROLE_SPECULAR))
+        spec_w *= MVR_SAMPLE_ROLE(mvr_specular_tex, MVR_ROLE_SPECULAR, m).a;
+    if (mvr_has_texture(m, MVR_ROLE_SPECULAR_COLOR))
+        spec_f0 *= MVR_SAMPLE_ROLE(mvr_specular_color_tex, MVR_ROLE_SPECULAR_COLOR, m).rgb;
+    spec_f0 = min(spec_f0, vec3(1.0));
+#endif
+
+#ifdef MVR_NORMAL_TEX
+    vec2 nuv = mvr_uv(MVR_ROLE_NORMAL, m);
+    vec3 t, b;
+    mvr_tangent_frame(nf, nuv, t, b);
+    vec3 tn = MVR_SAMPLE(mvr_normal_tex, nuv, mvr_layer(m, MVR_ROLE_NORMAL)).xyz * 2.0 - 1.0;
     tn.xy *= m.params.z;
     n = mvr_safe_normalize(side * (t * tn.x + b * tn.y + nf * tn.z), n);
 #endif
@@ -529,7 +625,7 @@ void main()
             attenuation *= mvr_shadow(i, v_position, n_offset, dist);
 #endif
 #ifdef MVR_SPECULAR
-        vec3 lit = mvr_brdf_specular(n, v, l, base.rgb, metallic, alpha, m.specular.rgb, m.specular.a);
+        vec3 lit = mvr_brdf_specular(n, v, l, base.rgb, metallic, alpha, spec_f0, spec_w);
 #else
         vec3 lit = mvr_brdf(n, v, l, base.rgb, metallic, alpha);
 #endif
@@ -541,23 +637,23 @@ void main()
 #endif
     float ao = 1.0;
 #ifdef MVR_OCCLUSION_TEX
-    ao = 1.0 + m.params.w * (MVR_SAMPLE(mvr_occlusion_tex, mvr_uv(3, m), m.layers.w).r - 1.0);
+    ao = 1.0 + m.params.w * (MVR_SAMPLE_ROLE(mvr_occlusion_tex, MVR_ROLE_OCCLUSION, m).r - 1.0);
 #endif
     vec3 ambient = mvr_ambient * base.rgb;
 #ifdef MVR_IBL
 #if defined(MVR_SPECULAR) && !defined(MVR_IBL_REFERENCE)
-    ambient += mvr_ibl_specular(n, v, base.rgb, metallic, roughness, m.specular.rgb, m.specular.a);
+    ambient += mvr_ibl_specular(n, v, base.rgb, metallic, roughness, spec_f0, spec_w);
 #else
     ambient += mvr_ibl(n, v, base.rgb, metallic, roughness);
 #endif
 #if defined(MVR_CLEARCOAT) && !defined(MVR_IBL_REFERENCE)
-    ambient = mix(ambient, mvr_ibl_clearcoat(n_coat, v, m.clearcoat.y), coat_mix);
+    ambient = mix(ambient, mvr_ibl_clearcoat(n_coat, v, coat_roughness), coat_mix);
 #endif
 #endif
     color += ambient * ao;
     vec3 emissive = m.emissive.rgb;
 #ifdef MVR_EMISSIVE_TEX
-    emissive *= MVR_SAMPLE(mvr_emissive_tex, mvr_uv(4, m), m.extra.x).rgb;
+    emissive *= MVR_SAMPLE_ROLE(mvr_emissive_tex, MVR_ROLE_EMISSIVE, m).rgb;
 #endif
 #ifdef MVR_CLEARCOAT
     emissive *= 1.0 - coat_mix; // under the coat

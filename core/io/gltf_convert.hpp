@@ -95,8 +95,12 @@ struct converter {
     mvr_texture_ref texture(const tinygltf::TextureInfo &info, const std::string &what);
     mvr_texture_ref texture_ref(int index, int texcoord, const tinygltf::ExtensionMap &ext, const std::string &what);
     mvr_material_id material(int index);
+    // gltf_material_ext.cpp: the PBR extensions of material g (w names it) into d
     void pbr_extensions(const tinygltf::Material &g, const std::string &w, mvr_material_desc &d);
-    bool warned_extension_textures = false;
+    // a textureInfo inside an extension's JSON (ext.key; absent: no texture);
+    // scale: a normalTextureInfo's scale where wanted
+    mvr_texture_ref texture_value(const tinygltf::Value &ext, const char *key, const std::string &what,
+                                  float *scale = nullptr);
     mvr_mesh_id mesh(int index);
     void node(int index, mvr_node_id parent, std::vector<char> &state, uint32_t depth);
 

@@ -228,54 +228,6 @@ mvr_image_id converter::decode_image(size_t index, const std::string &iname)
     return id;
 }
 
-// KHR_materials_ior, _specular and _clearcoat: their factors (the
-// extensions' textures are not sampled yet: warned once, the factors alone
-// apply). Values out of range are the scene's to repair (and count).
-void converter::pbr_extensions(const tinygltf::Material &g, const std::string &w, mvr_material_desc &d)
-{
-    auto unsampled = [&](const tinygltf::Value &ext, const char *name, std::initializer_list<const char *> keys) {
-        for (const char *k : keys)
-            if (ext.Has(k) && !warned_extension_textures) {
-                cx.warn(w + ".extensions." + name + "." + k + ": the extension's textures are not sampled yet; its "
-                            "factors apply");
-                warned_extension_textures = true;
-            }
-    };
-    auto ior = g.extensions.find("KHR_materials_ior");
-    if (ior != g.extensions.end()) {
-        d.ior = float(number(ior->second, "ior", 1.5));
-        if (d.ior == 0.0f)
-            d.ior = 1.0f; /* the extension's 0 is no reflection at normal incidence (as 1); 0 means "default" here */
-    }
-    auto sp = g.extensions.find("KHR_materials_specular");
-    if (sp != g.extensions.end()) {
-        d.specular.enabled = true;
-        d.specular.factor = float(number(sp->second, "specularFactor", 1.0));
-        for (float &c : d.specular.color_factor)
-            c = 1.0f;
-        const tinygltf::Value &color = sp->second.Get("specularColorFactor");
-        if (color.IsArray()) {
-            if (color.ArrayLen() != 3)
-                refuse(w + ".extensions.KHR_materials_specular.specularColorFactor has " +
-                       std::to_string(color.ArrayLen()) + " numbers, not 3");
-            for (int c = 0; c < 3; ++c) {
-                if (!color.Get(c).IsNumber())
-                    refuse(w + ".extensions.KHR_materials_specular.specularColorFactor[" + std::to_string(c) +
-                           "] is not a number");
-                d.specular.color_factor[c] = float(color.Get(c).GetNumberAsDouble());
-            }
-        }
-        unsampled(sp->second, "KHR_materials_specular", {"specularTexture", "specularColorTexture"});
-    }
-    auto cc = g.extensions.find("KHR_materials_clearcoat");
-    if (cc != g.extensions.end()) {
-        d.clearcoat.factor = float(number(cc->second, "clearcoatFactor", 0.0));
-        d.clearcoat.roughness_factor = float(number(cc->second, "clearcoatRoughnessFactor", 0.0));
-        unsampled(cc->second, "KHR_materials_clearcoat",
-                  {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"});
-    }
-}
-
 mvr_texture_ref converter::texture(const tinygltf::TextureInfo &info, const std::string &what)
 {
     return texture_ref(info.index, info.texCoord, info.extensions, what);

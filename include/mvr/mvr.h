@@ -333,21 +333,88 @@ typedef struct mvr_material_desc {
     float ior;
     /* KHR_materials_specular (enabled: the extension is present): factor
      * scales the dielectric's specular (its F0 and F90), color_factor tints
-     * its F0 (min(F0(ior) * color, 1)); absent: 1 and (1, 1, 1) */
+     * its F0 (min(F0(ior) * color, 1)); absent: 1 and (1, 1, 1). texture:
+     * its A channel scales factor; color_texture (sRGB): its RGB the color */
     struct mvr_material_specular {
         bool enabled;
         float factor;
         float color_factor[3];
+        mvr_texture_ref texture, color_texture;
     } specular;
-    /* KHR_materials_clearcoat: a second GGX layer (F0 from ior, the
-     * geometry's normal) over the material; factor 0 = none */
+    /* KHR_materials_clearcoat: a second GGX layer (F0 from ior) over the
+     * material; factor 0 = none. texture: R scales factor; roughness_texture:
+     * G scales roughness_factor; normal_texture: the coat's own normal map
+     * (else the geometry's normal), its xy scaled by normal_scale (0 = 1) */
     struct mvr_material_clearcoat {
         float factor;
         float roughness_factor;
+        mvr_texture_ref texture, roughness_texture, normal_texture;
+        float normal_scale;
     } clearcoat;
+    /* KHR_materials_sheen: a Charlie-distribution sheen layer (fabric);
+     * color (0, 0, 0) = none. color_texture (sRGB): RGB scales color_factor;
+     * roughness_texture: A scales roughness_factor */
+    struct mvr_material_sheen {
+        float color_factor[3];
+        float roughness_factor;
+        mvr_texture_ref color_texture, roughness_texture;
+    } sheen;
+    /* KHR_materials_transmission: the fraction of light passing through the
+     * surface (0 = opaque); texture: R scales factor */
+    struct mvr_material_transmission {
+        float factor;
+        mvr_texture_ref texture;
+    } transmission;
+    /* KHR_materials_volume: the medium under a transmissive surface.
+     * thickness_factor 0 = thin-walled; thickness_texture: G scales it.
+     * attenuation_distance 0 = no absorption (the extension's +infinity);
+     * attenuation_color: the color white light takes after that distance */
+    struct mvr_material_volume {
+        float thickness_factor;
+        mvr_texture_ref thickness_texture;
+        float attenuation_distance;
+        float attenuation_color[3];
+    } volume;
+    /* KHR_materials_dispersion: the Abbe-number spread of ior across
+     * wavelengths, as 20 / V (0 = none); only with transmission and volume */
+    float dispersion;
+    /* KHR_materials_iridescence: a thin film over the base (factor 0 =
+     * none); texture: R scales factor; the film's thickness in nanometres is
+     * mix(thickness_minimum, thickness_maximum, thickness_texture's G) or
+     * thickness_maximum without the texture. mvr_material_defaults: ior 1.3,
+     * 100 and 400 nm (the extension's defaults) */
+    struct mvr_material_iridescence {
+        float factor;
+        mvr_texture_ref texture;
+        float ior;
+        float thickness_minimum, thickness_maximum;
+        mvr_texture_ref thickness_texture;
+    } iridescence;
+    /* KHR_materials_anisotropy: the specular lobe stretched along a
+     * direction rotated by rotation (radians, counter-clockwise from the
+     * tangent) by strength (0 = isotropic); texture: RG a direction in
+     * tangent space ([0, 1] -> [-1, 1]), B scales strength */
+    struct mvr_material_anisotropy {
+        float strength;
+        float rotation;
+        mvr_texture_ref texture;
+    } anisotropy;
+    /* KHR_materials_pbrSpecularGlossiness (archived, still in many files):
+     * when enabled, base_color_factor and base_color are the diffuse factor
+     * and texture, and the specular color (F0) and glossiness (1 - roughness)
+     * come from here; texture (sRGB): RGB scales specular_factor, A
+     * glossiness_factor. metallic and roughness are ignored */
+    struct mvr_material_spec_gloss {
+        bool enabled;
+        float specular_factor[3];
+        float glossiness_factor;
+        mvr_texture_ref texture;
+    } spec_gloss;
 } mvr_material_desc;
 
-/* glTF's defaults: base color (1,1,1,1), metallic 1, roughness 1, opaque. */
+/* glTF's defaults: base color (1,1,1,1), metallic 1, roughness 1, opaque;
+ * the extensions' own defaults (iridescence ior 1.3 and 100-400 nm, volume
+ * attenuation color white, spec-gloss factors 1). */
 mvr_material_desc mvr_material_defaults(void);
 mvr_result mvr_scene_add_material(mvr_scene *scene, const mvr_material_desc *desc,
                                   mvr_material_id *out);

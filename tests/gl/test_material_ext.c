@@ -25,10 +25,11 @@
 #define W 64
 #define H 64
 
-static mvr_scene *sphere_scene(mvr_test_state *t, const mvr_material_desc *md, bool light)
+/* A lit (or unlit) sphere of material md in scene s (NULL: a new scene). */
+static mvr_scene *sphere_in(mvr_test_state *t, mvr_scene *s, const mvr_material_desc *md, bool light)
 {
-    mvr_scene *s = NULL;
-    CHECK(t, mvr_scene_create(NULL, &s, NULL) == MVR_OK);
+    if (!s)
+        CHECK(t, mvr_scene_create(NULL, &s, NULL) == MVR_OK);
     mvr_material_id mat;
     CHECK(t, mvr_scene_add_material(s, md, &mat) == MVR_OK);
     demo_mesh m;
@@ -50,6 +51,11 @@ static mvr_scene *sphere_scene(mvr_test_state *t, const mvr_material_desc *md, b
     return s;
 }
 
+static mvr_scene *sphere_scene(mvr_test_state *t, const mvr_material_desc *md, bool light)
+{
+    return sphere_in(t, NULL, md, light);
+}
+
 static mvr_view_set *front_views(mvr_test_state *t, uint32_t n)
 {
     mvr_view_desc v[2];
@@ -67,11 +73,11 @@ static mvr_view_set *front_views(mvr_test_state *t, uint32_t n)
 
 /* Renders with an environment (uniform radiance 1) into a target of the
  * format; returns the layers' floats (RGBA32F) or bytes (default). */
-static void *render(mvr_test_state *t, mvr_context *ctx, mvr_scene *s, mvr_view_set *vs, mvr_view_path path,
-                    mvr_color_format format, uint32_t *features)
+static void *render_with(mvr_test_state *t, mvr_context *ctx, mvr_scene *s, mvr_view_set *vs, mvr_view_path path,
+                         mvr_material_path material_path, mvr_color_format format, uint32_t *features)
 {
     uint32_t n = mvr_view_set_count(vs);
-    mvr_renderer_desc rd = {.context = ctx, .view_path = path};
+    mvr_renderer_desc rd = {.context = ctx, .view_path = path, .material_path = material_path};
     mvr_renderer *r = NULL;
     mvr_target *tg = NULL;
     mvr_environment *env = NULL;
@@ -99,6 +105,12 @@ static void *render(mvr_test_state *t, mvr_context *ctx, mvr_scene *s, mvr_view_
     mvr_target_destroy(tg);
     mvr_renderer_destroy(r);
     return out;
+}
+
+static void *render(mvr_test_state *t, mvr_context *ctx, mvr_scene *s, mvr_view_set *vs, mvr_view_path path,
+                    mvr_color_format format, uint32_t *features)
+{
+    return render_with(t, ctx, s, vs, path, MVR_MATERIAL_PATH_AUTO, format, features);
 }
 
 static void demos_compile_no_extension_code(mvr_test_state *t)
@@ -246,5 +258,139 @@ static void clearcoat_mixes_by_its_fresnel(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
+/* The extensions' textures (KHR_materials_clearcoat's three, _specular's
+ * two), nearest-sampled: where the clearcoat texture is white a pixel is the
+ * fully coated sphere's, where black the bare sphere's (within 1/255), and
+ * both occur; a tilted coat normal map changes pixels; array and
+ * per-material texture paths, multiview and loop give the same bytes. */
+static void extension_textures_are_sampled(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    enum { TW = 16, TH = 16 };
+    static uint8_t half[TW * TH * 4], tilt[TW * TH * 4], grey[TW * TH * 4];
+    for (int y = 0; y < TH; ++y)
+        for (int x = 0; x < TW; ++x) {
+            uint8_t *p = &half[(y * TW + x) * 4], *q = &tilt[(y * TW + x) * 4], *g = &grey[(y * TW + x) * 4];
+            uint8_t v = x < TW / 2 ? 255 : 0;
+            p[0] = p[1] = p[2] = p[3] = v;
+            q[0] = 200, q[1] = 128, q[2] = 200, q[3] = 255; /* a normal tilted towards +u */
+            g[0] = 255, g[1] = 160, g[2] = 90, g[3] = 128;
+        }
+    mvr_sampler_desc nearest = {MVR_FILTER_NEAREST, MVR_FILTER_NEAREST, MVR_WRAP_REPEAT, MVR_WRAP_REPEAT};
+    mvr_material_desc bare = mvr_material_defaults();
+    bare.base_color_factor[0] = 0.6f;
+    bare.base_color_factor[1] = 0.2f;
+    bare.base_color_factor[2] = 0.1f;
+    bare.metallic_factor = 0.0f;
+    bare.roughness_factor = 0.8f;
+    mvr_material_desc coated = bare;
+    coated.clearcoat.factor = 1.0f;
+    coated.clearcoat.roughness_factor = 0.05f;
+    mvr_view_set *vs = front_views(t, 1);
+
+    /* a scene of the three: bare, coated, coated where the texture is white */
+    mvr_scene *scenes[3] = {NULL, NULL, NULL};
+    for (int k = 0; k < 3; ++k) {
+        CHECK(t, mvr_scene_create(NULL, &scenes[k], NULL) == MVR_OK);
+        mvr_material_desc md = k == 0 ? bare : coated;
+        if (k == 2) {
+            mvr_image_desc id = {TW, TH, half, "half"};
+            CHECK(t, mvr_scene_add_image(scenes[k], &id, &md.clearcoat.texture.image) == MVR_OK);
+            md.clearcoat.texture.sampler = nearest;
+        }
+        sphere_in(t, scenes[k], &md, true);
+    }
+    uint32_t f[3];
+    uint8_t *px[3];
+    for (int k = 0; k < 3; ++k)
+        px[k] = render(t, ctx, scenes[k], vs, MVR_VIEW_PATH_LOOP, MVR_COLOR_FORMAT_DEFAULT, &f[k]);
+    if (px[0] && px[1] && px[2]) {
+        uint32_t as_bare = 0, as_coated = 0, neither = 0, differ = 0;
+        for (size_t i = 0; i < (size_t)W * H; ++i) {
+            bool b = count_diff(px[2] + i * 4, px[0] + i * 4, 1, 1) == 0;
+            bool c = count_diff(px[2] + i * 4, px[1] + i * 4, 1, 1) == 0;
+            differ += count_diff(px[0] + i * 4, px[1] + i * 4, 1, 1) != 0;
+            as_bare += b && !c;
+            as_coated += c && !b;
+            neither += !b && !c;
+        }
+        printf("  clearcoat texture: %u pixels as the bare sphere, %u as the coated, %u neither (%u differ)\n",
+               as_bare, as_coated, neither, differ);
+        CHECK_EQ_INT(t, neither, 0);
+        CHECK(t, as_bare > differ / 4 && as_coated > differ / 4);
+    }
+    for (int k = 0; k < 3; ++k) {
+        free(px[k]);
+        mvr_scene_destroy(scenes[k]);
+    }
+
+    /* every texture of both extensions, the coat's normal map tilted */
+    mvr_scene *s = NULL, *flat = NULL;
+    for (int k = 0; k < 2; ++k) {
+        mvr_scene **sp = k ? &flat : &s;
+        CHECK(t, mvr_scene_create(NULL, sp, NULL) == MVR_OK);
+        mvr_image_id ih, it, ig;
+        mvr_image_desc dh = {TW, TH, half, "half"}, dt = {TW, TH, tilt, "tilt"}, dg = {TW, TH, grey, "grey"};
+        CHECK(t, mvr_scene_add_image(*sp, &dh, &ih) == MVR_OK && mvr_scene_add_image(*sp, &dt, &it) == MVR_OK &&
+                     mvr_scene_add_image(*sp, &dg, &ig) == MVR_OK);
+        mvr_material_desc md = coated;
+        md.clearcoat.texture.image = ig;
+        md.clearcoat.roughness_texture.image = ig;
+        if (k == 0)
+            md.clearcoat.normal_texture.image = it;
+        md.specular.enabled = true;
+        md.specular.factor = 0.8f;
+        md.specular.color_factor[1] = 1.2f;
+        md.specular.texture.image = ig;
+        md.specular.color_texture.image = ig;
+        md.specular.color_texture.transform = (mvr_texture_transform){true, {0.25f, 0.0f}, 0.3f, {2.0f, 2.0f}};
+        sphere_in(t, *sp, &md, true);
+        /* a second material sharing the program without the textures */
+        mvr_material_desc plain = coated;
+        plain.specular.enabled = true;
+        plain.specular.factor = 0.5f;
+        mvr_material_id pm;
+        CHECK(t, mvr_scene_add_material(*sp, &plain, &pm) == MVR_OK);
+    }
+    mvr_view_set *two = front_views(t, 2);
+    const mvr_view_path paths[2] = {MVR_VIEW_PATH_LOOP, MVR_VIEW_PATH_MULTIVIEW};
+    const mvr_material_path mpaths[2] = {MVR_MATERIAL_PATH_ARRAYS, MVR_MATERIAL_PATH_PER_MATERIAL};
+    uint8_t *ref = NULL;
+    for (int p = 0; p < 2; ++p) {
+        if (paths[p] == MVR_VIEW_PATH_MULTIVIEW && !mvr_context_caps(ctx)->ext.ovr_multiview2)
+            continue;
+        for (int m = 0; m < 2; ++m) {
+            uint32_t feat;
+            uint8_t *o = render_with(t, ctx, s, two, paths[p], mpaths[m], MVR_COLOR_FORMAT_DEFAULT, &feat);
+            CHECK(t, (feat & MVR_FEATURE_CLEARCOAT) && (feat & MVR_FEATURE_SPECULAR) &&
+                         (feat & MVR_FEATURE_TEXTURE_TRANSFORM));
+            if (!ref)
+                ref = o;
+            else {
+                if (o)
+                    CHECK_MSG(t, count_diff(ref, o, (size_t)2 * W * H, 0) == 0, "path %d / %d differs", p, m);
+                free(o);
+            }
+        }
+    }
+    uint32_t ff;
+    uint8_t *o = render_with(t, ctx, flat, two, MVR_VIEW_PATH_LOOP, MVR_MATERIAL_PATH_ARRAYS,
+                             MVR_COLOR_FORMAT_DEFAULT, &ff);
+    if (ref && o) {
+        uint32_t d = count_diff(ref, o, (size_t)2 * W * H, 2);
+        printf("  the coat's normal map changes %u pixels\n", d);
+        CHECK(t, d > 50);
+    }
+    free(o);
+    free(ref);
+    mvr_view_set_destroy(two);
+    mvr_scene_destroy(s);
+    mvr_scene_destroy(flat);
+    mvr_view_set_destroy(vs);
+    mvr_context_destroy(ctx);
+}
+
 MVR_TEST_MAIN(TEST(demos_compile_no_extension_code), TEST(core_values_give_the_core_pixels),
-              TEST(clearcoat_mixes_by_its_fresnel))
+              TEST(clearcoat_mixes_by_its_fresnel), TEST(extension_textures_are_sampled))

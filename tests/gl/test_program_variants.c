@@ -126,7 +126,7 @@ static void variants_follow_the_scene(mvr_test_state *t)
                   "%s: new variant %s lacks the normal map", path, info.name);
         CHECK(t, !(info.features & (MVR_TEXTURE_FEATURES & ~(uint32_t)MVR_FEATURE_NORMAL_TEX)));
         CHECK(t, strcmp(mvr_program_feature_name(MVR_FEATURE_NORMAL_TEX), "NORMAL_TEX") == 0);
-        CHECK(t, mvr_program_feature_name(1u << 30) == NULL);
+        CHECK(t, mvr_program_feature_name(MVR_FEATURE_NORMAL_TEX | MVR_FEATURE_UV0) == NULL); /* not one bit */
         mvr_program_info first;
         CHECK(t, mvr_renderer_get_program_info(r, 0, &first));
         printf("  %s: %s, then + %s\n", path, first.name, info.name);

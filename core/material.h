@@ -1,0 +1,75 @@
+/*
+ * Materials (backend-free): the texture roles a material can sample, the
+ * scene's validation of a material desc, and the std140 block the mesh
+ * fragment stage reads (layout in frame.h, struct mvr_material in
+ * shaders/mesh.frag.glsl).
+ */
+#ifndef MVR_MATERIAL_H
+#define MVR_MATERIAL_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "mvr/mvr.h"
+
+/* The texture roles, in the order of the material block's layer and uv
+ * fields. The first five are glTF 2.0's; each has its own feature bit. The
+ * extensions' roles are sampled under their extension's feature bit, where
+ * the material's block says it has a texture in the role (a uniform branch
+ * per draw), so a material without one shares the program. */
+typedef enum mvr_texture_role {
+    MVR_ROLE_BASE_COLOR = 0,
+    MVR_ROLE_METAL_ROUGH,
+    MVR_ROLE_NORMAL,
+    MVR_ROLE_OCCLUSION,
+    MVR_ROLE_EMISSIVE,
+    MVR_ROLE_CLEARCOAT,
+    MVR_ROLE_CLEARCOAT_ROUGHNESS,
+    MVR_ROLE_CLEARCOAT_NORMAL,
+    MVR_ROLE_SHEEN_COLOR,
+    MVR_ROLE_SHEEN_ROUGHNESS,
+    MVR_ROLE_SPECULAR,
+    MVR_ROLE_SPECULAR_COLOR,
+    MVR_ROLE_TRANSMISSION,
+    MVR_ROLE_THICKNESS,
+    MVR_ROLE_IRIDESCENCE,
+    MVR_ROLE_IRIDESCENCE_THICKNESS,
+    MVR_ROLE_ANISOTROPY,
+    MVR_ROLE_SPEC_GLOSS,
+    MVR_ROLE_COUNT
+} mvr_texture_role;
+
+#define MVR_CORE_ROLE_COUNT 5u
+/* Distinct KHR_texture_transforms one material can hold (the block's slots). */
+#define MVR_MATERIAL_TRANSFORM_SLOTS 8u
+
+/* The texture ref of a role of a material. */
+const mvr_texture_ref *mvr_material_role(const mvr_material_desc *m, uint32_t role);
+/* "base color", "clearcoat normal", ... */
+const char *mvr_role_name(uint32_t role);
+/* The sampler uniform of the role in shaders/mesh.frag.glsl. */
+const char *mvr_role_sampler(uint32_t role);
+/* Whether a role is stored sRGB-encoded (glTF 2.0 3.9.2 and the extensions:
+ * base color, emissive, sheen color, specular color, spec-gloss). */
+bool mvr_role_is_srgb(uint32_t role);
+/* The feature bit under which a role is sampled: a core role's own, an
+ * extension role's extension's. */
+uint32_t mvr_role_feature(uint32_t role);
+
+/* The extension feature bits a material needs (SPECULAR, CLEARCOAT, SHEEN,
+ * ...): where it departs from glTF 2.0's core model. */
+uint32_t mvr_material_extension_features(const mvr_material_desc *m);
+
+/* Whether a material samples a role: it has a texture there and, for an
+ * extension's role, needs the extension. */
+bool mvr_material_samples_role(const mvr_material_desc *m, uint32_t role);
+
+/* A dielectric's F0 at normal incidence from its index of refraction. */
+float mvr_material_ior_f0(float ior);
+
+/* Packs a material into its std140 block (MVR_MATERIAL_BLOCK_SIZE bytes);
+ * layers: the array layer of each role (the batch plan's), NULL where each
+ * role has its own 2D texture. */
+void mvr_material_pack(const mvr_material_desc *material, const uint16_t *layers, uint8_t *out);
+
+#endif
