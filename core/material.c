@@ -95,6 +95,10 @@ uint32_t mvr_material_extension_features(const mvr_material_desc *m)
         f |= MVR_FEATURE_SPECULAR;
     if (m->clearcoat.factor > 0.0f)
         f |= MVR_FEATURE_CLEARCOAT;
+    /* spec-gloss is the specular extension's dielectric with F0 from its
+     * specular color, no metal and its own texture */
+    if (m->spec_gloss.enabled)
+        f |= MVR_FEATURE_SPEC_GLOSS | MVR_FEATURE_SPECULAR;
     return f;
 }
 
@@ -102,6 +106,8 @@ bool mvr_material_samples_role(const mvr_material_desc *m, uint32_t role)
 {
     if (role >= MVR_ROLE_COUNT || !mvr_material_role(m, role)->image.id)
         return false;
+    if (role == MVR_ROLE_METAL_ROUGH && m->spec_gloss.enabled)
+        return false; /* spec-gloss has no metal and its own roughness */
     return role < MVR_CORE_ROLE_COUNT || (mvr_material_extension_features(m) & roles[role].feature) != 0;
 }
 

@@ -39,6 +39,7 @@ static const feature_define mesh_defines[] = {
     {MVR_FEATURE_MORPH, "MVR_MORPH"},
     {MVR_FEATURE_SPECULAR, "MVR_SPECULAR"},
     {MVR_FEATURE_CLEARCOAT, "MVR_CLEARCOAT"},
+    {MVR_FEATURE_SPEC_GLOSS, "MVR_SPEC_GLOSS"},
 };
 
 /* the mesh bits the pre-skinning program shares (MVR_PRESKIN_FEATURES) */

@@ -102,6 +102,9 @@ uniform MVR_SAMPLER mvr_emissive_tex;
 uniform MVR_SAMPLER mvr_specular_tex;
 uniform MVR_SAMPLER mvr_specular_color_tex;
 #endif
+#ifdef MVR_SPEC_GLOSS
+uniform MVR_SAMPLER mvr_spec_gloss_tex;
+#endif
 #ifdef MVR_CLEARCOAT
 uniform MVR_SAMPLER mvr_clearcoat_tex;
 uniform MVR_SAMPLER mvr_clearcoat_roughness_tex;
@@ -575,6 +578,20 @@ void main()
         spec_w *= MVR_SAMPLE_ROLE(mvr_specular_tex, MVR_ROLE_SPECULAR, m).a;
     if (mvr_has_texture(m, MVR_ROLE_SPECULAR_COLOR))
         spec_f0 *= MVR_SAMPLE_ROLE(mvr_specular_color_tex, MVR_ROLE_SPECULAR_COLOR, m).rgb;
+#ifdef MVR_SPEC_GLOSS
+    // KHR_materials_pbrSpecularGlossiness, as the Khronos glTF Sample
+    // Renderer reads it: the specular color is the dielectric's F0 (weight
+    // 1), roughness is 1 - glossiness, each scaled by the texture's RGB / A;
+    // there is no metal (params.x is 0) and base is the diffuse color
+    float gloss = m.params.y;
+    if (mvr_has_texture(m, MVR_ROLE_SPEC_GLOSS)) {
+        vec4 sg = MVR_SAMPLE_ROLE(mvr_spec_gloss_tex, MVR_ROLE_SPEC_GLOSS, m);
+        gloss *= sg.a;
+        spec_f0 *= sg.rgb;
+    }
+    roughness = clamp(1.0 - gloss, 0.0, 1.0);
+    alpha = max(roughness * roughness, 1e-3);
+#endif
     spec_f0 = min(spec_f0, vec3(1.0));
 #endif
 

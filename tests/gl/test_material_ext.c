@@ -56,6 +56,13 @@ static mvr_scene *sphere_scene(mvr_test_state *t, const mvr_material_desc *md, b
     return sphere_in(t, NULL, md, light);
 }
 
+/* core/material.c's F0 of an ior, as the library computes it (float) */
+static float mvr_material_ior_f0_for_test(float ior)
+{
+    float r = (ior - 1.0f) / (ior + 1.0f);
+    return r * r;
+}
+
 static mvr_view_set *front_views(mvr_test_state *t, uint32_t n)
 {
     mvr_view_desc v[2];
@@ -392,5 +399,87 @@ static void extension_textures_are_sampled(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
+/* KHR_materials_pbrSpecularGlossiness is the specular extension's
+ * dielectric: a spec-gloss sphere gives the pixels (within 1/255) of a
+ * metallic 0, roughness 1 - glossiness sphere whose KHR_materials_specular
+ * color makes F0 the specular color; its texture's A scales glossiness (a
+ * half-black A: each pixel is the glossy or the rough twin's). */
+static void spec_gloss_is_a_dielectric(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    enum { TW = 16, TH = 16 };
+    static uint8_t half[TW * TH * 4];
+    for (int y = 0; y < TH; ++y)
+        for (int x = 0; x < TW; ++x) {
+            uint8_t *p = &half[(y * TW + x) * 4];
+            p[0] = p[1] = p[2] = 255;
+            p[3] = x < TW / 2 ? 255 : 0;
+        }
+    mvr_view_set *vs = front_views(t, 1);
+    const float spec[3] = {0.2f, 0.1f, 0.05f}, gloss = 0.6f;
+    float f0 = mvr_material_ior_f0_for_test(1.5f);
+    mvr_material_desc sg = mvr_material_defaults();
+    sg.base_color_factor[0] = 0.5f;
+    sg.base_color_factor[1] = 0.3f;
+    sg.base_color_factor[2] = 0.2f;
+    sg.spec_gloss.enabled = true;
+    memcpy(sg.spec_gloss.specular_factor, spec, sizeof spec);
+    sg.spec_gloss.glossiness_factor = gloss;
+    mvr_material_desc twin = mvr_material_defaults();
+    memcpy(twin.base_color_factor, sg.base_color_factor, sizeof twin.base_color_factor);
+    twin.metallic_factor = 0.0f;
+    twin.roughness_factor = 1.0f - gloss;
+    twin.specular.enabled = true;
+    twin.specular.factor = 1.0f;
+    for (int c = 0; c < 3; ++c)
+        twin.specular.color_factor[c] = spec[c] / f0;
+    mvr_material_desc rough = twin;
+    rough.roughness_factor = 1.0f;
+    mvr_material_desc textured = sg;
+    mvr_scene *scenes[4] = {NULL, NULL, NULL, NULL};
+    const mvr_material_desc *mats[4] = {&sg, &twin, &rough, &textured};
+    for (int k = 0; k < 4; ++k) {
+        CHECK(t, mvr_scene_create(NULL, &scenes[k], NULL) == MVR_OK);
+        mvr_material_desc md = *mats[k];
+        if (k == 3) {
+            mvr_image_desc id = {TW, TH, half, "half"};
+            CHECK(t, mvr_scene_add_image(scenes[k], &id, &md.spec_gloss.texture.image) == MVR_OK);
+            md.spec_gloss.texture.sampler =
+                (mvr_sampler_desc){MVR_FILTER_NEAREST, MVR_FILTER_NEAREST, MVR_WRAP_REPEAT, MVR_WRAP_REPEAT};
+        }
+        sphere_in(t, scenes[k], &md, true);
+    }
+    uint32_t f[4];
+    uint8_t *px[4];
+    for (int k = 0; k < 4; ++k)
+        px[k] = render(t, ctx, scenes[k], vs, MVR_VIEW_PATH_LOOP, MVR_COLOR_FORMAT_DEFAULT, &f[k]);
+    CHECK(t, (f[0] & MVR_FEATURE_SPEC_GLOSS) && !(f[1] & MVR_FEATURE_SPEC_GLOSS));
+    if (px[0] && px[1] && px[2] && px[3]) {
+        uint32_t d = count_diff(px[0], px[1], (size_t)W * H, 1);
+        printf("  spec-gloss vs its metal-rough twin: %u pixels over 1/255\n", d);
+        CHECK_EQ_INT(t, d, 0);
+        uint32_t glossy = 0, rough_px = 0, neither = 0;
+        for (size_t i = 0; i < (size_t)W * H; ++i) {
+            bool g = count_diff(px[3] + i * 4, px[1] + i * 4, 1, 1) == 0;
+            bool r = count_diff(px[3] + i * 4, px[2] + i * 4, 1, 1) == 0;
+            glossy += g && !r;
+            rough_px += r && !g;
+            neither += !g && !r;
+        }
+        printf("  spec-gloss texture: %u pixels glossy, %u rough, %u neither\n", glossy, rough_px, neither);
+        CHECK_EQ_INT(t, neither, 0);
+        CHECK(t, glossy > 100 && rough_px > 100);
+    }
+    for (int k = 0; k < 4; ++k) {
+        free(px[k]);
+        mvr_scene_destroy(scenes[k]);
+    }
+    mvr_view_set_destroy(vs);
+    mvr_context_destroy(ctx);
+}
+
 MVR_TEST_MAIN(TEST(demos_compile_no_extension_code), TEST(core_values_give_the_core_pixels),
-              TEST(clearcoat_mixes_by_its_fresnel), TEST(extension_textures_are_sampled))
+              TEST(clearcoat_mixes_by_its_fresnel), TEST(extension_textures_are_sampled),
+              TEST(spec_gloss_is_a_dielectric))
