@@ -415,6 +415,7 @@ mvr_result mvr_frame_build(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin, u
     }
     f->block_stride = stride;
     f->draw_count = 0;
+    f->transmissive_draws = 0;
     for (uint32_t i = 0; i < s->node_count; ++i) {
         const scene_node *n = &s->nodes[i];
         if (n->mesh == MVR_NO_INDEX)
@@ -436,9 +437,13 @@ mvr_result mvr_frame_build(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin, u
             d->features = mvr_draw_features(p, mat) & ~f->disabled_features;
             d->block = f->draw_count;
             d->node = i;
-            d->pass = mat->alpha_mode == MVR_ALPHA_BLEND  ? MVR_PASS_BLEND
-                      : mat->alpha_mode == MVR_ALPHA_MASK ? MVR_PASS_MASK
-                                                          : MVR_PASS_OPAQUE;
+            /* transmissive surfaces sample what the opaque sub-passes
+             * drew behind them: after those, back to front with the
+             * blended ones (blending only where their alpha mode says) */
+            d->pass = mat->alpha_mode == MVR_ALPHA_BLEND || (d->features & MVR_FEATURE_TRANSMISSION) ? MVR_PASS_BLEND
+                      : mat->alpha_mode == MVR_ALPHA_MASK                                         ? MVR_PASS_MASK
+                                                                                                   : MVR_PASS_OPAQUE;
+            f->transmissive_draws += (d->features & MVR_FEATURE_TRANSMISSION) != 0;
             d->mirrored = mirrored;
             if (d->deform == MVR_NO_INDEX) {
                 mvr_dvec3 center = mvr_dvec3_scale(mvr_dvec3_add(p->bounds_min, p->bounds_max), 0.5);

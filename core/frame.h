@@ -172,6 +172,7 @@ typedef struct mvr_frame {
     mvr_draw *draws;
     uint32_t draw_count, draw_cap;
     uint32_t pass_first[MVR_PASS_KIND_COUNT], pass_count[MVR_PASS_KIND_COUNT];
+    uint32_t transmissive_draws; /* in the blend list: they sample the opaque views (KHR_materials_transmission) */
     uint8_t *draw_blocks;        /* draw_count blocks, block_stride apart */
     size_t draw_blocks_cap;
     uint32_t block_stride;

@@ -76,7 +76,10 @@ static mvr_plan_record *add(mvr_frame_plan *p, mvr_plan_kind kind, mvr_plan_when
 static void choose_path(mvr_frame_plan *p, const mvr_frame_plan_input *in)
 {
     p->path = in->path;
+    /* transmission reads the opaque views mid-pass: not from storage the GL
+     * resolves only at the pass's end (multisampled render to texture) */
     p->msaa_multiview = p->msaa && !p->post && in->msaa_multiview != MVR_MSAA_MV_NONE &&
+                        !(in->transmissive && in->msaa_multiview == MVR_MSAA_MV_RENDER_TO_TEXTURE) &&
                         p->path == MVR_VIEW_PATH_MULTIVIEW;
     if (p->path == MVR_VIEW_PATH_MULTIVIEW)
         p->path_why = p->msaa_multiview ? "multisampled multiview passes" : "one pass per chunk of views";
@@ -110,6 +113,11 @@ static void plan_sub_passes(mvr_frame_plan *p, const mvr_frame_plan_input *in, u
             in->background ? "the environment behind the opaque and masked draws, before the blended"
                            : "the clear color is the background");
     r->multiview = mv_pass;
+    r = add(p, MVR_PLAN_TRANSMISSION, in->transmissive ? MVR_PLAN_RUN : MVR_PLAN_SKIP, c, base, n,
+            in->transmissive ? "the opaque views, mip-mapped, for the transmissive draws"
+                             : "nothing transmissive");
+    r->multiview = mv_pass;
+    r->draws = in->transmissive;
     uint32_t blend = in->draws[MVR_PASS_BLEND];
     const char *why = "no blended draws";
     mvr_plan_when when = blend ? MVR_PLAN_RUN : MVR_PLAN_SKIP;
@@ -238,7 +246,7 @@ const char *mvr_plan_kind_name(mvr_plan_kind kind)
 {
     static const char *const names[MVR_PLAN_KIND_COUNT] = {
         "env-prefilter", "upload", "preskin", "shadow-maps", "view-pass",           "opaque",       "mask",
-        "background",    "blend",  "blend-view",  "msaa-resolve", "supersample-resolve", "post"};
+        "background",    "blend",  "blend-view",  "msaa-resolve", "supersample-resolve", "post", "transmission"};
     return (unsigned)kind < MVR_PLAN_KIND_COUNT ? names[kind] : "?";
 }
 
@@ -291,7 +299,8 @@ size_t mvr_frame_plan_format(const mvr_frame_plan *p, char *buf, size_t size)
         }
         if (r->kind == MVR_PLAN_SHADOW_MAPS && r->draws)
             put(&t, "%s%u layers", sep, r->draws), sep = ", ";
-        else if (r->kind >= MVR_PLAN_OPAQUE && r->kind <= MVR_PLAN_BLEND_VIEW && r->kind != MVR_PLAN_BACKGROUND)
+        else if ((r->kind >= MVR_PLAN_OPAQUE && r->kind <= MVR_PLAN_BLEND_VIEW && r->kind != MVR_PLAN_BACKGROUND) ||
+                 r->kind == MVR_PLAN_TRANSMISSION)
             put(&t, "%s%u draws", sep, r->draws), sep = ", ";
         if (r->depth)
             put(&t, "%swith depth", sep);

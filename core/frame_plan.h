@@ -49,6 +49,8 @@ typedef enum mvr_plan_kind {
     MVR_PLAN_MSAA_RESOLVE,       /* the chunk's samples into its layers */
     MVR_PLAN_SUPERSAMPLE_RESOLVE,
     MVR_PLAN_POST,               /* exposure, tone map, encode of an HDR frame */
+    MVR_PLAN_TRANSMISSION,       /* sub-pass: the chunk's opaque views into the mip-mapped array
+                                    transmissive draws sample (before the blend sub-pass) */
     MVR_PLAN_KIND_COUNT
 } mvr_plan_kind;
 
@@ -104,6 +106,7 @@ typedef struct mvr_frame_plan_input {
     bool preskin;                /* ... deformed on the pre-skinning path */
     bool deforms_moved;          /* ... whose joints or weights changed since the last capture */
     uint32_t draws[MVR_PASS_KIND_COUNT]; /* the frame's opaque, mask and blend lists */
+    uint32_t transmissive;       /* of the blend list: draws that sample the opaque views */
 } mvr_frame_plan_input;
 
 typedef struct mvr_frame_plan {

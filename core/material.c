@@ -99,6 +99,10 @@ uint32_t mvr_material_extension_features(const mvr_material_desc *m)
      * specular color, no metal and its own texture */
     if (m->spec_gloss.enabled)
         f |= MVR_FEATURE_SPEC_GLOSS | MVR_FEATURE_SPECULAR;
+    /* transmission (with its volume and dispersion) replaces the
+     * dielectric's diffuse lobe, which the specular extension's code draws */
+    if (m->transmission.factor > 0.0f)
+        f |= MVR_FEATURE_TRANSMISSION | MVR_FEATURE_SPECULAR;
     return f;
 }
 

@@ -40,6 +40,7 @@ static const feature_define mesh_defines[] = {
     {MVR_FEATURE_SPECULAR, "MVR_SPECULAR"},
     {MVR_FEATURE_CLEARCOAT, "MVR_CLEARCOAT"},
     {MVR_FEATURE_SPEC_GLOSS, "MVR_SPEC_GLOSS"},
+    {MVR_FEATURE_TRANSMISSION, "MVR_TRANSMISSION"},
 };
 
 /* the mesh bits the pre-skinning program shares (MVR_PRESKIN_FEATURES) */

@@ -394,6 +394,7 @@ static mvr_result bind_program(pass_context *pc, uint32_t features)
         gl->Uniform1i(e->loc_view_base, pc->view_base);
         e->view_base = pc->view_base;
     }
+    mvr_transmission_set_uniforms(r, e);
     if (e->frame_serial != r->frame_serial) {
         gl->Uniform3fv(e->loc_ambient, 1, pc->scene->ambient);
         gl->Uniform1f(e->loc_exposure, pc->mesh_exposure);
@@ -537,6 +538,13 @@ static mvr_result draw_list(pass_context *pc, mvr_pass_kind kind)
         const mvr_draw *d = &f->draws[pos];
         if (!visible_in_pass(r, pc, pos))
             continue;
+        if (kind == MVR_PASS_BLEND) {
+            /* a transmissive surface not blended by its alpha mode writes
+             * depth, opaque, in the back-to-front order */
+            bool blended = (d->features & MVR_FEATURE_ALPHA_BLEND) != 0;
+            mvr_state_depth(st, true, depth_func, blended ? GL_FALSE : GL_TRUE);
+            mvr_state_blend(st, blended, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+        }
         uint32_t instances;
         uint32_t span = instance_run(pc, kind, i, &instances);
         mvr_result res = bind_program(pc, d->features);
@@ -589,6 +597,7 @@ typedef struct frame_exec {
     uint32_t light_total;
     /* the current chunk */
     GLuint fbo, msaa_fbo;        /* its layers' framebuffer; the multisampled one views draw into */
+    GLuint draw_fbo;             /* the one its sub-passes draw into */
     bool split;                  /* its blended draws go per view */
     uint32_t block;              /* its view block */
     mvr_state_counters before;
@@ -678,6 +687,7 @@ static mvr_result build_plan(mvr_renderer *r, const mvr_view_set *views, const m
     in.deforms_moved = !same || r->skinning.captured_key == 0;
     for (int k = 0; k < MVR_PASS_KIND_COUNT; ++k)
         in.draws[k] = r->frame.pass_count[k];
+    in.transmissive = r->frame.transmissive_draws;
     mvr_frame_plan *plan = &r->plan;
     bool ok = mvr_frame_plan_build(plan, &in) == MVR_OK;
     if (ok && plan->chunk_count > r->chunk_compact_cap) {
@@ -818,6 +828,7 @@ static mvr_result exec_view_pass(frame_exec *fx, const mvr_plan_record *rec)
     if (res != MVR_OK)
         return res;
     mvr_state_draw_framebuffer(st, draw_fbo);
+    fx->draw_fbo = draw_fbo;
     /* views are drawn factor times the layer size on supersampled targets */
     uint32_t factor = fx->plan->factor;
     GLint vx = ch->viewport.x * (GLint)factor, vy = ch->viewport.y * (GLint)factor;
@@ -1002,6 +1013,9 @@ static mvr_result exec_record(frame_exec *fx, const mvr_plan_record *rec)
         return draw_list(&fx->pc, MVR_PASS_MASK);
     case MVR_PLAN_BACKGROUND:
         return exec_background(fx);
+    case MVR_PLAN_TRANSMISSION:
+        return mvr_transmission_copy(fx->r, fx->t, fx->plan, rec, (int32_t)(fx->block * VIEWS_PER_BLOCK), fx->msaa_fbo,
+                                     fx->draw_fbo);
     case MVR_PLAN_BLEND:
         return draw_list(&fx->pc, MVR_PASS_BLEND);
     case MVR_PLAN_BLEND_VIEW:

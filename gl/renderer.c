@@ -164,7 +164,7 @@ static bool valid_ubo_alignment(unsigned long a)
 
 /* The mesh feature bits an override may take out: material extensions,
  * whose absence is a valid (if different) look, never what a draw needs. */
-#define DISABLEABLE_FEATURES (MVR_FEATURE_SPECULAR | MVR_FEATURE_CLEARCOAT)
+#define DISABLEABLE_FEATURES (MVR_FEATURE_SPECULAR | MVR_FEATURE_CLEARCOAT | MVR_FEATURE_TRANSMISSION)
 
 /* "SPECULAR,CLEARCOAT" -> feature bits; names as mvr_program_feature_name. */
 static mvr_result parse_feature_list(const char *var, const char *value, uint32_t *out, mvr_error *error)
@@ -181,7 +181,7 @@ static mvr_result parse_feature_list(const char *var, const char *value, uint32_
         }
         if (!bit)
             return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
-                                 "%s=%s: '%.*s' is not a feature that can be disabled (SPECULAR, CLEARCOAT)", var,
+                                 "%s=%s: '%.*s' is not a feature that can be disabled (SPECULAR, CLEARCOAT, TRANSMISSION)", var,
                                  value, (int)n, p);
         *out |= bit;
         p += n;
@@ -439,6 +439,7 @@ static void release_gl(mvr_renderer *r)
         t->renderer = NULL;
     }
     mvr_shadows_release(r);
+    mvr_transmission_release(r);
     mvr_environment_release(r);
     mvr_renderer_delete(r, MVR_GL_SAMPLER, &r->nearest_sampler);
     mvr_gpu_scene_release(r);
@@ -553,6 +554,9 @@ mvr_result mvr_renderer_program(mvr_renderer *r, const mvr_shader_variant *v, mv
     e->loc_factor = r->gl->GetUniformLocation(program, "mvr_factor");
     e->loc_post_exposure = r->gl->GetUniformLocation(program, "mvr_post_exposure");
     e->loc_clear_depth = r->gl->GetUniformLocation(program, "mvr_clear_depth");
+    e->loc_transmission_base = r->gl->GetUniformLocation(program, "mvr_transmission_base");
+    e->loc_transmission_rect = r->gl->GetUniformLocation(program, "mvr_transmission_rect");
+    e->loc_transmission_lod = r->gl->GetUniformLocation(program, "mvr_transmission_lod");
     static const struct { size_t offset; const char *name; } env_uniforms[] = {
         {offsetof(mvr_program_entry, loc_env_sh), "mvr_env_sh"},
         {offsetof(mvr_program_entry, loc_env_rotation), "mvr_env_rotation"},

@@ -12,6 +12,17 @@
 #include "state_cache.h"
 #include "view_set.h"
 
+/* gl/transmission.c: the opaque views transmissive draws sample. */
+typedef struct mvr_transmission {
+    GLuint texture, fbo, sampler;
+    GLenum format;
+    uint32_t width, height, layers;
+    float rect[4];               /* the chunk's viewport in the array (0..1) */
+    float lod;                   /* log2 of its width in texels */
+    int32_t base;                /* the chunk's first view in its view block */
+    uint64_t serial;             /* one per copy */
+} mvr_transmission;
+
 /* One compiled shader variant. */
 typedef struct mvr_program_entry {
     mvr_shader_variant variant;
@@ -24,6 +35,8 @@ typedef struct mvr_program_entry {
     GLint loc_depth_range, loc_background_lod; /* background programs */
     GLint loc_env_samples;       /* mesh, the IBL reference */
     GLint loc_deform_info;       /* pre-skinning */
+    GLint loc_transmission_base, loc_transmission_rect, loc_transmission_lod; /* mesh, transmission */
+    uint64_t transmission_serial; /* the copy whose uniforms are set */
     int32_t view_base;           /* last value set (INT32_MIN = unknown) */
     uint64_t frame_serial;       /* frame whose per-frame uniforms are set */
     bool from_binary;            /* linked from the binary cache */
@@ -265,6 +278,7 @@ struct mvr_renderer {
     GLuint nearest_sampler;      /* texel reads of depth (auto-exposure metering) */
     mvr_gpu_environment env;
     mvr_skinning skinning;
+    mvr_transmission transmission;
 };
 
 mvr_result mvr_renderer_fail(mvr_renderer *r, mvr_result result, const char *fmt, ...) MVR_PRINTF(3, 4);
@@ -379,6 +393,17 @@ mvr_result mvr_skinning_frame(mvr_renderer *r, bool frame_changed);
 mvr_result mvr_skinning_capture(mvr_renderer *r);
 GLuint mvr_skinning_vao(const mvr_renderer *r, const mvr_draw *d);
 void mvr_skinning_release(mvr_renderer *r);
+
+/* transmission.c: the chunk of rec's opaque views into the transmission
+ * array (its mips generated), the draw framebuffer resume_fbo bound again
+ * after; loop_msaa_fbo: the multisampled renderbuffers a one-view MSAA
+ * chunk draws into. block_base: the first view of the chunk's view block. */
+mvr_result mvr_transmission_copy(mvr_renderer *r, mvr_target *t, const mvr_frame_plan *plan,
+                                 const mvr_plan_record *rec, int32_t block_base, GLuint loop_msaa_fbo,
+                                 GLuint resume_fbo);
+/* A transmissive program's uniforms for the last copy. */
+void mvr_transmission_set_uniforms(mvr_renderer *r, mvr_program_entry *e);
+void mvr_transmission_release(mvr_renderer *r);
 
 /* passes.c */
 /* Binds the textures of the roles in `features` a draw samples (array

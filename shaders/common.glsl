@@ -32,6 +32,14 @@ vec3 mvr_linear_to_srgb(vec3 c)
     return mix(hi, lo, vec3(lessThanEqual(c, vec3(0.0031308))));
 }
 
+// Its inverse (IEC 61966-2-1).
+vec3 mvr_srgb_to_linear(vec3 c)
+{
+    vec3 lo = c / 12.92;
+    vec3 hi = pow((c + 0.055) / 1.055, vec3(2.4));
+    return mix(hi, lo, vec3(lessThanEqual(c, vec3(0.04045))));
+}
+
 #ifdef MVR_VERTEX_STAGE
 // A corner of the full-screen triangle of an attributeless draw of 3
 // vertices: (0, 0), (2, 0), (0, 2), in units of the viewport (so the

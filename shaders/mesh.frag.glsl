@@ -7,6 +7,13 @@
 // table and the lights are whole uniform blocks, the draw picks its material
 // through a flat varying.
 
+// Transmission and spec-gloss are drawn by the specular extension's
+// dielectric code (core/material.c sets SPECULAR with them; a variant asked
+// for without it compiles that code all the same).
+#if (defined(MVR_TRANSMISSION) || defined(MVR_SPEC_GLOSS)) && !defined(MVR_SPECULAR)
+#define MVR_SPECULAR
+#endif
+
 struct mvr_material {
     vec4 base_color_factor;
     vec4 emissive;           // rgb: emissive factor * strength, a: alpha cutoff
@@ -105,6 +112,16 @@ uniform MVR_SAMPLER mvr_specular_color_tex;
 #ifdef MVR_SPEC_GLOSS
 uniform MVR_SAMPLER mvr_spec_gloss_tex;
 #endif
+#ifdef MVR_TRANSMISSION
+uniform MVR_SAMPLER mvr_transmission_tex;
+uniform MVR_SAMPLER mvr_thickness_tex;
+// What the opaque sub-passes drew, per view of the chunk (layer = view -
+// mvr_transmission_base), mip-mapped (gl/transmission.c)
+uniform sampler2DArray mvr_transmission_source;
+uniform int mvr_transmission_base;
+uniform vec4 mvr_transmission_rect; // the chunk's viewport in the array: offset, size (0..1)
+uniform float mvr_transmission_lod; // log2 of the viewport's width in texels
+#endif
 #ifdef MVR_CLEARCOAT
 uniform MVR_SAMPLER mvr_clearcoat_tex;
 uniform MVR_SAMPLER mvr_clearcoat_roughness_tex;
@@ -114,8 +131,11 @@ uniform MVR_SAMPLER mvr_clearcoat_normal_tex;
 in vec3 v_position;
 in vec3 v_to_eye;
 flat in int v_material;
-#ifdef MVR_LIGHT_MASKS
+#if defined(MVR_LIGHT_MASKS) || defined(MVR_TRANSMISSION)
 flat in int v_view;
+#endif
+#ifdef MVR_TRANSMISSION
+flat in vec3 v_model_scale;
 #endif
 #ifdef MVR_NORMALS
 in vec3 v_normal;
@@ -408,11 +428,15 @@ vec3 mvr_ibl(vec3 n, vec3 v, vec3 base, float metallic, float roughness)
 }
 
 #ifdef MVR_SPECULAR
-vec3 mvr_ibl_specular(vec3 n, vec3 v, vec3 base, float metallic, float roughness, vec3 f0, float w)
+// replace_diffuse: rgb replaces the diffuse lobe by the fraction a (light
+// through the surface, KHR_materials_transmission; a = 0: none, exactly)
+vec3 mvr_ibl_specular(vec3 n, vec3 v, vec3 base, float metallic, float roughness, vec3 f0, float w,
+                      vec4 replace_diffuse)
 {
     float n_dot_v = clamp(dot(n, v), 0.0, 1.0);
     vec3 r = reflect(-v, n);
     vec3 diffuse = mvr_env_diffuse(mvr_env_rotation * n) * base;
+    diffuse = mix(diffuse, replace_diffuse.rgb, replace_diffuse.a);
     vec3 specular = textureLod(mvr_env_specular, mvr_env_rotation * r, roughness * mvr_env_max_lod).rgb;
     vec3 dielectric = mix(diffuse, specular, mvr_ibl_fresnel_weighted(n_dot_v, roughness, f0, w));
     vec3 metal = specular * mvr_ibl_fresnel(n_dot_v, roughness, base);
@@ -420,6 +444,99 @@ vec3 mvr_ibl_specular(vec3 n, vec3 v, vec3 base, float metallic, float roughness
 }
 #endif
 #endif // MVR_IBL_REFERENCE
+#endif
+
+#ifdef MVR_TRANSMISSION
+// KHR_materials_transmission and _volume, as the Khronos glTF Sample
+// Renderer evaluates them (its getVolumeTransmissionRay, applyIorToRoughness,
+// applyVolumeAttenuation, getPunctualRadianceTransmission and
+// getIBLVolumeRefraction).
+
+// The ray through the volume: refracted, thickness long in model units
+// (thin-walled: thickness 0, no displacement).
+vec3 mvr_transmission_ray(vec3 n, vec3 v, float thickness, float ior)
+{
+    vec3 r = refract(-v, n, 1.0 / ior);
+    return mvr_safe_normalize(r, -v) * thickness * v_model_scale;
+}
+
+// Rough surfaces blur what they transmit, less so near ior 1.
+float mvr_ior_roughness(float roughness, float ior)
+{
+    return roughness * clamp(ior * 2.0 - 2.0, 0.0, 1.0);
+}
+
+// Beer-Lambert through distance d: the attenuation color after distance
+// attenuation.w (0: no absorption).
+vec3 mvr_volume_attenuation(vec3 radiance, float d, vec4 attenuation)
+{
+    if (attenuation.w == 0.0)
+        return radiance;
+    return pow(attenuation.rgb, vec3(d / attenuation.w)) * radiance;
+}
+
+// A light seen through the surface: GGX about the light mirrored through
+// the surface (the transmission lobe), its Fresnel's complement, the base
+// color; no cosine (the Khronos renderer's BTDF).
+vec3 mvr_light_transmission(vec3 n, vec3 v, vec3 l, float alpha, vec3 f0, vec3 base, float ior)
+{
+    float a = mvr_ior_roughness(alpha, ior);
+    vec3 l_mirror = mvr_safe_normalize(l + 2.0 * n * dot(-l, n), n);
+    vec3 h = mvr_safe_normalize(l_mirror + v, n);
+    float d = mvr_d_ggx(clamp(dot(n, h), 0.0, 1.0), a);
+    vec3 f = f0 + (1.0 - f0) * pow(1.0 - clamp(dot(v, h), 0.0, 1.0), 5.0);
+    float vis = mvr_v_smith_ggx_correlated(clamp(dot(n, l_mirror), 0.0, 1.0), clamp(dot(n, v), 0.0, 1.0), a);
+    return (1.0 - f) * base * d * vis;
+}
+
+// What the opaque views show where a ray leaving p along ray lands, blurred
+// by roughness: the view's own layer of the chunk's copy. Radiance before
+// exposure (the copy holds exposed values).
+vec3 mvr_transmission_sample(vec3 p, vec3 ray, float roughness, float ior)
+{
+    vec4 clip = mvr_view_proj[v_view] * vec4(p + ray, 1.0);
+    vec2 uv = clip.w != 0.0 ? clip.xy / clip.w * 0.5 + 0.5 : vec2(0.5);
+    uv = mvr_transmission_rect.xy + clamp(uv, 0.0, 1.0) * mvr_transmission_rect.zw;
+    float lod = mvr_transmission_lod * mvr_ior_roughness(roughness, ior);
+    vec3 c = textureLod(mvr_transmission_source, vec3(uv, float(v_view - mvr_transmission_base)), lod).rgb;
+#ifdef MVR_SRGB_OUTPUT
+    c = mvr_srgb_to_linear(c); // an 8-bit UNORM target holds sRGB-encoded values
+#endif
+    return mvr_exposure > 0.0 ? c / mvr_exposure : c;
+}
+
+// The radiance transmitted towards v (the Khronos renderer's
+// getIBLVolumeRefraction): along the refracted ray (one per color channel
+// with KHR_materials_dispersion), attenuated by the volume, times the
+// base color and the complement of the split-sum specular albedo.
+vec3 mvr_transmitted(vec3 n, vec3 v, vec3 p, float roughness, vec3 base, vec3 f0, float ior, float thickness,
+                     vec4 attenuation, float dispersion)
+{
+    vec3 light;
+    float len;
+    if (dispersion > 0.0) {
+        // the Abbe spread of the index of refraction (KHR_materials_dispersion)
+        float half_spread = (ior - 1.0) * 0.025 * dispersion;
+        vec3 iors = vec3(ior - half_spread, ior, ior + half_spread);
+        for (int i = 0; i < 3; ++i) {
+            vec3 ray = mvr_transmission_ray(n, v, thickness, iors[i]);
+            len = length(ray);
+            light[i] = mvr_transmission_sample(p, ray, roughness, iors[i])[i];
+        }
+    } else {
+        vec3 ray = mvr_transmission_ray(n, v, thickness, ior);
+        len = length(ray);
+        light = mvr_transmission_sample(p, ray, roughness, ior);
+    }
+    light = mvr_volume_attenuation(light, len, attenuation);
+#ifdef MVR_IBL
+    vec2 ab = texture(mvr_env_dfg, clamp(vec2(clamp(dot(n, v), 0.0, 1.0), roughness), 0.0, 1.0)).rg;
+    vec3 albedo = f0 * ab.x + ab.y;
+#else
+    vec3 albedo = vec3(0.0);
+#endif
+    return (1.0 - albedo) * light * base;
+}
 #endif
 
 // KHR_lights_punctual range attenuation: smooth window to zero at range,
@@ -594,6 +711,20 @@ void main()
 #endif
     spec_f0 = min(spec_f0, vec3(1.0));
 #endif
+#ifdef MVR_TRANSMISSION
+    // KHR_materials_transmission: the fraction (x its texture's R) of the
+    // dielectric's diffuse lobe replaced by light through the surface;
+    // KHR_materials_volume: the thickness (x its texture's G) and absorption
+    float transmission = m.transmission.x;
+    if (mvr_has_texture(m, MVR_ROLE_TRANSMISSION))
+        transmission *= MVR_SAMPLE_ROLE(mvr_transmission_tex, MVR_ROLE_TRANSMISSION, m).r;
+    transmission = clamp(transmission, 0.0, 1.0);
+    float thickness = m.transmission.y;
+    if (mvr_has_texture(m, MVR_ROLE_THICKNESS))
+        thickness *= MVR_SAMPLE_ROLE(mvr_thickness_tex, MVR_ROLE_THICKNESS, m).g;
+    vec4 absorption = vec4(m.volume.rgb, m.transmission.z); // KHR_materials_volume: color, distance
+    float ior = m.volume.a;
+#endif
 
 #ifdef MVR_NORMAL_TEX
     vec2 nuv = mvr_uv(MVR_ROLE_NORMAL, m);
@@ -643,6 +774,21 @@ void main()
 #endif
 #ifdef MVR_SPECULAR
         vec3 lit = mvr_brdf_specular(n, v, l, base.rgb, metallic, alpha, spec_f0, spec_w);
+#ifdef MVR_TRANSMISSION
+        if (transmission > 0.0) {
+            // the dielectric's diffuse part (1 - F) base / pi n.l becomes
+            // mix(it, light through the surface toward the light's exit point, transmission)
+            vec3 tray = mvr_transmission_ray(n, v, thickness, ior);
+            vec3 lt = mvr_safe_normalize(l * (i < MVR_DIRECTIONAL_LIGHTS ? 1.0 : dist) - tray, l);
+            vec3 through = mvr_volume_attenuation(mvr_light_transmission(n, v, lt, alpha, spec_f0, base.rgb, ior),
+                                                  length(tray), absorption);
+            vec3 h = mvr_safe_normalize(l + v, n);
+            float x5 = pow(1.0 - clamp(dot(v, h), 0.0, 1.0), 5.0);
+            vec3 f_dielectric = spec_f0 * spec_w + (spec_w - spec_f0 * spec_w) * x5;
+            vec3 diffuse = base.rgb / MVR_PI * clamp(dot(n, l), 0.0, 1.0);
+            lit += (1.0 - metallic) * (1.0 - f_dielectric) * transmission * (through - diffuse);
+        }
+#endif
 #else
         vec3 lit = mvr_brdf(n, v, l, base.rgb, metallic, alpha);
 #endif
@@ -657,9 +803,21 @@ void main()
     ao = 1.0 + m.params.w * (MVR_SAMPLE_ROLE(mvr_occlusion_tex, MVR_ROLE_OCCLUSION, m).r - 1.0);
 #endif
     vec3 ambient = mvr_ambient * base.rgb;
+#if defined(MVR_TRANSMISSION) && !defined(MVR_IBL)
+    // a uniform ambient only: its diffuse part gives way to what is behind
+    if (transmission > 0.0)
+        ambient = mix(ambient, mvr_transmitted(n, v, v_position, roughness, base.rgb, spec_f0, ior, thickness,
+                                               absorption, m.transmission.w), transmission * (1.0 - metallic));
+#endif
 #ifdef MVR_IBL
 #if defined(MVR_SPECULAR) && !defined(MVR_IBL_REFERENCE)
-    ambient += mvr_ibl_specular(n, v, base.rgb, metallic, roughness, spec_f0, spec_w);
+    vec4 replace_diffuse = vec4(0.0);
+#ifdef MVR_TRANSMISSION
+    if (transmission > 0.0)
+        replace_diffuse = vec4(mvr_transmitted(n, v, v_position, roughness, base.rgb, spec_f0, ior, thickness,
+                                               absorption, m.transmission.w), transmission);
+#endif
+    ambient += mvr_ibl_specular(n, v, base.rgb, metallic, roughness, spec_f0, spec_w, replace_diffuse);
 #else
     ambient += mvr_ibl(n, v, base.rgb, metallic, roughness);
 #endif

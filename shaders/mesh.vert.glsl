@@ -35,8 +35,11 @@ layout(location = 5) in vec4 a_color0;
 out vec3 v_position;         // world, relative to the view origin
 out vec3 v_to_eye;           // eye - position: linear, so interpolation is exact
 flat out int v_material;
-#ifdef MVR_LIGHT_MASKS
+#if defined(MVR_LIGHT_MASKS) || defined(MVR_TRANSMISSION)
 flat out int v_view;         // within the view block
+#endif
+#ifdef MVR_TRANSMISSION
+flat out vec3 v_model_scale; // the model matrix's axis scales (KHR_materials_volume's thickness is in model units)
 #endif
 #ifdef MVR_NORMALS
 out vec3 v_normal;
@@ -65,8 +68,11 @@ void main()
     v_position = world.xyz;
     v_to_eye = mvr_eye_position[view].xyz - world.xyz;
     v_material = mvr_draws[gl_InstanceID].info.x;
-#ifdef MVR_LIGHT_MASKS
+#if defined(MVR_LIGHT_MASKS) || defined(MVR_TRANSMISSION)
     v_view = view;
+#endif
+#ifdef MVR_TRANSMISSION
+    v_model_scale = vec3(length(mvr_model[0].xyz), length(mvr_model[1].xyz), length(mvr_model[2].xyz));
 #endif
 #ifdef MVR_NORMALS
     v_normal = mat3(mvr_draws[gl_InstanceID].normal_matrix) * normal;

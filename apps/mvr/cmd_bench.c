@@ -299,7 +299,8 @@ static uint32_t extension_features(void)
     uint32_t bits = 0;
     for (uint32_t b = 1; b; b <<= 1) {
         const char *name = mvr_program_feature_name(b);
-        if (name && (strcmp(name, "SPECULAR") == 0 || strcmp(name, "CLEARCOAT") == 0))
+        if (name && (strcmp(name, "SPECULAR") == 0 || strcmp(name, "CLEARCOAT") == 0 ||
+                     strcmp(name, "TRANSMISSION") == 0))
             bits |= b;
     }
     return bits;

@@ -156,6 +156,8 @@ void render_output_write_stats_json(FILE *f, const mvr_renderer *r, const mvr_fr
     json_int(&jw, "ubo_range_binds", s->ubo_range_binds);
     json_int(&jw, "upload_bytes", (long long)s->upload_bytes);
     json_int(&jw, "view_upload_bytes", (long long)s->view_upload_bytes);
+    json_int(&jw, "transmission_copies", s->transmission_copies);
+    json_int(&jw, "transmission_bytes", (long long)s->transmission_bytes);
     json_int(&jw, "compacted_bytes", (long long)s->compacted_bytes);
     json_int(&jw, "sanitized", (long long)s->sanitized);
     json_int(&jw, "samples", (long long)s->samples);

@@ -949,10 +949,10 @@ typedef struct mvr_renderer_overrides {
     uint32_t ubo_alignment;
     /* MVR_SKINNING_PATH=auto|vertex|preskin */
     mvr_skinning_path_override skinning_path;
-    /* MVR_DISABLE_FEATURES=SPECULAR,CLEARCOAT: material extensions drawn as
-     * if absent (mesh feature bits, as mvr_program_feature_name names them;
-     * only these two may be disabled): what an extension costs, and what it
-     * changes, in `mvr bench`. 0 = none */
+    /* MVR_DISABLE_FEATURES=SPECULAR,CLEARCOAT,TRANSMISSION: material
+     * extensions drawn as if absent (mesh feature bits, as
+     * mvr_program_feature_name names them; only these may be disabled):
+     * what an extension costs, and what it changes, in `mvr bench`. 0 = none */
     uint32_t disable_features;
 } mvr_renderer_overrides;
 
@@ -1273,6 +1273,11 @@ typedef struct mvr_frame_stats {
     uint32_t morph_targets_active;
     uint64_t animation_upload_bytes;
     uint32_t preskin_passes;
+    /* KHR_materials_transmission: views whose opaque colour was copied for
+     * the transmissive draws (0 when nothing is transmissive), and the
+     * bytes of the mip-mapped copy array */
+    uint32_t transmission_copies;
+    uint64_t transmission_bytes;
 } mvr_frame_stats;
 
 /* The supersampling resolve: box-filters linear RGBA float pixels (width x

@@ -62,10 +62,11 @@ static void sixteen_views_by_six(mvr_test_state *t)
     CHECK_EQ_INT(t, f.plan.chunks[2].base, 12);
     CHECK_EQ_INT(t, f.plan.chunks[2].count, 4);
     CHECK_EQ_INT(t, count_kind(&f.plan, MVR_PLAN_VIEW_PASS, MVR_PLAN_RUN), 3);
-    /* the order: uploads, shadows, then per chunk view pass, opaque, mask, background, blend */
-    static const mvr_plan_kind order[] = {MVR_PLAN_UPLOAD, MVR_PLAN_SHADOW_MAPS, MVR_PLAN_VIEW_PASS,
-                                          MVR_PLAN_OPAQUE, MVR_PLAN_MASK,        MVR_PLAN_BACKGROUND,
-                                          MVR_PLAN_BLEND,  MVR_PLAN_VIEW_PASS};
+    /* the order: uploads, shadows, then per chunk view pass, opaque, mask,
+     * background, transmission copy, blend */
+    static const mvr_plan_kind order[] = {MVR_PLAN_UPLOAD,     MVR_PLAN_SHADOW_MAPS,  MVR_PLAN_VIEW_PASS,
+                                          MVR_PLAN_OPAQUE,     MVR_PLAN_MASK,         MVR_PLAN_BACKGROUND,
+                                          MVR_PLAN_TRANSMISSION, MVR_PLAN_BLEND,      MVR_PLAN_VIEW_PASS};
     for (size_t i = 0; i < sizeof order / sizeof order[0]; ++i)
         CHECK_EQ_INT(t, f.plan.records[i].kind, order[i]);
     const mvr_plan_record *vp = find(&f.plan, MVR_PLAN_VIEW_PASS, 2);
@@ -203,12 +204,38 @@ static void background_only_with_a_background(mvr_test_state *t)
     CHECK_EQ_INT(t, count_kind(&f.plan, MVR_PLAN_BACKGROUND, MVR_PLAN_RUN), 1);
     /* after opaque and mask, before blend */
     const mvr_plan_record *bg = find(&f.plan, MVR_PLAN_BACKGROUND, 0);
-    CHECK(t, bg && bg[-1].kind == MVR_PLAN_MASK && bg[1].kind == MVR_PLAN_BLEND && bg->multiview);
+    CHECK(t, bg && bg[-1].kind == MVR_PLAN_MASK && bg[2].kind == MVR_PLAN_BLEND && bg->multiview);
     /* the environment prefilter first, once; not again for the same environment */
     CHECK(t, f.plan.records[0].kind == MVR_PLAN_ENV_PREFILTER && f.plan.records[0].when == MVR_PLAN_RUN);
     f.in.environment_new = false;
     CHECK(t, mvr_frame_plan_build(&f.plan, &f.in) == MVR_OK);
     CHECK(t, f.plan.records[0].kind == MVR_PLAN_ENV_PREFILTER && f.plan.records[0].when == MVR_PLAN_SKIP);
+    mvr_frame_plan_free(&f.plan);
+}
+
+/* Transmissive draws: a copy record per chunk, run only when there are
+ * some; storage the GL resolves at the pass's end (multisampled render to
+ * texture) cannot be read mid-pass: such frames take the loop path. */
+static void transmission_records(mvr_test_state *t)
+{
+    fixture f;
+    setup(&f, 8);
+    CHECK(t, mvr_frame_plan_build(&f.plan, &f.in) == MVR_OK);
+    CHECK_EQ_INT(t, count_kind(&f.plan, MVR_PLAN_TRANSMISSION, MVR_PLAN_SKIP), 2);
+    f.in.transmissive = 2;
+    CHECK(t, mvr_frame_plan_build(&f.plan, &f.in) == MVR_OK);
+    CHECK_EQ_INT(t, count_kind(&f.plan, MVR_PLAN_TRANSMISSION, MVR_PLAN_RUN), 2);
+    const mvr_plan_record *tr = find(&f.plan, MVR_PLAN_TRANSMISSION, 1);
+    CHECK(t, tr && tr->first_view == 6 && tr->views == 2 && tr->multiview && tr[1].kind == MVR_PLAN_BLEND &&
+                 tr->draws == 2);
+    f.in.samples = 4;
+    f.in.msaa_multiview = MVR_MSAA_MV_RENDER_TO_TEXTURE;
+    CHECK(t, mvr_frame_plan_build(&f.plan, &f.in) == MVR_OK);
+    CHECK(t, !f.plan.msaa_multiview && f.plan.path == MVR_VIEW_PATH_LOOP);
+    CHECK_EQ_INT(t, count_kind(&f.plan, MVR_PLAN_TRANSMISSION, MVR_PLAN_RUN), 8);
+    f.in.msaa_multiview = MVR_MSAA_MV_ARRAY;
+    CHECK(t, mvr_frame_plan_build(&f.plan, &f.in) == MVR_OK);
+    CHECK(t, f.plan.msaa_multiview && f.plan.path == MVR_VIEW_PATH_MULTIVIEW);
     mvr_frame_plan_free(&f.plan);
 }
 
@@ -318,7 +345,7 @@ static void preskin_once_before_the_views(mvr_test_state *t)
     mvr_frame_plan_free(&f.plan);
 }
 
-MVR_TEST_MAIN(TEST(preskin_once_before_the_views), TEST(sixteen_views_by_six), TEST(chunks_split_at_viewports_and_disabled_views),
+MVR_TEST_MAIN(TEST(preskin_once_before_the_views), TEST(sixteen_views_by_six), TEST(transmission_records), TEST(chunks_split_at_viewports_and_disabled_views),
               TEST(the_loop_path_passes_one_view_each), TEST(msaa_falls_back_to_the_loop),
               TEST(supersampling_resolves_unless_post), TEST(background_only_with_a_background),
               TEST(blend_fallback_records), TEST(shadow_pass_only_when_planned), TEST(the_plan_prints))
