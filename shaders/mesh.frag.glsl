@@ -497,7 +497,9 @@ vec3 mvr_transmission_sample(vec3 p, vec3 ray, float roughness, float ior)
     vec4 clip = mvr_view_proj[v_view] * vec4(p + ray, 1.0);
     vec2 uv = clip.w != 0.0 ? clip.xy / clip.w * 0.5 + 0.5 : vec2(0.5);
     uv = mvr_transmission_rect.xy + clamp(uv, 0.0, 1.0) * mvr_transmission_rect.zw;
-    float lod = mvr_transmission_lod * mvr_ior_roughness(roughness, ior);
+    // the Khronos renderer samples a 1024-wide copy at level 10 x roughness':
+    // the same footprint (a fraction 2^(10 (r' - 1)) of the view) at any size
+    float lod = max(mvr_transmission_lod + 10.0 * (mvr_ior_roughness(roughness, ior) - 1.0), 0.0);
     vec3 c = textureLod(mvr_transmission_source, vec3(uv, float(v_view - mvr_transmission_base)), lod).rgb;
 #ifdef MVR_SRGB_OUTPUT
     c = mvr_srgb_to_linear(c); // an 8-bit UNORM target holds sRGB-encoded values

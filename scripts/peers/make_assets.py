@@ -9,6 +9,13 @@
                                red dielectric bare, then under a coat of roughness 0, 0.25, 0.5), _ior (a
                                dark glossy dielectric of ior 1, 1.33, 2, 3) and _specular (factor 0, 0.5,
                                a tinted F0, a tinted F0 with ior 1.8); one camera (node 12); no lights.
+  glass.gltf                   four glass spheres (KHR_materials_transmission 1: thin and smooth, thin and rough
+                               0.3, a _volume of thickness 0.84 absorbing to (0.9, 0.45, 0.2) at 0.6, the same
+                               volume clear with _dispersion 8) in front of six coloured bars (the spheres'
+                               mesh flattened); one camera (node 10); no lights.
+  spec_gloss.gltf              4 x 3 spheres of KHR_materials_pbrSpecularGlossiness: grey / red diffuse with
+                               specular 0.04 / 0.3, a copper-like specular colour; glossiness 1, 0.75, 0.5,
+                               0.25 across; one camera (node 12); no lights.
   uniform.hdr                  64 x 32 Radiance RGBE, radiance 1.0 everywhere.
   sky.hdr                      512 x 256 Radiance RGBE (run-length encoded): a blue sky gradient, a
                                warm sun disc of radiance 50, a horizon band and a ground of eight
@@ -290,6 +297,62 @@ def make_coated():
                                                    "KHR_materials_specular"])
 
 
+def make_glass():
+    # KHR_materials_transmission, _volume and _dispersion: four glass spheres in front of six coloured
+    # bars (the spheres' mesh flattened), so that what they transmit and how they bend it shows
+    blob, views, accessors = sphere_buffers(0.42, 64, 32)
+    cells, nodes = [], []
+    bar_colours = ([0.9, 0.15, 0.1], [0.95, 0.85, 0.2], [0.1, 0.6, 0.2], [0.1, 0.3, 0.9], [0.9, 0.9, 0.9],
+                   [0.6, 0.1, 0.6])
+    for i, colour in enumerate(bar_colours):
+        cells.append({"name": "bar_%d" % i,
+                      "pbrMetallicRoughness": {"baseColorFactor": colour + [1.0], "metallicFactor": 0.0,
+                                               "roughnessFactor": 0.8}})
+        nodes.append({"name": cells[-1]["name"], "mesh": len(nodes), "translation": [-2.5 + i, 0.0, -1.5],
+                      "scale": [1.1, 6.0, 0.05]})
+    glass = [("thin", 0.0, {}, {}),
+             ("rough", 0.3, {}, {}),
+             ("volume", 0.0, {"KHR_materials_volume": {"thicknessFactor": 0.84, "attenuationDistance": 0.6,
+                                                       "attenuationColor": [0.9, 0.45, 0.2]}}, {}),
+             ("dispersion", 0.0, {"KHR_materials_volume": {"thicknessFactor": 0.84},
+                                  "KHR_materials_dispersion": {"dispersion": 8.0}}, {})]
+    for i, (name, rough, ext, _) in enumerate(glass):
+        e = {"KHR_materials_transmission": {"transmissionFactor": 1.0}}
+        e.update(ext)
+        cells.append({"name": "glass_" + name,
+                      "pbrMetallicRoughness": {"baseColorFactor": [1.0, 1.0, 1.0, 1.0], "metallicFactor": 0.0,
+                                               "roughnessFactor": rough},
+                      "extensions": e})
+        nodes.append({"name": cells[-1]["name"], "mesh": len(nodes), "translation": [i - 1.5, 0.0, 0.0]})
+    cam_node = len(nodes)
+    nodes.append({"name": "camera", "camera": 0, "translation": [0.0, 0.0, 4.0]})
+    cameras = [{"type": "perspective", "name": "row",
+                "perspective": {"yfov": 0.7, "aspectRatio": 1.0, "znear": 0.1, "zfar": 100.0}}]
+    write_gltf("glass.gltf", blob, views, accessors, cells, nodes, cameras, list(range(cam_node + 1)),
+               bin_name="spheres.bin", extensions=["KHR_materials_transmission", "KHR_materials_volume",
+                                                   "KHR_materials_dispersion"])
+
+
+def make_spec_gloss():
+    # KHR_materials_pbrSpecularGlossiness (archived): diffuse and specular colours, glossiness 1 .. 0.25
+    blob, views, accessors = sphere_buffers(0.42, 64, 32)
+    cells, nodes = [], []
+    rows = (([0.5, 0.5, 0.5, 1.0], [0.04, 0.04, 0.04]), ([0.6, 0.2, 0.1, 1.0], [0.3, 0.3, 0.3]),
+            ([0.05, 0.05, 0.05, 1.0], [0.95, 0.64, 0.54]))
+    for r, (diffuse, specular) in enumerate(rows):
+        for c, gloss in enumerate((1.0, 0.75, 0.5, 0.25)):
+            cells.append({"name": "sg_%d_g%03d" % (r, int(gloss * 100)),
+                          "extensions": {"KHR_materials_pbrSpecularGlossiness": {
+                              "diffuseFactor": diffuse, "specularFactor": specular, "glossinessFactor": gloss}}})
+            nodes.append({"name": cells[-1]["name"], "mesh": len(nodes), "translation": [c - 1.5, 1.0 - r, 0.0]})
+    cam_node = len(nodes)
+    nodes.append({"name": "camera", "camera": 0, "translation": [0.0, 0.0, 6.5]})
+    cameras = [{"type": "perspective", "name": "grid",
+                "perspective": {"yfov": 0.62, "aspectRatio": 1.0, "znear": 0.1, "zfar": 100.0}}]
+    write_gltf("spec_gloss.gltf", blob, views, accessors, cells, nodes, cameras, list(range(cam_node + 1)),
+               bin_name="spheres.bin", extensions=["KHR_materials_pbrSpecularGlossiness"])
+
+
 def make_diag_mirror():
     # the spheres' mesh (radius 0.42) and buffer, scaled to radius 1
     blob, views, accessors = sphere_buffers(0.42, 64, 32)
@@ -310,6 +373,8 @@ def main():
     write_hdr(os.path.join(OUT, "diag_axes.hdr"), 64, 32, lambda x, y: axes_pixel(dir_of_pixel(x, y, 64, 32)))
     make_spheres()
     make_coated()
+    make_glass()
+    make_spec_gloss()
     make_diag_mirror()
     for n in sorted(os.listdir(OUT)):
         print("%-22s %8d bytes" % (n, os.path.getsize(os.path.join(OUT, n))))

@@ -46,6 +46,8 @@ const ASSETS = [
     { name: 'spheres', file: 'spheres.gltf', camera: 0 },
     { name: 'textured', file: 'textured.gltf', camera: 0 },
     { name: 'coated', file: 'coated.gltf', camera: 0 },
+    { name: 'glass', file: 'glass.gltf', camera: 0 },
+    { name: 'spec_gloss', file: 'spec_gloss.gltf', camera: 0 },
 ];
 const ENVS = [
     { name: 'uniform', file: 'uniform.hdr' },

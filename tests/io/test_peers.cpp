@@ -188,7 +188,14 @@ void mvr_agrees_with_the_khronos_sample_renderer(mvr_test_state *t)
     //   Measured 2.64 (spheres) and 1.79 (textured); with 64 samples the
     //   spheres were at 4.35, with a 256-texel cube and 1024 samples 1.77.
     // - coated.gltf (KHR_materials_clearcoat, _ior, _specular factors): 0.06
-    //   under the uniform environment, 2.07 under the sky.
+    //   under the uniform environment, 2.07 under the sky; spec_gloss.gltf
+    //   (KHR_materials_pbrSpecularGlossiness) 0.06 and 2.62.
+    // - glass.gltf (KHR_materials_transmission, _volume, _dispersion): 3.0
+    //   and 4.0. The mean difference is small (0.18 / 255 uniform) but the
+    //   refracted bars have sharp edges, and there a sample one texel over
+    //   changes a pixel entirely: the Khronos renderer refracts into a
+    //   1024-wide copy of the scene, mvr into the view's own 256-wide colour
+    //   (same footprint per roughness). Measured 2.50 and 3.18.
     unsigned compared = 0;
     for (const auto &entry : manifest.at("images")) {
         std::string file = entry.at("file").get<std::string>();
@@ -214,7 +221,8 @@ void mvr_agrees_with_the_khronos_sample_renderer(mvr_test_state *t)
         if (ours.empty())
             continue;
         comparison c = compare(ours, theirs, w, h);
-        double bound = env == "uniform.hdr" ? 2.0 : 3.5;
+        bool glass = file.find("_glass_") != std::string::npos;
+        double bound = env == "uniform.hdr" ? (glass ? 3.0 : 2.0) : (glass ? 4.0 : 3.5);
         std::printf("  %-28s RMSE %.2f, mean |d| %.2f, mean d %+.2f, worst %u (1/255) over %zu pixels (bound %.1f)\n",
                     file.c_str(), c.rmse, c.mean_abs, c.mean_signed, c.worst, c.pixels, bound);
         CHECK_MSG(t, c.pixels > 5000, "%s: only %zu interior pixels", file.c_str(), c.pixels);
