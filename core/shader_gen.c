@@ -41,6 +41,7 @@ static const feature_define mesh_defines[] = {
     {MVR_FEATURE_CLEARCOAT, "MVR_CLEARCOAT"},
     {MVR_FEATURE_SPEC_GLOSS, "MVR_SPEC_GLOSS"},
     {MVR_FEATURE_TRANSMISSION, "MVR_TRANSMISSION"},
+    {MVR_FEATURE_IRIDESCENCE, "MVR_IRIDESCENCE"},
 };
 
 /* the mesh bits the pre-skinning program shares (MVR_PRESKIN_FEATURES) */

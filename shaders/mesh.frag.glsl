@@ -10,7 +10,7 @@
 // Transmission and spec-gloss are drawn by the specular extension's
 // dielectric code (core/material.c sets SPECULAR with them; a variant asked
 // for without it compiles that code all the same).
-#if (defined(MVR_TRANSMISSION) || defined(MVR_SPEC_GLOSS)) && !defined(MVR_SPECULAR)
+#if (defined(MVR_TRANSMISSION) || defined(MVR_SPEC_GLOSS) || defined(MVR_IRIDESCENCE)) && !defined(MVR_SPECULAR)
 #define MVR_SPECULAR
 #endif
 
@@ -111,6 +111,10 @@ uniform MVR_SAMPLER mvr_specular_color_tex;
 #endif
 #ifdef MVR_SPEC_GLOSS
 uniform MVR_SAMPLER mvr_spec_gloss_tex;
+#endif
+#ifdef MVR_IRIDESCENCE
+uniform MVR_SAMPLER mvr_iridescence_tex;
+uniform MVR_SAMPLER mvr_iridescence_thickness_tex;
 #endif
 #ifdef MVR_TRANSMISSION
 uniform MVR_SAMPLER mvr_transmission_tex;
@@ -267,6 +271,78 @@ vec3 mvr_brdf_specular(vec3 n, vec3 v, vec3 l, vec3 base, float metallic, float 
     float ggx = mvr_d_ggx(n_dot_h, alpha) * mvr_v_smith_ggx_correlated(n_dot_l, n_dot_v, alpha);
     vec3 dielectric = diffuse + f_dielectric * ggx;
     return mix(dielectric, f_metal * ggx, metallic) * n_dot_l;
+}
+#endif
+
+#ifdef MVR_IRIDESCENCE
+// KHR_materials_iridescence: the Fresnel reflectance of a thin film over the
+// base (Belcour and Barla, "A Practical Extension to Microfacet Theory for
+// the Modeling of Varying Iridescence", SIGGRAPH 2017), as the Khronos
+// glTF Sample Renderer's evalIridescence evaluates it: Airy summation of
+// two orders, each order's spectral sensitivity from the paper's Gaussian
+// fit of the CIE XYZ curves, converted to linear Rec. 709.
+const mat3 MVR_XYZ_TO_REC709 = mat3(3.2404542, -0.9692660, 0.0556434, -1.5371385, 1.8760108, -0.2040259,
+                                    -0.4985314, 0.0415560, 1.0572252);
+
+vec3 mvr_film_sensitivity(float opd, vec3 shift)
+{
+    float phase = 2.0 * MVR_PI * opd * 1.0e-9;
+    vec3 val = vec3(5.4856e-13, 4.4201e-13, 5.2481e-13);
+    vec3 pos = vec3(1.6810e+06, 1.7953e+06, 2.2084e+06);
+    vec3 var = vec3(4.3278e+09, 9.3046e+09, 6.6121e+09);
+    vec3 xyz = val * sqrt(2.0 * MVR_PI * var) * cos(pos * phase + shift) * exp(-phase * phase * var);
+    xyz.x += 9.7470e-14 * sqrt(2.0 * MVR_PI * 4.5282e+09) * cos(2.2399e+06 * phase + shift[0]) *
+             exp(-4.5282e+09 * phase * phase);
+    return MVR_XYZ_TO_REC709 * (xyz / 1.0685e-7);
+}
+
+float mvr_ior_to_f0(float transmitted, float incident)
+{
+    float r = (transmitted - incident) / (transmitted + incident);
+    return r * r;
+}
+
+// The film's reflectance at cos_theta1 (n.v) over a base of F0 base_f0;
+// film of index film_ior (outside 1) and thickness nm nanometres.
+vec3 mvr_iridescence_fresnel(float film_ior, float cos_theta1, float nm, vec3 base_f0)
+{
+    float ior = mix(1.0, film_ior, smoothstep(0.0, 0.03, nm));
+    float sin2 = (1.0 / (ior * ior)) * (1.0 - cos_theta1 * cos_theta1);
+    float cos2_sq = 1.0 - sin2;
+    if (cos2_sq < 0.0)
+        return vec3(1.0); // total internal reflection
+    float cos_theta2 = sqrt(cos2_sq);
+    float r0 = mvr_ior_to_f0(ior, 1.0);
+    float x = clamp(1.0 - cos_theta1, 0.0, 1.0);
+    float r12 = r0 + (1.0 - r0) * x * x * x * x * x;
+    float t121 = 1.0 - r12;
+    float phi12 = ior < 1.0 ? MVR_PI : 0.0;
+    float phi21 = MVR_PI - phi12;
+    vec3 sq_f0 = sqrt(clamp(base_f0, 0.0, 0.9999));
+    vec3 base_ior = (1.0 + sq_f0) / (1.0 - sq_f0);
+    vec3 r1 = (base_ior - ior) / (base_ior + ior);
+    r1 *= r1;
+    float x2 = clamp(1.0 - cos_theta2, 0.0, 1.0);
+    vec3 r23 = r1 + (1.0 - r1) * x2 * x2 * x2 * x2 * x2;
+    vec3 phi23 = vec3(lessThan(base_ior, vec3(ior))) * MVR_PI;
+    float opd = 2.0 * ior * nm * cos_theta2;
+    vec3 phi = vec3(phi21) + phi23;
+    vec3 r123 = clamp(r12 * r23, 1e-5, 0.9999);
+    vec3 rr = sqrt(r123);
+    vec3 rs = t121 * t121 * r23 / (1.0 - r123);
+    vec3 result = r12 + rs;
+    vec3 cm = rs - t121;
+    for (int k = 1; k <= 2; ++k) {
+        cm *= rr;
+        result += cm * 2.0 * mvr_film_sensitivity(float(k) * opd, float(k) * phi);
+    }
+    return max(result, vec3(0.0));
+}
+
+// layer over base by a per-channel fraction (the Khronos renderer's rgb_mix)
+vec3 mvr_rgb_mix(vec3 base, vec3 layer, vec3 a)
+{
+    return (1.0 - max(a.r, max(a.g, a.b))) * base + a * layer;
 }
 #endif
 
@@ -430,8 +506,10 @@ vec3 mvr_ibl(vec3 n, vec3 v, vec3 base, float metallic, float roughness)
 #ifdef MVR_SPECULAR
 // replace_diffuse: rgb replaces the diffuse lobe by the fraction a (light
 // through the surface, KHR_materials_transmission; a = 0: none, exactly)
+// irid: the thin film's Fresnel over the dielectric (rgb) and its weight
+// (a: 0 = none, exactly); irid_metal: over the metal
 vec3 mvr_ibl_specular(vec3 n, vec3 v, vec3 base, float metallic, float roughness, vec3 f0, float w,
-                      vec4 replace_diffuse)
+                      vec4 replace_diffuse, vec4 irid, vec3 irid_metal)
 {
     float n_dot_v = clamp(dot(n, v), 0.0, 1.0);
     vec3 r = reflect(-v, n);
@@ -440,6 +518,10 @@ vec3 mvr_ibl_specular(vec3 n, vec3 v, vec3 base, float metallic, float roughness
     vec3 specular = textureLod(mvr_env_specular, mvr_env_rotation * r, roughness * mvr_env_max_lod).rgb;
     vec3 dielectric = mix(diffuse, specular, mvr_ibl_fresnel_weighted(n_dot_v, roughness, f0, w));
     vec3 metal = specular * mvr_ibl_fresnel(n_dot_v, roughness, base);
+#ifdef MVR_IRIDESCENCE
+    dielectric = mix(dielectric, mvr_rgb_mix(diffuse, specular, irid.rgb), irid.a);
+    metal = mix(metal, specular * irid_metal, irid.a);
+#endif
     return mix(dielectric, metal, metallic) * mvr_env_intensity;
 }
 #endif
@@ -739,6 +821,23 @@ void main()
 
     vec3 v = mvr_safe_normalize(v_to_eye, n);
     vec3 color = vec3(0.0);
+#ifdef MVR_IRIDESCENCE
+    // KHR_materials_iridescence: the film's weight (x its texture's R) and
+    // thickness (between the minimum and maximum by its texture's G, else the
+    // maximum; 0 nm is no film), its Fresnel at n.v over the dielectric's F0
+    // and over the metal's (the base color)
+    float irid_factor = m.iridescence.x;
+    if (mvr_has_texture(m, MVR_ROLE_IRIDESCENCE))
+        irid_factor *= MVR_SAMPLE_ROLE(mvr_iridescence_tex, MVR_ROLE_IRIDESCENCE, m).r;
+    float irid_nm = m.iridescence.w;
+    if (mvr_has_texture(m, MVR_ROLE_IRIDESCENCE_THICKNESS))
+        irid_nm = mix(m.iridescence.z, m.iridescence.w,
+                      MVR_SAMPLE_ROLE(mvr_iridescence_thickness_tex, MVR_ROLE_IRIDESCENCE_THICKNESS, m).g);
+    irid_factor = irid_nm == 0.0 ? 0.0 : clamp(irid_factor, 0.0, 1.0);
+    float irid_nv = clamp(dot(n, v), 0.0, 1.0);
+    vec3 irid_d = mvr_iridescence_fresnel(m.iridescence.y, irid_nv, irid_nm, spec_f0);
+    vec3 irid_m = mvr_iridescence_fresnel(m.iridescence.y, irid_nv, irid_nm, base.rgb);
+#endif
 #ifdef MVR_CLEARCOAT
     // the coat's Fresnel at n.v: how much of what lies under it shows
     float cf = m.clearcoat.z + (1.0 - m.clearcoat.z) * pow(1.0 - clamp(dot(n_coat, v), 0.0, 1.0), 5.0);
@@ -791,6 +890,18 @@ void main()
             lit += (1.0 - metallic) * (1.0 - f_dielectric) * transmission * (through - diffuse);
         }
 #endif
+#ifdef MVR_IRIDESCENCE
+        if (irid_factor > 0.0) {
+            // the film's Fresnel in place of Schlick's, over the dielectric
+            // (its diffuse under the film's brightest channel) and the metal
+            float n_dot_l = clamp(dot(n, l), 0.0, 1.0);
+            vec3 h = mvr_safe_normalize(l + v, n);
+            float ggx = mvr_d_ggx(clamp(dot(n, h), 0.0, 1.0), alpha) *
+                        mvr_v_smith_ggx_correlated(n_dot_l, clamp(abs(dot(n, v)), 1e-4, 1.0), alpha);
+            vec3 dielectric = mvr_rgb_mix(base.rgb / MVR_PI, vec3(ggx), irid_d);
+            lit = mix(lit, mix(dielectric, ggx * irid_m, metallic) * n_dot_l, irid_factor);
+        }
+#endif
 #else
         vec3 lit = mvr_brdf(n, v, l, base.rgb, metallic, alpha);
 #endif
@@ -819,7 +930,13 @@ void main()
         replace_diffuse = vec4(mvr_transmitted(n, v, v_position, roughness, base.rgb, spec_f0, ior, thickness,
                                                absorption, m.transmission.w), transmission);
 #endif
-    ambient += mvr_ibl_specular(n, v, base.rgb, metallic, roughness, spec_f0, spec_w, replace_diffuse);
+    vec4 irid = vec4(0.0);
+    vec3 irid_metal = vec3(0.0);
+#ifdef MVR_IRIDESCENCE
+    irid = vec4(irid_d, irid_factor);
+    irid_metal = irid_m;
+#endif
+    ambient += mvr_ibl_specular(n, v, base.rgb, metallic, roughness, spec_f0, spec_w, replace_diffuse, irid, irid_metal);
 #else
     ambient += mvr_ibl(n, v, base.rgb, metallic, roughness);
 #endif

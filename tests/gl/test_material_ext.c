@@ -480,6 +480,81 @@ static void spec_gloss_is_a_dielectric(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
+/* KHR_materials_iridescence: no film (factor 0, or 0 nm) compiles none of
+ * its code; a film changes the sphere; a thickness texture of G = 0 gives
+ * the film of the minimum thickness (the bytes of a film whose maximum is
+ * that minimum), G = 1 the maximum's (the bytes of no texture); multiview
+ * and loop give the same bytes. */
+static void iridescence_film(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    enum { TW = 8 };
+    static uint8_t black[TW * TW * 4], white[TW * TW * 4];
+    memset(white, 255, sizeof white);
+    for (int i = 0; i < TW * TW; ++i)
+        black[i * 4 + 3] = 255;
+    mvr_view_set *vs = front_views(t, 1);
+    mvr_material_desc plain = mvr_material_defaults();
+    plain.base_color_factor[0] = 0.2f;
+    plain.base_color_factor[1] = 0.2f;
+    plain.base_color_factor[2] = 0.25f;
+    plain.metallic_factor = 0.3f;
+    plain.roughness_factor = 0.25f;
+    mvr_material_desc film = plain;
+    film.iridescence.factor = 1.0f;
+    film.iridescence.thickness_minimum = 250.0f;
+    film.iridescence.thickness_maximum = 600.0f;
+    mvr_material_desc thin = film, none = film;
+    thin.iridescence.thickness_maximum = 250.0f;
+    none.iridescence.thickness_maximum = 0.0f;
+    mvr_material_desc tex_black = film, tex_white = film;
+    const mvr_material_desc *mats[6] = {&plain, &film, &thin, &none, &tex_black, &tex_white};
+    uint8_t *px[6];
+    uint32_t f[6];
+    for (int k = 0; k < 6; ++k) {
+        mvr_scene *s = NULL;
+        CHECK(t, mvr_scene_create(NULL, &s, NULL) == MVR_OK);
+        mvr_material_desc md = *mats[k];
+        if (k >= 4) {
+            mvr_image_desc id = {.width = TW, .height = TW, .rgba8 = k == 4 ? black : white};
+            CHECK(t, mvr_scene_add_image(s, &id, &md.iridescence.thickness_texture.image) == MVR_OK);
+        }
+        sphere_in(t, s, &md, true);
+        px[k] = render(t, ctx, s, vs, MVR_VIEW_PATH_LOOP, MVR_COLOR_FORMAT_DEFAULT, &f[k]);
+        mvr_scene_destroy(s);
+    }
+    CHECK(t, !(f[0] & MVR_FEATURE_IRIDESCENCE) && (f[1] & MVR_FEATURE_IRIDESCENCE) &&
+                 !(f[3] & MVR_FEATURE_IRIDESCENCE));
+    if (px[0] && px[1] && px[2] && px[3] && px[4] && px[5]) {
+        uint32_t changed = count_diff(px[0], px[1], (size_t)W * H, 2);
+        printf("  a 600 nm film changes %u pixels; 0 nm changes %u\n", changed, count_diff(px[0], px[3], (size_t)W * H, 0));
+        CHECK(t, changed > 500);
+        CHECK_EQ_INT(t, count_diff(px[0], px[3], (size_t)W * H, 0), 0);
+        CHECK_EQ_INT(t, count_diff(px[4], px[2], (size_t)W * H, 0), 0);
+        CHECK_EQ_INT(t, count_diff(px[5], px[1], (size_t)W * H, 0), 0);
+        CHECK(t, count_diff(px[2], px[1], (size_t)W * H, 2) > 100);
+    }
+    for (int k = 0; k < 6; ++k)
+        free(px[k]);
+    if (mvr_context_caps(ctx)->ext.ovr_multiview2) {
+        mvr_scene *s = sphere_scene(t, &film, true);
+        mvr_view_set *two = front_views(t, 2);
+        uint32_t f1, f2;
+        uint8_t *loop = render(t, ctx, s, two, MVR_VIEW_PATH_LOOP, MVR_COLOR_FORMAT_DEFAULT, &f1);
+        uint8_t *mv = render(t, ctx, s, two, MVR_VIEW_PATH_MULTIVIEW, MVR_COLOR_FORMAT_DEFAULT, &f2);
+        if (loop && mv)
+            CHECK_EQ_INT(t, count_diff(loop, mv, (size_t)2 * W * H, 0), 0);
+        free(loop);
+        free(mv);
+        mvr_view_set_destroy(two);
+        mvr_scene_destroy(s);
+    }
+    mvr_view_set_destroy(vs);
+    mvr_context_destroy(ctx);
+}
+
 MVR_TEST_MAIN(TEST(demos_compile_no_extension_code), TEST(core_values_give_the_core_pixels),
               TEST(clearcoat_mixes_by_its_fresnel), TEST(extension_textures_are_sampled),
-              TEST(spec_gloss_is_a_dielectric))
+              TEST(spec_gloss_is_a_dielectric), TEST(iridescence_film))
