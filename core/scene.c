@@ -55,6 +55,7 @@ mvr_result mvr_scene_create(const mvr_scene_desc *desc, mvr_scene **out, mvr_err
     if (desc)
         s->logger = desc->logger;
     s->geometry_version = s->material_version = s->transform_version = 1;
+    s->selected_variant = MVR_VARIANT_DEFAULT;
     /* address and creation time (C11 timespec_get), mixed */
     struct timespec ts = {0, 0};
     timespec_get(&ts, TIME_UTC);
@@ -77,6 +78,7 @@ static void free_primitive(scene_primitive *p)
     free(p->uv1);
     free(p->colors);
     free(p->indices);
+    free(p->variant_maps);
     mvr_scene_free_deformers(p);
 }
 
@@ -95,6 +97,7 @@ void mvr_scene_destroy(mvr_scene *s)
         free(s->nodes[i].rest_weights);
     }
     mvr_scene_free_skins_and_animations(s);
+    mvr_scene_free_variants(s);
     free(s->images);
     free(s->materials);
     free(s->primitives);
@@ -288,6 +291,7 @@ static mvr_result add_primitive(mvr_scene *s, const mvr_primitive_desc *d, const
     p->index_count = d->index_count;
     p->mode = d->mode;
     p->material = d->material.id ? d->material.id - 1 : MVR_NO_INDEX;
+    p->own_material = p->material;
     p->bounds_min = mvr_dvec3_make(INFINITY, INFINITY, INFINITY);
     p->bounds_max = mvr_dvec3_make(-INFINITY, -INFINITY, -INFINITY);
     for (uint32_t i = 0; i < d->vertex_count; ++i) {

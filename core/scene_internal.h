@@ -51,7 +51,18 @@ typedef struct scene_primitive {
      * slots: position | normal << 2 | tangent << 4, 3 = none */
     uint64_t morph_base;
     uint32_t morph_attributes, morph_slots;
+    /* material variants (core/scene_variants.c): the material its desc gave
+     * (material above is the selected variant's, else this one) and its
+     * mappings, each variant at most once */
+    uint32_t own_material;
+    struct scene_variant_mapping *variant_maps;
+    uint32_t variant_map_count;
 } scene_primitive;
+
+typedef struct scene_variant_mapping {
+    uint32_t variant;
+    uint32_t material;           /* index; MVR_NO_INDEX = default material */
+} scene_variant_mapping;
 
 typedef struct scene_mesh {
     uint32_t first_primitive, primitive_count;
@@ -127,6 +138,9 @@ struct mvr_scene {
     uint32_t skin_count, skin_cap;
     scene_animation *animations;
     uint32_t animation_count, animation_cap;
+    char **variant_names;        /* material variants, names heap-allocated */
+    uint32_t variant_count, variant_cap;
+    uint32_t selected_variant;   /* MVR_VARIANT_DEFAULT: none */
     uint64_t morph_texels;       /* delta texels of every primitive's targets */
     float ambient[3];
     /* Change counters: a renderer re-uploads what moved on since it looked. */
@@ -164,6 +178,10 @@ mvr_result mvr_scene_primitive_deformers(mvr_scene *scene, scene_primitive *p, c
                                          const char *mesh, uint32_t k);
 void mvr_scene_free_deformers(scene_primitive *p);
 void mvr_scene_free_skins_and_animations(mvr_scene *scene);
+
+/* ---- material variants (core/scene_variants.c) */
+
+void mvr_scene_free_variants(mvr_scene *scene);
 
 /* Whether a node's draws are skinned: it has a skin and its primitive
  * joints (else the node's transform places the bind pose, as glTF asks). */

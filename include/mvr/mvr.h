@@ -639,6 +639,49 @@ mvr_result mvr_scene_apply_animation(mvr_scene *scene, uint32_t index, double ti
  * (else the mesh's default weights); animations never change it. */
 void mvr_scene_reset_pose(mvr_scene *scene);
 
+/* ---- material variants (KHR_materials_variants)
+ *
+ * A variant is a named configuration of materials (a product's colours, a
+ * night and a day look). Each primitive may map some variants to materials;
+ * while a variant is selected, every primitive that maps it draws with the
+ * material it maps to, and every other primitive with its own material (the
+ * one its mvr_primitive_desc gave). Selecting MVR_VARIANT_DEFAULT, the
+ * initial state, draws every primitive with its own material. Selecting is
+ * cheap: no geometry is sent again; the next render rebuilds its draws (the
+ * material block and texture arrays are re-sent too: a variant can bring
+ * materials, textures and shader features no draw had). */
+
+#define MVR_VARIANT_DEFAULT UINT32_MAX
+
+/* Adds a variant (name copied; glTF allows two variants to share a name,
+ * mvr_scene_find_variant then gives the first). *out_index (optional) is
+ * its index: 0, 1, ... in the order they are added. */
+mvr_result mvr_scene_add_variant(mvr_scene *scene, const char *name, uint32_t *out_index);
+uint32_t mvr_scene_variant_count(const mvr_scene *scene);
+/* Its name, owned by the scene; NULL past the end. */
+const char *mvr_scene_variant_name(const mvr_scene *scene, uint32_t index);
+/* The index of the first variant with this name; MVR_ERROR_INVALID_ARGUMENT
+ * (naming the variants there are) when none has it. */
+mvr_result mvr_scene_find_variant(const mvr_scene *scene, const char *name, uint32_t *out_index);
+
+typedef struct mvr_variant_mapping {
+    uint32_t variant;            /* a variant's index */
+    mvr_material_id material;    /* drawn with it while that variant is selected; 0 = the default material */
+} mvr_variant_mapping;
+
+/* Gives primitive `primitive` (its index in the mesh's desc) of `mesh` its
+ * mappings (copied), replacing those it had; count 0 removes them. Each
+ * variant at most once per primitive. Applies at once if a variant is
+ * selected. */
+mvr_result mvr_scene_set_primitive_variants(mvr_scene *scene, mvr_mesh_id mesh, uint32_t primitive,
+                                            const mvr_variant_mapping *mappings, uint32_t count);
+/* Selects variant `index`, or MVR_VARIANT_DEFAULT. Selecting the variant
+ * already selected (or one that changes no primitive's material) changes
+ * nothing and makes no work for the renderer. */
+mvr_result mvr_scene_select_variant(mvr_scene *scene, uint32_t index);
+/* The selected variant's index, or MVR_VARIANT_DEFAULT. */
+uint32_t mvr_scene_selected_variant(const mvr_scene *scene);
+
 /* Ambient light: uniform radiance from every direction (linear RGB). */
 void mvr_scene_set_ambient(mvr_scene *scene, const float rgb[3]);
 
