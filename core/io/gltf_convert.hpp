@@ -33,6 +33,8 @@ struct prim_data {
     std::vector<morph_data> targets;
     std::vector<float> zeros;                 // deltas of targets lacking an attribute other targets move
     std::vector<mvr_morph_target_desc> target_descs;
+    size_t source = 0;                        // its index in the glTF mesh's primitives
+    std::vector<mvr_variant_mapping> variant_maps;   // KHR_materials_variants
 };
 
 // What the rest of the load needs to know about a glTF mesh once read.
@@ -101,6 +103,11 @@ struct converter {
     // scale: a normalTextureInfo's scale where wanted
     mvr_texture_ref texture_value(const tinygltf::Value &ext, const char *key, const std::string &what,
                                   float *scale = nullptr);
+    // KHR_materials_variants: the root's variants into the scene (before
+    // any mesh); a primitive's mappings, checked (each variant exists and is
+    // mapped once, each material exists), their materials converted.
+    void variants();
+    std::vector<mvr_variant_mapping> variant_mappings(int mesh, int prim, const std::string &pw);
     mvr_mesh_id mesh(int index);
     void node(int index, mvr_node_id parent, std::vector<char> &state, uint32_t depth);
 

@@ -97,10 +97,33 @@ struct draco_source {
     std::vector<std::pair<std::string, int64_t>> attributes;   // glTF attribute name -> Draco unique id
 };
 
+// KHR_materials_variants as the pre-pass read it (tinygltf narrows its
+// integers to int, and drops nulls and empty objects from arrays, which
+// would shift the indices that name variants): the root's variant names,
+// and per primitive its mappings; problem: what is wrong with the JSON
+// ("" if nothing), reported when the root or the primitive is read.
+struct variants_source {
+    bool present = false;                 // extensions.KHR_materials_variants exists
+    std::string problem;
+    std::vector<std::string> names;
+};
+
+struct variant_mapping_source {
+    std::vector<int64_t> variants;
+    int64_t material = -1;
+};
+
+struct primitive_variants_source {
+    std::string problem;
+    std::vector<variant_mapping_source> mappings;
+};
+
 struct resources {
     std::vector<buffer_source> buffers;
     std::map<int, meshopt_source> meshopt_views;                   // by bufferView
     std::map<std::pair<int, int>, draco_source> draco_primitives;  // by (mesh, primitive)
+    variants_source variants;
+    std::map<std::pair<int, int>, primitive_variants_source> variant_primitives;  // by (mesh, primitive)
     std::vector<std::string> extensions_required, extensions_used;
     std::vector<image_source> images;
     // accessors without a bufferView (zeros): tinygltf 2.7 refuses such an

@@ -82,7 +82,7 @@ const std::set<std::string> implemented = {
     "KHR_materials_ior", "KHR_materials_specular", "KHR_materials_clearcoat",
     "KHR_materials_pbrSpecularGlossiness", "KHR_materials_transmission", "KHR_materials_volume",
     "KHR_materials_dispersion", "KHR_materials_iridescence",
-    "KHR_mesh_quantization",
+    "KHR_mesh_quantization", "KHR_materials_variants",
     "KHR_texture_basisu", "EXT_texture_webp"};   // gltf_materials.cpp: their source, else the fallback
 
 // glTF 2.0, 3.12: a required extension mvr does not implement refuses the
@@ -229,9 +229,11 @@ mvr_mesh_id converter::mesh(int index)
             cx.warn(pw + " has no POSITION; skipped");
             continue;
         }
+        prim_data d;
+        d.source = k;
+        d.variant_maps = variant_mappings(index, int(k), pw);
         // KHR_draco_mesh_compression: its accessors read the decoded mesh until the primitive is read
         draco_scope draco(cx, index, int(k), p, pw);
-        prim_data d;
         // glTF 2.0 3.7.2.1 + KHR_mesh_quantization: the component types allowed per attribute
         uint32_t quant_pos = FLOAT | I8 | U8 | I16 | U16;
         d.pos = read_floats(cx, a_pos, 3, pw + ".attributes.POSITION", quant_pos);
@@ -346,6 +348,11 @@ mvr_mesh_id converter::mesh(int index)
     // the scene keeps a copy of what was read: charged while both exist
     cx.mem.charge(cx.mesh_bytes, w + " (the scene's copy)");
     check(mvr_scene_add_mesh(scene, &md, &id), w);
+    for (size_t k = 0; k < data.size(); ++k)
+        if (!data[k].variant_maps.empty())
+            check(mvr_scene_set_primitive_variants(scene, id, uint32_t(k), data[k].variant_maps.data(),
+                                                   uint32_t(data[k].variant_maps.size())),
+                  w + ".primitives[" + std::to_string(data[k].source) + "].extensions.KHR_materials_variants");
     data.clear();
     cx.mem.release(cx.mesh_bytes);
     cx.mesh_bytes = 0;
@@ -590,6 +597,7 @@ mvr_result load(const unsigned char *bytes, size_t size, const std::string &base
         if (mvr_scene_create(&sd, &scene, &serr) != MVR_OK)
             throw load_error(serr.result, serr.message);
         converter cv{cx, scene, model};
+        cv.variants();
         convert_cameras_and_lights(cv);
         // which scene: the option, the file's default, or the first
         int si = o.scene ? int(o.scene) - 1 : (model.defaultScene >= 0 ? model.defaultScene : 0);

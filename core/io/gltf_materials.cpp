@@ -372,4 +372,59 @@ mvr_material_id converter::material(int index)
     return id;
 }
 
+// ---- KHR_materials_variants ----
+
+void converter::variants()
+{
+    const variants_source &v = cx.res.variants;
+    const std::string w = "extensions.KHR_materials_variants";
+    if (!v.problem.empty())
+        refuse(w + (v.problem.rfind("variants", 0) == 0 ? "." : " ") + v.problem);
+    // the scene's copies of the names: charged like the rest of the scene
+    uint64_t bytes = 0;
+    for (const auto &name : v.names)
+        bytes += name.size() + 1 + 32;
+    cx.mem.charge(bytes, w + ".variants (" + std::to_string(v.names.size()) + " names)");
+    for (size_t i = 0; i < v.names.size(); ++i)
+        check(mvr_scene_add_variant(scene, v.names[i].c_str(), nullptr), w + ".variants[" + std::to_string(i) + "]");
+}
+
+std::vector<mvr_variant_mapping> converter::variant_mappings(int mesh, int prim, const std::string &pw)
+{
+    std::vector<mvr_variant_mapping> out;
+    auto found = cx.res.variant_primitives.find({mesh, prim});
+    if (found == cx.res.variant_primitives.end())
+        return out;
+    const primitive_variants_source &src = found->second;
+    const std::string w = pw + ".extensions.KHR_materials_variants";
+    if (!src.problem.empty())
+        refuse(w + (src.problem.rfind("mappings", 0) == 0 ? "." : " ") + src.problem);
+    const uint32_t count = mvr_scene_variant_count(scene);
+    // glTF: a variant names at most one material per primitive
+    std::map<int64_t, size_t> mapped_by;
+    for (size_t j = 0; j < src.mappings.size(); ++j) {
+        const variant_mapping_source &ms = src.mappings[j];
+        std::string mw = w + ".mappings[" + std::to_string(j) + "]";
+        if (size_t(ms.material) >= m.materials.size())
+            refuse(mw + ".material: material " + std::to_string(ms.material) + " does not exist (" +
+                   std::to_string(m.materials.size()) + " materials)");
+        for (size_t n = 0; n < ms.variants.size(); ++n) {
+            int64_t v = ms.variants[n];
+            std::string vw = mw + ".variants[" + std::to_string(n) + "]";
+            if (v >= int64_t(count))
+                refuse(vw + ": variant " + std::to_string(v) + " does not exist (" + std::to_string(count) +
+                       " variants in extensions.KHR_materials_variants)");
+            auto seen = mapped_by.find(v);
+            if (seen != mapped_by.end())
+                refuse(vw + ": variant " + std::to_string(v) + " is mapped already by mappings[" +
+                       std::to_string(seen->second) + "] (a variant maps at most one material per primitive)");
+            mapped_by[v] = j;
+        }
+        mvr_material_id mat = material(int(ms.material));
+        for (int64_t v : ms.variants)
+            out.push_back(mvr_variant_mapping{uint32_t(v), mat});
+    }
+    return out;
+}
+
 }  // namespace mvr_gltf

@@ -318,6 +318,92 @@ static void draco_primitives(const nlohmann::json &doc, resources &res)
     }
 }
 
+// extensions.KHR_materials_variants (the variants' names) and each
+// primitive's extensions.KHR_materials_variants (its mappings), read here
+// like the views'; problems are reported when the root or the primitive is read.
+static void material_variants(const nlohmann::json &doc, resources &res)
+{
+    auto ext = doc.find("extensions");
+    auto root = ext != doc.end() && ext->is_object() ? ext->find("KHR_materials_variants") : doc.end();
+    if (ext != doc.end() && ext->is_object() && root != ext->end()) {
+        variants_source &v = res.variants;
+        v.present = true;
+        auto list = root->is_object() ? root->find("variants") : root->end();
+        if (!root->is_object())
+            v.problem = "is not an object";
+        else if (list == root->end() || !list->is_array())
+            v.problem = "variants is missing or not an array";
+        for (size_t i = 0; v.problem.empty() && i < list->size(); ++i) {
+            const nlohmann::json &e = (*list)[i];
+            auto name = e.is_object() ? e.find("name") : e.end();
+            if (!e.is_object() || name == e.end() || !name->is_string())
+                v.problem = "variants[" + std::to_string(i) + "]" +
+                            (e.is_object() ? ".name is missing or not a string" : " is not an object");
+            else
+                v.names.push_back(name->get<std::string>());
+        }
+    }
+    auto meshes = doc.find("meshes");
+    if (meshes == doc.end() || !meshes->is_array())
+        return;
+    for (size_t i = 0; i < meshes->size() && i <= size_t(INT32_MAX); ++i) {
+        const nlohmann::json &mesh = (*meshes)[i];
+        auto prims = mesh.is_object() ? mesh.find("primitives") : mesh.end();
+        if (!mesh.is_object() || prims == mesh.end() || !prims->is_array())
+            continue;
+        for (size_t k = 0; k < prims->size() && k <= size_t(INT32_MAX); ++k) {
+            const nlohmann::json &p = (*prims)[k];
+            auto pext = p.is_object() ? p.find("extensions") : p.end();
+            if (!p.is_object() || pext == p.end() || !pext->is_object())
+                continue;
+            auto mv = pext->find("KHR_materials_variants");
+            if (mv == pext->end())
+                continue;
+            primitive_variants_source &d = res.variant_primitives[{int(i), int(k)}];
+            auto maps = mv->is_object() ? mv->find("mappings") : mv->end();
+            if (!mv->is_object()) {
+                d.problem = "is not an object";
+                continue;
+            }
+            if (maps == mv->end() || !maps->is_array()) {
+                d.problem = "mappings is missing or not an array";
+                continue;
+            }
+            for (size_t j = 0; j < maps->size() && d.problem.empty(); ++j) {
+                const nlohmann::json &m = (*maps)[j];
+                std::string mw = "mappings[" + std::to_string(j) + "]";
+                if (!m.is_object()) {
+                    d.problem = mw + " is not an object";
+                    break;
+                }
+                variant_mapping_source ms;
+                std::string why;
+                ms.material = integer_member(m, "material", 0, INT32_MAX, true, -1, &why);
+                if (!why.empty()) {
+                    d.problem = mw + "." + why;
+                    break;
+                }
+                auto vars = m.find("variants");
+                if (vars == m.end() || !vars->is_array()) {
+                    d.problem = mw + ".variants is missing or not an array";
+                    break;
+                }
+                for (size_t n = 0; n < vars->size(); ++n) {
+                    const nlohmann::json &x = (*vars)[n];
+                    bool ok = x.is_number_unsigned() && x.get<uint64_t>() <= uint64_t(INT32_MAX);
+                    if (!ok) {
+                        d.problem = mw + ".variants[" + std::to_string(n) + "] is not an integer in 0.." +
+                                    std::to_string(INT32_MAX);
+                        break;
+                    }
+                    ms.variants.push_back(int64_t(x.get<uint64_t>()));
+                }
+                d.mappings.push_back(std::move(ms));
+            }
+        }
+    }
+}
+
 std::string extract_resources(const json_text &text, resources &res, uint64_t *model_size)
 {
     nlohmann::json doc;
@@ -366,6 +452,7 @@ std::string extract_resources(const json_text &text, resources &res, uint64_t *m
     extension_lists(doc, res);
     compressed_views(doc, res);
     draco_primitives(doc, res);
+    material_variants(doc, res);
     auto images = doc.find("images");
     if (images != doc.end()) {
         if (!images->is_array())

@@ -43,6 +43,9 @@
  * KHR_materials_unlit, KHR_texture_transform, KHR_materials_emissive_strength,
  * KHR_materials_ior, KHR_materials_specular and KHR_materials_clearcoat (their
  * factors; their textures are warned about once and not sampled);
+ * KHR_materials_variants (the variants, in file order, and each primitive's
+ * mappings: mvr_scene_select_variant; a mapping naming a variant or material
+ * that does not exist, or a variant twice in one primitive, is refused);
  * skins (JOINTS_0/1 + WEIGHTS_0/1: up to 8 influences per vertex, more sets
  * are ignored with a warning; the skins of the nodes in the loaded scene, each
  * joint a node of that scene), morph targets (POSITION / NORMAL / TANGENT

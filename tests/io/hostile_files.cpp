@@ -17,6 +17,7 @@
 #include "hostile_codecs.hpp"
 #include "hostile_docs.hpp"
 #include "hostile_ktx2.hpp"
+#include "hostile_variants.hpp"
 
 namespace hostile {
 
@@ -923,6 +924,7 @@ files write_all(const std::string &root_in)
 
     anim_files(f);
     codec_files(f);   // hostile_codecs.cpp: compressed geometry, extension messages
+    variant_files(f); // hostile_variants.cpp: KHR_materials_variants
     ktx2_files(f);
 
     std::string index = "file\twhat\texpect\n";

@@ -28,6 +28,7 @@
 #include "gltf_gen.hpp"
 #include "hostile_check.hpp"
 #include "hostile_docs.hpp"
+#include "hostile_variants.hpp"
 
 namespace {
 
@@ -849,6 +850,7 @@ int main(int argc, char **argv)
         TEST(skins_morphs_and_animations_are_checked),
         TEST(compressed_geometry_is_checked),
         TEST(ktx2_containers_are_checked),
+        TEST(material_variants_are_checked),
     };
     int rc = mvr_test_run(cases, sizeof cases / sizeof cases[0]);
     hostile::release_context();
