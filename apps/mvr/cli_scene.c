@@ -188,6 +188,57 @@ void cli_animation_label(const mvr_scene *scene, uint32_t index, char *buf, size
         snprintf(buf, size, "%u (unnamed)", index);
 }
 
+/* Prints the scene's variants as "0 'red', 1 'blue', ..." (at most 16). */
+static void list_variants(FILE *out, const mvr_scene *scene)
+{
+    uint32_t count = mvr_scene_variant_count(scene);
+    for (uint32_t i = 0; i < count && i < 16; ++i)
+        fprintf(out, "%s%u '%s'", i ? ", " : "", i, mvr_scene_variant_name(scene, i));
+    if (count > 16)
+        fprintf(out, " and %u more", count - 16);
+}
+
+bool cli_find_variant(const char *command, const char *what, const mvr_scene *scene, const char *spec,
+                      uint32_t *out)
+{
+    uint32_t count = mvr_scene_variant_count(scene);
+    if (count == 0) {
+        fprintf(stderr, "%s: --variant %s: %s has no material variants (KHR_materials_variants)\n", command, spec,
+                what);
+        return false;
+    }
+    /* by name first (without mvr_scene_find_variant, which would log the
+     * miss as an error before this prints it), then as an index */
+    for (uint32_t i = 0; i < count; ++i)
+        if (strcmp(mvr_scene_variant_name(scene, i), spec) == 0) {
+            *out = i;
+            return true;
+        }
+    bool number = spec[0] != '\0' && strspn(spec, "0123456789") == strlen(spec);
+    uint32_t k = 0;
+    if (number && cli_parse_u32(spec, 0, count - 1, &k)) {
+        *out = k;
+        return true;
+    }
+    if (number)
+        fprintf(stderr, "%s: --variant %s: %s has no variant named '%s' and %u variant%s (0..%u): ", command, spec,
+                what, spec, count, count == 1 ? "" : "s", count - 1);
+    else
+        fprintf(stderr, "%s: --variant %s: %s has no variant named '%s'; its variants: ", command, spec, what, spec);
+    list_variants(stderr, scene);
+    fprintf(stderr, " (a name or an index)\n");
+    return false;
+}
+
+void cli_variant_label(const mvr_scene *scene, uint32_t index, char *buf, size_t size)
+{
+    const char *name = mvr_scene_variant_name(scene, index);
+    if (name)
+        snprintf(buf, size, "%u '%s'", index, name);
+    else
+        snprintf(buf, size, "default");
+}
+
 /* Exact sRGB encode (IEC 61966-2-1) of linear floats into display bytes. */
 void cli_encode_srgb(const float *in, uint8_t *out, size_t pixels)
 {

@@ -58,6 +58,17 @@ bool cli_animation_clip(const mvr_scene *scene, uint32_t index, double *start, d
 /* "1 'walk'", "1 (unnamed)", or "all 3" for MVR_ANIMATION_ALL. */
 void cli_animation_label(const mvr_scene *scene, uint32_t index, char *buf, size_t size);
 
+/* --variant NAME|K against a scene's material variants: a name (the first
+ * variant with it), else a decimal number as an index (0-based). When the
+ * scene has no such variant (or none at all) prints why, prefixed with
+ * command and naming what (the file), and lists the variants there are;
+ * false then. */
+bool cli_find_variant(const char *command, const char *what, const mvr_scene *scene, const char *spec,
+                      uint32_t *out);
+
+/* "1 'blue'" (the variant's index and name), or "default" for MVR_VARIANT_DEFAULT. */
+void cli_variant_label(const mvr_scene *scene, uint32_t index, char *buf, size_t size);
+
 /* The render desc mvr render and mvr-viewer start from: an opaque dark sky
  * as the clear colour, exposure 1; everything else the library's default. */
 void cli_render_desc_defaults(mvr_render_desc *desc);

@@ -30,9 +30,10 @@ static void info_usage(FILE *out)
             "Creates a GL context through a provider and prints its version, the\n"
             "extensions and limits mvr uses, and the known driver bugs it detected.\n"
             "With a file: what it holds (no GL needed): nodes, meshes, materials,\n"
-            "lights, cameras, skins and joints, morph targets, and each animation\n"
+            "lights, cameras, skins and joints, morph targets, each animation\n"
             "(index, name, start .. end seconds, channels) as mvr render --animation\n"
-            "takes them.\n"
+            "takes them, and each material variant (KHR_materials_variants: index,\n"
+            "name) as mvr render --variant takes them.\n"
             "\n"
             "options:\n");
     const cli_option *const context[] = {cli_context_options, NULL};
@@ -154,6 +155,14 @@ static void print_scene_json(const char *file, const mvr_scene *scene, const mvr
         json_end_object(&w);
     }
     json_end_array(&w);
+    json_begin_array(&w, "variants");
+    for (uint32_t i = 0; i < mvr_scene_variant_count(scene); ++i) {
+        json_begin_object(&w, NULL);
+        json_int(&w, "index", i);
+        json_string(&w, "name", mvr_scene_variant_name(scene, i));
+        json_end_object(&w);
+    }
+    json_end_array(&w);
     json_int(&w, "animation_channels_ignored", gi->animation_channels_ignored);
     json_int(&w, "load_warnings", gi->warnings);
     json_end_object(&w);
@@ -190,6 +199,10 @@ static void print_scene_text(const char *file, const mvr_scene *scene, const mvr
         printf("  %-4u %-24s %g .. %g s, %u channel%s, %u sampler%s\n", i, name, ai.start, ai.end, ai.channels,
                ai.channels == 1 ? "" : "s", ai.samplers, ai.samplers == 1 ? "" : "s");
     }
+    uint32_t variants = mvr_scene_variant_count(scene);
+    printf("variants      %u%s\n", variants, variants ? " (material variants: mvr render --variant NAME|K)" : "");
+    for (uint32_t i = 0; i < variants; ++i)
+        printf("  %-4u '%s'\n", i, mvr_scene_variant_name(scene, i));
 }
 
 /* mvr info FILE: loads the file (no GL) and prints what it holds. */

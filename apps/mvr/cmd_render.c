@@ -23,7 +23,7 @@ enum {
     R_TRANSPARENCY, R_SUPERSAMPLE, R_MSAA, R_AA, R_REFERENCE, R_FORMAT, R_TARGET_FORMAT, R_SHADOWS, R_SHADOW_SIZE,
     R_EXPOSURE, R_EXPOSURE_SCALE, R_CAMERA_EXPOSURE, R_EXPOSURE_PER_VIEW, R_DITHER, R_CLEAR, R_TONE_MAP, R_FRAMES,
     R_STATS, R_STRICT, R_MEMORY_BUDGET, R_PROGRAM_CACHE, R_QUIET, R_PLAN, R_ANIMATION, R_TIME, R_LOOP, R_FPS, R_VIDEO,
-    R_SKINNING
+    R_SKINNING, R_VARIANT
 };
 
 #define MAX_FRAMES 100000
@@ -55,6 +55,10 @@ static const cli_option render_table[] = {
      "the distance to the scene: 0.064 at 1.9)", NULL, NULL, NULL},
     {CLI_OPT_U32, R_SCENE, "--scene", NULL, "K", 0, 1u << 20, NULL,
      "SCENE: the file's K-th scene (0-based; default: its default)", NULL, NULL, NULL},
+    {CLI_OPT_STRING, R_VARIANT, "--variant", NULL, "V", 0, 0, NULL,
+     "SCENE: draw material variant V (KHR_materials_variants): its\n"
+     "name, or its index (0-based) when no variant has that name;\n"
+     "mvr info FILE lists them (default: the file's own materials)", NULL, NULL, NULL},
     {CLI_OPT_STRING, R_SIZE, "--size", NULL, "WxH", 0, 0, NULL, "layer size in pixels (default: 640x480)", NULL,
      NULL, NULL},
     {CLI_OPT_STRING, R_OUT, "--out", NULL, "DIR", 0, 0, NULL, "output directory (default: out), created if missing",
@@ -226,6 +230,13 @@ static bool apply(const cli_arg *arg, render_options *o)
         }
         o->animation = v;
         break;
+    case R_VARIANT:
+        if (!v[0]) {
+            fprintf(stderr, "mvr render: --variant takes a name or an index (got '')\n");
+            return false;
+        }
+        o->variant = v;
+        break;
     case R_TIME:
         if (!parse_double(v, &o->time) || o->time < 0.0) {
             fprintf(stderr, "mvr render: --time takes seconds >= 0 (got '%s')\n", v);
@@ -390,6 +401,10 @@ static int parse(int argc, char **argv, render_options *o)
         fprintf(stderr, "mvr render: --animation is for a SCENE file (the demos have no animations)\n");
         return MVR_EXIT_USAGE;
     }
+    if (!o->scene_file && o->variant) {
+        fprintf(stderr, "mvr render: --variant is for a SCENE file (the demos have no material variants)\n");
+        return MVR_EXIT_USAGE;
+    }
     if (cli_given(&p, "--fps") && !o->frames_set) {
         fprintf(stderr, "mvr render: --fps is for --frames N (the time between frames)\n");
         return MVR_EXIT_USAGE;
@@ -506,6 +521,12 @@ int mvr_cmd_render(int argc, char **argv)
     rc = cli_load_scene("mvr render", &so, &scene, &views);
     if (rc != MVR_EXIT_OK)
         goto done;
+    uint32_t variant = MVR_VARIANT_DEFAULT;
+    if (o.variant && (!cli_find_variant("mvr render", o.scene_file, scene, o.variant, &variant) ||
+                      mvr_scene_select_variant(scene, variant) != MVR_OK)) {
+        rc = MVR_EXIT_USAGE;
+        goto done;
+    }
     rc = cli_env_create("mvr render", &o.env, o.scene_file != NULL, &o.render, &env, &env_used);
     if (rc != MVR_EXIT_OK)
         goto done;
@@ -676,6 +697,11 @@ int mvr_cmd_render(int argc, char **argv)
             printf("  time        cpu %.2f ms, gpu %.2f ms (last frame)\n", st.cpu_ms, st.gpu_ms);
         else
             printf("  time        cpu %.2f ms, gpu n/a (last frame)\n", st.cpu_ms);
+        if (o.variant) {
+            char label[128];
+            cli_variant_label(scene, variant, label, sizeof label);
+            printf("  variant     %s (of %u)\n", label, mvr_scene_variant_count(scene));
+        }
         render_output_print_animation(&o, scene, &anim, &st);
         render_output_print_files(&o, n, sheet);
     }

@@ -17,6 +17,7 @@ typedef struct render_options {
     mvr_view_layout layout;
     double ipd;
     uint32_t gltf_scene;         /* 1-based; 0 = the file's default */
+    const char *variant;         /* --variant NAME|K: a material variant; NULL = the file's own materials */
     uint32_t views, width, height, frames;
     const char *out_dir;
     const char *stats_file;
