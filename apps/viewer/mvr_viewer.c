@@ -14,7 +14,8 @@
  * keys:  [ ] IPD   + - views   P view path   M material path   D display
  *        R reset   Esc quit    (drop a .gltf / .glb on the window to open it)
  *        Space play/pause   Left Right step 1/30 s (Shift: 1/10 of the clip)
- *        Home clip start    N next animation (Shift+N previous) */
+ *        Home clip start    N next animation (Shift+N previous)
+ *        V next material variant, then the file's own (Shift+V previous) */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -543,12 +544,17 @@ static void update_title(viewer *v, double frame_ms)
 {
     mvr_frame_stats st;
     mvr_renderer_get_stats(v->renderer, &st);
-    char anim[320], title[1024];
+    char anim[320], variant[160] = "", title[1024];
     viewer_playback_title(&v->playback, v->scene, anim, sizeof anim);
+    if (mvr_scene_variant_count(v->scene)) {
+        char label[128];
+        cli_variant_label(v->scene, mvr_scene_selected_variant(v->scene), label, sizeof label);
+        snprintf(variant, sizeof variant, " | variant %s", label);
+    }
     snprintf(title, sizeof title,
-             "mvr-viewer: %s | %u views (%s) | %.1f ms | %s, %u passes | %s | %u draws in %u calls | ipd %.3g%s",
+             "mvr-viewer: %s | %u views (%s) | %.1f ms | %s, %u passes | %s | %u draws in %u calls | ipd %.3g%s%s",
              v->scene_name, v->view_count, viewer_display_name(v->display), frame_ms, mvr_view_path_name(st.view_path),
-             st.passes, mvr_material_path_name(st.material_path), st.draws, st.draw_calls, v->ipd, anim);
+             st.passes, mvr_material_path_name(st.material_path), st.draws, st.draw_calls, v->ipd, anim, variant);
     glfwSetWindowTitle(v->window, title);
 }
 
@@ -646,6 +652,15 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
         break;
     case GLFW_KEY_TAB: v->single++; break;
     case GLFW_KEY_R: go_home(v); v->dirty_views = true; break;
+    case GLFW_KEY_V: {
+        /* material variants in turn, the file's own materials after the last (position n) */
+        uint32_t n = mvr_scene_variant_count(v->scene), at = mvr_scene_selected_variant(v->scene);
+        at = at == MVR_VARIANT_DEFAULT ? n : at;
+        at = (mods & GLFW_MOD_SHIFT) ? (at + n) % (n + 1) : (at + 1) % (n + 1);
+        if (n)
+            mvr_scene_select_variant(v->scene, at == n ? MVR_VARIANT_DEFAULT : at);
+        break;
+    }
     default: break;
     }
 }

@@ -70,7 +70,9 @@ static void usage(FILE *out)
             "drop a glTF file on the window to open it.\n"
             "animation: Space play/pause, Left Right step 1/30 s (Shift: a tenth of the clip;\n"
             "both pause), Home the clip's start, N next animation, Shift+N previous; the\n"
-            "title names the animation and the time.\n");
+            "title names the animation and the time.\n"
+            "material variants (KHR_materials_variants): V the next, after the last the file's\n"
+            "own materials, Shift+V the previous; the title names the variant.\n");
 }
 
 int viewer_options_parse(int argc, char **argv, viewer_options *o)
