@@ -105,6 +105,9 @@ uint32_t mvr_material_extension_features(const mvr_material_desc *m)
         f |= MVR_FEATURE_TRANSMISSION | MVR_FEATURE_SPECULAR;
     /* a thin film over the dielectric and the metal (a film of thickness 0
      * at most, without a texture to thicken it, is none) */
+    /* a stretched specular lobe (strength 0 is the isotropic one) */
+    if (m->anisotropy.strength > 0.0f)
+        f |= MVR_FEATURE_ANISOTROPY | MVR_FEATURE_SPECULAR;
     if (m->iridescence.factor > 0.0f &&
         (m->iridescence.thickness_maximum > 0.0f || m->iridescence.thickness_texture.image.id))
         f |= MVR_FEATURE_IRIDESCENCE | MVR_FEATURE_SPECULAR;

@@ -42,6 +42,7 @@ static const feature_define mesh_defines[] = {
     {MVR_FEATURE_SPEC_GLOSS, "MVR_SPEC_GLOSS"},
     {MVR_FEATURE_TRANSMISSION, "MVR_TRANSMISSION"},
     {MVR_FEATURE_IRIDESCENCE, "MVR_IRIDESCENCE"},
+    {MVR_FEATURE_ANISOTROPY, "MVR_ANISOTROPY"},
 };
 
 /* the mesh bits the pre-skinning program shares (MVR_PRESKIN_FEATURES) */

@@ -10,7 +10,8 @@
 // Transmission and spec-gloss are drawn by the specular extension's
 // dielectric code (core/material.c sets SPECULAR with them; a variant asked
 // for without it compiles that code all the same).
-#if (defined(MVR_TRANSMISSION) || defined(MVR_SPEC_GLOSS) || defined(MVR_IRIDESCENCE)) && !defined(MVR_SPECULAR)
+#if (defined(MVR_TRANSMISSION) || defined(MVR_SPEC_GLOSS) || defined(MVR_IRIDESCENCE) || defined(MVR_ANISOTROPY)) && \
+    !defined(MVR_SPECULAR)
 #define MVR_SPECULAR
 #endif
 
@@ -112,6 +113,14 @@ uniform MVR_SAMPLER mvr_specular_color_tex;
 #ifdef MVR_SPEC_GLOSS
 uniform MVR_SAMPLER mvr_spec_gloss_tex;
 #endif
+#ifdef MVR_ANISOTROPY
+uniform MVR_SAMPLER mvr_anisotropy_tex;
+// KHR_materials_anisotropy of this fragment (set in main, read by the
+// specular lobes): the direction of stretch and its bitangent, the strength
+vec3 g_aniso_t = vec3(1.0, 0.0, 0.0);
+vec3 g_aniso_b = vec3(0.0, 1.0, 0.0);
+float g_aniso_strength = 0.0;
+#endif
 #ifdef MVR_IRIDESCENCE
 uniform MVR_SAMPLER mvr_iridescence_tex;
 uniform MVR_SAMPLER mvr_iridescence_thickness_tex;
@@ -194,7 +203,7 @@ vec2 mvr_uv(int role, mvr_material m)
 
 #define MVR_SAMPLE_ROLE(s, role, m) MVR_SAMPLE(s, mvr_uv(role, m), mvr_layer(m, role))
 
-#if defined(MVR_NORMAL_TEX) || defined(MVR_CLEARCOAT)
+#if defined(MVR_NORMAL_TEX) || defined(MVR_CLEARCOAT) || defined(MVR_ANISOTROPY)
 // The tangent and bitangent of a normal map sampled at uv, about the
 // (front side's) normal nf: the vertex tangents where given; else t =
 // dP/du from position and UV derivatives and b = n x t, turned to point
@@ -255,6 +264,29 @@ vec3 mvr_brdf(vec3 n, vec3 v, vec3 l, vec3 base, float metallic, float alpha)
 // F90 = w (f0 from the index of refraction, tinted), the metal's with the
 // base color and 1; diffuse under the dielectric's Fresnel. With f0 = 0.04
 // and w = 1 it is mvr_brdf.
+// D x Vis of the specular lobe: GGX, or with KHR_materials_anisotropy its
+// anisotropic form (Kulla and Conty 2017's tangent roughness, as the Khronos
+// Sample Renderer's BRDF_specularGGXAnisotropy: alpha along the direction
+// raised to mix(alpha, 1, strength^2), the height-correlated visibility).
+float mvr_specular_lobe(vec3 n, vec3 v, vec3 l, vec3 h, float alpha, float n_dot_l, float n_dot_v, float n_dot_h)
+{
+#ifdef MVR_ANISOTROPY
+    if (g_aniso_strength > 0.0) {
+        vec3 t = g_aniso_t, b = g_aniso_b;
+        float at = mix(alpha, 1.0, g_aniso_strength * g_aniso_strength);
+        float ab = clamp(alpha, 0.001, 1.0);
+        float a2 = at * ab;
+        vec3 f = vec3(ab * dot(t, h), at * dot(b, h), a2 * max(n_dot_h, 0.001));
+        float w2 = a2 / dot(f, f);
+        float d = a2 * w2 * w2 / MVR_PI;
+        float gv = n_dot_l * length(vec3(at * dot(t, v), ab * dot(b, v), n_dot_v));
+        float gl = n_dot_v * length(vec3(at * dot(t, l), ab * dot(b, l), n_dot_l));
+        return d * clamp(0.5 / (gv + gl), 0.0, 1.0);
+    }
+#endif
+    return mvr_d_ggx(n_dot_h, alpha) * mvr_v_smith_ggx_correlated(n_dot_l, n_dot_v, alpha);
+}
+
 vec3 mvr_brdf_specular(vec3 n, vec3 v, vec3 l, vec3 base, float metallic, float alpha, vec3 f0, float w)
 {
     float n_dot_l = clamp(dot(n, l), 0.0, 1.0);
@@ -268,7 +300,7 @@ vec3 mvr_brdf_specular(vec3 n, vec3 v, vec3 l, vec3 base, float metallic, float 
     vec3 f_dielectric = f0 * w + (w - f0 * w) * x5;
     vec3 f_metal = base + (1.0 - base) * x5;
     vec3 diffuse = (1.0 - f_dielectric) * base / MVR_PI;
-    float ggx = mvr_d_ggx(n_dot_h, alpha) * mvr_v_smith_ggx_correlated(n_dot_l, n_dot_v, alpha);
+    float ggx = mvr_specular_lobe(n, v, l, h, alpha, n_dot_l, n_dot_v, n_dot_h);
     vec3 dielectric = diffuse + f_dielectric * ggx;
     return mix(dielectric, f_metal * ggx, metallic) * n_dot_l;
 }
@@ -515,6 +547,17 @@ vec3 mvr_ibl_specular(vec3 n, vec3 v, vec3 base, float metallic, float roughness
     vec3 r = reflect(-v, n);
     vec3 diffuse = mvr_env_diffuse(mvr_env_rotation * n) * base;
     diffuse = mix(diffuse, replace_diffuse.rgb, replace_diffuse.a);
+    #ifdef MVR_ANISOTROPY
+    if (g_aniso_strength > 0.0) {
+        // the Khronos renderer's getIBLRadianceAnisotropy: the reflection of
+        // a normal bent towards the stretch (more so when smoother)
+        vec3 at = cross(g_aniso_b, v);
+        vec3 an = cross(at, g_aniso_b);
+        float bend = 1.0 - g_aniso_strength * (1.0 - roughness);
+        bend *= bend;
+        r = reflect(-v, mvr_safe_normalize(mix(an, n, bend * bend), n));
+    }
+#endif
     vec3 specular = textureLod(mvr_env_specular, mvr_env_rotation * r, roughness * mvr_env_max_lod).rgb;
     vec3 dielectric = mix(diffuse, specular, mvr_ibl_fresnel_weighted(n_dot_v, roughness, f0, w));
     vec3 metal = specular * mvr_ibl_fresnel(n_dot_v, roughness, base);
@@ -733,7 +776,7 @@ void main()
         n = -n;
 #endif
     vec3 n_offset = n;       // shadow receivers move along the surface normal, not the normal map's
-#if defined(MVR_NORMAL_TEX) || defined(MVR_CLEARCOAT)
+#if defined(MVR_NORMAL_TEX) || defined(MVR_CLEARCOAT) || defined(MVR_ANISOTROPY)
     // The tangent frame is the front side's; a back face of a double-sided
     // material takes the whole frame negated (t, b and n), so its relief is
     // the front's seen from behind, as in the Khronos glTF Sample Viewer.
@@ -818,6 +861,33 @@ void main()
     tn.xy *= m.params.z;
     n = mvr_safe_normalize(side * (t * tn.x + b * tn.y + nf * tn.z), n);
 #endif
+#ifdef MVR_ANISOTROPY
+    // KHR_materials_anisotropy, as the Khronos Sample Renderer reads it: the
+    // direction (1, 0), or the texture's RG mapped to [-1, 1], rotated by the
+    // material's rotation, in the tangent frame (any frame about the normal
+    // without tangents or usable coordinates); strength x the texture's B
+    {
+        vec2 auv = mvr_uv(MVR_ROLE_ANISOTROPY, m);
+        vec3 at, ab;
+        mvr_tangent_frame(nf, auv, at, ab);
+        if (dot(at, at) == 0.0) {
+            vec3 up = abs(nf.z) < 0.999 ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0);
+            at = normalize(cross(up, nf));
+            ab = cross(nf, at);
+        }
+        vec2 dir = vec2(1.0, 0.0);
+        float strength = m.anisotropy.x;
+        if (mvr_has_texture(m, MVR_ROLE_ANISOTROPY)) {
+            vec3 a = MVR_SAMPLE(mvr_anisotropy_tex, auv, mvr_layer(m, MVR_ROLE_ANISOTROPY)).rgb;
+            dir = a.xy * 2.0 - 1.0;
+            strength *= a.z;
+        }
+        dir = vec2(m.anisotropy.y * dir.x - m.anisotropy.z * dir.y, m.anisotropy.z * dir.x + m.anisotropy.y * dir.y);
+        g_aniso_t = mvr_safe_normalize(side * (at * dir.x + ab * dir.y), at);
+        g_aniso_b = mvr_safe_normalize(cross(n_offset, g_aniso_t), ab);
+        g_aniso_strength = clamp(strength, 0.0, 1.0);
+    }
+#endif
 
     vec3 v = mvr_safe_normalize(v_to_eye, n);
     vec3 color = vec3(0.0);
@@ -896,8 +966,8 @@ void main()
             // (its diffuse under the film's brightest channel) and the metal
             float n_dot_l = clamp(dot(n, l), 0.0, 1.0);
             vec3 h = mvr_safe_normalize(l + v, n);
-            float ggx = mvr_d_ggx(clamp(dot(n, h), 0.0, 1.0), alpha) *
-                        mvr_v_smith_ggx_correlated(n_dot_l, clamp(abs(dot(n, v)), 1e-4, 1.0), alpha);
+            float ggx = mvr_specular_lobe(n, v, l, h, alpha, n_dot_l, clamp(abs(dot(n, v)), 1e-4, 1.0),
+                                          clamp(dot(n, h), 0.0, 1.0));
             vec3 dielectric = mvr_rgb_mix(base.rgb / MVR_PI, vec3(ggx), irid_d);
             lit = mix(lit, mix(dielectric, ggx * irid_m, metallic) * n_dot_l, irid_factor);
         }

@@ -82,6 +82,7 @@ const std::set<std::string> implemented = {
     "KHR_materials_ior", "KHR_materials_specular", "KHR_materials_clearcoat",
     "KHR_materials_pbrSpecularGlossiness", "KHR_materials_transmission", "KHR_materials_volume",
     "KHR_materials_dispersion", "KHR_materials_iridescence",
+    "KHR_materials_anisotropy",
     "KHR_mesh_quantization", "KHR_materials_variants",
     "KHR_texture_basisu", "EXT_texture_webp"};   // gltf_materials.cpp: their source, else the fallback
 

@@ -555,6 +555,80 @@ static void iridescence_film(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
+/* KHR_materials_anisotropy: the stretched lobe changes the highlight; a
+ * half turn of the direction changes nothing (the lobe is symmetric, within
+ * 1/255), a quarter turn does; a texture direction (0, 1) is the quarter turn
+ * (within 2/255: 128/255 is not exactly 0.5); multiview and loop agree. */
+static void anisotropy_direction(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    enum { TW = 8 };
+    static uint8_t up[TW * TW * 4];
+    for (int i = 0; i < TW * TW; ++i) {
+        up[i * 4 + 0] = 128;
+        up[i * 4 + 1] = up[i * 4 + 2] = up[i * 4 + 3] = 255;
+    }
+    mvr_view_set *vs = front_views(t, 1);
+    mvr_material_desc iso = mvr_material_defaults();
+    iso.base_color_factor[0] = 0.9f;
+    iso.base_color_factor[1] = 0.7f;
+    iso.base_color_factor[2] = 0.4f;
+    iso.metallic_factor = 1.0f;
+    iso.roughness_factor = 0.3f;
+    mvr_material_desc a0 = iso, a_half = iso, a_quarter = iso, a_tex = iso;
+    a0.anisotropy.strength = a_half.anisotropy.strength = a_quarter.anisotropy.strength = a_tex.anisotropy.strength =
+        0.8f;
+    a_half.anisotropy.rotation = 3.14159265f;
+    a_quarter.anisotropy.rotation = 1.57079633f;
+    const mvr_material_desc *mats[5] = {&iso, &a0, &a_half, &a_quarter, &a_tex};
+    uint8_t *px[5];
+    uint32_t f[5];
+    for (int k = 0; k < 5; ++k) {
+        mvr_scene *s = NULL;
+        CHECK(t, mvr_scene_create(NULL, &s, NULL) == MVR_OK);
+        mvr_material_desc md = *mats[k];
+        if (k == 4) {
+            mvr_image_desc id = {.width = TW, .height = TW, .rgba8 = up};
+            CHECK(t, mvr_scene_add_image(s, &id, &md.anisotropy.texture.image) == MVR_OK);
+        }
+        sphere_in(t, s, &md, true);
+        px[k] = render(t, ctx, s, vs, MVR_VIEW_PATH_LOOP, MVR_COLOR_FORMAT_DEFAULT, &f[k]);
+        mvr_scene_destroy(s);
+    }
+    CHECK(t, !(f[0] & MVR_FEATURE_ANISOTROPY) && (f[1] & MVR_FEATURE_ANISOTROPY));
+    if (px[0] && px[1] && px[2] && px[3] && px[4]) {
+        uint32_t stretched = count_diff(px[0], px[1], (size_t)W * H, 2);
+        uint32_t half = count_diff(px[1], px[2], (size_t)W * H, 1);
+        uint32_t quarter = count_diff(px[1], px[3], (size_t)W * H, 2);
+        uint32_t tex = count_diff(px[3], px[4], (size_t)W * H, 2);
+        printf("  anisotropy 0.8 changes %u pixels; a half turn %u, a quarter turn %u; texture vs quarter %u\n",
+               stretched, half, quarter, tex);
+        CHECK(t, stretched > 200);
+        CHECK_EQ_INT(t, half, 0);
+        CHECK(t, quarter > 200);
+        CHECK(t, tex <= (uint32_t)(W * H / 100));
+    }
+    for (int k = 0; k < 5; ++k)
+        free(px[k]);
+    if (mvr_context_caps(ctx)->ext.ovr_multiview2) {
+        mvr_scene *s = sphere_scene(t, &a_quarter, true);
+        mvr_view_set *two = front_views(t, 2);
+        uint32_t f1, f2;
+        uint8_t *loop = render(t, ctx, s, two, MVR_VIEW_PATH_LOOP, MVR_COLOR_FORMAT_DEFAULT, &f1);
+        uint8_t *mv = render(t, ctx, s, two, MVR_VIEW_PATH_MULTIVIEW, MVR_COLOR_FORMAT_DEFAULT, &f2);
+        if (loop && mv)
+            CHECK_EQ_INT(t, count_diff(loop, mv, (size_t)2 * W * H, 0), 0);
+        free(loop);
+        free(mv);
+        mvr_view_set_destroy(two);
+        mvr_scene_destroy(s);
+    }
+    mvr_view_set_destroy(vs);
+    mvr_context_destroy(ctx);
+}
+
 MVR_TEST_MAIN(TEST(demos_compile_no_extension_code), TEST(core_values_give_the_core_pixels),
               TEST(clearcoat_mixes_by_its_fresnel), TEST(extension_textures_are_sampled),
-              TEST(spec_gloss_is_a_dielectric), TEST(iridescence_film))
+              TEST(spec_gloss_is_a_dielectric), TEST(iridescence_film), TEST(anisotropy_direction))
