@@ -62,12 +62,36 @@ static bool note(mvr_batch_plan *p, const char *fmt, ...)
     return true;
 }
 
-static bool same_key(const mvr_texture_group *g, uint32_t role, uint32_t w, uint32_t h, bool srgb, uint32_t levels,
-                     const mvr_sampler_desc *s)
+void mvr_role_neutral(uint32_t role, uint8_t out[4])
 {
-    return g->role == role && g->width == w && g->height == h && g->srgb == srgb && g->levels == levels &&
-           g->sampler.mag_filter == s->mag_filter && g->sampler.min_filter == s->min_filter &&
+    out[0] = out[1] = out[2] = out[3] = 255;
+    if (role == MVR_ROLE_NORMAL || role == MVR_ROLE_CLEARCOAT_NORMAL)
+        out[0] = out[1] = 128;
+    else if (role == MVR_ROLE_ANISOTROPY)
+        out[1] = 128;
+}
+
+uint32_t mvr_image_group_levels(const scene_image *img, const mvr_sampler_desc *smp)
+{
+    if (!mvr_sampler_uses_mipmaps(smp))
+        return 1;
+    return img->format == MVR_IMAGE_FORMAT_RGBA8 ? mvr_mip_levels(img->width, img->height) : img->levels;
+}
+
+static bool same_key(const mvr_texture_group *g, uint32_t role, uint32_t w, uint32_t h, mvr_image_format format,
+                     bool srgb, uint32_t levels, const mvr_sampler_desc *s)
+{
+    return g->role == role && g->width == w && g->height == h && g->format == format && g->srgb == srgb &&
+           g->levels == levels && g->sampler.mag_filter == s->mag_filter && g->sampler.min_filter == s->min_filter &&
            g->sampler.wrap_s == s->wrap_s && g->sampler.wrap_t == s->wrap_t;
+}
+
+/* Identical stored bytes (pixels, or blocks of every level) in one format. */
+static bool same_pixels(const scene_image *a, const scene_image *b)
+{
+    return a->hash == b->hash && a->format == b->format && a->levels == b->levels && a->width == b->width &&
+           a->height == b->height && a->bytes == b->bytes &&
+           memcmp(mvr_scene_image_bytes(a), mvr_scene_image_bytes(b), a->bytes) == 0;
 }
 
 /* The layer of an image in a group, added if new (identical pixels share one). */
@@ -76,9 +100,7 @@ static bool layer_of(mvr_texture_group *g, const mvr_scene *s, uint32_t image, u
     const scene_image *img = &s->images[image];
     for (uint32_t k = 0; k < g->layer_count; ++k) {
         uint32_t other = g->layer_images[k];
-        if (other == image ||
-            (other != MVR_NO_INDEX && s->images[other].hash == img->hash &&
-             memcmp(s->images[other].rgba, img->rgba, (size_t)img->width * img->height * 4) == 0)) {
+        if (other == image || (other != MVR_NO_INDEX && same_pixels(&s->images[other], img))) {
             *out = k;
             return true;
         }
@@ -90,10 +112,41 @@ static bool layer_of(mvr_texture_group *g, const mvr_scene *s, uint32_t image, u
     return true;
 }
 
+/* The neutral layer of a group, added if it has none. */
+static bool neutral_of(mvr_texture_group *g, uint32_t *out)
+{
+    if (g->neutral_layer == MVR_NO_INDEX) {
+        if (!mvr_array_grow((void **)&g->layer_images, &g->layer_cap, g->layer_count, sizeof *g->layer_images))
+            return false;
+        g->neutral_layer = g->layer_count;
+        g->layer_images[g->layer_count++] = MVR_NO_INDEX;
+    }
+    *out = g->neutral_layer;
+    return true;
+}
+
+static mvr_texture_group *new_group(mvr_batch_plan *p, uint32_t role, uint32_t w, uint32_t h, mvr_image_format format,
+                                    bool srgb, uint32_t levels, const mvr_sampler_desc *smp)
+{
+    if (!mvr_array_grow((void **)&p->groups, &p->group_cap, p->group_count, sizeof *p->groups))
+        return NULL;
+    mvr_texture_group *g = &p->groups[p->group_count++];
+    memset(g, 0, sizeof *g);
+    g->role = role;
+    g->width = w;
+    g->height = h;
+    g->format = format;
+    g->srgb = srgb;
+    g->levels = levels;
+    g->sampler = *smp;
+    g->neutral_layer = MVR_NO_INDEX;
+    return g;
+}
+
 /* Why an image starts a new group, relative to the role's first group. */
 static void explain(mvr_batch_plan *p, const mvr_texture_group *first, uint32_t role, uint32_t image,
-                    uint32_t material, uint32_t w, uint32_t h, bool srgb, uint32_t levels, const mvr_sampler_desc *s,
-                    bool full)
+                    uint32_t material, uint32_t w, uint32_t h, mvr_image_format format, bool srgb, uint32_t levels,
+                    const mvr_sampler_desc *s, bool full)
 {
     if (full)
         note(p, "%s image %u (material %u): group %u is full (GL_MAX_ARRAY_TEXTURE_LAYERS)", mvr_role_name(role),
@@ -101,6 +154,10 @@ static void explain(mvr_batch_plan *p, const mvr_texture_group *first, uint32_t 
     else if (first->width != w || first->height != h)
         note(p, "%s image %u (material %u): size %ux%u differs from group %u (%ux%u)", mvr_role_name(role), image,
              material, w, h, (unsigned)(first - p->groups), first->width, first->height);
+    else if (first->format != format)
+        note(p, "%s image %u (material %u): format %s differs from group %u (%s)", mvr_role_name(role), image,
+             material, mvr_image_format_name(format), (unsigned)(first - p->groups),
+             mvr_image_format_name(first->format));
     else if (first->srgb != srgb)
         note(p, "%s image %u (material %u): format differs from group %u", mvr_role_name(role), image, material,
              (unsigned)(first - p->groups));
@@ -142,9 +199,15 @@ static mvr_result number_group_sets(mvr_batch_plan *p)
 
 mvr_result mvr_batch_plan_build(mvr_batch_plan *p, const mvr_scene *s, uint32_t max_layers)
 {
+    return mvr_batch_plan_build_for(p, s, max_layers, UINT32_MAX);
+}
+
+mvr_result mvr_batch_plan_build_for(mvr_batch_plan *p, const mvr_scene *s, uint32_t max_layers, uint32_t sampleable)
+{
     mvr_batch_plan_free(p);
     if (max_layers < 2)
         max_layers = 2;
+    sampleable |= 1u << MVR_IMAGE_FORMAT_RGBA8;
     p->material_count = s->material_count + 1;
     p->materials = malloc(p->material_count * sizeof *p->materials);
     if (!p->materials)
@@ -166,7 +229,16 @@ mvr_result mvr_batch_plan_build(mvr_batch_plan *p, const mvr_scene *s, uint32_t 
             const scene_image *img = &s->images[image];
             mvr_sampler_desc smp = normalized(t->sampler);
             bool srgb = mvr_role_is_srgb(role);
-            uint32_t levels = mvr_sampler_uses_mipmaps(&smp) ? mvr_mip_levels(img->width, img->height) : 1;
+            /* A format the GL cannot sample: the role's neutral value, the
+             * neutral layer of a 1 x 1 RGBA8 group (the renderer warns,
+             * naming the image; here a note). */
+            bool neutral = !(sampleable & (1u << img->format));
+            uint32_t w = neutral ? 1 : img->width, h = neutral ? 1 : img->height;
+            mvr_image_format format = neutral ? MVR_IMAGE_FORMAT_RGBA8 : img->format;
+            uint32_t levels = neutral ? 1 : mvr_image_group_levels(img, &smp);
+            if (neutral)
+                note(p, "%s image %u (material %u): format %s cannot be sampled by this GL: the role's neutral value",
+                     mvr_role_name(role), image, m, mvr_image_format_name(img->format));
             mvr_texture_group *first = NULL, *fit = NULL;
             bool full = false;
             for (uint32_t g = 0; g < p->group_count; ++g) {
@@ -175,11 +247,11 @@ mvr_result mvr_batch_plan_build(mvr_batch_plan *p, const mvr_scene *s, uint32_t 
                     continue;
                 if (!first)
                     first = grp;
-                if (same_key(grp, role, img->width, img->height, srgb, levels, &smp)) {
+                if (same_key(grp, role, w, h, format, srgb, levels, &smp)) {
                     /* room, or the image is already a layer */
-                    bool present = false;
+                    bool present = neutral && grp->neutral_layer != MVR_NO_INDEX;
                     for (uint32_t k = 0; k < grp->layer_count && !present; ++k)
-                        present = grp->layer_images[k] == image;
+                        present = !neutral && grp->layer_images[k] == image;
                     if (present || grp->layer_count < max_layers) {
                         fit = grp;
                         break;
@@ -188,22 +260,14 @@ mvr_result mvr_batch_plan_build(mvr_batch_plan *p, const mvr_scene *s, uint32_t 
                 }
             }
             if (!fit) {
-                if (first)
-                    explain(p, first, role, image, m, img->width, img->height, srgb, levels, &smp, full);
-                if (!mvr_array_grow((void **)&p->groups, &p->group_cap, p->group_count, sizeof *p->groups))
+                if (first && !neutral)
+                    explain(p, first, role, image, m, w, h, format, srgb, levels, &smp, full);
+                fit = new_group(p, role, w, h, format, srgb, levels, &smp);
+                if (!fit)
                     return MVR_ERROR_OUT_OF_MEMORY;
-                fit = &p->groups[p->group_count++];
-                memset(fit, 0, sizeof *fit);
-                fit->role = role;
-                fit->width = img->width;
-                fit->height = img->height;
-                fit->srgb = srgb;
-                fit->levels = levels;
-                fit->sampler = smp;
-                fit->neutral_layer = MVR_NO_INDEX;
             }
             uint32_t layer = 0;
-            if (!layer_of(fit, s, image, &layer))
+            if (!(neutral ? neutral_of(fit, &layer) : layer_of(fit, s, image, &layer)))
                 return MVR_ERROR_OUT_OF_MEMORY;
             p->materials[m].group[role] = (uint16_t)(fit - p->groups);
             p->materials[m].layer[role] = (uint16_t)layer;
@@ -213,33 +277,47 @@ mvr_result mvr_batch_plan_build(mvr_batch_plan *p, const mvr_scene *s, uint32_t 
     }
 
     /* A material without a texture in a role that other materials sample
-     * reads a white layer of the role's first group: one program and no bind
-     * for both kinds. White is exact for base color, metallic-roughness,
-     * occlusion and emissive (the factor times 1.0); a "flat" normal texel
-     * (128, 128, 255) is not exactly (0, 0, 1), so normal maps keep their own
-     * variant. The extensions' roles need no white layer: their shader code
-     * samples only where the material's block says it has a texture. */
+     * reads a white layer of the role's first RGBA8 group (a block-compressed
+     * group has no neutral layer: a 1 x 1 RGBA8 group of its own is made
+     * when the role has only those): one program and no bind for both
+     * kinds. White is exact for base color, metallic-roughness, occlusion
+     * and emissive (the factor times 1.0); a "flat" normal texel (128, 128,
+     * 255) is not exactly (0, 0, 1), so normal maps keep their own variant.
+     * The extensions' roles need no white layer: their shader code samples
+     * only where the material's block says it has a texture. */
     for (uint32_t role = 0; role < MVR_CORE_ROLE_COUNT; ++role) {
         if (role == MVR_ROLE_NORMAL)
             continue;
         mvr_texture_group *first = NULL;
-        for (uint32_t g = 0; g < p->group_count && !first; ++g)
-            if (p->groups[g].role == role && p->groups[g].layer_count < max_layers)
+        bool any = false, any_rgba8 = false;
+        for (uint32_t g = 0; g < p->group_count && !first; ++g) {
+            if (p->groups[g].role != role)
+                continue;
+            any = true;
+            if (p->groups[g].format != MVR_IMAGE_FORMAT_RGBA8)
+                continue;
+            any_rgba8 = true;
+            if (p->groups[g].layer_count < max_layers)
                 first = &p->groups[g];
-        if (!first)
+        }
+        if (!any || (!first && any_rgba8)) /* every RGBA8 group full: as before, no neutral layer */
             continue;
         for (uint32_t m = 0; m < p->material_count; ++m) {
             if (p->materials[m].group[role] != MVR_NO_GROUP)
                 continue;
-            if (first->neutral_layer == MVR_NO_INDEX) {
-                if (!mvr_array_grow((void **)&first->layer_images, &first->layer_cap, first->layer_count,
-                                    sizeof *first->layer_images))
+            if (!first) {
+                mvr_sampler_desc smp;
+                memset(&smp, 0, sizeof smp);
+                smp = normalized(smp);
+                first = new_group(p, role, 1, 1, MVR_IMAGE_FORMAT_RGBA8, mvr_role_is_srgb(role), 1, &smp);
+                if (!first)
                     return MVR_ERROR_OUT_OF_MEMORY;
-                first->neutral_layer = first->layer_count;
-                first->layer_images[first->layer_count++] = MVR_NO_INDEX;
             }
+            uint32_t layer = 0;
+            if (!neutral_of(first, &layer))
+                return MVR_ERROR_OUT_OF_MEMORY;
             p->materials[m].group[role] = (uint16_t)(first - p->groups);
-            p->materials[m].layer[role] = (uint16_t)first->neutral_layer;
+            p->materials[m].layer[role] = (uint16_t)layer;
         }
     }
     return number_group_sets(p);

@@ -309,7 +309,7 @@ mvr_result demo_image(mvr_scene *scene, demo_pattern pattern, uint32_t size, con
             }
         }
     }
-    mvr_image_desc d = {size, size, rgba, "demo"};
+    mvr_image_desc d = {.width = size, .height = size, .rgba8 = rgba, .name = "demo"};
     mvr_result r = mvr_scene_add_image(scene, &d, out);
     free(rgba);
     return r;

@@ -86,8 +86,10 @@ void mvr_scene_destroy(mvr_scene *s)
 {
     if (!s)
         return;
-    for (uint32_t i = 0; i < s->image_count; ++i)
+    for (uint32_t i = 0; i < s->image_count; ++i) {
         free(s->images[i].rgba);
+        free(s->images[i].blocks);
+    }
     for (uint32_t i = 0; i < s->primitive_count; ++i)
         free_primitive(&s->primitives[i]);
     for (uint32_t i = 0; i < s->mesh_count; ++i)
@@ -118,33 +120,157 @@ const char *mvr_scene_last_error(const mvr_scene *s)
     return s ? s->last_error : "mvr_scene_last_error: scene is NULL";
 }
 
+static const struct {
+    const char *name;
+    uint8_t bw, bh, bytes;
+} image_formats[MVR_IMAGE_FORMAT_COUNT] = {
+    [MVR_IMAGE_FORMAT_RGBA8] = {"rgba8", 1, 1, 4},
+    [MVR_IMAGE_FORMAT_ETC2_RGB8] = {"etc2_rgb8", 4, 4, 8},
+    [MVR_IMAGE_FORMAT_ETC2_RGB8_A1] = {"etc2_rgb8_a1", 4, 4, 8},
+    [MVR_IMAGE_FORMAT_ETC2_RGBA8] = {"etc2_rgba8", 4, 4, 16},
+    [MVR_IMAGE_FORMAT_EAC_R11] = {"eac_r11", 4, 4, 8},
+    [MVR_IMAGE_FORMAT_EAC_RG11] = {"eac_rg11", 4, 4, 16},
+    [MVR_IMAGE_FORMAT_ASTC_4x4] = {"astc_4x4", 4, 4, 16},
+    [MVR_IMAGE_FORMAT_ASTC_5x4] = {"astc_5x4", 5, 4, 16},
+    [MVR_IMAGE_FORMAT_ASTC_5x5] = {"astc_5x5", 5, 5, 16},
+    [MVR_IMAGE_FORMAT_ASTC_6x5] = {"astc_6x5", 6, 5, 16},
+    [MVR_IMAGE_FORMAT_ASTC_6x6] = {"astc_6x6", 6, 6, 16},
+    [MVR_IMAGE_FORMAT_ASTC_8x5] = {"astc_8x5", 8, 5, 16},
+    [MVR_IMAGE_FORMAT_ASTC_8x6] = {"astc_8x6", 8, 6, 16},
+    [MVR_IMAGE_FORMAT_ASTC_8x8] = {"astc_8x8", 8, 8, 16},
+    [MVR_IMAGE_FORMAT_ASTC_10x5] = {"astc_10x5", 10, 5, 16},
+    [MVR_IMAGE_FORMAT_ASTC_10x6] = {"astc_10x6", 10, 6, 16},
+    [MVR_IMAGE_FORMAT_ASTC_10x8] = {"astc_10x8", 10, 8, 16},
+    [MVR_IMAGE_FORMAT_ASTC_10x10] = {"astc_10x10", 10, 10, 16},
+    [MVR_IMAGE_FORMAT_ASTC_12x10] = {"astc_12x10", 12, 10, 16},
+    [MVR_IMAGE_FORMAT_ASTC_12x12] = {"astc_12x12", 12, 12, 16},
+};
+
+const char *mvr_image_format_name(mvr_image_format f)
+{
+    return (unsigned)f < MVR_IMAGE_FORMAT_COUNT ? image_formats[f].name : "unknown";
+}
+
+bool mvr_image_format_block(mvr_image_format f, uint32_t *bw, uint32_t *bh, uint32_t *bytes)
+{
+    if ((unsigned)f >= MVR_IMAGE_FORMAT_COUNT)
+        return false;
+    if (bw)
+        *bw = image_formats[f].bw;
+    if (bh)
+        *bh = image_formats[f].bh;
+    if (bytes)
+        *bytes = image_formats[f].bytes;
+    return true;
+}
+
+/* floor(log2(max(w, h))) + 1: the levels of a full chain */
+static uint32_t chain_levels(uint32_t w, uint32_t h)
+{
+    uint32_t n = 1, m = w > h ? w : h;
+    while (m > 1) {
+        m >>= 1;
+        n++;
+    }
+    return n;
+}
+
+bool mvr_image_level_size(mvr_image_format f, uint32_t w, uint32_t h, uint32_t level, uint64_t *out)
+{
+    *out = 0;
+    if ((unsigned)f >= MVR_IMAGE_FORMAT_COUNT || w == 0 || h == 0 || level >= chain_levels(w, h))
+        return false;
+    uint64_t lw = w >> level ? w >> level : 1, lh = h >> level ? h >> level : 1;
+    uint64_t bx = (lw + image_formats[f].bw - 1) / image_formats[f].bw;
+    uint64_t by = (lh + image_formats[f].bh - 1) / image_formats[f].bh;
+    uint64_t n;
+    if (__builtin_mul_overflow(bx, by, &n) || __builtin_mul_overflow(n, (uint64_t)image_formats[f].bytes, &n))
+        return false;
+    *out = n;
+    return true;
+}
+
 mvr_result mvr_scene_add_image(mvr_scene *s, const mvr_image_desc *d, mvr_image_id *out)
 {
     if (!s || !d || !out)
         return s ? mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_image: NULL argument")
                  : MVR_ERROR_INVALID_ARGUMENT;
     out->id = 0;
+    const char *name = d->name ? d->name : "";
     if (d->width == 0 || d->height == 0 || d->width > 16384 || d->height > 16384)
         return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
-                              "mvr_scene_add_image(%s): size %ux%u is not within 1..16384",
-                              d->name ? d->name : "", d->width, d->height);
-    if (!d->rgba8)
-        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_image(%s): no pixels",
-                              d->name ? d->name : "");
-    size_t bytes;
-    if (!mvr_size_mul((size_t)d->width * d->height, 4, &bytes))
-        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_image: size overflows");
+                              "mvr_scene_add_image(%s): size %ux%u is not within 1..16384", name, d->width, d->height);
+    if ((unsigned)d->format >= MVR_IMAGE_FORMAT_COUNT)
+        return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_image(%s): format %d is not an mvr_image_format",
+                              name, (int)d->format);
+    bool blocks = d->format != MVR_IMAGE_FORMAT_RGBA8;
+    size_t bytes = 0;
+    uint32_t levels = 1;
+    size_t offset[MVR_IMAGE_MAX_LEVELS] = {0}, size[MVR_IMAGE_MAX_LEVELS] = {0};
+    if (!blocks) {
+        if (!d->rgba8)
+            return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_image(%s): no pixels", name);
+        if (d->level_count > 1)
+            return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                                  "mvr_scene_add_image(%s): %u levels of RGBA8 pixels (RGBA8 images give level 0; "
+                                  "mips are generated)", name, d->level_count);
+        if (!mvr_size_mul((size_t)d->width * d->height, 4, &bytes))
+            return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_image: size overflows");
+    } else {
+        const char *fname = mvr_image_format_name(d->format);
+        uint32_t chain = chain_levels(d->width, d->height);
+        levels = d->level_count;
+        if (levels == 0 || levels > chain)
+            return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                                  "mvr_scene_add_image(%s): %u levels; a %ux%u image has 1..%u", name, levels,
+                                  d->width, d->height, chain);
+        if (d->rgba8)
+            return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                                  "mvr_scene_add_image(%s): RGBA8 pixels given for a %s image", name, fname);
+        for (uint32_t k = 0; k < levels; ++k) {
+            uint64_t want = 0;
+            if (!mvr_image_level_size(d->format, d->width, d->height, k, &want) || want > SIZE_MAX)
+                return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_image(%s): level %u overflows",
+                                      name, k);
+            if (!d->levels[k].data || d->levels[k].size != want)
+                return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                                      "mvr_scene_add_image(%s): level %u of %s %ux%u %s %zu bytes; it needs %llu",
+                                      name, k, fname, d->width >> k ? d->width >> k : 1,
+                                      d->height >> k ? d->height >> k : 1, d->levels[k].data ? "has" : "has no data, size",
+                                      d->levels[k].size, (unsigned long long)want);
+            offset[k] = bytes;
+            size[k] = (size_t)want;
+            if (bytes > SIZE_MAX - (size_t)want)
+                return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT, "mvr_scene_add_image(%s): size overflows", name);
+            bytes += (size_t)want;
+        }
+    }
     if (!GROW(s, images, image_count, image_cap))
         return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_image: out of memory");
     scene_image *img = &s->images[s->image_count];
     memset(img, 0, sizeof *img);
-    img->rgba = malloc(bytes);
-    if (!img->rgba)
-        return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_image: out of memory (%zu bytes)", bytes);
-    memcpy(img->rgba, d->rgba8, bytes);
+    uint8_t *data = malloc(bytes);
+    if (!data)
+        return mvr_scene_fail(s, MVR_ERROR_OUT_OF_MEMORY, "mvr_scene_add_image(%s): out of memory (%zu bytes)", name,
+                              bytes);
+    if (blocks) {
+        for (uint32_t k = 0; k < levels; ++k)
+            memcpy(data + offset[k], d->levels[k].data, size[k]);
+        img->blocks = data;
+        memcpy(img->level_offset, offset, sizeof offset);
+        memcpy(img->level_size, size, sizeof size);
+    } else {
+        memcpy(data, d->rgba8, bytes);
+        img->rgba = data;
+    }
+    img->format = d->format;
+    img->levels = levels;
+    img->bytes = bytes;
     img->width = d->width;
     img->height = d->height;
-    img->hash = hash_bytes(img->rgba, bytes, 14695981039346656037ull ^ ((uint64_t)d->width << 32 | d->height));
+    img->hash = hash_bytes(data, bytes,
+                           (14695981039346656037ull ^ ((uint64_t)d->width << 32 | d->height)) +
+                               ((uint64_t)d->format << 8 | levels));
     mvr_str_copy(img->name, sizeof img->name, d->name);
     s->image_count++;
     s->geometry_version++;

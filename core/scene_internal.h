@@ -11,10 +11,23 @@
 
 typedef struct scene_image {
     uint32_t width, height;
-    uint8_t *rgba;
-    uint64_t hash;               /* of the pixels: identical images can share GPU storage */
+    uint8_t *rgba;               /* RGBA8 images; NULL for block formats */
+    /* block formats: the levels back to back in `blocks`, level k at
+     * blocks + level_offset[k], level_size[k] bytes (exact, validated) */
+    mvr_image_format format;
+    uint32_t levels;             /* RGBA8: 1 (mips are generated) */
+    uint8_t *blocks;
+    size_t level_offset[MVR_IMAGE_MAX_LEVELS], level_size[MVR_IMAGE_MAX_LEVELS];
+    size_t bytes;                /* of rgba, or of every level's blocks */
+    uint64_t hash;               /* of the pixels / blocks: identical images can share GPU storage */
     char name[64];
 } scene_image;
+
+/* The stored bytes of an image (rgba or blocks). */
+static inline const uint8_t *mvr_scene_image_bytes(const scene_image *img)
+{
+    return img->format == MVR_IMAGE_FORMAT_RGBA8 ? img->rgba : img->blocks;
+}
 
 typedef struct scene_material {
     mvr_material_desc desc;      /* name pointer cleared; defaults resolved */

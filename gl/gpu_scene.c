@@ -142,22 +142,28 @@ static uint8_t *downscale_rgba8(const uint8_t *src, uint32_t sw, uint32_t sh, ui
     return dst;
 }
 
-/* Marks a scene image as stored downscaled (counted once however many
- * textures hold it). */
-static void mark_downscaled(mvr_gpu_scene *g, uint32_t image, uint32_t image_count)
+/* Sets a scene image's flag in one of the per-image flag arrays (counted
+ * once however many textures hold the image). */
+static void mark_image(uint8_t **flags, uint32_t *cap, uint32_t *count, uint32_t image, uint32_t image_count)
 {
-    if (image >= g->downscaled_cap) {
-        uint8_t *p = realloc(g->downscaled, image_count);
+    if (image >= *cap) {
+        uint8_t *p = realloc(*flags, image_count);
         if (!p)
             return; /* only the count suffers */
-        memset(p + g->downscaled_cap, 0, image_count - g->downscaled_cap);
-        g->downscaled = p;
-        g->downscaled_cap = image_count;
+        memset(p + *cap, 0, image_count - *cap);
+        *flags = p;
+        *cap = image_count;
     }
-    if (!g->downscaled[image]) {
-        g->downscaled[image] = 1;
-        g->downscaled_count++;
+    if (!(*flags)[image]) {
+        (*flags)[image] = 1;
+        (*count)++;
     }
+}
+
+/* Marks a scene image as stored downscaled. */
+static void mark_downscaled(mvr_gpu_scene *g, uint32_t image, uint32_t image_count)
+{
+    mark_image(&g->downscaled, &g->downscaled_cap, &g->downscaled_count, image, image_count);
 }
 
 static void forget_downscaled(mvr_gpu_scene *g)
@@ -165,6 +171,70 @@ static void forget_downscaled(mvr_gpu_scene *g)
     if (g->downscaled)
         memset(g->downscaled, 0, g->downscaled_cap);
     g->downscaled_count = 0;
+    if (g->compressed)
+        memset(g->compressed, 0, g->compressed_cap);
+    g->compressed_count = 0;
+}
+
+/* The GL's internal format of a block format in a color space. EAC R11 /
+ * RG11 have no sRGB form: sampled as stored. The ASTC enums of both spaces
+ * run in mvr_image_format's order of block sizes (KHR_texture_compression_astc_ldr). */
+static GLenum block_internal_format(mvr_image_format f, bool srgb)
+{
+    switch (f) {
+    case MVR_IMAGE_FORMAT_RGBA8: return srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8;
+    case MVR_IMAGE_FORMAT_ETC2_RGB8: return srgb ? GL_COMPRESSED_SRGB8_ETC2 : GL_COMPRESSED_RGB8_ETC2;
+    case MVR_IMAGE_FORMAT_ETC2_RGB8_A1:
+        return srgb ? GL_COMPRESSED_SRGB8_PUNCHTHROUGH_ALPHA1_ETC2 : GL_COMPRESSED_RGB8_PUNCHTHROUGH_ALPHA1_ETC2;
+    case MVR_IMAGE_FORMAT_ETC2_RGBA8: return srgb ? GL_COMPRESSED_SRGB8_ALPHA8_ETC2_EAC : GL_COMPRESSED_RGBA8_ETC2_EAC;
+    case MVR_IMAGE_FORMAT_EAC_R11: return GL_COMPRESSED_R11_EAC;
+    case MVR_IMAGE_FORMAT_EAC_RG11: return GL_COMPRESSED_RG11_EAC;
+    default: break;
+    }
+    GLenum astc = (GLenum)(f - MVR_IMAGE_FORMAT_ASTC_4x4);
+    return (srgb ? GL_COMPRESSED_SRGB8_ALPHA8_ASTC_4x4_KHR : GL_COMPRESSED_RGBA_ASTC_4x4_KHR) + astc;
+}
+
+/* Whether a renderer's GL samples a format, and why not (for messages). */
+static const char *unsampleable_reason(const mvr_renderer *r, mvr_image_format f)
+{
+    if (r->sampleable_formats & (1u << f))
+        return NULL;
+    bool astc = f >= MVR_IMAGE_FORMAT_ASTC_4x4;
+    bool has = astc ? r->ctx->caps.ext.astc_ldr : r->ctx->caps.ext.etc2;
+    if (has)
+        return "disabled by the renderer's overrides.disable_image_formats";
+    return astc ? "no GL_KHR_texture_compression_astc_ldr"
+                : "no ETC2 / EAC (OpenGL ES 3.0, desktop GL 4.3 or GL_ARB_ES3_compatibility)";
+}
+
+/* Images the materials sample in a format this GL cannot sample: one
+ * warning per image naming it and why, counted (the stats); the batch plan
+ * and texture_for give their roles the neutral value. */
+static void note_unsampleable(mvr_renderer *r, const mvr_scene *s)
+{
+    mvr_gpu_scene *g = &r->gpu;
+    if (g->unsampleable)
+        memset(g->unsampleable, 0, g->unsampleable_cap);
+    g->unsampleable_count = 0;
+    for (uint32_t m = 0; m < s->material_count; ++m) {
+        const mvr_material_desc *md = &s->materials[m].desc;
+        for (uint32_t role = 0; role < MVR_ROLE_COUNT; ++role) {
+            if (!mvr_material_samples_role(md, role))
+                continue;
+            uint32_t image = mvr_material_role(md, role)->image.id - 1;
+            const scene_image *img = &s->images[image];
+            const char *why = unsampleable_reason(r, img->format);
+            if (!why || (image < g->unsampleable_cap && g->unsampleable[image]))
+                continue;
+            mark_image(&g->unsampleable, &g->unsampleable_cap, &g->unsampleable_count, image, s->image_count);
+            mvr_log(&r->logger, MVR_LOG_WARNING, MVR_LOG_ID_GENERAL,
+                    "mvr: image %u%s%s%s (%ux%u %s) cannot be sampled by this GL (%s): its textures (the %s "
+                    "texture of material %u%s) use the role's neutral value",
+                    image + 1, img->name[0] ? " '" : "", img->name, img->name[0] ? "'" : "", img->width, img->height,
+                    mvr_image_format_name(img->format), why, mvr_role_name(role), m, " and any other");
+        }
+    }
 }
 
 /* One texture to make: a 2D texture of one image (the per-material path),
@@ -172,7 +242,10 @@ static void forget_downscaled(mvr_gpu_scene *g)
  * are white). Every layer has the size width x height. */
 typedef struct texture_job {
     GLenum target;               /* GL_TEXTURE_2D or GL_TEXTURE_2D_ARRAY */
-    bool srgb, mips;
+    bool srgb, mips;             /* mips: RGBA8, a generated full chain */
+    mvr_image_format format;     /* RGBA8, or the block format of every layer */
+    uint32_t levels;             /* block formats: the levels uploaded (the images' first ones) */
+    uint32_t role;               /* the neutral value of MVR_NO_INDEX layers (mvr_role_neutral) */
     uint32_t width, height;
     const uint32_t *layer_images;
     uint32_t layer_count;
@@ -216,13 +289,16 @@ static bool take_errors(const mvr_gl_api_table *gl, char *names, size_t size, bo
 }
 
 /* Storage and pixels of one size; false (with the GL's errors in why) when
- * the GL refused. Out of host memory is an error of its own (*res). */
-static bool try_texture(mvr_renderer *r, const mvr_scene *s, const texture_job *job, uint32_t w, uint32_t h,
-                        GLuint *out, char *why, size_t why_size, bool *oom, mvr_result *res)
+ * the GL refused. Out of host memory is an error of its own (*res). Block
+ * formats start at their level `base` (w x h, the image's size at that
+ * level); RGBA8 at w x h (downscaled when smaller than the job's). */
+static bool try_texture(mvr_renderer *r, const mvr_scene *s, const texture_job *job, uint32_t base, uint32_t w,
+                        uint32_t h, GLuint *out, char *why, size_t why_size, bool *oom, mvr_result *res)
 {
     const mvr_gl_api_table *gl = r->gl;
-    GLenum format = job->srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8;
-    GLsizei levels = job->mips ? (GLsizei)mvr_mip_levels(w, h) : 1;
+    bool blocks = job->format != MVR_IMAGE_FORMAT_RGBA8;
+    GLenum format = block_internal_format(job->format, job->srgb);
+    GLsizei levels = blocks ? (GLsizei)(job->levels - base) : job->mips ? (GLsizei)mvr_mip_levels(w, h) : 1;
     bool array = job->target == GL_TEXTURE_2D_ARRAY;
     *res = MVR_OK;
     gl->GenTextures(1, out);
@@ -233,17 +309,46 @@ static bool try_texture(mvr_renderer *r, const mvr_scene *s, const texture_job *
         gl->TexStorage2D(job->target, levels, format, (GLsizei)w, (GLsizei)h);
     if (take_errors(gl, why, why_size, oom))
         return false;
+    if (blocks) {
+        /* The blocks as given, level by level: never decoded, never
+         * mip-generated (the GL cannot encode blocks). A sampler that reads
+         * mips on an image with fewer levels than the full chain reads those
+         * it has: the storage holds exactly them (an immutable texture is
+         * complete with its own levels), and GL_TEXTURE_MAX_LEVEL says so
+         * too, levels - 1. */
+        for (uint32_t layer = 0; layer < job->layer_count; ++layer) {
+            const scene_image *img = &s->images[job->layer_images[layer]];
+            for (GLsizei k = 0; k < levels; ++k) {
+                uint32_t lv = base + (uint32_t)k;
+                GLsizei lw = (GLsizei)(img->width >> lv ? img->width >> lv : 1);
+                GLsizei lh = (GLsizei)(img->height >> lv ? img->height >> lv : 1);
+                const uint8_t *data = img->blocks + img->level_offset[lv];
+                GLsizei size = (GLsizei)img->level_size[lv];
+                if (array)
+                    gl->CompressedTexSubImage3D(job->target, k, 0, 0, (GLint)layer, lw, lh, 1, format, size, data);
+                else
+                    gl->CompressedTexSubImage2D(job->target, k, 0, 0, lw, lh, format, size, data);
+                r->upload_bytes += (uint64_t)size;
+            }
+        }
+        gl->TexParameteri(job->target, GL_TEXTURE_MAX_LEVEL, levels - 1);
+        return !take_errors(gl, why, why_size, oom);
+    }
     bool scaled = w != job->width || h != job->height;
-    uint8_t *white = NULL;
+    uint8_t *neutral = NULL;
     gl->PixelStorei(GL_UNPACK_ALIGNMENT, 1);
     for (uint32_t layer = 0; layer < job->layer_count && *res == MVR_OK; ++layer) {
         uint32_t image = job->layer_images[layer];
         const uint8_t *pixels = NULL;
         uint8_t *scratch = NULL;
         if (image == MVR_NO_INDEX) {
-            if (!white && (white = malloc((size_t)w * h * 4)) != NULL)
-                memset(white, 255, (size_t)w * h * 4);
-            pixels = white;
+            if (!neutral && (neutral = malloc((size_t)w * h * 4)) != NULL) {
+                uint8_t texel[4];
+                mvr_role_neutral(job->role, texel);
+                for (size_t i = 0; i < (size_t)w * h; ++i)
+                    memcpy(neutral + i * 4, texel, 4);
+            }
+            pixels = neutral;
         } else if (scaled) {
             const scene_image *img = &s->images[image];
             pixels = scratch = downscale_rgba8(img->rgba, img->width, img->height, w, h, job->srgb);
@@ -263,7 +368,7 @@ static bool try_texture(mvr_renderer *r, const mvr_scene *s, const texture_job *
         free(scratch);
         r->upload_bytes += (uint64_t)w * h * 4;
     }
-    free(white);
+    free(neutral);
     gl->PixelStorei(GL_UNPACK_ALIGNMENT, 4);
     if (*res == MVR_OK && levels > 1)
         gl->GenerateMipmap(job->target);
@@ -271,15 +376,28 @@ static bool try_texture(mvr_renderer *r, const mvr_scene *s, const texture_job *
     return !take_errors(gl, why, why_size, oom) && *res == MVR_OK;
 }
 
+/* "srgb8_alpha8", "rgba8", "etc2_rgb8 (sRGB)", ... */
+static void describe_format(char *dst, size_t size, const texture_job *job)
+{
+    if (job->format == MVR_IMAGE_FORMAT_RGBA8)
+        mvr_str_copy(dst, size, job->srgb ? "srgb8_alpha8" : "rgba8");
+    else
+        mvr_str_format(dst, size, "%s%s", mvr_image_format_name(job->format), job->srgb ? " sRGB" : "");
+}
+
 /* Makes a job's texture: at its size, or, where the GL cannot hold that
- * (over GL_MAX_TEXTURE_SIZE, or GL_OUT_OF_MEMORY), halved until it can when
- * the renderer's policy is to downscale. One function for both material
+ * (over GL_MAX_TEXTURE_SIZE, or GL_OUT_OF_MEMORY), smaller until it can when
+ * the renderer's policy is to downscale: RGBA8 halved, block formats started
+ * at their next level (blocks cannot be resampled without decoding them; an
+ * image without a smaller level is refused). One function for both material
  * paths, so they decide alike. */
 static mvr_result make_texture(mvr_renderer *r, const mvr_scene *s, const texture_job *job, GLuint *out)
 {
     uint32_t max = (uint32_t)r->ctx->caps.limits.max_texture_size;
-    uint32_t w = job->width, h = job->height;
-    char first_why[128] = "";
+    bool blocks = job->format != MVR_IMAGE_FORMAT_RGBA8;
+    uint32_t w = job->width, h = job->height, base = 0;
+    char first_why[128] = "", fmt[48];
+    describe_format(fmt, sizeof fmt, job);
     *out = 0;
     for (;;) {
         char why[128] = "";
@@ -288,7 +406,7 @@ static mvr_result make_texture(mvr_renderer *r, const mvr_scene *s, const textur
         if (w > max || h > max) {
             mvr_str_format(why, sizeof why, "over GL_MAX_TEXTURE_SIZE %u", max);
             res = MVR_ERROR_UNSUPPORTED;
-        } else if (try_texture(r, s, job, w, h, out, why, sizeof why, &oom, &res)) {
+        } else if (try_texture(r, s, job, base, w, h, out, why, sizeof why, &oom, &res)) {
             break;
         } else {
             mvr_renderer_delete(r, MVR_GL_TEXTURE, out);
@@ -298,37 +416,58 @@ static mvr_result make_texture(mvr_renderer *r, const mvr_scene *s, const textur
         }
         if (!first_why[0])
             mvr_str_copy(first_why, sizeof first_why, why);
-        /* other GL errors are not about size: halving would not help */
-        bool halve = res != MVR_ERROR_GL && r->oversized_images == MVR_OVERSIZED_IMAGE_DOWNSCALE && (w > 1 || h > 1);
+        /* other GL errors are not about size: shrinking would not help */
+        bool smaller = blocks ? base + 1 < job->levels : (w > 1 || h > 1);
+        bool halve = res != MVR_ERROR_GL && r->oversized_images == MVR_OVERSIZED_IMAGE_DOWNSCALE && smaller;
         if (!halve)
-            return mvr_renderer_fail(r, res, "%s (%ux%u %s, %u mips): %s%s", job->what, w, h,
-                                     job->srgb ? "srgb8_alpha8" : "rgba8", job->mips ? mvr_mip_levels(w, h) : 1u, why,
+            return mvr_renderer_fail(r, res, "%s (%ux%u %s, %u mips): %s%s", job->what, w, h, fmt,
+                                     blocks ? job->levels - base : job->mips ? mvr_mip_levels(w, h) : 1u, why,
                                      res == MVR_ERROR_GL ? ""
                                      : r->oversized_images == MVR_OVERSIZED_IMAGE_REFUSE
                                          ? " (the renderer's oversized_images is refuse)"
-                                         : " (even at 1x1)");
-        w = w > 1 ? w / 2 : 1;
-        h = h > 1 ? h / 2 : 1;
+                                     : blocks ? " (block-compressed: no smaller mip level to start from)"
+                                              : " (even at 1x1)");
+        if (blocks) {
+            base++;
+            w = job->width >> base ? job->width >> base : 1;
+            h = job->height >> base ? job->height >> base : 1;
+        } else {
+            w = w > 1 ? w / 2 : 1;
+            h = h > 1 ? h / 2 : 1;
+        }
     }
     if (w != job->width || h != job->height) {
         mvr_log(&r->logger, MVR_LOG_WARNING, MVR_LOG_ID_GENERAL,
-                "mvr: %s: %ux%u (%s, %u mips, %u layers) does not fit this GL (%s): downscaled to %ux%u",
-                job->what, job->width, job->height, job->srgb ? "srgb8_alpha8" : "rgba8",
-                job->mips ? mvr_mip_levels(job->width, job->height) : 1u, job->layer_count, first_why, w, h);
+                "mvr: %s: %ux%u (%s, %u mips, %u layers) does not fit this GL (%s): %s %ux%u", job->what,
+                job->width, job->height, fmt, blocks ? job->levels : job->mips ? mvr_mip_levels(job->width, job->height) : 1u,
+                job->layer_count, first_why, blocks ? "starts at its smaller level" : "downscaled to", w, h);
         for (uint32_t k = 0; k < job->layer_count; ++k)
             if (job->layer_images[k] != MVR_NO_INDEX)
                 mark_downscaled(&r->gpu, job->layer_images[k], s->image_count);
     }
+    for (uint32_t k = 0; blocks && k < job->layer_count; ++k)
+        mark_image(&r->gpu.compressed, &r->gpu.compressed_cap, &r->gpu.compressed_count, job->layer_images[k],
+                   s->image_count);
     return MVR_OK;
 }
 
-/* The GL texture of an image in a color space, uploaded on first use, with a
- * mip chain only where a sampler that reads it needs one. */
-static mvr_result texture_for(mvr_renderer *r, const mvr_scene *s, uint32_t image, bool srgb, GLuint *out)
+/* The GL texture of an image in a role's color space, uploaded on first
+ * use: RGBA8 with a mip chain only where a sampler that reads it needs one;
+ * block formats with their own levels (where a sampler reads mips; else
+ * level 0); a format the GL cannot sample: a 1 x 1 texture of the role's
+ * neutral value (note_unsampleable warned). */
+static mvr_result texture_for(mvr_renderer *r, const mvr_scene *s, uint32_t image, uint32_t role, GLuint *out)
 {
     mvr_gpu_scene *g = &r->gpu;
+    bool srgb = mvr_role_is_srgb(role);
+    const scene_image *img = &s->images[image];
+    bool neutral = !(r->sampleable_formats & (1u << img->format));
+    uint8_t texel[4];
+    mvr_role_neutral(role, texel);
+    /* neutral textures are shared by the roles of one neutral value */
+    uint32_t key = neutral ? MVR_NO_INDEX - (uint32_t)(texel[0] != 255 ? 1 : texel[1] != 255 ? 2 : 0) : image;
     for (uint32_t i = 0; i < g->texture_count; ++i)
-        if (g->textures[i].image == image && g->textures[i].srgb == srgb) {
+        if (g->textures[i].image == key && g->textures[i].srgb == srgb) {
             *out = g->textures[i].texture;
             return MVR_OK;
         }
@@ -340,15 +479,26 @@ static mvr_result texture_for(mvr_renderer *r, const mvr_scene *s, uint32_t imag
         g->textures = p;
         g->texture_cap = cap;
     }
-    const scene_image *img = &s->images[image];
-    texture_job job = {.target = GL_TEXTURE_2D, .srgb = srgb, .mips = image_needs_mipmaps(s, image),
-                       .width = img->width, .height = img->height, .layer_images = &image, .layer_count = 1};
-    describe_images(job.what, sizeof job.what, srgb ? "texture (sRGB) of image" : "texture of image", s, &image, 1);
+    static const uint32_t none = MVR_NO_INDEX;
+    bool mips = image_needs_mipmaps(s, image);
+    texture_job job = {.target = GL_TEXTURE_2D, .srgb = srgb, .role = role, .layer_images = &image, .layer_count = 1};
+    if (neutral) {
+        job.width = job.height = 1;
+        job.layer_images = &none;
+        mvr_str_format(job.what, sizeof job.what, "neutral texture of the %s role", mvr_role_name(role));
+    } else {
+        job.format = img->format;
+        job.mips = mips && img->format == MVR_IMAGE_FORMAT_RGBA8;
+        job.levels = mips ? img->levels : 1;
+        job.width = img->width;
+        job.height = img->height;
+        describe_images(job.what, sizeof job.what, srgb ? "texture (sRGB) of image" : "texture of image", s, &image, 1);
+    }
     GLuint t = 0;
     mvr_result res = make_texture(r, s, &job, &t);
     if (res != MVR_OK)
         return res;
-    g->textures[g->texture_count].image = image;
+    g->textures[g->texture_count].image = key;
     g->textures[g->texture_count].srgb = srgb;
     g->textures[g->texture_count++].texture = t;
     *out = t;
@@ -360,7 +510,8 @@ static mvr_result texture_for(mvr_renderer *r, const mvr_scene *s, uint32_t imag
 static mvr_result upload_arrays(mvr_renderer *r, const mvr_scene *s)
 {
     mvr_gpu_scene *g = &r->gpu;
-    mvr_result res = mvr_batch_plan_build(&g->plan, s, (uint32_t)r->ctx->caps.limits.max_array_texture_layers);
+    mvr_result res = mvr_batch_plan_build_for(&g->plan, s, (uint32_t)r->ctx->caps.limits.max_array_texture_layers,
+                                              r->sampleable_formats);
     if (res != MVR_OK)
         return mvr_renderer_fail(r, res, "batch plan: out of memory");
     for (uint32_t n = 0; n < g->plan.note_count; ++n)
@@ -372,7 +523,9 @@ static mvr_result upload_arrays(mvr_renderer *r, const mvr_scene *s)
         return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "texture arrays: out of memory");
     for (uint32_t k = 0; k < count; ++k) {
         const mvr_texture_group *grp = &g->plan.groups[k];
-        texture_job job = {.target = GL_TEXTURE_2D_ARRAY, .srgb = grp->srgb, .mips = grp->levels > 1,
+        bool blocks = grp->format != MVR_IMAGE_FORMAT_RGBA8;
+        texture_job job = {.target = GL_TEXTURE_2D_ARRAY, .srgb = grp->srgb, .mips = !blocks && grp->levels > 1,
+                           .format = grp->format, .levels = grp->levels, .role = grp->role,
                            .width = grp->width, .height = grp->height, .layer_images = grp->layer_images,
                            .layer_count = grp->layer_count};
         char prefix[64];
@@ -574,7 +727,7 @@ static mvr_result upload_materials(mvr_renderer *r, const mvr_scene *s)
             if (!mvr_material_samples_role(m, k))
                 continue;
             const mvr_texture_ref *t = mvr_material_role(m, k);
-            mvr_result res = texture_for(r, s, t->image.id - 1, mvr_role_is_srgb(k), &g->materials[i].textures[k]);
+            mvr_result res = texture_for(r, s, t->image.id - 1, k, &g->materials[i].textures[k]);
             if (res != MVR_OK) {
                 free(data);
                 return res;
@@ -621,6 +774,8 @@ mvr_result mvr_gpu_scene_sync(mvr_renderer *r, const mvr_scene *s)
             return res;
         g->geometry_version = s->geometry_version;
     }
+    if (materials)
+        note_unsampleable(r, s);
     if (materials && arrays) {
         /* the plan depends on images and materials: rebuilt with either */
         release_arrays(r);
@@ -652,5 +807,7 @@ void mvr_gpu_scene_release(mvr_renderer *r)
     free(g->materials);
     mvr_renderer_delete(r, MVR_GL_BUFFER, &g->material_ubo);
     free(g->downscaled);
+    free(g->compressed);
+    free(g->unsampleable);
     memset(g, 0, sizeof *g);
 }

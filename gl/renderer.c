@@ -373,6 +373,15 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
     r->blend_policy = desc->transparency_order;
     r->oversized_images = desc->oversized_images == MVR_OVERSIZED_IMAGE_DEFAULT ? MVR_OVERSIZED_IMAGE_DOWNSCALE
                                                                                 : desc->oversized_images;
+    /* the image formats this GL samples (caps), less the override's */
+    r->sampleable_formats = 1u << MVR_IMAGE_FORMAT_RGBA8;
+    if (desc->context->caps.ext.etc2)
+        for (int f = MVR_IMAGE_FORMAT_ETC2_RGB8; f <= MVR_IMAGE_FORMAT_EAC_RG11; ++f)
+            r->sampleable_formats |= 1u << f;
+    if (desc->context->caps.ext.astc_ldr)
+        for (int f = MVR_IMAGE_FORMAT_ASTC_4x4; f <= MVR_IMAGE_FORMAT_ASTC_12x12; ++f)
+            r->sampleable_formats |= 1u << f;
+    r->sampleable_formats &= ~(ov->disable_image_formats & ~(1u << MVR_IMAGE_FORMAT_RGBA8));
     /* linked first: every failure below goes through mvr_renderer_destroy */
     r->next_in_context = r->ctx->renderers;
     r->ctx->renderers = r;
@@ -840,6 +849,8 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
     st->material_path = r->material_path;
     st->texture_groups = r->gpu.arrays ? r->gpu.plan.group_count : 0;
     st->images_downscaled = r->gpu.downscaled_count;
+    st->images_compressed = r->gpu.compressed_count;
+    st->images_unsampleable = r->gpu.unsampleable_count;
     st->cpu_ms = thread_cpu_ms() - cpu_start;
     return res;
 }

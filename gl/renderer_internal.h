@@ -53,7 +53,7 @@ typedef struct mvr_gpu_primitive {
 } mvr_gpu_primitive;
 
 typedef struct mvr_gpu_texture {
-    uint32_t image;              /* scene image index */
+    uint32_t image;              /* scene image index; MVR_NO_INDEX - role: a role's 1 x 1 neutral texture */
     bool srgb;
     GLuint texture;
 } mvr_gpu_texture;
@@ -96,6 +96,10 @@ typedef struct mvr_gpu_scene {
      * flag per scene image, and how many are set */
     uint8_t *downscaled;
     uint32_t downscaled_cap, downscaled_count;
+    /* the same for images held block-compressed, and for images whose
+     * format the GL cannot sample (drawn with their roles' neutral values) */
+    uint8_t *compressed, *unsampleable;
+    uint32_t compressed_cap, compressed_count, unsampleable_cap, unsampleable_count;
 } mvr_gpu_scene;
 
 /* Skins and morph targets on the GPU (gl/skinning.c): the morph deltas
@@ -217,6 +221,7 @@ struct mvr_renderer {
     mvr_renderer *next_in_context; /* in ctx->renderers */
     mvr_target *targets;         /* alive targets: detached when the renderer goes */
     mvr_oversized_image oversized_images; /* resolved: never DEFAULT */
+    uint32_t sampleable_formats; /* bits 1u << mvr_image_format the GL samples (caps, overrides) */
     mvr_logger logger;
     char last_error[MVR_ERROR_MESSAGE_SIZE];
     uint32_t failures;           /* calls of mvr_renderer_fail (did a step record its message?) */

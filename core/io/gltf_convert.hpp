@@ -12,6 +12,10 @@
 
 #include "gltf_internal.hpp"
 
+namespace mvr_ktx2 {
+struct info;
+}
+
 namespace mvr_gltf {
 
 // A number member of a JSON value from tinygltf (fallback when absent).
@@ -69,6 +73,7 @@ struct converter {
         bool warned, noted;   // warned (no fallback) / noted (fallback used), each once
     };
     std::map<int, image_failure> failed_images;   // images left out, and why
+    std::map<uint32_t, uint8_t> block_transfer;   // scene image of GPU blocks -> its KTX2 DFD transfer function
     // cameras and lights that failed their checks: an error only if a node uses them
     std::map<int, std::string> bad_cameras, bad_lights;
 
@@ -129,6 +134,11 @@ struct converter {
 
 private:
     mvr_image_id decode_image(size_t index, const std::string &iname);
+    mvr_image_id add_blocks(const unsigned char *bytes, size_t size, const mvr_ktx2::info &info, size_t index,
+                            const std::string &iname, const std::string &key);
+    // a debug note where a KTX2 of GPU blocks says sRGB (or linear) and the
+    // role it is used in says otherwise (the role decides)
+    void note_transfer(const mvr_material_desc &d, const std::string &w);
 };
 
 }  // namespace mvr_gltf

@@ -15,6 +15,7 @@
 
 extern "C" {
 #include "core_util.h"
+#include "material.h"
 }
 
 namespace mvr_gltf {
@@ -166,6 +167,8 @@ mvr_image_id converter::decode_image(size_t index, const std::string &iname)
         h.height = k.info.height;
         h.channels = k.info.components;
         raw = mvr_ktx2::scratch_bytes(k.info);
+        if (mvr_ktx2::block_format(k.info) != MVR_IMAGE_FORMAT_RGBA8)
+            return add_blocks(k.bytes, k.size, k.info, index, iname, key);
     } else {
         mvr_result r = mvr_image_probe(bytes, size_t(size), mime.c_str(), &h, &err);
         if (r != MVR_OK)
@@ -216,13 +219,75 @@ mvr_image_id converter::decode_image(size_t index, const std::string &iname)
                              iname + ": " + err.message);
         }
         const std::string &name = m.images.size() > index ? m.images[index].name : std::string();
-        mvr_image_desc d = {pixels.width, pixels.height, static_cast<const uint8_t *>(pixels.pixels), name.c_str()};
+        mvr_image_desc d;
+        std::memset(&d, 0, sizeof d);
+        d.width = pixels.width;
+        d.height = pixels.height;
+        d.rgba8 = static_cast<const uint8_t *>(pixels.pixels);
+        d.name = name.c_str();
         mvr_result added = mvr_scene_add_image(scene, &d, &id);
         mvr_image_free(&pixels);
         check(added, iname);
     }
     cx.mem.charge(rgba, iname + " (the scene's copy)"); /* within what was just released */
     ++cx.images_decoded;
+    if (!key.empty())
+        decoded[key] = id;
+    return id;
+}
+
+// A KTX2 file of a GPU block format mvr keeps (ETC2, EAC, ASTC LDR): its
+// levels into the scene as they are, never decoded to RGBA8. Whether the
+// GL can sample them is the renderer's to say (the scene is GL-free).
+mvr_image_id converter::add_blocks(const unsigned char *bytes, size_t size, const mvr_ktx2::info &info, size_t index,
+                                   const std::string &iname, const std::string &key)
+{
+    struct {
+        const unsigned char *bytes;
+        size_t size;
+        const mvr_ktx2::info &info;
+    } k{bytes, size, info};
+    if (k.info.width > cx.limits.max_image_dimension || k.info.height > cx.limits.max_image_dimension)
+        refuse(iname + ": " + std::to_string(k.info.width) + "x" + std::to_string(k.info.height) +
+               " is over the cap of " + std::to_string(cx.limits.max_image_dimension) +
+               " (mvr_gltf_options.max_image_dimension)");
+    if (decoded.size() >= cx.limits.max_images)
+        refuse(iname + ": more than " + std::to_string(cx.limits.max_images) + " images (mvr_gltf_options.max_images)");
+    mvr_image_format format = mvr_ktx2::block_format(k.info);
+    uint32_t levels = mvr_ktx2::block_levels(k.info);
+    uint64_t blocks = 0;   // the levels' sizes, checked by the parser against the format's block arithmetic
+    for (uint32_t lv = 0; lv < levels; ++lv)
+        blocks += k.info.levels[lv].uncompressed;
+    std::string dims = std::to_string(k.info.width) + "x" + std::to_string(k.info.height) + " " +
+                       mvr_image_format_name(format) + ", " + std::to_string(levels) + " levels";
+    mvr_image_id id = {0};
+    {
+        // reading holds the inflated levels (Zstandard) and the scene's copy
+        charged reading(cx.mem, mvr_ktx2::scratch_bytes(k.info) + blocks, iname + " (" + dims + ", reading)");
+        std::vector<mvr_image_level> lv;
+        std::vector<std::vector<unsigned char>> storage;
+        std::string why;
+        mvr_ktx2::status st = mvr_ktx2::read_blocks(k.bytes, k.size, k.info, &lv, &storage, &why);
+        if (st != mvr_ktx2::status::ok)
+            throw load_error(st == mvr_ktx2::status::out_of_memory ? MVR_ERROR_OUT_OF_MEMORY
+                             : st == mvr_ktx2::status::unsupported ? MVR_ERROR_UNSUPPORTED
+                                                                   : MVR_ERROR_INVALID_ASSET,
+                             iname + ": " + why);
+        const std::string &name = m.images.size() > index ? m.images[index].name : std::string();
+        mvr_image_desc d;
+        std::memset(&d, 0, sizeof d);
+        d.width = k.info.width;
+        d.height = k.info.height;
+        d.name = name.c_str();
+        d.format = format;
+        d.level_count = uint32_t(lv.size());
+        for (size_t i = 0; i < lv.size() && i < MVR_IMAGE_MAX_LEVELS; ++i)
+            d.levels[i] = lv[i];
+        check(mvr_scene_add_image(scene, &d, &id), iname);
+    }
+    cx.mem.charge(blocks, iname + " (the scene's copy)"); /* within what was just released */
+    ++cx.images_decoded;
+    block_transfer[id.id] = k.info.dfd_transfer;
     if (!key.empty())
         decoded[key] = id;
     return id;
@@ -316,6 +381,22 @@ mvr_texture_ref converter::texture_ref(int index, int texcoord, const tinygltf::
     return ref;
 }
 
+void converter::note_transfer(const mvr_material_desc &d, const std::string &w)
+{
+    const uint8_t TRANSFER_SRGB = 2;   // Khronos Data Format 1.3, 5.8
+    for (uint32_t role = 0; role < MVR_ROLE_COUNT; ++role) {
+        const mvr_texture_ref *t = mvr_material_role(&d, role);
+        auto it = block_transfer.find(t->image.id);
+        if (t->image.id == 0 || it == block_transfer.end())
+            continue;
+        bool file_srgb = it->second == TRANSFER_SRGB, role_srgb = mvr_role_is_srgb(role);
+        if (file_srgb != role_srgb)
+            mvr_log(&cx.logger, MVR_LOG_DEBUG, MVR_LOG_ID_GENERAL,
+                    "mvr_gltf: %s: the %s texture's KTX2 says %s; the role's %s transfer is used", w.c_str(),
+                    mvr_role_name(role), file_srgb ? "sRGB" : "linear", role_srgb ? "sRGB" : "linear");
+    }
+}
+
 mvr_material_id converter::material(int index)
 {
     auto found = materials.find(index);
@@ -365,6 +446,7 @@ mvr_material_id converter::material(int index)
                 e = 0.0f; /* the extension's strength 0 turns emission off; 0 means "default" in mvr */
     }
     pbr_extensions(g, w, d);
+    note_transfer(d, w);
     d.name = g.name.c_str();
     mvr_material_id id = {0};
     check(mvr_scene_add_material(scene, &d, &id), w);

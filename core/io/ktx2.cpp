@@ -320,7 +320,10 @@ std::string unsupported_reason(const info &in)
     switch (in.kind) {
     case payload::uncompressed8: break;
     case payload::block:
-        return in.format + " is a GPU block format; mvr does not upload compressed textures yet";
+        if (block_format(in) == MVR_IMAGE_FORMAT_RGBA8)
+            return in.format + " is a GPU block format mvr does not upload (it uploads ETC2, EAC R11 / RG11 unsigned "
+                               "and ASTC LDR)";
+        break;
     case payload::basis_etc1s:
     case payload::basis_uastc:
         return in.format + " needs a Basis Universal transcoder, which mvr does not have";
@@ -339,17 +342,100 @@ std::string unsupported_reason(const info &in)
         return "ZLIB supercompression (scheme 3) is not decoded by mvr (none and Zstandard are)";
     if (in.supercompression != SC_NONE && in.supercompression != SC_ZSTD)
         return "supercompression scheme " + std::to_string(in.supercompression) + " is unknown to mvr";
+    if (in.kind == payload::block && (in.flip_x || in.flip_y))
+        return "block-compressed image stored " + std::string(in.flip_y ? "bottom row first" : "right to left") +
+               " (KTXorientation): mvr uploads blocks as stored and cannot flip them";
     return "";
+}
+
+mvr_image_format block_format(const info &in)
+{
+    if (in.kind != payload::block)
+        return MVR_IMAGE_FORMAT_RGBA8;
+    switch (in.vk_format) {
+    case 147: case 148: return MVR_IMAGE_FORMAT_ETC2_RGB8;
+    case 149: case 150: return MVR_IMAGE_FORMAT_ETC2_RGB8_A1;
+    case 151: case 152: return MVR_IMAGE_FORMAT_ETC2_RGBA8;
+    case 153: return MVR_IMAGE_FORMAT_EAC_R11;
+    case 155: return MVR_IMAGE_FORMAT_EAC_RG11;
+    default: break;
+    }
+    // ASTC LDR: 157 + 2 * i (UNORM) and + 1 (SRGB), i in mvr_image_format's order
+    if (in.vk_format >= 157 && in.vk_format <= 184)
+        return mvr_image_format(int(MVR_IMAGE_FORMAT_ASTC_4x4) + int(in.vk_format - 157) / 2);
+    return MVR_IMAGE_FORMAT_RGBA8;
+}
+
+uint32_t block_levels(const info &in)
+{
+    return in.level_count ? in.level_count : 1;
 }
 
 uint64_t scratch_bytes(const info &in)
 {
-    return in.supercompression == SC_ZSTD && !in.levels.empty() ? in.levels[0].uncompressed : 0;
+    if (in.supercompression != SC_ZSTD || in.levels.empty())
+        return 0;
+    if (in.kind != payload::block)
+        return in.levels[0].uncompressed;
+    uint64_t sum = 0;   // each level is a checked product; a 2D chain's sum stays below 2^64 / 2
+    for (uint32_t k = 0; k < block_levels(in) && k < in.levels.size(); ++k)
+        sum += in.levels[k].uncompressed;
+    return sum;
+}
+
+status read_blocks(const unsigned char *p, size_t n, const info &in, std::vector<mvr_image_level> *levels,
+                   std::vector<std::vector<unsigned char>> *storage, std::string *why)
+{
+    std::string reason = unsupported_reason(in);
+    if (reason.empty() && block_format(in) == MVR_IMAGE_FORMAT_RGBA8)
+        reason = in.format + " is not a block format mvr keeps";
+    if (!reason.empty()) {
+        *why = reason;
+        return status::unsupported;
+    }
+    uint32_t count = block_levels(in);
+    levels->assign(count, mvr_image_level{nullptr, 0});
+    storage->clear();
+    try {
+        storage->resize(count);
+    } catch (const std::bad_alloc &) {
+        *why = "out of memory reading KTX2 levels";
+        return status::out_of_memory;
+    }
+    for (uint32_t k = 0; k < count; ++k) {
+        const level &l = in.levels[k];
+        std::string lw = "KTX2 level " + std::to_string(k);
+        if (!inside(l.offset, l.length, n))
+            return bad(why, lw + " is outside the file");
+        if (in.supercompression == SC_NONE) {
+            (*levels)[k] = mvr_image_level{p + l.offset, size_t(l.length)};
+            continue;
+        }
+        // Zstandard: into a buffer of exactly uncompressedByteLength (the
+        // block size parse() checked), which bounds what a hostile frame writes
+        std::vector<unsigned char> &buf = (*storage)[k];
+        try {
+            buf.resize(size_t(l.uncompressed));
+        } catch (const std::bad_alloc &) {
+            *why = "out of memory inflating " + lw + " (" + std::to_string(l.uncompressed) + " bytes)";
+            return status::out_of_memory;
+        }
+        size_t got = ZSTD_decompress(buf.data(), buf.size(), p + l.offset, size_t(l.length));
+        if (ZSTD_isError(got))
+            return bad(why, lw + "'s Zstandard data does not inflate (" + ZSTD_getErrorName(got) + ")");
+        if (got != l.uncompressed)
+            return bad(why, lw + "'s Zstandard data inflates to " + std::to_string(got) +
+                                " bytes, the level index says " + std::to_string(l.uncompressed));
+        (*levels)[k] = mvr_image_level{buf.data(), buf.size()};
+    }
+    return status::ok;
 }
 
 status decode(const unsigned char *p, size_t n, const info &in, unsigned char *rgba, std::string *why)
 {
     std::string reason = unsupported_reason(in);
+    if (reason.empty() && in.kind != payload::uncompressed8)
+        reason = in.format + " is kept as GPU blocks, not decoded";
     if (!reason.empty()) {
         *why = reason;
         return status::unsupported;

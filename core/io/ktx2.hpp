@@ -4,9 +4,12 @@
 // count and level size checked against the bytes before anything is read.
 // What mvr decodes: level 0 of the uncompressed 8-bit formats
 // (VK_FORMAT_R8 / R8G8 / R8G8B8 / B8G8R8 / R8G8B8A8 / B8G8R8A8, _UNORM or
-// _SRGB), with no supercompression or Zstandard, into RGBA8. Everything else
-// (GPU block formats, Basis Universal, other formats, ZLIB) is parsed and
-// named, not decoded: decode() says it is unsupported.
+// _SRGB), with no supercompression or Zstandard, into RGBA8. What mvr keeps
+// as GPU blocks (every level, uploaded without decoding): ETC2 RGB8 / RGB8A1
+// / RGBA8, EAC R11 / RG11 unsigned and ASTC LDR, with no supercompression or
+// Zstandard (read_blocks). Everything else (BCn, signed EAC, ASTC HDR, Basis
+// Universal, other formats, ZLIB) is parsed and named, not decoded:
+// decode() / unsupported_reason() say why.
 #ifndef MVR_KTX2_HPP
 #define MVR_KTX2_HPP
 
@@ -14,6 +17,8 @@
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include "mvr/mvr.h"
 
 namespace mvr_ktx2 {
 
@@ -61,11 +66,28 @@ enum class status { ok, invalid, unsupported, out_of_memory };
 // file of any format parses, see kind).
 status parse(const unsigned char *p, size_t n, info *out, std::string *why);
 
-// Why a parsed file is not decoded by decode(), or "" when it is.
+// Why a parsed file is neither decoded by decode() nor read by
+// read_blocks(), or "" when it is one of the two.
 std::string unsupported_reason(const info &in);
 
-// Bytes decode() holds besides its output while it runs (the inflated
-// level for Zstandard; 0 otherwise).
+// The mvr_image_format a block-compressed file is kept in (MVR_IMAGE_FORMAT_RGBA8:
+// not one mvr keeps as blocks; decode() or nothing).
+mvr_image_format block_format(const info &in);
+
+// The levels read_blocks() gives: max(1, levelCount) (levelCount 0 asks for
+// generated mips, which blocks cannot have: the base level alone is kept).
+uint32_t block_levels(const info &in);
+
+// Reads every level of a file block_format() keeps (layer 0, face 0: the
+// only one unsupported_reason lets through): levels[k] points into p for
+// uncompressed data, or into storage[k] (inflated to exactly the level
+// index's uncompressedByteLength) for Zstandard. invalid: a Zstandard level
+// that does not inflate to its size; out_of_memory.
+status read_blocks(const unsigned char *p, size_t n, const info &in, std::vector<mvr_image_level> *levels,
+                   std::vector<std::vector<unsigned char>> *storage, std::string *why);
+
+// Bytes decode() (or read_blocks()) holds besides its output while it runs
+// (the inflated level(s) for Zstandard; 0 otherwise).
 uint64_t scratch_bytes(const info &in);
 
 // Decodes level 0 (layer 0) of a parsed file into rgba (width * height * 4

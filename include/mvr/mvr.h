@@ -261,11 +261,75 @@ mvr_result mvr_scene_create(const mvr_scene_desc *desc, mvr_scene **out_scene, m
 void mvr_scene_destroy(mvr_scene *scene);
 const char *mvr_scene_last_error(const mvr_scene *scene);
 
-/* Images: 8-bit RGBA pixels, rows top to bottom (as image files store them). */
+/* How an image's texels are stored. RGBA8 (the zero value) is 8-bit RGBA
+ * pixels; the others are GPU block formats the GL samples without mvr
+ * decoding them: the blocks are uploaded as given (glCompressedTex*), each
+ * level ceil(w / bw) * ceil(h / bh) blocks, rows of blocks top first (as a
+ * KTX2 file stores them). Whether a texture is sRGB-encoded comes from its
+ * role (base color, emissive, ...: GL_COMPRESSED_SRGB8_ETC2 and the like),
+ * as for RGBA8; EAC R11 / RG11 have no sRGB form and are sampled as stored.
+ * ETC2 and EAC are core in OpenGL ES 3.0 (and desktop GL 4.3); ASTC needs
+ * KHR_texture_compression_astc_ldr. An image the renderer's GL cannot
+ * sample is drawn with its role's neutral value (white; a flat normal),
+ * with a warning naming it (mvr_frame_stats.images_unsampleable). */
+typedef enum mvr_image_format {
+    MVR_IMAGE_FORMAT_RGBA8 = 0,
+    MVR_IMAGE_FORMAT_ETC2_RGB8,        /* 4x4 blocks of 8 bytes */
+    MVR_IMAGE_FORMAT_ETC2_RGB8_A1,     /* punch-through alpha; 4x4, 8 bytes */
+    MVR_IMAGE_FORMAT_ETC2_RGBA8,       /* ETC2 colour + EAC alpha; 4x4, 16 bytes */
+    MVR_IMAGE_FORMAT_EAC_R11,          /* unsigned; 4x4, 8 bytes; samples (r, 0, 0, 1) */
+    MVR_IMAGE_FORMAT_EAC_RG11,         /* unsigned; 4x4, 16 bytes; samples (r, g, 0, 1) */
+    MVR_IMAGE_FORMAT_ASTC_4x4,         /* ASTC LDR: 16 bytes per block of every size */
+    MVR_IMAGE_FORMAT_ASTC_5x4,
+    MVR_IMAGE_FORMAT_ASTC_5x5,
+    MVR_IMAGE_FORMAT_ASTC_6x5,
+    MVR_IMAGE_FORMAT_ASTC_6x6,
+    MVR_IMAGE_FORMAT_ASTC_8x5,
+    MVR_IMAGE_FORMAT_ASTC_8x6,
+    MVR_IMAGE_FORMAT_ASTC_8x8,
+    MVR_IMAGE_FORMAT_ASTC_10x5,
+    MVR_IMAGE_FORMAT_ASTC_10x6,
+    MVR_IMAGE_FORMAT_ASTC_10x8,
+    MVR_IMAGE_FORMAT_ASTC_10x10,
+    MVR_IMAGE_FORMAT_ASTC_12x10,
+    MVR_IMAGE_FORMAT_ASTC_12x12,
+    MVR_IMAGE_FORMAT_COUNT
+} mvr_image_format;
+
+/* Levels of a 16384-texel image's full mip chain. */
+#define MVR_IMAGE_MAX_LEVELS 15
+
+/* "rgba8", "etc2_rgb8", ..., "astc_12x12"; "unknown" outside the enum. */
+const char *mvr_image_format_name(mvr_image_format format);
+/* A format's block: width and height in texels and bytes (RGBA8: 1 x 1, 4
+ * bytes). false outside the enum. */
+bool mvr_image_format_block(mvr_image_format format, uint32_t *block_width, uint32_t *block_height,
+                            uint32_t *block_bytes);
+/* The bytes of mip level `level` of a width x height image in format:
+ * max(1, width >> level) by max(1, height >> level) texels in whole blocks.
+ * false (and *out 0) for a format outside the enum, a level outside the
+ * image's chain (floor(log2(max(width, height))) + 1 levels) or a size that
+ * overflows. */
+bool mvr_image_level_size(mvr_image_format format, uint32_t width, uint32_t height, uint32_t level, uint64_t *out);
+
+typedef struct mvr_image_level {
+    const void *data;            /* the level's blocks, copied */
+    size_t size;                 /* exactly mvr_image_level_size's bytes */
+} mvr_image_level;
+
+/* Images: 8-bit RGBA pixels, rows top to bottom (as image files store
+ * them), or (format != RGBA8) GPU blocks with their mip levels. */
 typedef struct mvr_image_desc {
     uint32_t width, height;
-    const uint8_t *rgba8;        /* width * height * 4 bytes, copied */
+    const uint8_t *rgba8;        /* RGBA8: width * height * 4 bytes, copied; NULL otherwise */
     const char *name;            /* optional, for messages */
+    mvr_image_format format;     /* 0 = RGBA8 */
+    /* Block formats: level_count (1..MVR_IMAGE_MAX_LEVELS, at most the full
+     * chain) levels, level 0 (width x height) first, each its exact size.
+     * Fewer levels than the full chain are fine: a sampler that reads mips
+     * reads only those. RGBA8 images leave these 0 (mips are generated). */
+    uint32_t level_count;
+    mvr_image_level levels[MVR_IMAGE_MAX_LEVELS];
 } mvr_image_desc;
 mvr_result mvr_scene_add_image(mvr_scene *scene, const mvr_image_desc *desc, mvr_image_id *out);
 
@@ -997,6 +1061,10 @@ typedef struct mvr_renderer_overrides {
      * mvr_program_feature_name names them; only these may be disabled):
      * what an extension costs, and what it changes, in `mvr bench`. 0 = none */
     uint32_t disable_features;
+    /* Image formats treated as ones the GL cannot sample (bits
+     * 1u << mvr_image_format; RGBA8's bit is ignored): tests of the
+     * neutral-value fallback on a GL that has the formats. 0 = none */
+    uint32_t disable_image_formats;
 } mvr_renderer_overrides;
 
 /* The one place mvr reads the environment, and only when an application
@@ -1321,6 +1389,11 @@ typedef struct mvr_frame_stats {
      * bytes of the mip-mapped copy array */
     uint32_t transmission_copies;
     uint64_t transmission_bytes;
+    /* Scene images the GL holds block-compressed as given (no RGBA8
+     * decode), and scene images whose format the GL cannot sample, drawn
+     * with their roles' neutral values (each warned about once per upload). */
+    uint32_t images_compressed;
+    uint32_t images_unsampleable;
 } mvr_frame_stats;
 
 /* The supersampling resolve: box-filters linear RGBA float pixels (width x

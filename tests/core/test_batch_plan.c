@@ -9,7 +9,7 @@ static mvr_image_id add_image(mvr_scene *s, uint32_t w, uint32_t h, uint8_t valu
 {
     uint8_t *px = malloc((size_t)w * h * 4);
     memset(px, value, (size_t)w * h * 4);
-    mvr_image_desc d = {w, h, px, "test"};
+    mvr_image_desc d = {.width = w, .height = h, .rgba8 = px, .name = "test"};
     mvr_image_id id = {0};
     mvr_scene_add_image(s, &d, &id);
     free(px);

@@ -84,7 +84,7 @@ static void references_are_checked(mvr_test_state *t)
     mvr_light_desc l = {MVR_LIGHT_POINT, {1, 1, 1}, -1.0f, 0, 0, 0, false, 0};
     mvr_light_id lid;
     CHECK(t, mvr_scene_add_light(s, &l, &lid) == MVR_ERROR_INVALID_ARGUMENT);
-    mvr_image_desc img = {0, 4, NULL, "empty"};
+    mvr_image_desc img = {.width = 0, .height = 4, .rgba8 = NULL, .name = "empty"};
     mvr_image_id iid;
     CHECK(t, mvr_scene_add_image(s, &img, &iid) == MVR_ERROR_INVALID_ARGUMENT);
     CHECK(t, mvr_scene_add_image(NULL, &img, &iid) == MVR_ERROR_INVALID_ARGUMENT);

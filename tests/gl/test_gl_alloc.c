@@ -190,7 +190,7 @@ static mvr_scene *image_scene(mvr_test_state *t, uint32_t iw, uint32_t ih)
             memcpy(p, x < iw / 2 ? orange : blue, 3);
             p[3] = 255;
         }
-    mvr_image_desc id = {iw, ih, px, "huge"};
+    mvr_image_desc id = {.width = iw, .height = ih, .rgba8 = px, .name = "huge"};
     stress_unlit_image_quad(t, s, &id);
     free(px);
     return s;

@@ -29,7 +29,7 @@ static mvr_scene *quad_scene(mvr_test_state *t, uint8_t r, uint8_t g, uint8_t b)
         px[i * 4 + 2] = b;
         px[i * 4 + 3] = 255;
     }
-    mvr_image_desc id = {4, 4, px, "flat"};
+    mvr_image_desc id = {.width = 4, .height = 4, .rgba8 = px, .name = "flat"};
     stress_unlit_image_quad(t, s, &id);
     return s;
 }

@@ -303,7 +303,7 @@ static void extension_textures_are_sampled(mvr_test_state *t)
         CHECK(t, mvr_scene_create(NULL, &scenes[k], NULL) == MVR_OK);
         mvr_material_desc md = k == 0 ? bare : coated;
         if (k == 2) {
-            mvr_image_desc id = {TW, TH, half, "half"};
+            mvr_image_desc id = {.width = TW, .height = TH, .rgba8 = half, .name = "half"};
             CHECK(t, mvr_scene_add_image(scenes[k], &id, &md.clearcoat.texture.image) == MVR_OK);
             md.clearcoat.texture.sampler = nearest;
         }
@@ -339,7 +339,7 @@ static void extension_textures_are_sampled(mvr_test_state *t)
         mvr_scene **sp = k ? &flat : &s;
         CHECK(t, mvr_scene_create(NULL, sp, NULL) == MVR_OK);
         mvr_image_id ih, it, ig;
-        mvr_image_desc dh = {TW, TH, half, "half"}, dt = {TW, TH, tilt, "tilt"}, dg = {TW, TH, grey, "grey"};
+        mvr_image_desc dh = {.width = TW, .height = TH, .rgba8 = half, .name = "half"}, dt = {.width = TW, .height = TH, .rgba8 = tilt, .name = "tilt"}, dg = {.width = TW, .height = TH, .rgba8 = grey, .name = "grey"};
         CHECK(t, mvr_scene_add_image(*sp, &dh, &ih) == MVR_OK && mvr_scene_add_image(*sp, &dt, &it) == MVR_OK &&
                      mvr_scene_add_image(*sp, &dg, &ig) == MVR_OK);
         mvr_material_desc md = coated;

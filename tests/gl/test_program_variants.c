@@ -108,7 +108,7 @@ static void variants_follow_the_scene(mvr_test_state *t)
             texels[i * 4 + 2] = 240;
             texels[i * 4 + 3] = 255;
         }
-        mvr_image_desc id = {4, 4, texels, "bumps"};
+        mvr_image_desc id = {.width = 4, .height = 4, .rgba8 = texels, .name = "bumps"};
         mvr_image_id image;
         CHECK(t, mvr_scene_add_image(scene, &id, &image) == MVR_OK);
         mvr_material_desc bumpy = plain;

@@ -31,7 +31,7 @@ static void srgb_round_trip(mvr_test_state *t)
         ramp[i * 4 + 2] = (uint8_t)((i * 7) & 255);
         ramp[i * 4 + 3] = 255;
     }
-    mvr_image_desc id = {256, 1, ramp, "ramp"};
+    mvr_image_desc id = {.width = 256, .height = 1, .rgba8 = ramp, .name = "ramp"};
     mvr_image_id img;
     CHECK(t, mvr_scene_add_image(s, &id, &img) == MVR_OK);
     mvr_material_desc m = mvr_material_defaults();

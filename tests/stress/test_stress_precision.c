@@ -24,7 +24,7 @@ static mvr_image_id checker_image(mvr_test_state *t, mvr_scene *s)
             p[2] = on ? 60 : 200;
             p[3] = 255;
         }
-    mvr_image_desc d = {16, 16, px, "checker"};
+    mvr_image_desc d = {.width = 16, .height = 16, .rgba8 = px, .name = "checker"};
     mvr_image_id id = {0};
     CHECK(t, mvr_scene_add_image(s, &d, &id) == MVR_OK);
     return id;
@@ -302,7 +302,7 @@ static void degenerate_meshes(mvr_test_state *t)
         nm[i * 4 + 2] = 200;
         nm[i * 4 + 3] = 255;
     }
-    mvr_image_desc nd = {8, 8, nm, "bumps"};
+    mvr_image_desc nd = {.width = 8, .height = 8, .rgba8 = nm, .name = "bumps"};
     mvr_image_id bumps;
     CHECK(t, mvr_scene_add_image(s, &nd, &bumps) == MVR_OK);
     mvr_material_desc m = mvr_material_defaults();
