@@ -171,9 +171,6 @@ static void forget_downscaled(mvr_gpu_scene *g)
     if (g->downscaled)
         memset(g->downscaled, 0, g->downscaled_cap);
     g->downscaled_count = 0;
-    if (g->compressed)
-        memset(g->compressed, 0, g->compressed_cap);
-    g->compressed_count = 0;
 }
 
 /* The GL's internal format of a block format in a color space. EAC R11 /
@@ -208,15 +205,20 @@ static const char *unsampleable_reason(const mvr_renderer *r, mvr_image_format f
                 : "no ETC2 / EAC (OpenGL ES 3.0, desktop GL 4.3 or GL_ARB_ES3_compatibility)";
 }
 
-/* Images the materials sample in a format this GL cannot sample: one
- * warning per image naming it and why, counted (the stats); the batch plan
- * and texture_for give their roles the neutral value. */
-static void note_unsampleable(mvr_renderer *r, const mvr_scene *s)
+/* The images the materials sample in block formats: counted (the stats)
+ * where the GL samples them (uploaded as blocks on either material path,
+ * also where identical blocks share one array layer); where it cannot, one
+ * warning per image naming it and why, counted too: the batch plan and
+ * texture_for give their roles the neutral value. */
+static void note_formats(mvr_renderer *r, const mvr_scene *s)
 {
     mvr_gpu_scene *g = &r->gpu;
     if (g->unsampleable)
         memset(g->unsampleable, 0, g->unsampleable_cap);
     g->unsampleable_count = 0;
+    if (g->compressed)
+        memset(g->compressed, 0, g->compressed_cap);
+    g->compressed_count = 0;
     for (uint32_t m = 0; m < s->material_count; ++m) {
         const mvr_material_desc *md = &s->materials[m].desc;
         for (uint32_t role = 0; role < MVR_ROLE_COUNT; ++role) {
@@ -225,14 +227,16 @@ static void note_unsampleable(mvr_renderer *r, const mvr_scene *s)
             uint32_t image = mvr_material_role(md, role)->image.id - 1;
             const scene_image *img = &s->images[image];
             const char *why = unsampleable_reason(r, img->format);
+            if (!why && img->format != MVR_IMAGE_FORMAT_RGBA8)
+                mark_image(&g->compressed, &g->compressed_cap, &g->compressed_count, image, s->image_count);
             if (!why || (image < g->unsampleable_cap && g->unsampleable[image]))
                 continue;
             mark_image(&g->unsampleable, &g->unsampleable_cap, &g->unsampleable_count, image, s->image_count);
             mvr_log(&r->logger, MVR_LOG_WARNING, MVR_LOG_ID_GENERAL,
                     "mvr: image %u%s%s%s (%ux%u %s) cannot be sampled by this GL (%s): its textures (the %s "
-                    "texture of material %u%s) use the role's neutral value",
+                    "texture of material %u, and any other) use the role's neutral value",
                     image + 1, img->name[0] ? " '" : "", img->name, img->name[0] ? "'" : "", img->width, img->height,
-                    mvr_image_format_name(img->format), why, mvr_role_name(role), m, " and any other");
+                    mvr_image_format_name(img->format), why, mvr_role_name(role), m);
         }
     }
 }
@@ -445,9 +449,6 @@ static mvr_result make_texture(mvr_renderer *r, const mvr_scene *s, const textur
             if (job->layer_images[k] != MVR_NO_INDEX)
                 mark_downscaled(&r->gpu, job->layer_images[k], s->image_count);
     }
-    for (uint32_t k = 0; blocks && k < job->layer_count; ++k)
-        mark_image(&r->gpu.compressed, &r->gpu.compressed_cap, &r->gpu.compressed_count, job->layer_images[k],
-                   s->image_count);
     return MVR_OK;
 }
 
@@ -455,7 +456,7 @@ static mvr_result make_texture(mvr_renderer *r, const mvr_scene *s, const textur
  * use: RGBA8 with a mip chain only where a sampler that reads it needs one;
  * block formats with their own levels (where a sampler reads mips; else
  * level 0); a format the GL cannot sample: a 1 x 1 texture of the role's
- * neutral value (note_unsampleable warned). */
+ * neutral value (note_formats warned). */
 static mvr_result texture_for(mvr_renderer *r, const mvr_scene *s, uint32_t image, uint32_t role, GLuint *out)
 {
     mvr_gpu_scene *g = &r->gpu;
@@ -775,7 +776,7 @@ mvr_result mvr_gpu_scene_sync(mvr_renderer *r, const mvr_scene *s)
         g->geometry_version = s->geometry_version;
     }
     if (materials)
-        note_unsampleable(r, s);
+        note_formats(r, s);
     if (materials && arrays) {
         /* the plan depends on images and materials: rebuilt with either */
         release_arrays(r);
