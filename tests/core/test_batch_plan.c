@@ -36,6 +36,66 @@ static bool has_note(const mvr_batch_plan *p, const char *part)
     return false;
 }
 
+/* A 16x16 ETC2 RGB8 image of `levels` levels, every block byte `value`. */
+static mvr_image_id add_etc2(mvr_scene *s, uint32_t levels, uint8_t value)
+{
+    static uint8_t blocks[16 * 8];
+    memset(blocks, value, sizeof blocks);
+    mvr_image_desc d = {.width = 16, .height = 16, .name = "etc2", .format = MVR_IMAGE_FORMAT_ETC2_RGB8,
+                        .level_count = levels};
+    for (uint32_t k = 0; k < levels; ++k) {
+        uint64_t n = 0;
+        mvr_image_level_size(MVR_IMAGE_FORMAT_ETC2_RGB8, 16, 16, k, &n);
+        d.levels[k].data = blocks;
+        d.levels[k].size = (size_t)n;
+    }
+    mvr_image_id id = {0};
+    mvr_scene_add_image(s, &d, &id);
+    return id;
+}
+
+/* Block images group by (format, size, levels) apart from RGBA8 ones; the
+ * same blocks share a layer; a mipmapped sampler keeps the file's levels,
+ * a plain one level 0 alone; a format the GL cannot sample reads the neutral
+ * layer of a 1 x 1 RGBA8 group, with a note. */
+static void block_formats_group_apart(mvr_test_state *t)
+{
+    mvr_scene *s = NULL;
+    mvr_scene_create(NULL, &s, NULL);
+    mvr_image_id a = add_etc2(s, 3, 1), b = add_etc2(s, 3, 1), c = add_etc2(s, 5, 2);
+    CHECK(t, a.id && b.id && c.id);
+    add_material(s, a, DEFAULT_SAMPLER);
+    add_material(s, b, DEFAULT_SAMPLER);
+    add_material(s, c, DEFAULT_SAMPLER);
+    add_material(s, add_image(s, 16, 16, 7), DEFAULT_SAMPLER);
+    mvr_sampler_desc linear = {.min_filter = MVR_FILTER_LINEAR};
+    add_material(s, c, linear);
+    mvr_batch_plan p = {0};
+    CHECK(t, mvr_batch_plan_build(&p, s, 2048) == MVR_OK);
+    /* etc2 3 levels (a, b share a layer), etc2 5 levels, rgba8 (+ white), etc2 1 level */
+    CHECK_EQ_INT(t, p.group_count, 4);
+    CHECK_EQ_INT(t, p.materials[0].group[0], p.materials[1].group[0]);
+    CHECK_EQ_INT(t, p.materials[0].layer[0], p.materials[1].layer[0]);
+    const mvr_texture_group *g0 = &p.groups[p.materials[0].group[0]], *g2 = &p.groups[p.materials[2].group[0]];
+    const mvr_texture_group *g3 = &p.groups[p.materials[3].group[0]], *g4 = &p.groups[p.materials[4].group[0]];
+    CHECK(t, g0->format == MVR_IMAGE_FORMAT_ETC2_RGB8 && g0->levels == 3 && g0->layer_count == 1);
+    CHECK(t, g2->format == MVR_IMAGE_FORMAT_ETC2_RGB8 && g2->levels == 5 && g2 != g0);
+    CHECK(t, g3->format == MVR_IMAGE_FORMAT_RGBA8 && g3->neutral_layer != MVR_NO_INDEX);
+    CHECK(t, g4->format == MVR_IMAGE_FORMAT_ETC2_RGB8 && g4->levels == 1);
+    CHECK(t, g0->neutral_layer == MVR_NO_INDEX && g2->neutral_layer == MVR_NO_INDEX);
+    CHECK(t, has_note(&p, "mip count 5 differs"));
+    CHECK(t, has_note(&p, "format rgba8 differs"));
+    /* the GL samples no ETC2: every block image reads the neutral layer of one 1 x 1 group */
+    CHECK(t, mvr_batch_plan_build_for(&p, s, 2048, 1u << MVR_IMAGE_FORMAT_RGBA8) == MVR_OK);
+    const mvr_texture_group *n = &p.groups[p.materials[0].group[0]];
+    CHECK(t, n->format == MVR_IMAGE_FORMAT_RGBA8 && n->width == 1 && n->height == 1);
+    CHECK_EQ_INT(t, p.materials[0].layer[0], n->neutral_layer);
+    CHECK(t, has_note(&p, "etc2_rgb8 cannot be sampled"));
+    mvr_batch_plan_free(&p);
+    mvr_scene_destroy(s);
+}
+
+
 static void one_material(mvr_test_state *t)
 {
     mvr_scene *s = NULL;
@@ -129,4 +189,4 @@ static void duplicate_images_share_a_layer(mvr_test_state *t)
 }
 
 MVR_TEST_MAIN(TEST(one_material), TEST(same_size_shares_different_splits), TEST(layer_limit_splits),
-              TEST(duplicate_images_share_a_layer))
+              TEST(duplicate_images_share_a_layer), TEST(block_formats_group_apart))

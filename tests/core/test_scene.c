@@ -230,5 +230,51 @@ static void degenerate_values_are_repaired(mvr_test_state *t)
     mvr_scene_destroy(s);
 }
 
-MVR_TEST_MAIN(TEST(degenerate_values_are_repaired), TEST(bad_meshes_are_refused), TEST(references_are_checked),
+/* Block-compressed images: each level exactly its blocks' bytes (rounded up
+ * to whole blocks, down to 1 x 1), at most the full chain, no RGBA8 pixels
+ * beside them, a known format; RGBA8 images give no levels. */
+static void block_images_are_checked(mvr_test_state *t)
+{
+    mvr_scene *s = NULL;
+    mvr_scene_create(NULL, &s, NULL);
+    static uint8_t blocks[1024];
+    uint64_t n = 0;
+    CHECK(t, mvr_image_level_size(MVR_IMAGE_FORMAT_ETC2_RGBA8, 10, 6, 0, &n) && n == 3 * 2 * 16);
+    CHECK(t, mvr_image_level_size(MVR_IMAGE_FORMAT_ETC2_RGBA8, 10, 6, 3, &n) && n == 16);   /* 1x1 */
+    CHECK(t, !mvr_image_level_size(MVR_IMAGE_FORMAT_ETC2_RGBA8, 10, 6, 4, &n) && n == 0);   /* beyond the chain */
+    CHECK(t, mvr_image_level_size(MVR_IMAGE_FORMAT_ASTC_12x10, 25, 11, 0, &n) && n == 3 * 2 * 16);
+    CHECK(t, !mvr_image_level_size(MVR_IMAGE_FORMAT_COUNT, 4, 4, 0, &n));
+    mvr_image_desc d = {.width = 10, .height = 6, .name = "blocks", .format = MVR_IMAGE_FORMAT_ETC2_RGBA8,
+                        .level_count = 4};
+    size_t sizes[4] = {96, 32, 16, 16};
+    for (int k = 0; k < 4; ++k)
+        d.levels[k] = (mvr_image_level){blocks, sizes[k]};
+    mvr_image_id id = {0};
+    CHECK(t, mvr_scene_add_image(s, &d, &id) == MVR_OK && id.id == 1);
+    mvr_image_desc bad = d;
+    bad.levels[1].size = 16;
+    CHECK(t, mvr_scene_add_image(s, &bad, &id) == MVR_ERROR_INVALID_ARGUMENT && id.id == 0);
+    CHECK(t, strstr(mvr_scene_last_error(s), "blocks") && strstr(mvr_scene_last_error(s), "level 1"));
+    bad = d;
+    bad.level_count = 5;
+    bad.levels[4] = (mvr_image_level){blocks, 16};
+    CHECK(t, mvr_scene_add_image(s, &bad, &id) == MVR_ERROR_INVALID_ARGUMENT);
+    bad = d;
+    bad.level_count = 0;
+    CHECK(t, mvr_scene_add_image(s, &bad, &id) == MVR_ERROR_INVALID_ARGUMENT);
+    bad = d;
+    bad.levels[2].data = NULL;
+    CHECK(t, mvr_scene_add_image(s, &bad, &id) == MVR_ERROR_INVALID_ARGUMENT);
+    bad = d;
+    bad.rgba8 = blocks;
+    CHECK(t, mvr_scene_add_image(s, &bad, &id) == MVR_ERROR_INVALID_ARGUMENT);
+    bad = d;
+    bad.format = (mvr_image_format)99;
+    CHECK(t, mvr_scene_add_image(s, &bad, &id) == MVR_ERROR_INVALID_ARGUMENT);
+    mvr_image_desc rgba = {.width = 2, .height = 2, .rgba8 = blocks, .level_count = 2};
+    CHECK(t, mvr_scene_add_image(s, &rgba, &id) == MVR_ERROR_INVALID_ARGUMENT);
+    mvr_scene_destroy(s);
+}
+
+MVR_TEST_MAIN(TEST(block_images_are_checked), TEST(degenerate_values_are_repaired), TEST(bad_meshes_are_refused), TEST(references_are_checked),
               TEST(frame_packs_draws_relative_to_origin), TEST(features_follow_attributes_and_material))

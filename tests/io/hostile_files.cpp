@@ -401,6 +401,50 @@ static void ktx2_files(files &f)
     shape("ktx2_array", "a valid array texture of 3 layers", [](ktx2_desc &k) { k.layers = 3; }, 8 * 8 * 4 * 3);
     shape("ktx2_rgba16f", "VK_FORMAT_R16G16B16A16_SFLOAT",
           [](ktx2_desc &k) { k.vk_format = VK_R16G16B16A16_SFLOAT, k.type_size = 2, k.texel_bytes = 8; }, 8 * 8 * 8);
+
+    // GPU block payloads mvr keeps as blocks (ETC2, ASTC), each made to lie
+    const ktx2_desc etc2 = ktx2_gpu("etc2", 8, 8, 4);   // 8x8 ETC2 RGBA8: 64, 16, 16, 16 bytes
+    const std::vector<uint8_t> etc2_valid = ktx2_file(etc2);
+    put("ktx2_etc2_truncated", std::vector<uint8_t>(etc2_valid.begin(), etc2_valid.end() - 10),
+        "an 8x8 ETC2 KTX2 with 4 levels, its last 10 bytes (of level 0) cut", left_out);
+    {
+        std::vector<uint8_t> b = etc2_valid;   // level 1 (4x4: one 16-byte block) says 8
+        put_le64(b, ktx2_level_entry(1) + 8, 8);
+        put_le64(b, ktx2_level_entry(1) + 16, 8);
+        put("ktx2_etc2_level_size_lie", b, "8x8 ETC2 whose level 1 holds 8 bytes (one block is 16)", left_out);
+    }
+    {
+        std::vector<uint8_t> b = etc2_valid;   // 65536 x 65536: 4 GiB of blocks claimed
+        put_le32(b, 20, 65536);
+        put_le32(b, 24, 65536);
+        put_le32(b, KTX2_LEVEL_COUNT, 1);
+        put_le64(b, ktx2_level_entry(0) + 8, uint64_t(16384) * 16384 * 16);
+        put_le64(b, ktx2_level_entry(0) + 16, uint64_t(16384) * 16384 * 16);
+        put("ktx2_etc2_dims_huge", b, "65536x65536 ETC2, level 0 claims its 4 GiB", left_out);
+    }
+    {
+        std::vector<uint8_t> b = etc2_valid;
+        put_le32(b, KTX2_LEVEL_COUNT, 5);
+        put("ktx2_etc2_levels_beyond_log2", b, "8x8 ETC2 with levelCount 5 (log2(8) + 1 = 4)", left_out);
+    }
+    {
+        ktx2_desc k = etc2;   // Zstandard level 2 inflates to 8 of its 16 bytes
+        k.levels[2].resize(8);
+        ktx2_zstd(k);
+        k.uncompressed[2] = 16;
+        put("ktx2_etc2_zstd_short", ktx2_file(k), "8x8 ETC2, Zstandard level 2 inflates to 8 of 16 bytes", left_out);
+    }
+    {
+        ktx2_desc k = etc2;
+        k.orientation = "ru";
+        put("ktx2_etc2_bottom_up", ktx2_file(k), "8x8 ETC2 stored bottom row first (KTXorientation ru)", left_out);
+    }
+    {
+        ktx2_desc k = ktx2_gpu("astc", 8, 8, 1);   // sized for 4x4 blocks (4 blocks), declared 6x6 (also 4 blocks)...
+        k.vk_format = 165;                         // VK_FORMAT_ASTC_6x6_UNORM_BLOCK
+        k.levels[0].resize(16 * 3);                // ... so 3 blocks is a lie
+        put("ktx2_astc_6x6_size_lie", ktx2_file(k), "8x8 ASTC 6x6 whose level 0 holds 3 blocks (it needs 4)", left_out);
+    }
 }
 
 files write_all(const std::string &root_in)
