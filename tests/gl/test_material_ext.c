@@ -444,7 +444,7 @@ static void spec_gloss_is_a_dielectric(mvr_test_state *t)
         CHECK(t, mvr_scene_create(NULL, &scenes[k], NULL) == MVR_OK);
         mvr_material_desc md = *mats[k];
         if (k == 3) {
-            mvr_image_desc id = {TW, TH, half, "half"};
+            mvr_image_desc id = {.width = TW, .height = TH, .rgba8 = half, .name = "half"};
             CHECK(t, mvr_scene_add_image(scenes[k], &id, &md.spec_gloss.texture.image) == MVR_OK);
             md.spec_gloss.texture.sampler =
                 (mvr_sampler_desc){MVR_FILTER_NEAREST, MVR_FILTER_NEAREST, MVR_WRAP_REPEAT, MVR_WRAP_REPEAT};

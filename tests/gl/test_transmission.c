@@ -41,7 +41,7 @@ static mvr_scene *make_scene(mvr_test_state *t, const glass *g, bool light)
 {
     mvr_scene *s = NULL;
     CHECK(t, mvr_scene_create(NULL, &s, NULL) == MVR_OK);
-    mvr_image_desc id = {TW, TW, stripes, "stripes"};
+    mvr_image_desc id = {.width = TW, .height = TW, .rgba8 = stripes, .name = "stripes"};
     mvr_image_id img;
     CHECK(t, mvr_scene_add_image(s, &id, &img) == MVR_OK);
     mvr_material_desc wall = mvr_material_defaults();
