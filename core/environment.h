@@ -59,4 +59,17 @@ void mvr_environment_sh_basis(const double e[3], double out_y[9]);
  * 1..65536. */
 bool mvr_ibl_dfg_lut(uint32_t size, uint32_t samples, float *out_rg);
 
+/* KHR_materials_sheen (core/sheen_lut.c, where the formulas are cited): the
+ * Charlie distribution D(h) of a sheen roughness, the sheen visibility
+ * V(l, v), and the sheen lobe's directional albedo at n.v: out[0] with V
+ * (the albedo scaling's E), out[1] with Neubelt and Pettineo's visibility
+ * (the environment's split-sum factor). */
+double mvr_sheen_d_charlie(double roughness, double n_dot_h);
+double mvr_sheen_visibility(double roughness, double n_dot_l, double n_dot_v);
+void mvr_sheen_albedo(double n_dot_v, double roughness, double out[2]);
+/* The table of mvr_sheen_albedo at texel centres: x = n.v, y = sheen
+ * roughness; out_rg: size*size*2 floats, row j = roughness. False (nothing
+ * written) for a NULL out_rg or size outside 1..256. */
+bool mvr_sheen_lut(uint32_t size, float *out_rg);
+
 #endif

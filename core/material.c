@@ -103,14 +103,18 @@ uint32_t mvr_material_extension_features(const mvr_material_desc *m)
      * dielectric's diffuse lobe, which the specular extension's code draws */
     if (m->transmission.factor > 0.0f)
         f |= MVR_FEATURE_TRANSMISSION | MVR_FEATURE_SPECULAR;
-    /* a thin film over the dielectric and the metal (a film of thickness 0
-     * at most, without a texture to thicken it, is none) */
     /* a stretched specular lobe (strength 0 is the isotropic one) */
     if (m->anisotropy.strength > 0.0f)
         f |= MVR_FEATURE_ANISOTROPY | MVR_FEATURE_SPECULAR;
+    /* a thin film over the dielectric and the metal (a film of thickness 0
+     * at most, without a texture to thicken it, is none) */
     if (m->iridescence.factor > 0.0f &&
         (m->iridescence.thickness_maximum > 0.0f || m->iridescence.thickness_texture.image.id))
         f |= MVR_FEATURE_IRIDESCENCE | MVR_FEATURE_SPECULAR;
+    /* KHR_materials_sheen: a black sheen color is no sheen (the extension's
+     * default), whatever its textures say (they multiply the factor) */
+    if (m->sheen.color_factor[0] > 0.0f || m->sheen.color_factor[1] > 0.0f || m->sheen.color_factor[2] > 0.0f)
+        f |= MVR_FEATURE_SHEEN;
     return f;
 }
 

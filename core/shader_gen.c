@@ -43,6 +43,7 @@ static const feature_define mesh_defines[] = {
     {MVR_FEATURE_TRANSMISSION, "MVR_TRANSMISSION"},
     {MVR_FEATURE_IRIDESCENCE, "MVR_IRIDESCENCE"},
     {MVR_FEATURE_ANISOTROPY, "MVR_ANISOTROPY"},
+    {MVR_FEATURE_SHEEN, "MVR_SHEEN"},
 };
 
 /* the mesh bits the pre-skinning program shares (MVR_PRESKIN_FEATURES) */
@@ -66,6 +67,7 @@ static const feature_define composite_defines[] = {
 
 static const feature_define environment_defines[] = {
     {MVR_FEATURE_ENV_GGX, "MVR_ENV_GGX"},
+    {MVR_FEATURE_ENV_CHARLIE, "MVR_ENV_CHARLIE"},
 };
 
 static const feature_define background_defines[] = {

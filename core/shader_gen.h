@@ -90,7 +90,8 @@ typedef enum mvr_composite_feature {
  * cube map faces). */
 typedef enum mvr_environment_feature {
     MVR_FEATURE_ENV_GGX = 1u << 0,          /* GGX prefilter of the source cube map (one roughness) */
-    MVR_ENVIRONMENT_FEATURE_ALL_ = (1u << 1) - 1u
+    MVR_FEATURE_ENV_CHARLIE = 1u << 1,      /* the Charlie (sheen) prefilter instead (one sheen roughness) */
+    MVR_ENVIRONMENT_FEATURE_ALL_ = (1u << 2) - 1u
 } mvr_environment_feature;
 
 /* Feature bits of the background program. */

@@ -11,6 +11,11 @@
  *    from the source cube (shaders/env_prefilter.frag.glsl).
  * 3. The DFG table, once per renderer, computed on the CPU in double
  *    (core/ibl_lut.c) and stored as RG16F.
+ * KHR_materials_sheen adds, only for a frame that draws sheen: the Charlie
+ * chain (as the specular one, the sheen lobe's distribution instead of
+ * GGX, from the same source cube) once per environment, and the sheen
+ * albedo table (core/sheen_lut.c) once per renderer, which lights without
+ * an environment read too.
  * Diffuse light is the environment's spherical harmonics (CPU, at creation).
  *
  * Each cube level is one multiview pass whose six views are the six faces
@@ -32,6 +37,7 @@
 #define ENV_MAX_SOURCE 512u      /* source cube face size, at most */
 #define ENV_DFG_SIZE 64u
 #define ENV_DFG_SAMPLES 512u
+#define SHEEN_LUT_SIZE 32u
 
 static double now_ms(void)
 {
@@ -61,8 +67,10 @@ static void release_maps(mvr_renderer *r)
     mvr_gpu_environment *g = &r->env;
     mvr_renderer_delete(r, MVR_GL_TEXTURE, &g->source);
     mvr_renderer_delete(r, MVR_GL_TEXTURE, &g->specular);
+    mvr_renderer_delete(r, MVR_GL_TEXTURE, &g->charlie);
     mvr_renderer_delete(r, MVR_GL_SAMPLER, &g->cube_sampler);
     g->serial = 0;
+    g->charlie_serial = 0;
 }
 
 void mvr_environment_release(mvr_renderer *r)
@@ -70,6 +78,7 @@ void mvr_environment_release(mvr_renderer *r)
     release_maps(r);
     mvr_renderer_delete(r, MVR_GL_TEXTURE, &r->env.dfg);
     mvr_renderer_delete(r, MVR_GL_SAMPLER, &r->env.dfg_sampler);
+    mvr_renderer_delete(r, MVR_GL_TEXTURE, &r->env.sheen_lut);
 }
 
 static mvr_result check_fbo(mvr_renderer *r, const char *where)
@@ -325,26 +334,132 @@ static mvr_result prefilter(mvr_renderer *r, const mvr_environment *env)
     return MVR_OK;
 }
 
-mvr_result mvr_environment_sync(mvr_renderer *r, const mvr_environment *env)
+/* KHR_materials_sheen: the Charlie chain of the environment already
+ * prefiltered (its source cube), the specular chain's sizes and levels
+ * (level k of sheen roughness k / (levels - 1), the Sample Renderer's
+ * mapping), one multiview or six plain passes a level as the specular's. */
+static mvr_result charlie_prefilter(mvr_renderer *r, const mvr_environment *env)
 {
-    if (!env || r->env.serial == env->serial)
+    mvr_gpu_environment *g = &r->env;
+    const mvr_gl_api_table *gl = r->gl;
+    bool multiview = prefilter_multiview(r);
+    uint32_t levels = g->specular_levels, size0 = g->specular_size;
+    mvr_renderer_delete(r, MVR_GL_TEXTURE, &g->charlie);
+    g->charlie_serial = 0;
+    mvr_result res = make_texture(r, GL_TEXTURE_CUBE_MAP, &g->charlie, levels, GL_RGBA16F, size0, size0, 1,
+                                  "environment sheen (Charlie) cube map (rgba16f)");
+    GLuint scratch[12] = {0}, fbo = 0, read_fbo = 0, copy_fbo = 0;
+    for (uint32_t k = 0; k < levels && k < 12u && multiview && res == MVR_OK; ++k)
+        res = make_texture(r, GL_TEXTURE_2D_ARRAY, &scratch[k], 1, GL_RGBA16F, size0 >> k, size0 >> k, 6,
+                           "environment prefilter faces (rgba16f array)");
+    if (res == MVR_OK) {
+        gl->GenFramebuffers(1, &fbo);
+        if (multiview) {
+            gl->GenFramebuffers(1, &read_fbo);
+            gl->GenFramebuffers(1, &copy_fbo);
+        }
+    }
+    mvr_program_entry *e = NULL;
+    if (res == MVR_OK) {
+        mvr_full_screen_state(r);
+        res = environment_program(r, MVR_FEATURE_ENV_CHARLIE, multiview, &e);
+    }
+    if (res == MVR_OK) {
+        mvr_state_texture(&r->state, MVR_UNIT_ENV_INPUT, GL_TEXTURE_CUBE_MAP, g->source);
+        mvr_state_sampler(&r->state, MVR_UNIT_ENV_INPUT, 0);
+        gl->Uniform1i(e->loc_samples, (GLint)env->specular_samples);
+        gl->Uniform1f(e->loc_source_size, (GLfloat)g->source_size);
+        gl->Uniform1f(e->loc_source_max_lod, (GLfloat)(g->source_levels - 1u));
+    }
+    for (uint32_t k = 0; k < levels && res == MVR_OK; ++k) {
+        gl->Uniform1f(e->loc_roughness, levels > 1 ? (GLfloat)k / (GLfloat)(levels - 1u) : 0.0f);
+        level_job j = {g->charlie, k, size0 >> k, multiview ? scratch[k] : 0u, fbo, read_fbo, copy_fbo};
+        res = draw_level(r, &j, e);
+    }
+    if (res == MVR_OK) {
+        res = mvr_gl_check(r->ctx, "environment sheen prefilter", true);
+        if (res != MVR_OK)
+            res = mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
+    }
+    mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &fbo);
+    mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &read_fbo);
+    mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &copy_fbo);
+    for (uint32_t k = 0; k < 12u; ++k)
+        if (scratch[k])
+            mvr_renderer_delete(r, MVR_GL_TEXTURE, &scratch[k]);
+    if (res != MVR_OK) {
+        mvr_renderer_delete(r, MVR_GL_TEXTURE, &g->charlie);
+        return res;
+    }
+    g->charlie_serial = env->serial;
+    return MVR_OK;
+}
+
+mvr_result mvr_sheen_lut_sync(mvr_renderer *r)
+{
+    mvr_gpu_environment *g = &r->env;
+    if (g->sheen_lut)
+        return MVR_OK;
+    float *table = malloc((size_t)SHEEN_LUT_SIZE * SHEEN_LUT_SIZE * 2 * sizeof *table);
+    if (!table || !mvr_sheen_lut(SHEEN_LUT_SIZE, table)) {
+        free(table);
+        return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "sheen albedo table: out of memory");
+    }
+    const mvr_gl_api_table *gl = r->gl;
+    mvr_result res = make_texture(r, GL_TEXTURE_2D, &g->sheen_lut, 1, GL_RG16F, SHEEN_LUT_SIZE, SHEEN_LUT_SIZE, 1,
+                                  "sheen albedo table (rg16f)");
+    if (res == MVR_OK) {
+        gl->PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        gl->TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, SHEEN_LUT_SIZE, SHEEN_LUT_SIZE, GL_RG, GL_FLOAT, table);
+        /* sampled bilinearly, clamped (texture parameters: no sampler object) */
+        gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        r->upload_bytes += (uint64_t)SHEEN_LUT_SIZE * SHEEN_LUT_SIZE * 4u;
+    }
+    free(table);
+    return res;
+}
+
+void mvr_sheen_bind(mvr_renderer *r, bool environment)
+{
+    mvr_state_cache *st = &r->state;
+    mvr_state_texture(st, MVR_UNIT_SHEEN_LUT, GL_TEXTURE_2D, r->env.sheen_lut);
+    mvr_state_sampler(st, MVR_UNIT_SHEEN_LUT, 0);
+    if (environment) {
+        mvr_state_texture(st, MVR_UNIT_ENV_CHARLIE, GL_TEXTURE_CUBE_MAP, r->env.charlie);
+        mvr_state_sampler(st, MVR_UNIT_ENV_CHARLIE, r->env.cube_sampler);
+    }
+}
+
+bool mvr_environment_stale(const mvr_renderer *r, const mvr_environment *env, bool sheen)
+{
+    return env && (r->env.serial != env->serial || (sheen && r->env.charlie_serial != env->serial));
+}
+
+mvr_result mvr_environment_sync(mvr_renderer *r, const mvr_environment *env, bool sheen)
+{
+    if (!mvr_environment_stale(r, env, sheen))
         return MVR_OK;
     double t0 = now_ms();
     /* desktop GL filters across cube faces only when asked (GLES always does) */
     if (r->ctx->caps.api == MVR_GL_API_DESKTOP)
         r->gl->Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
     mvr_result res = make_dfg(r);
-    if (res == MVR_OK)
+    if (res == MVR_OK && r->env.serial != env->serial)
         res = prefilter(r, env);
+    if (res == MVR_OK && sheen)
+        res = charlie_prefilter(r, env);
     if (res != MVR_OK)
         return res;
     /* its cost, once: the GL finished (this render waits for it) */
     r->gl->Finish();
     r->stats.env_prefilter_ms = now_ms() - t0;
     mvr_log(&r->logger, MVR_LOG_INFO, MVR_LOG_ID_GENERAL,
-            "mvr: environment prefiltered: %u passes, source %u, specular %u (%u levels, %u samples), %.1f ms",
+            "mvr: environment prefiltered: %u passes, source %u, specular %u (%u levels, %u samples)%s, %.1f ms",
             r->stats.env_prefilter_passes, r->env.source_size, r->env.specular_size, r->env.specular_levels,
-            env->specular_samples, r->stats.env_prefilter_ms);
+            env->specular_samples, sheen ? ", sheen (Charlie) chain" : "", r->stats.env_prefilter_ms);
     return MVR_OK;
 }
 

@@ -680,7 +680,11 @@ static mvr_result build_plan(mvr_renderer *r, const mvr_view_set *views, const m
     in.blend_policy = r->blend_policy;
     in.background = desc->background != MVR_BACKGROUND_COLOR;
     in.environment = desc->environment != NULL;
-    in.environment_new = desc->environment && r->env.serial != desc->environment->serial;
+    /* KHR_materials_sheen: its maps only for a frame that draws it */
+    r->sheen_frame = false;
+    for (uint32_t i = 0; i < r->frame.draw_count && !r->sheen_frame; ++i)
+        r->sheen_frame = (r->frame.draws[i].features & MVR_FEATURE_SHEEN) != 0;
+    in.environment_new = mvr_environment_stale(r, desc->environment, r->sheen_frame);
     in.shadow_layers = r->shadows.plan.layer_count;
     in.deforms = r->frame.deform_count;
     in.preskin = r->skinning.path == MVR_SKINNING_PATH_PRESKIN;
@@ -719,7 +723,7 @@ static mvr_result build_plan(mvr_renderer *r, const mvr_view_set *views, const m
 
 static mvr_result exec_env_prefilter(frame_exec *fx)
 {
-    return mvr_environment_sync(fx->r, fx->desc->environment);
+    return mvr_environment_sync(fx->r, fx->desc->environment, fx->r->sheen_frame);
 }
 
 /* The frame's state for the mesh passes: GL state, output features, clear values. */
@@ -799,6 +803,11 @@ static mvr_result exec_upload(frame_exec *fx)
     res = mvr_skinning_frame(r, !fx->static_current);
     if (res != MVR_OK)
         return res;
+    if (r->sheen_frame) {
+        res = mvr_sheen_lut_sync(r);
+        if (res != MVR_OK)
+            return res;
+    }
     setup_frame_state(fx);
     return MVR_OK;
 }
@@ -865,6 +874,8 @@ static mvr_result exec_view_pass(frame_exec *fx, const mvr_plan_record *rec)
     mvr_shadows_bind(r, fx->lay.shadow_block);
     if (fx->desc->environment)
         mvr_environment_bind(r, fx->desc->environment_samples > 0);
+    if (r->sheen_frame)
+        mvr_sheen_bind(r, fx->desc->environment != NULL);
     pc->num_views = mv_pass ? ch->count : 0;
     pc->first_view = ch->base;
     pc->views = ch->count;

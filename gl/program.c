@@ -219,6 +219,8 @@ mvr_result mvr_gl_program_build_cached(mvr_context *ctx, const mvr_shader_varian
     bind_sampler(gl, program, "mvr_depth", MVR_UNIT_COMPOSITE_DEPTH);
     bind_sampler(gl, program, "mvr_env_specular", MVR_UNIT_ENV_SPECULAR);
     bind_sampler(gl, program, "mvr_env_dfg", MVR_UNIT_ENV_DFG);
+    bind_sampler(gl, program, "mvr_env_charlie", MVR_UNIT_ENV_CHARLIE);
+    bind_sampler(gl, program, "mvr_sheen_lut", MVR_UNIT_SHEEN_LUT);
     bind_sampler(gl, program, "mvr_env_background", MVR_UNIT_ENV_BACKGROUND);
     bind_sampler(gl, program, "mvr_env_source", MVR_UNIT_ENV_INPUT);
     bind_sampler(gl, program, "mvr_env_equirect", MVR_UNIT_ENV_INPUT);

@@ -31,6 +31,8 @@ enum {
     MVR_UNIT_MORPH_DELTAS = 10,  /* mesh and pre-skinning vertex stages: morph target deltas */
     MVR_UNIT_EXTENSION_ROLES = 11, /* mesh: the extensions' texture roles, 11 + role - 5 (to 23) */
     MVR_UNIT_TRANSMISSION = 24,  /* mesh: the opaque colour behind transmissive surfaces */
+    MVR_UNIT_ENV_CHARLIE = 25,   /* mesh (KHR_materials_sheen): the Charlie-prefiltered cube map */
+    MVR_UNIT_SHEEN_LUT = 26,     /* mesh (KHR_materials_sheen): the sheen albedo table */
     MVR_UNIT_COMPOSITE_SOURCE = 0,
     MVR_UNIT_COMPOSITE_DEPTH = 1,
     MVR_UNIT_ENV_INPUT = 0       /* environment program: the equirect image or the source cube */

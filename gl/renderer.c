@@ -164,7 +164,9 @@ static bool valid_ubo_alignment(unsigned long a)
 
 /* The mesh feature bits an override may take out: material extensions,
  * whose absence is a valid (if different) look, never what a draw needs. */
-#define DISABLEABLE_FEATURES (MVR_FEATURE_SPECULAR | MVR_FEATURE_CLEARCOAT | MVR_FEATURE_TRANSMISSION)
+#define DISABLEABLE_FEATURES                                                                                \
+    (MVR_FEATURE_SPECULAR | MVR_FEATURE_CLEARCOAT | MVR_FEATURE_TRANSMISSION | MVR_FEATURE_SHEEN |              \
+     MVR_FEATURE_IRIDESCENCE | MVR_FEATURE_ANISOTROPY)
 
 /* "SPECULAR,CLEARCOAT" -> feature bits; names as mvr_program_feature_name. */
 static mvr_result parse_feature_list(const char *var, const char *value, uint32_t *out, mvr_error *error)
@@ -181,7 +183,9 @@ static mvr_result parse_feature_list(const char *var, const char *value, uint32_
         }
         if (!bit)
             return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
-                                 "%s=%s: '%.*s' is not a feature that can be disabled (SPECULAR, CLEARCOAT, TRANSMISSION)", var,
+                                 "%s=%s: '%.*s' is not a feature that can be disabled (SPECULAR, CLEARCOAT, "
+                                 "TRANSMISSION, SHEEN, IRIDESCENCE, ANISOTROPY)",
+                                 var,
                                  value, (int)n, p);
         *out |= bit;
         p += n;

@@ -213,7 +213,13 @@ typedef struct mvr_gpu_environment {
     GLuint cube_sampler;         /* trilinear, clamped */
     GLuint dfg;                  /* the DFG table, RG16F, once per renderer */
     GLuint dfg_sampler;
+    /* KHR_materials_sheen, only for a frame with sheen: */
+    GLuint charlie;              /* cube map RGBA16F, as specular: level k = Charlie of sheen roughness
+                                    k / (levels - 1) */
+    uint64_t charlie_serial;     /* the environment it is of; 0 = none */
+    GLuint sheen_lut;            /* the sheen albedo table (core/sheen_lut.c), RG16F, once per renderer */
 } mvr_gpu_environment;
+
 
 struct mvr_renderer {
     mvr_context *ctx;            /* NULL once the context is destroyed: calls fail, destroy frees */
@@ -237,6 +243,7 @@ struct mvr_renderer {
     uint32_t program_count, program_cap;
     mvr_gpu_scene gpu;
     mvr_frame frame;
+    bool sheen_frame;            /* a draw of this frame reads KHR_materials_sheen */
     bool culling;
     mvr_transparency_order blend_policy;
     mvr_view_path path_ran;      /* set by the frame: the path it took (0 before) */
@@ -354,8 +361,15 @@ void mvr_shadows_release(mvr_renderer *r);
  * a program's environment uniforms; draws the background of one pass (its
  * views: num_views multiview, 0 = one view at view_base) after the opaque
  * geometry; releases the maps. */
-mvr_result mvr_environment_sync(mvr_renderer *r, const mvr_environment *env);
+/* sheen: also the Charlie chain (a frame with KHR_materials_sheen) */
+mvr_result mvr_environment_sync(mvr_renderer *r, const mvr_environment *env, bool sheen);
 void mvr_environment_bind(mvr_renderer *r, bool reference);
+/* Whether a frame with this environment must prefilter first. */
+bool mvr_environment_stale(const mvr_renderer *r, const mvr_environment *env, bool sheen);
+/* KHR_materials_sheen: the albedo table (made once) and, with an
+ * environment, the Charlie cube map, on their units. */
+mvr_result mvr_sheen_lut_sync(mvr_renderer *r);
+void mvr_sheen_bind(mvr_renderer *r, bool environment);
 void mvr_environment_set_uniforms(mvr_renderer *r, const mvr_program_entry *e, const mvr_environment *env,
                                   uint32_t samples);
 mvr_result mvr_environment_draw_background(mvr_renderer *r, const mvr_render_desc *desc, uint32_t num_views,

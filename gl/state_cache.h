@@ -12,7 +12,7 @@
 #include "gl_api.h"
 
 #define MVR_STATE_UBO_BINDINGS 5
-#define MVR_STATE_TEXTURE_UNITS 25 /* program.h: the highest unit + 1 */
+#define MVR_STATE_TEXTURE_UNITS 27 /* program.h: the highest unit + 1 */
 
 typedef struct mvr_state_counters {
     uint32_t program_binds;

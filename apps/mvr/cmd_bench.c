@@ -74,7 +74,8 @@ static const cli_option bench_table[] = {
      "below; neutral for a glTF file, none for a demo). A scene with skins\n"
      "or morph targets adds each view path with --skinning vertex and\n"
      "preskin; one whose materials use KHR_materials_specular / _ior or\n"
-     "_clearcoat adds auto/arrays/noaa with each drawn as absent (no_...).\n"
+     "_clearcoat or _sheen adds auto/arrays/noaa with each drawn as absent\n"
+     "(no_...).\n"
      "\nenvironment prefilter axes:\n", NULL, NULL, NULL},
     {CLI_OPT_FLAG, B_ENV_AXES, "--env-axes", NULL, NULL, 0, 0, NULL,
      "instead of the matrix above: the image-based lighting's\n"
@@ -300,7 +301,8 @@ static uint32_t extension_features(void)
     for (uint32_t b = 1; b; b <<= 1) {
         const char *name = mvr_program_feature_name(b);
         if (name && (strcmp(name, "SPECULAR") == 0 || strcmp(name, "CLEARCOAT") == 0 ||
-                     strcmp(name, "TRANSMISSION") == 0))
+                     strcmp(name, "TRANSMISSION") == 0 || strcmp(name, "SHEEN") == 0 ||
+                     strcmp(name, "IRIDESCENCE") == 0 || strcmp(name, "ANISOTROPY") == 0))
             bits |= b;
     }
     return bits;

@@ -79,10 +79,9 @@ namespace {
 const std::set<std::string> implemented = {
     "EXT_meshopt_compression", "KHR_draco_mesh_compression",   // gltf_codecs.cpp
     "KHR_lights_punctual", "KHR_materials_unlit", "KHR_texture_transform", "KHR_materials_emissive_strength",
-    "KHR_materials_ior", "KHR_materials_specular", "KHR_materials_clearcoat",
+    "KHR_materials_ior", "KHR_materials_specular", "KHR_materials_clearcoat", "KHR_materials_sheen",
     "KHR_materials_pbrSpecularGlossiness", "KHR_materials_transmission", "KHR_materials_volume",
-    "KHR_materials_dispersion", "KHR_materials_iridescence",
-    "KHR_materials_anisotropy",
+    "KHR_materials_dispersion", "KHR_materials_iridescence", "KHR_materials_anisotropy",
     "KHR_mesh_quantization", "KHR_materials_variants",
     "KHR_texture_basisu", "EXT_texture_webp"};   // gltf_materials.cpp: their source, else the fallback
 

@@ -1056,10 +1056,11 @@ typedef struct mvr_renderer_overrides {
     uint32_t ubo_alignment;
     /* MVR_SKINNING_PATH=auto|vertex|preskin */
     mvr_skinning_path_override skinning_path;
-    /* MVR_DISABLE_FEATURES=SPECULAR,CLEARCOAT,TRANSMISSION: material
-     * extensions drawn as if absent (mesh feature bits, as
-     * mvr_program_feature_name names them; only these may be disabled):
-     * what an extension costs, and what it changes, in `mvr bench`. 0 = none */
+    /* MVR_DISABLE_FEATURES=SPECULAR,CLEARCOAT,TRANSMISSION,SHEEN,
+     * IRIDESCENCE,ANISOTROPY: material extensions drawn as if absent (mesh
+     * feature bits, as mvr_program_feature_name names them; only these may
+     * be disabled): what an extension costs, and what it changes, in
+     * `mvr bench`. 0 = none */
     uint32_t disable_features;
     /* Image formats treated as ones the GL cannot sample (bits
      * 1u << mvr_image_format; RGBA8's bit is ignored): tests of the
