@@ -48,6 +48,7 @@ const ASSETS = [
     { name: 'coated', file: 'coated.gltf', camera: 0 },
     { name: 'glass', file: 'glass.gltf', camera: 0 },
     { name: 'spec_gloss', file: 'spec_gloss.gltf', camera: 0 },
+    { name: 'sheen', file: 'sheen.gltf', camera: 0 },
 ];
 const ENVS = [
     { name: 'uniform', file: 'uniform.hdr' },
@@ -124,6 +125,11 @@ function glToRows(px, width, height) {
 const MIME = { '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript', '.wasm': 'application/wasm',
     '.gltf': 'model/gltf+json', '.bin': 'application/octet-stream', '.png': 'image/png', '.hdr': 'application/octet-stream',
     '.json': 'application/json', '.map': 'application/json' };
+// The sheen E LUT (lut_sheen_E.png) is not in the renderer's npm package. Whatever is served here is
+// never read: 1.1.0 marks its texture initialized without uploading it (loadEnvironment:
+// `sheenELut.initialized = true; // iblsampler has already initialized the texture`), so its albedo
+// scaling samples an incomplete texture, which reads 0: no albedo scaling under the sheen. (Checked:
+// this white stand-in and a real table of E give byte-identical renders of sheen.gltf.)
 const SHEEN_STANDIN = encodePng(1, 1, 3, [Buffer.from([255, 255, 255])]);
 function resolve(url) {
     const p = decodeURIComponent(new URL(url, 'http://x').pathname);

@@ -15,6 +15,7 @@
 // comparison is of the same function of radiance, and differences are in
 // 1/255 steps of that encoding.
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -39,7 +40,7 @@ struct comparison {
 
 // RGB bytes (rows top first) of mvr's render of one manifest entry.
 std::vector<uint8_t> render_mvr(mvr_test_state *t, mvr_context *ctx, const nlohmann::json &entry,
-                                const std::string &dir)
+                                const std::string &dir, uint32_t disable_features = 0)
 {
     std::vector<uint8_t> out;
     std::string asset = dir + "/" + entry.at("asset").get<std::string>();
@@ -79,6 +80,7 @@ std::vector<uint8_t> render_mvr(mvr_test_state *t, mvr_context *ctx, const nlohm
         mvr_renderer_desc rd;
         std::memset(&rd, 0, sizeof rd);
         rd.context = ctx;
+        rd.overrides.disable_features = disable_features;
         ok = mvr_renderer_create(&rd, &renderer, &err) == MVR_OK;
         CHECK_MSG(t, ok, "renderer: %s", err.message);
     }
@@ -121,6 +123,17 @@ std::vector<uint8_t> render_mvr(mvr_test_state *t, mvr_context *ctx, const nlohm
     mvr_image_free(&env_image);
     mvr_scene_destroy(scene);
     return out;
+}
+
+// The mesh feature bit mvr_program_feature_name calls `name` (0: none).
+uint32_t feature_bit(const char *name)
+{
+    for (uint32_t b = 1; b; b <<= 1) {
+        const char *n = mvr_program_feature_name(b);
+        if (n && std::strcmp(n, name) == 0)
+            return b;
+    }
+    return 0;
 }
 
 bool covered(const uint8_t *p)
@@ -196,6 +209,20 @@ void mvr_agrees_with_the_khronos_sample_renderer(mvr_test_state *t)
     //   changes a pixel entirely: the Khronos renderer refracts into a
     //   1024-wide copy of the scene, mvr into the view's own 256-wide colour
     //   (same footprint per roughness). Measured 2.50 and 3.18.
+    // - sheen.gltf (KHR_materials_sheen, Blender's export: factors, and a
+    //   sheen color texture): 12 and 10, measured 11.02 and 9.12, mvr darker
+    //   (mean -8.9 and -4.9). Two departures of the Sample Renderer 1.1.0,
+    //   both measured by putting them into mvr's table (not committed):
+    //   (a) it never uploads its sheen albedo table (loadEnvironment marks
+    //   the texture initialized), so it samples an incomplete texture, 0: no
+    //   albedo scaling of the base under the sheen, which the extension
+    //   asks for and mvr does; (b) its Charlie LUT is not the integral of
+    //   its own sheen lobe (D of alpha = roughness where its lights use
+    //   roughness^2, and Charlie-sampled half vectors weighted as if
+    //   uniform): 30-50% above it. With E = 0 and its estimator in mvr's
+    //   table, the RMSE is 0.29 (uniform) and 7.06 (sky: its Charlie chain of
+    //   64 samples and no filtered importance sampling shows the sun as a
+    //   spot and the horizon as a line on the sphere).
     unsigned compared = 0;
     for (const auto &entry : manifest.at("images")) {
         std::string file = entry.at("file").get<std::string>();
@@ -221,12 +248,35 @@ void mvr_agrees_with_the_khronos_sample_renderer(mvr_test_state *t)
         if (ours.empty())
             continue;
         comparison c = compare(ours, theirs, w, h);
-        bool glass = file.find("_glass_") != std::string::npos;
-        double bound = env == "uniform.hdr" ? (glass ? 3.0 : 2.0) : (glass ? 4.0 : 3.5);
+        // MVR_PEERS_OUT=DIR: mvr's render of each reference, as mvr_<reference>.png (to look at)
+        if (const char *out_dir = std::getenv("MVR_PEERS_OUT")) {
+            std::vector<uint8_t> rgba(static_cast<size_t>(w) * h * 4, 255);
+            for (size_t i = 0; i < static_cast<size_t>(w) * h; ++i)
+                for (int k = 0; k < 3; ++k)
+                    rgba[i * 4 + k] = ours[i * 3 + k];
+            mvr_image_view view = {w, h, MVR_PIXEL_U8, false, rgba.data()};
+            std::string path = std::string(out_dir) + "/mvr_" + file;
+            CHECK_MSG(t, mvr_image_write(path.c_str(), &view, &err) == MVR_OK, "%s: %s", path.c_str(), err.message);
+        }
+        std::string asset = entry.at("asset").get<std::string>();
+        double bound = env == "uniform.hdr" ? 2.0 : 3.5;
+        if (asset == "glass.gltf")
+            bound = env == "uniform.hdr" ? 3.0 : 4.0;
+        else if (asset == "sheen.gltf")
+            bound = env == "uniform.hdr" ? 12.0 : 10.0;
         std::printf("  %-28s RMSE %.2f, mean |d| %.2f, mean d %+.2f, worst %u (1/255) over %zu pixels (bound %.1f)\n",
                     file.c_str(), c.rmse, c.mean_abs, c.mean_signed, c.worst, c.pixels, bound);
         CHECK_MSG(t, c.pixels > 5000, "%s: only %zu interior pixels", file.c_str(), c.pixels);
         CHECK_MSG(t, c.rmse <= bound, "%s: RMSE %.2f / 255 over the bound %.1f", file.c_str(), c.rmse, bound);
+        if (asset == "sheen.gltf") {
+            // the sheen brings mvr nearer the reference than no sheen does
+            // (measured 40.56 and 26.83 without it: 0.27 and 0.34 of that with it)
+            std::vector<uint8_t> bare = render_mvr(t, ctx, entry, dir, feature_bit("SHEEN"));
+            comparison off = compare(bare, theirs, w, h);
+            std::printf("  %-28s without the sheen: RMSE %.2f, mean d %+.2f\n", "", off.rmse, off.mean_signed);
+            CHECK_MSG(t, c.rmse < 0.5 * off.rmse, "%s: RMSE %.2f with the sheen, %.2f without", file.c_str(), c.rmse,
+                      off.rmse);
+        }
         ++compared;
     }
     CHECK_MSG(t, compared >= 4, "%u references compared", compared);
