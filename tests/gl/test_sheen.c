@@ -16,7 +16,9 @@
  *   say (black color texels give the bare material's pixels, white ones the
  *   factor's; roughness A = 255 gives the factor's pixels, A = 0 others);
  * - multiview and loop, texture arrays and per-material textures: the same
- *   bytes.
+ *   bytes;
+ * - the environment's Charlie chain is prefiltered only for a frame with
+ *   sheen, once per environment (the prefilter's pass counts).
  * The comparison with the Khronos glTF Sample Renderer is io_peers' (the
  * sheen.gltf asset, Blender's export). */
 #include <math.h>
@@ -375,4 +377,53 @@ static void textures_and_paths(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
-MVR_TEST_MAIN(TEST(no_sheen_no_code), TEST(centre_pixel_matches_the_formulas), TEST(textures_and_paths))
+/* The Charlie chain is built only for a frame that draws sheen, once per
+ * environment: a sheen-less frame prefilters the source and the GGX chain
+ * (A passes); a sheen frame after it with the same environment only the
+ * Charlie chain (B, 0 < B < A); the next sheen frame nothing; a fresh
+ * renderer's first sheen frame A + B. */
+static void charlie_chain_only_for_sheen(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    mvr_view_set *vs = front_views(t, 1);
+    mvr_material_desc bare = bare_material(), sheen = sheen_material();
+    view_shot sh = {.environment = true};
+    mvr_scene *a = scene_of(t, &bare, NULL, 0, sh), *b = scene_of(t, &sheen, NULL, 0, sh);
+    mvr_environment *env = NULL;
+    mvr_environment_desc ed = {.source = MVR_ENVIRONMENT_UNIFORM};
+    CHECK(t, mvr_environment_create(&ed, &env, NULL) == MVR_OK);
+    uint32_t passes[4] = {0, 0, 0, 0};
+    for (int k = 0; k < 2 && env; ++k) {
+        mvr_renderer_desc rd = {.context = ctx, .view_path = MVR_VIEW_PATH_LOOP};
+        mvr_renderer *r = NULL;
+        mvr_target *tg = NULL;
+        mvr_target_desc td = {.width = W, .height = H, .layers = 1};
+        bool ok = mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &tg) == MVR_OK;
+        CHECK(t, ok);
+        mvr_scene *order[2][3] = {{a, b, b}, {b, NULL, NULL}};
+        for (int f = 0; ok && f < 3 && order[k][f]; ++f) {
+            mvr_render_desc desc = {.exposure = 1.0f, .environment = env};
+            ok = mvr_renderer_render(r, order[k][f], vs, tg, &desc) == MVR_OK;
+            CHECK_MSG(t, ok, "render: %s", mvr_renderer_last_error(r));
+            mvr_frame_stats st;
+            mvr_renderer_get_stats(r, &st);
+            passes[k == 0 ? f : 3] = st.env_prefilter_passes;
+        }
+        mvr_target_destroy(tg);
+        mvr_renderer_destroy(r);
+    }
+    printf("  prefilter passes: sheen-less %u, then sheen %u, then %u; sheen first %u\n", passes[0], passes[1],
+           passes[2], passes[3]);
+    CHECK(t, passes[0] > 0 && passes[1] > 0 && passes[1] < passes[0] && passes[2] == 0);
+    CHECK_EQ_INT(t, passes[3], passes[0] + passes[1]);
+    mvr_environment_destroy(env);
+    mvr_scene_destroy(a);
+    mvr_scene_destroy(b);
+    mvr_view_set_destroy(vs);
+    mvr_context_destroy(ctx);
+}
+
+MVR_TEST_MAIN(TEST(no_sheen_no_code), TEST(centre_pixel_matches_the_formulas), TEST(textures_and_paths),
+              TEST(charlie_chain_only_for_sheen))
