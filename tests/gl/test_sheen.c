@@ -293,7 +293,7 @@ static void textures_and_paths(mvr_test_state *t)
             uint8_t *p = &half[(y * TW + x) * 4];
             p[0] = p[1] = p[2] = p[3] = x < TW / 2 ? 255 : 0;
         }
-    mvr_image_desc images[1] = {{TW, TH, half, "half"}};
+    mvr_image_desc images[1] = {{.width = TW, .height = TH, .rgba8 = half, .name = "half"}};
     mvr_sampler_desc nearest = {MVR_FILTER_NEAREST, MVR_FILTER_NEAREST, MVR_WRAP_REPEAT, MVR_WRAP_REPEAT};
     mvr_view_set *vs = front_views(t, 1);
     view_shot sh = {.environment = true, .light = true};
