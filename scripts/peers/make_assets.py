@@ -16,6 +16,11 @@
   spec_gloss.gltf              4 x 3 spheres of KHR_materials_pbrSpecularGlossiness: grey / red diffuse with
                                specular 0.04 / 0.3, a copper-like specular colour; glossiness 1, 0.75, 0.5,
                                0.25 across; one camera (node 12); no lights.
+  films.gltf + films.bin       4 x 2 UV spheres with texture coordinates and tangents: KHR_materials_iridescence
+                               (a dark dielectric under films of 200, 400 and 800 nm, a gold-like metal under
+                               400 nm) and KHR_materials_anisotropy (a brushed metal of roughness 0.35:
+                               isotropic, strength 0.5 and 1 along the tangent, 1 turned a quarter); one
+                               camera (node 8); no lights.
   uniform.hdr                  64 x 32 Radiance RGBE, radiance 1.0 everywhere.
   sky.hdr                      512 x 256 Radiance RGBE (run-length encoded): a blue sky gradient, a
                                warm sun disc of radiance 50, a horizon band and a ground of eight
@@ -353,6 +358,86 @@ def make_spec_gloss():
                bin_name="spheres.bin", extensions=["KHR_materials_pbrSpecularGlossiness"])
 
 
+def make_films():
+    # KHR_materials_iridescence and _anisotropy on a UV sphere with texture coordinates and tangents
+    # (its own buffer, films.bin: the anisotropy direction lives in the tangent frame)
+    radius, seg_u, seg_v = 0.42, 64, 32
+    pos, nrm, idx = uv_sphere(radius, seg_u, seg_v)
+    uvs, tans = [], []
+    for j in range(seg_v + 1):
+        for i in range(seg_u + 1):
+            ph = 2.0 * math.pi * i / seg_u
+            uvs.append((i / seg_u, j / seg_v))
+            tans.append((-math.sin(ph), 0.0, -math.cos(ph), 1.0))   # dP/du; bitangent n x t: image up
+    pb = b''.join(struct.pack('<3f', *p) for p in pos)
+    nb = b''.join(struct.pack('<3f', *n) for n in nrm)
+    ub = b''.join(struct.pack('<2f', *u) for u in uvs)
+    tb = b''.join(struct.pack('<4f', *t) for t in tans)
+    ib = b''.join(struct.pack('<H', i) for i in idx)
+    while len(ib) % 4:
+        ib += b'\0'
+    blob = pb + nb + ub + tb + ib
+    offs = [0, len(pb), len(pb) + len(nb), len(pb) + len(nb) + len(ub), len(pb) + len(nb) + len(ub) + len(tb)]
+    views = [{"buffer": 0, "byteOffset": offs[k], "byteLength": n, "target": 34962}
+             for k, n in enumerate((len(pb), len(nb), len(ub), len(tb)))]
+    views.append({"buffer": 0, "byteOffset": offs[4], "byteLength": len(idx) * 2, "target": 34963})
+    accessors = [
+        {"bufferView": 0, "componentType": 5126, "count": len(pos), "type": "VEC3",
+         "min": [-radius] * 3, "max": [radius] * 3},
+        {"bufferView": 1, "componentType": 5126, "count": len(nrm), "type": "VEC3"},
+        {"bufferView": 2, "componentType": 5126, "count": len(uvs), "type": "VEC2"},
+        {"bufferView": 3, "componentType": 5126, "count": len(tans), "type": "VEC4"},
+        {"bufferView": 4, "componentType": 5123, "count": len(idx), "type": "SCALAR"},
+    ]
+    cells = []
+    # row 1: a dark dielectric under films of 200, 400 and 800 nm (ior 1.3 ... 1.8), a gold-like metal under 400 nm
+    for name, base, metal, film in (("film_200", [0.05, 0.05, 0.05, 1.0], 0.0, {"iridescenceThicknessMaximum": 200.0}),
+                                    ("film_400", [0.05, 0.05, 0.05, 1.0], 0.0, {}),
+                                    ("film_800", [0.05, 0.05, 0.05, 1.0], 0.0,
+                                     {"iridescenceThicknessMaximum": 800.0, "iridescenceIor": 1.8}),
+                                    ("film_metal", [0.9, 0.7, 0.3, 1.0], 1.0, {})):
+        ext = {"iridescenceFactor": 1.0}
+        ext.update(film)
+        cells.append({"name": name, "pbrMetallicRoughness": {"baseColorFactor": base, "metallicFactor": metal,
+                                                             "roughnessFactor": 0.2},
+                      "extensions": {"KHR_materials_iridescence": ext}})
+    # row 2: a brushed metal: isotropic, anisotropy 0.5 and 1 along the tangent, 1 turned a quarter
+    for name, ext in (("aniso_000", None), ("aniso_050", {"anisotropyStrength": 0.5}),
+                      ("aniso_100", {"anisotropyStrength": 1.0}),
+                      ("aniso_100_r090", {"anisotropyStrength": 1.0, "anisotropyRotation": math.pi / 2})):
+        m = {"name": name, "pbrMetallicRoughness": {"baseColorFactor": [0.95, 0.93, 0.88, 1.0], "metallicFactor": 1.0,
+                                                    "roughnessFactor": 0.35}}
+        if ext:
+            m["extensions"] = {"KHR_materials_anisotropy": ext}
+        cells.append(m)
+    nodes = []
+    for i, m in enumerate(cells):
+        r, c = divmod(i, 4)
+        nodes.append({"name": m["name"], "mesh": i, "translation": [c - 1.5, 0.5 - r, 0.0]})
+    cam_node = len(nodes)
+    nodes.append({"name": "camera", "camera": 0, "translation": [0.0, 0.0, 6.0]})
+    doc = {
+        "asset": {"version": "2.0", "generator": "mvr scripts/peers/make_assets.py"},
+        "extensionsUsed": ["KHR_materials_iridescence", "KHR_materials_anisotropy"],
+        "scene": 0,
+        "scenes": [{"nodes": list(range(cam_node + 1))}],
+        "nodes": nodes,
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2, "TANGENT": 3},
+                                    "indices": 4, "material": m}]} for m in range(len(cells))],
+        "materials": cells,
+        "cameras": [{"type": "perspective", "name": "grid",
+                     "perspective": {"yfov": 0.62, "aspectRatio": 1.0, "znear": 0.1, "zfar": 100.0}}],
+        "accessors": accessors,
+        "bufferViews": views,
+        "buffers": [{"byteLength": len(blob), "uri": "films.bin"}],
+    }
+    with open(os.path.join(OUT, "films.bin"), 'wb') as f:
+        f.write(blob)
+    with open(os.path.join(OUT, "films.gltf"), 'w') as f:
+        json.dump(doc, f, indent=1)
+        f.write('\n')
+
+
 def make_diag_mirror():
     # the spheres' mesh (radius 0.42) and buffer, scaled to radius 1
     blob, views, accessors = sphere_buffers(0.42, 64, 32)
@@ -375,6 +460,7 @@ def main():
     make_coated()
     make_glass()
     make_spec_gloss()
+    make_films()
     make_diag_mirror()
     for n in sorted(os.listdir(OUT)):
         print("%-22s %8d bytes" % (n, os.path.getsize(os.path.join(OUT, n))))

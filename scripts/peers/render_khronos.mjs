@@ -48,6 +48,7 @@ const ASSETS = [
     { name: 'coated', file: 'coated.gltf', camera: 0 },
     { name: 'glass', file: 'glass.gltf', camera: 0 },
     { name: 'spec_gloss', file: 'spec_gloss.gltf', camera: 0 },
+    { name: 'films', file: 'films.gltf', camera: 0 },
     { name: 'sheen', file: 'sheen.gltf', camera: 0 },
 ];
 const ENVS = [
