@@ -77,7 +77,11 @@ mvr_result mvr_transmission_copy(mvr_renderer *r, mvr_target *t, const mvr_frame
                                  "transmission: a multisampled RGBA32F target cannot be resolved into a filterable "
                                  "copy (use RGBA16F or no MSAA)");
     uint32_t w = t->desc.width * plan->factor, h = t->desc.height * plan->factor;
-    mvr_result res = ensure_array(r, format, w, h, plan->max_views > ch->count ? plan->max_views : ch->count);
+    /* layers for the frame's largest chunk (one on the loop path) */
+    uint32_t layers = 1;
+    for (uint32_t c = 0; c < plan->chunk_count; ++c)
+        layers = plan->chunks[c].count > layers ? plan->chunks[c].count : layers;
+    mvr_result res = ensure_array(r, format, w, h, layers);
     if (res != MVR_OK)
         return res;
     mvr_transmission *tr = &r->transmission;
