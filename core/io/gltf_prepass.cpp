@@ -274,9 +274,10 @@ static void compressed_views(const nlohmann::json &doc, resources &res)
     }
 }
 
-// meshes[i].primitives[k].extensions.KHR_draco_mesh_compression, read here
-// like the views'; problems are reported when the primitive is read.
-static void draco_primitives(const nlohmann::json &doc, resources &res)
+// Calls fn(i, k, value) for each meshes[i].primitives[k].extensions.<name>
+// (meshes, primitives and extensions that are not objects are the parser's
+// to refuse).
+template <typename F> static void each_primitive_extension(const nlohmann::json &doc, const char *name, F fn)
 {
     auto meshes = doc.find("meshes");
     if (meshes == doc.end() || !meshes->is_array())
@@ -291,31 +292,38 @@ static void draco_primitives(const nlohmann::json &doc, resources &res)
             auto ext = p.is_object() ? p.find("extensions") : p.end();
             if (!p.is_object() || ext == p.end() || !ext->is_object())
                 continue;
-            auto dr = ext->find("KHR_draco_mesh_compression");
-            if (dr == ext->end())
-                continue;
-            draco_source &d = res.draco_primitives[{int(i), int(k)}];
-            if (!dr->is_object()) {
-                d.problem = "not an object";
-                continue;
-            }
-            d.buffer_view = integer_member(*dr, "bufferView", 0, INT32_MAX, true, -1, &d.problem);
-            auto attrs = dr->find("attributes");
-            if (attrs == dr->end() || !attrs->is_object()) {
-                if (d.problem.empty())
-                    d.problem = "attributes is missing or not an object";
-                continue;
-            }
-            for (auto a = attrs->begin(); a != attrs->end(); ++a) {
-                std::string why;
-                int64_t id = integer_member(*attrs, a.key().c_str(), 0, UINT32_MAX, true, -1, &why);
-                if (!why.empty() && d.problem.empty())
-                    d.problem =
-                        "attributes." + key_name(a.key()) + " is not an integer in 0.." + std::to_string(UINT32_MAX);
-                d.attributes.push_back({a.key(), id});
-            }
+            auto found = ext->find(name);
+            if (found != ext->end())
+                fn(int(i), int(k), *found);
         }
     }
+}
+
+// meshes[i].primitives[k].extensions.KHR_draco_mesh_compression, read here
+// like the views'; problems are reported when the primitive is read.
+static void draco_primitives(const nlohmann::json &doc, resources &res)
+{
+    each_primitive_extension(doc, "KHR_draco_mesh_compression", [&](int i, int k, const nlohmann::json &dr) {
+        draco_source &d = res.draco_primitives[{i, k}];
+        if (!dr.is_object()) {
+            d.problem = "not an object";
+            return;
+        }
+        d.buffer_view = integer_member(dr, "bufferView", 0, INT32_MAX, true, -1, &d.problem);
+        auto attrs = dr.find("attributes");
+        if (attrs == dr.end() || !attrs->is_object()) {
+            if (d.problem.empty())
+                d.problem = "attributes is missing or not an object";
+            return;
+        }
+        for (auto a = attrs->begin(); a != attrs->end(); ++a) {
+            std::string why;
+            int64_t id = integer_member(*attrs, a.key().c_str(), 0, UINT32_MAX, true, -1, &why);
+            if (!why.empty() && d.problem.empty())
+                d.problem = "attributes." + key_name(a.key()) + " is not an integer in 0.." + std::to_string(UINT32_MAX);
+            d.attributes.push_back({a.key(), id});
+        }
+    });
 }
 
 // extensions.KHR_materials_variants (the variants' names) and each
@@ -343,65 +351,49 @@ static void material_variants(const nlohmann::json &doc, resources &res)
                 v.names.push_back(name->get<std::string>());
         }
     }
-    auto meshes = doc.find("meshes");
-    if (meshes == doc.end() || !meshes->is_array())
-        return;
-    for (size_t i = 0; i < meshes->size() && i <= size_t(INT32_MAX); ++i) {
-        const nlohmann::json &mesh = (*meshes)[i];
-        auto prims = mesh.is_object() ? mesh.find("primitives") : mesh.end();
-        if (!mesh.is_object() || prims == mesh.end() || !prims->is_array())
-            continue;
-        for (size_t k = 0; k < prims->size() && k <= size_t(INT32_MAX); ++k) {
-            const nlohmann::json &p = (*prims)[k];
-            auto pext = p.is_object() ? p.find("extensions") : p.end();
-            if (!p.is_object() || pext == p.end() || !pext->is_object())
-                continue;
-            auto mv = pext->find("KHR_materials_variants");
-            if (mv == pext->end())
-                continue;
-            primitive_variants_source &d = res.variant_primitives[{int(i), int(k)}];
-            auto maps = mv->is_object() ? mv->find("mappings") : mv->end();
-            if (!mv->is_object()) {
-                d.problem = "is not an object";
-                continue;
-            }
-            if (maps == mv->end() || !maps->is_array()) {
-                d.problem = "mappings is missing or not an array";
-                continue;
-            }
-            for (size_t j = 0; j < maps->size() && d.problem.empty(); ++j) {
-                const nlohmann::json &m = (*maps)[j];
-                std::string mw = "mappings[" + std::to_string(j) + "]";
-                if (!m.is_object()) {
-                    d.problem = mw + " is not an object";
-                    break;
-                }
-                variant_mapping_source ms;
-                std::string why;
-                ms.material = integer_member(m, "material", 0, INT32_MAX, true, -1, &why);
-                if (!why.empty()) {
-                    d.problem = mw + "." + why;
-                    break;
-                }
-                auto vars = m.find("variants");
-                if (vars == m.end() || !vars->is_array()) {
-                    d.problem = mw + ".variants is missing or not an array";
-                    break;
-                }
-                for (size_t n = 0; n < vars->size(); ++n) {
-                    const nlohmann::json &x = (*vars)[n];
-                    bool ok = x.is_number_unsigned() && x.get<uint64_t>() <= uint64_t(INT32_MAX);
-                    if (!ok) {
-                        d.problem = mw + ".variants[" + std::to_string(n) + "] is not an integer in 0.." +
-                                    std::to_string(INT32_MAX);
-                        break;
-                    }
-                    ms.variants.push_back(int64_t(x.get<uint64_t>()));
-                }
-                d.mappings.push_back(std::move(ms));
-            }
+    each_primitive_extension(doc, "KHR_materials_variants", [&](int i, int k, const nlohmann::json &mv) {
+        primitive_variants_source &d = res.variant_primitives[{i, k}];
+        auto maps = mv.is_object() ? mv.find("mappings") : mv.end();
+        if (!mv.is_object()) {
+            d.problem = "is not an object";
+            return;
         }
-    }
+        if (maps == mv.end() || !maps->is_array()) {
+            d.problem = "mappings is missing or not an array";
+            return;
+        }
+        for (size_t j = 0; j < maps->size() && d.problem.empty(); ++j) {
+            const nlohmann::json &m = (*maps)[j];
+            std::string mw = "mappings[" + std::to_string(j) + "]";
+            if (!m.is_object()) {
+                d.problem = mw + " is not an object";
+                break;
+            }
+            variant_mapping_source ms;
+            std::string why;
+            ms.material = integer_member(m, "material", 0, INT32_MAX, true, -1, &why);
+            if (!why.empty()) {
+                d.problem = mw + "." + why;
+                break;
+            }
+            auto vars = m.find("variants");
+            if (vars == m.end() || !vars->is_array()) {
+                d.problem = mw + ".variants is missing or not an array";
+                break;
+            }
+            for (size_t n = 0; n < vars->size(); ++n) {
+                const nlohmann::json &x = (*vars)[n];
+                bool ok = x.is_number_unsigned() && x.get<uint64_t>() <= uint64_t(INT32_MAX);
+                if (!ok) {
+                    d.problem = mw + ".variants[" + std::to_string(n) + "] is not an integer in 0.." +
+                                std::to_string(INT32_MAX);
+                    break;
+                }
+                ms.variants.push_back(int64_t(x.get<uint64_t>()));
+            }
+            d.mappings.push_back(std::move(ms));
+        }
+    });
 }
 
 std::string extract_resources(const json_text &text, resources &res, uint64_t *model_size)
