@@ -1090,19 +1090,21 @@ void main()
     ao = 1.0 + m.params.w * (MVR_SAMPLE_ROLE(mvr_occlusion_tex, MVR_ROLE_OCCLUSION, m).r - 1.0);
 #endif
     vec3 ambient = mvr_ambient * base.rgb;
-#if defined(MVR_TRANSMISSION) && !defined(MVR_IBL)
-    // a uniform ambient only: its diffuse part gives way to what is behind
-    if (transmission > 0.0)
-        ambient = mix(ambient, mvr_transmitted(n, v, v_position, roughness, base.rgb, spec_f0, ior, thickness,
-                                               absorption, m.transmission.w), transmission * (1.0 - metallic));
+#ifdef MVR_TRANSMISSION
+    // what the surface lets through from behind, towards the eye
+    vec3 transmitted = transmission > 0.0 ? mvr_transmitted(n, v, v_position, roughness, base.rgb, spec_f0, ior,
+                                                            thickness, absorption, m.transmission.w)
+                                          : vec3(0.0);
+#ifndef MVR_IBL
+    // a uniform ambient only: its diffuse part gives way to it
+    ambient = mix(ambient, transmitted, transmission * (1.0 - metallic));
+#endif
 #endif
 #ifdef MVR_IBL
 #if defined(MVR_SPECULAR) && !defined(MVR_IBL_REFERENCE)
     vec4 replace_diffuse = vec4(0.0);
 #ifdef MVR_TRANSMISSION
-    if (transmission > 0.0)
-        replace_diffuse = vec4(mvr_transmitted(n, v, v_position, roughness, base.rgb, spec_f0, ior, thickness,
-                                               absorption, m.transmission.w), transmission);
+    replace_diffuse = vec4(transmitted, transmission);
 #endif
     vec4 irid = vec4(0.0);
     vec3 irid_metal = vec3(0.0);
