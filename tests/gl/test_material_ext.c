@@ -480,6 +480,42 @@ static void spec_gloss_is_a_dielectric(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
+/* Multiview and loop give the same bytes for a lit sphere of material md. */
+static void multiview_equals_loop(mvr_test_state *t, mvr_context *ctx, const mvr_material_desc *md)
+{
+    if (!mvr_context_caps(ctx)->ext.ovr_multiview2)
+        return;
+    mvr_scene *s = sphere_scene(t, md, true);
+    mvr_view_set *two = front_views(t, 2);
+    uint32_t f1, f2;
+    uint8_t *loop = render(t, ctx, s, two, MVR_VIEW_PATH_LOOP, MVR_COLOR_FORMAT_DEFAULT, &f1);
+    uint8_t *mv = render(t, ctx, s, two, MVR_VIEW_PATH_MULTIVIEW, MVR_COLOR_FORMAT_DEFAULT, &f2);
+    if (loop && mv)
+        CHECK_EQ_INT(t, count_diff(loop, mv, (size_t)2 * W * H, 0), 0);
+    free(loop);
+    free(mv);
+    mvr_view_set_destroy(two);
+    mvr_scene_destroy(s);
+}
+
+/* A lit sphere of material md in a scene of its own, rendered on the loop
+ * path; with texels (size x size RGBA8), the image goes into *slot (a
+ * texture ref of md). */
+static uint8_t *render_lit_sphere(mvr_test_state *t, mvr_context *ctx, mvr_view_set *vs, mvr_material_desc *md,
+                                  const uint8_t *texels, uint32_t size, mvr_texture_ref *slot, uint32_t *features)
+{
+    mvr_scene *s = NULL;
+    CHECK(t, mvr_scene_create(NULL, &s, NULL) == MVR_OK);
+    if (texels) {
+        mvr_image_desc id = {.width = size, .height = size, .rgba8 = texels};
+        CHECK(t, mvr_scene_add_image(s, &id, &slot->image) == MVR_OK);
+    }
+    sphere_in(t, s, md, true);
+    uint8_t *px = render(t, ctx, s, vs, MVR_VIEW_PATH_LOOP, MVR_COLOR_FORMAT_DEFAULT, features);
+    mvr_scene_destroy(s);
+    return px;
+}
+
 /* KHR_materials_iridescence: no film (factor 0, or 0 nm) compiles none of
  * its code; a film changes the sphere; a thickness texture of G = 0 gives
  * the film of the minimum thickness (the bytes of a film whose maximum is
@@ -514,16 +550,9 @@ static void iridescence_film(mvr_test_state *t)
     uint8_t *px[6];
     uint32_t f[6];
     for (int k = 0; k < 6; ++k) {
-        mvr_scene *s = NULL;
-        CHECK(t, mvr_scene_create(NULL, &s, NULL) == MVR_OK);
         mvr_material_desc md = *mats[k];
-        if (k >= 4) {
-            mvr_image_desc id = {.width = TW, .height = TW, .rgba8 = k == 4 ? black : white};
-            CHECK(t, mvr_scene_add_image(s, &id, &md.iridescence.thickness_texture.image) == MVR_OK);
-        }
-        sphere_in(t, s, &md, true);
-        px[k] = render(t, ctx, s, vs, MVR_VIEW_PATH_LOOP, MVR_COLOR_FORMAT_DEFAULT, &f[k]);
-        mvr_scene_destroy(s);
+        px[k] = render_lit_sphere(t, ctx, vs, &md, k >= 4 ? (k == 4 ? black : white) : NULL, TW,
+                                  &md.iridescence.thickness_texture, &f[k]);
     }
     CHECK(t, !(f[0] & MVR_FEATURE_IRIDESCENCE) && (f[1] & MVR_FEATURE_IRIDESCENCE) &&
                  !(f[3] & MVR_FEATURE_IRIDESCENCE));
@@ -538,19 +567,7 @@ static void iridescence_film(mvr_test_state *t)
     }
     for (int k = 0; k < 6; ++k)
         free(px[k]);
-    if (mvr_context_caps(ctx)->ext.ovr_multiview2) {
-        mvr_scene *s = sphere_scene(t, &film, true);
-        mvr_view_set *two = front_views(t, 2);
-        uint32_t f1, f2;
-        uint8_t *loop = render(t, ctx, s, two, MVR_VIEW_PATH_LOOP, MVR_COLOR_FORMAT_DEFAULT, &f1);
-        uint8_t *mv = render(t, ctx, s, two, MVR_VIEW_PATH_MULTIVIEW, MVR_COLOR_FORMAT_DEFAULT, &f2);
-        if (loop && mv)
-            CHECK_EQ_INT(t, count_diff(loop, mv, (size_t)2 * W * H, 0), 0);
-        free(loop);
-        free(mv);
-        mvr_view_set_destroy(two);
-        mvr_scene_destroy(s);
-    }
+    multiview_equals_loop(t, ctx, &film);
     mvr_view_set_destroy(vs);
     mvr_context_destroy(ctx);
 }
@@ -586,16 +603,8 @@ static void anisotropy_direction(mvr_test_state *t)
     uint8_t *px[5];
     uint32_t f[5];
     for (int k = 0; k < 5; ++k) {
-        mvr_scene *s = NULL;
-        CHECK(t, mvr_scene_create(NULL, &s, NULL) == MVR_OK);
         mvr_material_desc md = *mats[k];
-        if (k == 4) {
-            mvr_image_desc id = {.width = TW, .height = TW, .rgba8 = up};
-            CHECK(t, mvr_scene_add_image(s, &id, &md.anisotropy.texture.image) == MVR_OK);
-        }
-        sphere_in(t, s, &md, true);
-        px[k] = render(t, ctx, s, vs, MVR_VIEW_PATH_LOOP, MVR_COLOR_FORMAT_DEFAULT, &f[k]);
-        mvr_scene_destroy(s);
+        px[k] = render_lit_sphere(t, ctx, vs, &md, k == 4 ? up : NULL, TW, &md.anisotropy.texture, &f[k]);
     }
     CHECK(t, !(f[0] & MVR_FEATURE_ANISOTROPY) && (f[1] & MVR_FEATURE_ANISOTROPY));
     if (px[0] && px[1] && px[2] && px[3] && px[4]) {
@@ -612,19 +621,7 @@ static void anisotropy_direction(mvr_test_state *t)
     }
     for (int k = 0; k < 5; ++k)
         free(px[k]);
-    if (mvr_context_caps(ctx)->ext.ovr_multiview2) {
-        mvr_scene *s = sphere_scene(t, &a_quarter, true);
-        mvr_view_set *two = front_views(t, 2);
-        uint32_t f1, f2;
-        uint8_t *loop = render(t, ctx, s, two, MVR_VIEW_PATH_LOOP, MVR_COLOR_FORMAT_DEFAULT, &f1);
-        uint8_t *mv = render(t, ctx, s, two, MVR_VIEW_PATH_MULTIVIEW, MVR_COLOR_FORMAT_DEFAULT, &f2);
-        if (loop && mv)
-            CHECK_EQ_INT(t, count_diff(loop, mv, (size_t)2 * W * H, 0), 0);
-        free(loop);
-        free(mv);
-        mvr_view_set_destroy(two);
-        mvr_scene_destroy(s);
-    }
+    multiview_equals_loop(t, ctx, &a_quarter);
     mvr_view_set_destroy(vs);
     mvr_context_destroy(ctx);
 }
