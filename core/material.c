@@ -91,7 +91,7 @@ uint32_t mvr_material_extension_features(const mvr_material_desc *m)
     uint32_t f = 0;
     /* the extensions' code only where a material departs from glTF's core
      * values (ior 1.5, no specular extension, no clearcoat) */
-    if (m->ior != 1.5f || m->specular.enabled)
+    if ((m->ior != 1.5f && m->ior != 0.0f) || m->specular.enabled) /* 0: not given, 1.5 */
         f |= MVR_FEATURE_SPECULAR;
     if (m->clearcoat.factor > 0.0f)
         f |= MVR_FEATURE_CLEARCOAT;

@@ -499,10 +499,11 @@ static void multiview_equals_loop(mvr_test_state *t, mvr_context *ctx, const mvr
 }
 
 /* A lit sphere of material md in a scene of its own, rendered on the loop
- * path; with texels (size x size RGBA8), the image goes into *slot (a
- * texture ref of md). */
+ * path and the material path; with texels (size x size RGBA8), the image
+ * goes into *slot (a texture ref of md). */
 static uint8_t *render_lit_sphere(mvr_test_state *t, mvr_context *ctx, mvr_view_set *vs, mvr_material_desc *md,
-                                  const uint8_t *texels, uint32_t size, mvr_texture_ref *slot, uint32_t *features)
+                                  const uint8_t *texels, uint32_t size, mvr_texture_ref *slot,
+                                  mvr_material_path path, uint32_t *features)
 {
     mvr_scene *s = NULL;
     CHECK(t, mvr_scene_create(NULL, &s, NULL) == MVR_OK);
@@ -511,7 +512,7 @@ static uint8_t *render_lit_sphere(mvr_test_state *t, mvr_context *ctx, mvr_view_
         CHECK(t, mvr_scene_add_image(s, &id, &slot->image) == MVR_OK);
     }
     sphere_in(t, s, md, true);
-    uint8_t *px = render(t, ctx, s, vs, MVR_VIEW_PATH_LOOP, MVR_COLOR_FORMAT_DEFAULT, features);
+    uint8_t *px = render_with(t, ctx, s, vs, MVR_VIEW_PATH_LOOP, path, MVR_COLOR_FORMAT_DEFAULT, features);
     mvr_scene_destroy(s);
     return px;
 }
@@ -520,7 +521,7 @@ static uint8_t *render_lit_sphere(mvr_test_state *t, mvr_context *ctx, mvr_view_
  * its code; a film changes the sphere; a thickness texture of G = 0 gives
  * the film of the minimum thickness (the bytes of a film whose maximum is
  * that minimum), G = 1 the maximum's (the bytes of no texture); multiview
- * and loop give the same bytes. */
+ * and loop, arrays and per-material textures give the same bytes. */
 static void iridescence_film(mvr_test_state *t)
 {
     mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
@@ -552,8 +553,16 @@ static void iridescence_film(mvr_test_state *t)
     for (int k = 0; k < 6; ++k) {
         mvr_material_desc md = *mats[k];
         px[k] = render_lit_sphere(t, ctx, vs, &md, k >= 4 ? (k == 4 ? black : white) : NULL, TW,
-                                  &md.iridescence.thickness_texture, &f[k]);
+                                  &md.iridescence.thickness_texture, MVR_MATERIAL_PATH_ARRAYS, &f[k]);
     }
+    /* the texture from its own 2D texture: the array's bytes */
+    mvr_material_desc md = tex_black;
+    uint32_t fp;
+    uint8_t *per = render_lit_sphere(t, ctx, vs, &md, black, TW, &md.iridescence.thickness_texture,
+                                     MVR_MATERIAL_PATH_PER_MATERIAL, &fp);
+    if (per && px[4])
+        CHECK_EQ_INT(t, count_diff(per, px[4], (size_t)W * H, 0), 0);
+    free(per);
     CHECK(t, !(f[0] & MVR_FEATURE_IRIDESCENCE) && (f[1] & MVR_FEATURE_IRIDESCENCE) &&
                  !(f[3] & MVR_FEATURE_IRIDESCENCE));
     if (px[0] && px[1] && px[2] && px[3] && px[4] && px[5]) {
@@ -575,7 +584,8 @@ static void iridescence_film(mvr_test_state *t)
 /* KHR_materials_anisotropy: the stretched lobe changes the highlight; a
  * half turn of the direction changes nothing (the lobe is symmetric, within
  * 1/255), a quarter turn does; a texture direction (0, 1) is the quarter turn
- * (within 2/255: 128/255 is not exactly 0.5); multiview and loop agree. */
+ * (within 2/255: 128/255 is not exactly 0.5); multiview and loop, arrays and
+ * per-material textures give the same bytes. */
 static void anisotropy_direction(mvr_test_state *t)
 {
     mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
@@ -604,8 +614,17 @@ static void anisotropy_direction(mvr_test_state *t)
     uint32_t f[5];
     for (int k = 0; k < 5; ++k) {
         mvr_material_desc md = *mats[k];
-        px[k] = render_lit_sphere(t, ctx, vs, &md, k == 4 ? up : NULL, TW, &md.anisotropy.texture, &f[k]);
+        px[k] = render_lit_sphere(t, ctx, vs, &md, k == 4 ? up : NULL, TW, &md.anisotropy.texture,
+                                  MVR_MATERIAL_PATH_ARRAYS, &f[k]);
     }
+    /* the texture from its own 2D texture: the array's bytes */
+    mvr_material_desc md = a_tex;
+    uint32_t fp;
+    uint8_t *per = render_lit_sphere(t, ctx, vs, &md, up, TW, &md.anisotropy.texture, MVR_MATERIAL_PATH_PER_MATERIAL,
+                                     &fp);
+    if (per && px[4])
+        CHECK_EQ_INT(t, count_diff(per, px[4], (size_t)W * H, 0), 0);
+    free(per);
     CHECK(t, !(f[0] & MVR_FEATURE_ANISOTROPY) && (f[1] & MVR_FEATURE_ANISOTROPY));
     if (px[0] && px[1] && px[2] && px[3] && px[4]) {
         uint32_t stretched = count_diff(px[0], px[1], (size_t)W * H, 2);
