@@ -1,6 +1,8 @@
-/* gl: the PBR extensions KHR_materials_ior, _specular and _clearcoat.
- * - a scene without them compiles none of their code (no new feature bits
- *   on any demo);
+/* gl: the PBR extensions KHR_materials_ior, _specular, _clearcoat,
+ * _pbrSpecularGlossiness, _iridescence and _anisotropy (sheen and
+ * transmission have their own tests).
+ * - a scene without them compiles none of their code (no extension's
+ *   feature bit on any demo);
  * - the extensions at glTF's core values (ior 1.5, specular factor 1 and
  *   colour 1, clearcoat 0) give the core BRDF's pixels (within 1/255: the
  *   formulas are the same, the arithmetic is ordered differently);
@@ -132,8 +134,10 @@ static void demos_compile_no_extension_code(mvr_test_state *t)
         CHECK(t, mvr_demo_create(mvr_demo_name(d), &dd, &s, &vs, NULL) == MVR_OK);
         uint32_t features = 0;
         free(render(t, ctx, s, vs, MVR_VIEW_PATH_AUTO, MVR_COLOR_FORMAT_DEFAULT, &features));
-        CHECK_MSG(t, !(features & (MVR_FEATURE_SPECULAR | MVR_FEATURE_CLEARCOAT)), "%s: features %x",
-                  mvr_demo_name(d), features);
+        const uint32_t extensions = MVR_FEATURE_SPECULAR | MVR_FEATURE_CLEARCOAT | MVR_FEATURE_SHEEN |
+                                    MVR_FEATURE_TRANSMISSION | MVR_FEATURE_IRIDESCENCE | MVR_FEATURE_ANISOTROPY |
+                                    MVR_FEATURE_SPEC_GLOSS;
+        CHECK_MSG(t, !(features & extensions), "%s: features %x", mvr_demo_name(d), features);
         mvr_view_set_destroy(vs);
         mvr_scene_destroy(s);
     }
