@@ -49,7 +49,6 @@ static mvr_result ensure_array(mvr_renderer *r, GLenum format, uint32_t w, uint3
     tr->width = w;
     tr->height = h;
     tr->layers = layers;
-    r->stats.transmission_bytes = (uint64_t)w * h * layers * (format == GL_RGBA16F ? 8u : 4u) * 4u / 3u;
     if (!tr->fbo)
         gl->GenFramebuffers(1, &tr->fbo);
     if (!tr->sampler) {
@@ -116,6 +115,9 @@ mvr_result mvr_transmission_copy(mvr_renderer *r, mvr_target *t, const mvr_frame
     tr->base = (int32_t)(ch->base) - block_base;
     tr->serial++;
     r->stats.transmission_copies += ch->count;
+    /* the array with its mips (a third more), every frame it is used */
+    r->stats.transmission_bytes =
+        (uint64_t)tr->width * tr->height * tr->layers * (tr->format == GL_RGBA16F ? 8u : 4u) * 4u / 3u;
     return MVR_OK;
 }
 

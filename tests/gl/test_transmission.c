@@ -196,6 +196,9 @@ static void thin_glass_is_invisible(mvr_test_state *t)
     result r3 = render(t, ctx, s3, vs, MVR_VIEW_PATH_LOOP, MVR_MATERIAL_PATH_AUTO, false);
     CHECK(t, !(r0.features & MVR_FEATURE_TRANSMISSION) && r0.stats.transmission_copies == 0);
     CHECK(t, (r1.features & MVR_FEATURE_TRANSMISSION) && r1.stats.transmission_copies == 1);
+    /* one sRGB8 layer of the loop path's one-view chunk, its mips a third more */
+    CHECK_EQ_INT(t, r1.stats.transmission_bytes, (uint64_t)W * H * 4 * 4 / 3);
+    CHECK_EQ_INT(t, r0.stats.transmission_bytes, 0);
     if (r0.px && r1.px && r2.px && r3.px) {
         uint32_t d = differing(r0.px, r1.px, (size_t)W * H, 1);
         printf("  thin glass: %u of %u pixels differ from the wall alone by more than 1/255\n", d, W * H);
