@@ -396,6 +396,47 @@ static void material_variants(const nlohmann::json &doc, resources &res)
     });
 }
 
+// The PBR extensions of materials[i].extensions, checked on the JSON itself
+// where the parser would lose what is wrong: tinygltf drops an extension
+// whose value is not an object, and a member whose value is an empty
+// object, so a malformed one would vanish instead of being refused (the
+// rest, values and indices, gltf_material_ext.cpp checks with the same
+// messages).
+static void material_extension_shapes(const nlohmann::json &doc)
+{
+    static const char *const pbr[] = {"KHR_materials_ior", "KHR_materials_specular", "KHR_materials_clearcoat",
+                                      "KHR_materials_sheen", "KHR_materials_transmission", "KHR_materials_volume",
+                                      "KHR_materials_dispersion", "KHR_materials_iridescence",
+                                      "KHR_materials_anisotropy", "KHR_materials_pbrSpecularGlossiness"};
+    auto materials = doc.find("materials");
+    if (materials == doc.end() || !materials->is_array())
+        return;
+    for (size_t i = 0; i < materials->size(); ++i) {
+        const nlohmann::json &m = (*materials)[i];
+        auto ext = m.is_object() ? m.find("extensions") : m.end();
+        if (!m.is_object() || ext == m.end() || !ext->is_object())
+            continue;
+        for (const char *name : pbr) {
+            auto e = ext->find(name);
+            if (e == ext->end())
+                continue;
+            std::string w = "materials[" + std::to_string(i) + "].extensions." + name;
+            if (!e->is_object())
+                refuse(w + " is not an object");
+            for (auto member = e->begin(); member != e->end(); ++member) {
+                const std::string &key = member.key();
+                if (key.size() < 7 || key.compare(key.size() - 7, 7, "Texture") != 0)
+                    continue;
+                if (!member->is_object())
+                    refuse(w + "." + key_name(key) + " is not an object");
+                auto index = member->find("index");
+                if (index == member->end() || !index->is_number_unsigned() || index->get<uint64_t>() > INT32_MAX)
+                    refuse(w + "." + key_name(key) + ".index is missing or not a valid index");
+            }
+        }
+    }
+}
+
 std::string extract_resources(const json_text &text, resources &res, uint64_t *model_size)
 {
     nlohmann::json doc;
@@ -445,6 +486,7 @@ std::string extract_resources(const json_text &text, resources &res, uint64_t *m
     compressed_views(doc, res);
     draco_primitives(doc, res);
     material_variants(doc, res);
+    material_extension_shapes(doc);
     auto images = doc.find("images");
     if (images != doc.end()) {
         if (!images->is_array())

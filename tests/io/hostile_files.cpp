@@ -18,6 +18,7 @@
 #include "hostile_docs.hpp"
 #include "hostile_ktx2.hpp"
 #include "hostile_variants.hpp"
+#include "hostile_material_ext.hpp"
 
 namespace hostile {
 
@@ -969,6 +970,7 @@ files write_all(const std::string &root_in)
     anim_files(f);
     codec_files(f);   // hostile_codecs.cpp: compressed geometry, extension messages
     variant_files(f); // hostile_variants.cpp: KHR_materials_variants
+    material_ext_files(f); // hostile_material_ext.cpp: the PBR extensions
     ktx2_files(f);
 
     std::string index = "file\twhat\texpect\n";

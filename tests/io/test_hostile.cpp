@@ -29,6 +29,7 @@
 #include "hostile_check.hpp"
 #include "hostile_docs.hpp"
 #include "hostile_variants.hpp"
+#include "hostile_material_ext.hpp"
 
 namespace {
 
@@ -853,6 +854,7 @@ int main(int argc, char **argv)
         TEST(compressed_geometry_is_checked),
         TEST(ktx2_containers_are_checked),
         TEST(material_variants_are_checked),
+        TEST(material_extensions_are_checked),
     };
     int rc = mvr_test_run(cases, sizeof cases / sizeof cases[0]);
     hostile::release_context();
