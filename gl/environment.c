@@ -219,6 +219,44 @@ static mvr_result make_cube_sampler(mvr_renderer *r)
     return res == MVR_OK ? MVR_OK : mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
 }
 
+/* What a prefilter run draws through: framebuffers, and on the multiview
+ * path a 6-layer array per level size (each its own level 0: Mesa attaches
+ * only level 0 with multiview, bugs.multiview_level_zero_only), count of
+ * them halving from size0. */
+typedef struct prefilter_scratch {
+    GLuint faces[12];
+    uint32_t count;
+    GLuint fbo, read_fbo, copy_fbo;
+} prefilter_scratch;
+
+static mvr_result scratch_create(mvr_renderer *r, prefilter_scratch *sc, bool multiview, uint32_t size0,
+                                 uint32_t count)
+{
+    memset(sc, 0, sizeof *sc);
+    sc->count = multiview ? (count < 12u ? count : 12u) : 0u;
+    mvr_result res = MVR_OK;
+    for (uint32_t k = 0; k < sc->count && res == MVR_OK; ++k)
+        res = make_texture(r, GL_TEXTURE_2D_ARRAY, &sc->faces[k], 1, GL_RGBA16F, size0 >> k, size0 >> k, 6,
+                           "environment prefilter faces (rgba16f array)");
+    if (res == MVR_OK) {
+        r->gl->GenFramebuffers(1, &sc->fbo);
+        if (multiview) {
+            r->gl->GenFramebuffers(1, &sc->read_fbo);
+            r->gl->GenFramebuffers(1, &sc->copy_fbo);
+        }
+    }
+    return res;
+}
+
+static void scratch_release(mvr_renderer *r, prefilter_scratch *sc)
+{
+    mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &sc->fbo);
+    mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &sc->read_fbo);
+    mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &sc->copy_fbo);
+    for (uint32_t k = 0; k < 12u; ++k)
+        mvr_renderer_delete(r, MVR_GL_TEXTURE, &sc->faces[k]);
+}
+
 /* Steps 1 and 2 for a new environment. */
 static mvr_result prefilter(mvr_renderer *r, const mvr_environment *env)
 {
@@ -247,7 +285,9 @@ static mvr_result prefilter(mvr_renderer *r, const mvr_environment *env)
 
     release_maps(r);
     gl->PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    GLuint equirect = 0, fbo = 0, read_fbo = 0, copy_fbo = 0;
+    GLuint equirect = 0;
+    prefilter_scratch sc;
+    memset(&sc, 0, sizeof sc);
     uint32_t eq_levels = log2_floor(env->width > env->height ? env->width : env->height) + 1u;
     mvr_result res = make_texture(r, GL_TEXTURE_2D, &equirect, eq_levels, GL_RGBA16F, env->width, env->height, 1,
                                   "environment image (rgba16f)");
@@ -267,20 +307,8 @@ static mvr_result prefilter(mvr_renderer *r, const mvr_environment *env)
     if (res == MVR_OK)
         res = make_texture(r, GL_TEXTURE_CUBE_MAP, &g->specular, spec_levels, GL_RGBA16F, spec_size, spec_size, 1,
                            "environment specular cube map (rgba16f)");
-    /* multiview: a 6-layer array per level size, each its own level 0
-     * (Mesa attaches only level 0 with multiview: bugs.multiview_level_zero_only) */
-    GLuint scratch[12] = {0};
-    uint32_t scratch_count = multiview ? log2_floor(source_size / ENV_LOWEST_FACE) + 1u : 0u;
-    for (uint32_t k = 0; k < scratch_count && res == MVR_OK; ++k)
-        res = make_texture(r, GL_TEXTURE_2D_ARRAY, &scratch[k], 1, GL_RGBA16F, source_size >> k, source_size >> k, 6,
-                           "environment prefilter faces (rgba16f array)");
-    if (res == MVR_OK) {
-        gl->GenFramebuffers(1, &fbo);
-        if (multiview) {
-            gl->GenFramebuffers(1, &read_fbo);
-            gl->GenFramebuffers(1, &copy_fbo);
-        }
-    }
+    if (res == MVR_OK)
+        res = scratch_create(r, &sc, multiview, source_size, log2_floor(source_size / ENV_LOWEST_FACE) + 1u);
     /* the source cube's level 0 from the image: the image level whose texel
      * angle (2 pi / width) matches a face texel's at its centre (pi/2 / size) */
     mvr_program_entry *e = NULL;
@@ -293,7 +321,7 @@ static mvr_result prefilter(mvr_renderer *r, const mvr_environment *env)
         mvr_state_sampler(&r->state, MVR_UNIT_ENV_INPUT, 0);
         double lod = log2((double)env->width / (4.0 * (double)source_size));
         gl->Uniform1f(e->loc_equirect_lod, (GLfloat)(lod > 0.0 ? lod : 0.0));
-        level_job j = {g->source, 0, source_size, scratch[0], fbo, read_fbo, copy_fbo};
+        level_job j = {g->source, 0, source_size, sc.faces[0], sc.fbo, sc.read_fbo, sc.copy_fbo};
         res = draw_level(r, &j, e);
     }
     if (res == MVR_OK) {
@@ -311,17 +339,14 @@ static mvr_result prefilter(mvr_renderer *r, const mvr_environment *env)
     for (uint32_t k = 0; k < spec_levels && res == MVR_OK; ++k) {
         uint32_t size = spec_size >> k;
         gl->Uniform1f(e->loc_roughness, spec_levels > 1 ? (GLfloat)k / (GLfloat)(spec_levels - 1u) : 0.0f);
-        level_job j = {g->specular, k, size, scratch[log2_floor(source_size / size)], fbo, read_fbo, copy_fbo};
+        level_job j = {g->specular, k, size, sc.faces[log2_floor(source_size / size)], sc.fbo, sc.read_fbo,
+                       sc.copy_fbo};
         res = draw_level(r, &j, e);
     }
     if (res == MVR_OK)
         res = make_cube_sampler(r);
-    mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &fbo);
-    mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &read_fbo);
-    mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &copy_fbo);
+    scratch_release(r, &sc);
     mvr_renderer_delete(r, MVR_GL_TEXTURE, &equirect);
-    for (uint32_t k = 0; k < scratch_count; ++k)
-        mvr_renderer_delete(r, MVR_GL_TEXTURE, &scratch[k]);
     if (res != MVR_OK) {
         release_maps(r);
         return res;
@@ -348,17 +373,10 @@ static mvr_result charlie_prefilter(mvr_renderer *r, const mvr_environment *env)
     g->charlie_serial = 0;
     mvr_result res = make_texture(r, GL_TEXTURE_CUBE_MAP, &g->charlie, levels, GL_RGBA16F, size0, size0, 1,
                                   "environment sheen (Charlie) cube map (rgba16f)");
-    GLuint scratch[12] = {0}, fbo = 0, read_fbo = 0, copy_fbo = 0;
-    for (uint32_t k = 0; k < levels && k < 12u && multiview && res == MVR_OK; ++k)
-        res = make_texture(r, GL_TEXTURE_2D_ARRAY, &scratch[k], 1, GL_RGBA16F, size0 >> k, size0 >> k, 6,
-                           "environment prefilter faces (rgba16f array)");
-    if (res == MVR_OK) {
-        gl->GenFramebuffers(1, &fbo);
-        if (multiview) {
-            gl->GenFramebuffers(1, &read_fbo);
-            gl->GenFramebuffers(1, &copy_fbo);
-        }
-    }
+    prefilter_scratch sc;
+    memset(&sc, 0, sizeof sc);
+    if (res == MVR_OK)
+        res = scratch_create(r, &sc, multiview, size0, levels);
     mvr_program_entry *e = NULL;
     if (res == MVR_OK) {
         mvr_full_screen_state(r);
@@ -373,7 +391,7 @@ static mvr_result charlie_prefilter(mvr_renderer *r, const mvr_environment *env)
     }
     for (uint32_t k = 0; k < levels && res == MVR_OK; ++k) {
         gl->Uniform1f(e->loc_roughness, levels > 1 ? (GLfloat)k / (GLfloat)(levels - 1u) : 0.0f);
-        level_job j = {g->charlie, k, size0 >> k, multiview ? scratch[k] : 0u, fbo, read_fbo, copy_fbo};
+        level_job j = {g->charlie, k, size0 >> k, sc.faces[k], sc.fbo, sc.read_fbo, sc.copy_fbo};
         res = draw_level(r, &j, e);
     }
     if (res == MVR_OK) {
@@ -381,12 +399,7 @@ static mvr_result charlie_prefilter(mvr_renderer *r, const mvr_environment *env)
         if (res != MVR_OK)
             res = mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
     }
-    mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &fbo);
-    mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &read_fbo);
-    mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &copy_fbo);
-    for (uint32_t k = 0; k < 12u; ++k)
-        if (scratch[k])
-            mvr_renderer_delete(r, MVR_GL_TEXTURE, &scratch[k]);
+    scratch_release(r, &sc);
     if (res != MVR_OK) {
         mvr_renderer_delete(r, MVR_GL_TEXTURE, &g->charlie);
         return res;
