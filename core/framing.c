@@ -15,6 +15,8 @@ const char *mvr_view_layout_name(mvr_view_layout layout)
     case MVR_LAYOUT_CUBE: return "cube";
     case MVR_LAYOUT_RING: return "ring";
     case MVR_LAYOUT_GRID: return "grid";
+    case MVR_LAYOUT_SPHERE: return "sphere";
+    case MVR_LAYOUT_ORBIT: return "orbit";
     }
     return NULL;
 }
@@ -65,10 +67,26 @@ mvr_result mvr_view_set_frame_scene(const mvr_scene *scene, const mvr_framing_de
     if (!mvr_view_layout_name(d.layout))
         return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_view_set_frame_scene: unknown layout %d",
                              (int)d.layout);
-    static const uint32_t defaults[] = {2, 6, 8, 9};
+    static const uint32_t defaults[] = {2, 6, 8, 9, 50, 24};
     uint32_t n = d.views ? d.views : defaults[d.layout];
     if (n > 1024)
         return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_view_set_frame_scene: %u views (at most 1024)", n);
+    uint32_t rows = d.rows ? d.rows : 3u;
+    double el_lo = d.elevation_min, el_hi = d.elevation_max;
+    if (el_lo == 0.0 && el_hi == 0.0) {
+        el_lo = -15.0 * PI / 180.0;
+        el_hi = 60.0 * PI / 180.0;
+    }
+    if (d.layout == MVR_LAYOUT_ORBIT) {
+        if (rows > n)
+            return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
+                                 "mvr_view_set_frame_scene: %u orbit rings for %u views", rows, n);
+        if (!(el_lo > -PI / 2 && el_lo < PI / 2 && el_hi > -PI / 2 && el_hi < PI / 2 && el_lo <= el_hi))
+            return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
+                                 "mvr_view_set_frame_scene: orbit elevations %g .. %g rad are not an interval inside "
+                                 "(-pi/2, pi/2)",
+                                 el_lo, el_hi);
+    }
     double aspect = d.aspect > 0 ? d.aspect : 1.0;
 
     double c[3], r;
@@ -115,6 +133,33 @@ mvr_result mvr_view_set_frame_scene(const mvr_scene *scene, const mvr_framing_de
         case MVR_LAYOUT_RING: {
             double a = 2.0 * PI * (double)i / (double)n;
             double eye[3] = {c[0] + dist * sin(a), c[1] + r * 0.25, c[2] + dist * cos(a)};
+            look(v, eye, c, up);
+            break;
+        }
+        case MVR_LAYOUT_SPHERE: {
+            /* the Fibonacci lattice: heights evenly spaced, each point
+             * turned by the golden angle from the last (Gonzalez 2010,
+             * "Measurement of areas on a sphere using Fibonacci and
+             * latitude-longitude lattices") */
+            double y = 1.0 - 2.0 * ((double)i + 0.5) / (double)n;
+            double ring = sqrt(fmax(1.0 - y * y, 0.0)), a = (double)i * PI * (3.0 - sqrt(5.0));
+            double eye[3] = {c[0] + dist * ring * sin(a), c[1] + dist * y, c[2] + dist * ring * cos(a)};
+            /* near a pole the world's up is nearly the view axis: -Z instead */
+            const double pole_up[3] = {0, 0, -1};
+            look(v, eye, c, fabs(y) > 0.999 ? pole_up : up);
+            break;
+        }
+        case MVR_LAYOUT_ORBIT: {
+            /* ring k of rows holds n / rows views, the first n % rows one more */
+            uint32_t per = n / rows, extra = n % rows, k = 0, first = 0;
+            while (i >= first + per + (k < extra ? 1u : 0u)) {
+                first += per + (k < extra ? 1u : 0u);
+                k++;
+            }
+            uint32_t count = per + (k < extra ? 1u : 0u);
+            double el = rows > 1 ? el_lo + (el_hi - el_lo) * (double)k / (double)(rows - 1) : 0.5 * (el_lo + el_hi);
+            double a = 2.0 * PI * ((double)(i - first) + 0.5 * (double)(k % 2)) / (double)count;
+            double eye[3] = {c[0] + dist * cos(el) * sin(a), c[1] + dist * sin(el), c[2] + dist * cos(el) * cos(a)};
             look(v, eye, c, up);
             break;
         }

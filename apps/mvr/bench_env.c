@@ -82,7 +82,8 @@ static int make_spheres(const bench_options *o, mvr_scene **scene, mvr_view_set 
             return MVR_EXIT_FAILURE;
         }
     }
-    mvr_framing_desc fd = {MVR_LAYOUT_STEREO, o->scene.views, 0.0, (double)o->scene.width / o->scene.height};
+    mvr_framing_desc fd = {.layout = MVR_LAYOUT_STEREO, .views = o->scene.views,
+                           .aspect = (double)o->scene.width / o->scene.height};
     if (mvr_view_set_frame_scene(*scene, &fd, vs, &err) != MVR_OK) {
         fprintf(stderr, "mvr bench: the sphere grid's views: %s\n", err.message);
         return MVR_EXIT_FAILURE;

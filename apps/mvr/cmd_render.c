@@ -47,9 +47,11 @@ static const cli_option render_table[] = {
      "N views are eyes --ipd apart along its right axis\n"
      "(default: the first camera when the file has one)", NULL, "--layout",
      "--layout frames the scene without a camera"},
-    {CLI_OPT_CHOICE, R_LAYOUT, "--layout", NULL, "L", 0, 0, "stereo|cube|ring|grid",
+    {CLI_OPT_CHOICE, R_LAYOUT, "--layout", NULL, "L", 0, 0, "stereo|cube|ring|grid|sphere|orbit",
      "SCENE without --camera: stereo | cube | ring | grid around\n"
-     "the scene's bounding sphere (default: stereo)", NULL, NULL, NULL},
+     "the scene's bounding sphere (default: stereo); sphere: --views\n"
+     "spread evenly over a sphere around it (default 50); orbit: a\n"
+     "turntable of 3 rings from -15 to 60 degrees (default 24 views)", NULL, NULL, NULL},
     {CLI_OPT_STRING, R_IPD, "--ipd", NULL, "M", 0, 0, NULL,
      "distance between stereo eyes in scene units (default: 1/30 of\n"
      "the distance to the scene: 0.064 at 1.9)", NULL, NULL, NULL},

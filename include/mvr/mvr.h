@@ -1463,14 +1463,22 @@ typedef enum mvr_view_layout {
     MVR_LAYOUT_STEREO = 0,       /* a row of eyes ipd apart in front of the scene, parallel axes */
     MVR_LAYOUT_CUBE,             /* six 90-degree views from the center */
     MVR_LAYOUT_RING,             /* N cameras in a horizontal circle, looking at the center */
-    MVR_LAYOUT_GRID              /* a light-field grid of cameras on a plane, looking at the center */
+    MVR_LAYOUT_GRID,             /* a light-field grid of cameras on a plane, looking at the center */
+    MVR_LAYOUT_SPHERE,           /* N cameras spread evenly over a sphere (a Fibonacci lattice), looking at
+                                    the center: the capture of a multi-view reconstruction dataset */
+    MVR_LAYOUT_ORBIT             /* a turntable: rings of cameras at rising elevations, looking at the center */
 } mvr_view_layout;
 
 typedef struct mvr_framing_desc {
     mvr_view_layout layout;
-    uint32_t views;              /* 0 = the layout's own (stereo 2, cube 6, ring 8, grid 9) */
+    uint32_t views;              /* 0 = the layout's own (stereo 2, cube 6, ring 8, grid 9, sphere 50,
+                                    orbit 24) */
     double ipd;                  /* stereo: scene units between eyes; 0 = mvr_stereo_default_ipd of the framing distance */
     double aspect;               /* width / height of the layers; 0 = 1 */
+    uint32_t rows;               /* orbit: rings (0 = 3), the views shared out among them (the first
+                                    rings take the remainder), each ring's azimuths staggered by half a step */
+    double elevation_min, elevation_max; /* orbit, radians in (-pi/2, pi/2): the lowest and the highest
+                                    ring, evenly between (both 0 = -15 and 60 degrees; one ring: their mean) */
 } mvr_framing_desc;
 
 /* The eye separation for a subject viewing_distance away: 1/30 of it (the

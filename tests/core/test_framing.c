@@ -5,6 +5,7 @@
  * camera (mvr_view_set_from_camera) and the default exposure of a scene
  * (mvr_render_desc_choose_exposure). */
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "mvr_test.h"
@@ -55,7 +56,7 @@ static void eyes_scale_with_the_scene(mvr_test_state *t)
             CHECK(t, s != NULL);
             if (!s)
                 return;
-            mvr_framing_desc fd = {MVR_LAYOUT_STEREO, 2, 0.0, aspects[a]};
+            mvr_framing_desc fd = {.layout = MVR_LAYOUT_STEREO, .views = 2, .aspect = aspects[a]};
             mvr_view_set *vs = NULL;
             mvr_error err;
             CHECK_MSG(t, mvr_view_set_frame_scene(s, &fd, &vs, &err) == MVR_OK, "%s", err.message);
@@ -237,4 +238,104 @@ static void exposure_follows_the_light_units(mvr_test_state *t)
     mvr_scene_destroy(lamp);
 }
 
-MVR_TEST_MAIN(TEST(eyes_scale_with_the_scene), TEST(eyes_on_a_camera), TEST(exposure_follows_the_light_units))
+/* The view's forward axis: -Z turned by its orientation. */
+static void forward_of(const mvr_view_desc *v, double f[3])
+{
+    double x = v->orientation[0], y = v->orientation[1], z = v->orientation[2], w = v->orientation[3];
+    f[0] = -(2.0 * (x * z + w * y));
+    f[1] = -(2.0 * (y * z - w * x));
+    f[2] = -(1.0 - 2.0 * (x * x + y * y));
+}
+
+/* Every view of a set is dist from c and looks straight at it. */
+static void views_look_at(mvr_test_state *t, const mvr_view_set *vs, const double c[3], double *dist)
+{
+    *dist = dist3(vs->views[0].position, c);
+    for (uint32_t i = 0; i < vs->count; ++i) {
+        const mvr_view_desc *v = &vs->views[i];
+        double d = dist3(v->position, c), f[3];
+        forward_of(v, f);
+        double to_c = ((c[0] - v->position[0]) * f[0] + (c[1] - v->position[1]) * f[1] + (c[2] - v->position[2]) * f[2]) / d;
+        CHECK_MSG(t, fabs(d - *dist) < 1e-9 * *dist && to_c > 1.0 - 1e-9, "view %u: %g from the centre, cos %g", i, d,
+                  to_c);
+    }
+}
+
+/* sphere: 200 views, each its own direction from the centre, spread evenly
+ * (their mean direction near 0, neighbours no closer than half the mean
+ * spacing sqrt(4 pi / n)), every one looking at the centre, the poles too.
+ * orbit: 3 rings of 8 at -15, 22.5 and 60 degrees, evenly around, the
+ * middle ring staggered half a step; 2 rings of 5 views share 3 and 2;
+ * more rings than views, or elevations outside (-90, 90) degrees, refused. */
+static void sphere_and_orbit_layouts(mvr_test_state *t)
+{
+    mvr_scene *s = scene_of_radius(1.0);
+    CHECK(t, s != NULL);
+    if (!s)
+        return;
+    const double c[3] = {5.0, 0, 0}, PI_ = 3.14159265358979323846;
+    mvr_framing_desc fd = {.layout = MVR_LAYOUT_SPHERE, .views = 200};
+    mvr_view_set *vs = NULL;
+    mvr_error err;
+    CHECK_MSG(t, mvr_view_set_frame_scene(s, &fd, &vs, &err) == MVR_OK, "%s", err.message);
+    if (vs) {
+        double dist;
+        CHECK_EQ_INT(t, vs->count, 200);
+        views_look_at(t, vs, c, &dist);
+        double mean[3] = {0, 0, 0}, closest = 10.0;
+        for (uint32_t i = 0; i < vs->count; ++i) {
+            double a[3];
+            for (int k = 0; k < 3; ++k) {
+                a[k] = (vs->views[i].position[k] - c[k]) / dist;
+                mean[k] += a[k] / vs->count;
+            }
+            for (uint32_t j = i + 1; j < vs->count; ++j) {
+                double b[3];
+                for (int k = 0; k < 3; ++k)
+                    b[k] = (vs->views[j].position[k] - c[k]) / dist;
+                closest = fmin(closest, acos(fmin(a[0] * b[0] + a[1] * b[1] + a[2] * b[2], 1.0)));
+            }
+        }
+        double spacing = sqrt(4.0 * PI_ / 200.0);
+        printf("  sphere of 200: closest pair %.3f rad (mean spacing %.3f), mean direction |%.4f|\n", closest, spacing,
+               sqrt(mean[0] * mean[0] + mean[1] * mean[1] + mean[2] * mean[2]));
+        CHECK(t, closest > 0.5 * spacing);
+        CHECK(t, sqrt(mean[0] * mean[0] + mean[1] * mean[1] + mean[2] * mean[2]) < 0.01);
+        mvr_view_set_destroy(vs);
+    }
+    fd = (mvr_framing_desc){.layout = MVR_LAYOUT_ORBIT};
+    CHECK_MSG(t, mvr_view_set_frame_scene(s, &fd, &vs, &err) == MVR_OK, "%s", err.message);
+    if (vs) {
+        double dist;
+        CHECK_EQ_INT(t, vs->count, 24);
+        views_look_at(t, vs, c, &dist);
+        const double el[3] = {-15.0, 22.5, 60.0};
+        for (uint32_t i = 0; i < vs->count; ++i) {
+            const double *p = vs->views[i].position;
+            double e = asin((p[1] - c[1]) / dist) * 180.0 / PI_;
+            double a = atan2(p[0] - c[0], p[2] - c[2]) * 180.0 / PI_;
+            double expect_a = 45.0 * ((double)(i % 8) + 0.5 * (double)((i / 8) % 2));
+            double da = fmod(a - expect_a + 720.0, 360.0);
+            CHECK_MSG(t, fabs(e - el[i / 8]) < 1e-9 && (da < 1e-9 || da > 360.0 - 1e-9),
+                      "view %u: elevation %g, azimuth %g (expected %g, %g)", i, e, a, el[i / 8], expect_a);
+        }
+        mvr_view_set_destroy(vs);
+    }
+    fd = (mvr_framing_desc){.layout = MVR_LAYOUT_ORBIT, .views = 5, .rows = 2};
+    CHECK(t, mvr_view_set_frame_scene(s, &fd, &vs, &err) == MVR_OK);
+    if (vs) {
+        double y0 = vs->views[0].position[1];
+        CHECK(t, vs->views[2].position[1] == y0 && vs->views[3].position[1] > y0 && vs->views[4].position[1] > y0);
+        mvr_view_set_destroy(vs);
+    }
+    fd.rows = 6;
+    CHECK(t, mvr_view_set_frame_scene(s, &fd, &vs, &err) == MVR_ERROR_INVALID_ARGUMENT && !vs);
+    CHECK(t, strstr(err.message, "6 orbit rings for 5 views") != NULL);
+    fd.rows = 2;
+    fd.elevation_max = 2.0;
+    CHECK(t, mvr_view_set_frame_scene(s, &fd, &vs, &err) == MVR_ERROR_INVALID_ARGUMENT && !vs);
+    mvr_scene_destroy(s);
+}
+
+MVR_TEST_MAIN(TEST(eyes_scale_with_the_scene), TEST(eyes_on_a_camera), TEST(exposure_follows_the_light_units),
+              TEST(sphere_and_orbit_layouts))

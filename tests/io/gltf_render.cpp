@@ -6,7 +6,7 @@ std::vector<uint8_t> two_layers(mvr_test_state *t, mvr_context *ctx, mvr_scene *
                                 const char *what, const char *program_cache_dir)
 {
     const int W = frame_width, H = frame_height;
-    mvr_framing_desc fd = {MVR_LAYOUT_STEREO, 2, 0.2, double(W) / H};
+    mvr_framing_desc fd = {MVR_LAYOUT_STEREO, 2, 0.2, double(W) / H, 0, 0.0, 0.0};
     mvr_view_set *views = nullptr;
     mvr_error err;
     std::vector<uint8_t> out;

@@ -258,7 +258,7 @@ frame render(mvr_test_state *t, mvr_scene *scene, const std::string &what, paths
     if (!ctx || !scene)
         return out;
     const int W = gltf_render::frame_width, H = gltf_render::frame_height;
-    mvr_framing_desc fd = {MVR_LAYOUT_STEREO, 2, 0.2, double(W) / H};
+    mvr_framing_desc fd = {MVR_LAYOUT_STEREO, 2, 0.2, double(W) / H, 0, 0.0, 0.0};
     mvr_view_set *views = nullptr;
     mvr_error err;
     if (mvr_view_set_frame_scene(scene, &fd, &views, &err) != MVR_OK) {

@@ -110,7 +110,7 @@ static frame render(mvr_test_state *t, mvr_context *ctx, mvr_scene *scene, style
 {
     frame out;
     mvr_error err;
-    mvr_framing_desc fd = {MVR_LAYOUT_STEREO, VIEWS, 0.2, double(W) / H};
+    mvr_framing_desc fd = {MVR_LAYOUT_STEREO, VIEWS, 0.2, double(W) / H, 0, 0.0, 0.0};
     mvr_view_set *views = nullptr;
     if (mvr_view_set_frame_scene(scene, &fd, &views, &err) != MVR_OK) {
         CHECK_MSG(t, 0, "%s: framing: %s", what.c_str(), err.message);
