@@ -223,6 +223,44 @@ void mvr_view_gpu_matrices(const mvr_view_desc *v, mvr_dvec3 origin, mvr_viewpor
     eye_rel[3] = 1.0f;
 }
 
+mvr_result mvr_view_set_get_camera(const mvr_view_set *s, uint32_t index, uint32_t layer_width, uint32_t layer_height,
+                                   mvr_view_camera *out)
+{
+    if (!s || !out || index >= s->count || layer_width == 0 || layer_height == 0)
+        return MVR_ERROR_INVALID_ARGUMENT;
+    memset(out, 0, sizeof *out);
+    const mvr_view_desc *v = &s->views[index];
+    mvr_viewport vp = mvr_view_viewport(v, layer_width, layer_height);
+    out->width = vp.width;
+    out->height = vp.height;
+    mvr_dmat4 proj = mvr_view_projection(v, vp, false);
+    mvr_dquat q = {v->orientation[0], v->orientation[1], v->orientation[2], v->orientation[3]};
+    if (q.x == 0 && q.y == 0 && q.z == 0 && q.w == 0)
+        q.w = 1;
+    mvr_dmat4 view = mvr_dmat4_view(mvr_dvec3_make(v->position[0], v->position[1], v->position[2]), q);
+    mvr_dmat4 inv;
+    if (!mvr_dmat4_invert(&view, &inv))
+        return MVR_ERROR_INVALID_ARGUMENT;
+    memcpy(out->projection, proj.m, sizeof out->projection);
+    memcpy(out->world_to_camera, view.m, sizeof out->world_to_camera);
+    memcpy(out->camera_to_world, inv.m, sizeof out->camera_to_world);
+    /* a projective clip matrix has w = -Z (its row 3 is (0, 0, -1, 0)):
+     * u = (x_ndc + 1) w / 2 with x_ndc = (P00 X + P01 Y + P02 Z) / -Z, and
+     * in the OpenCV camera (Xc, Yc, Zc) = (X, -Y, -Z) that is
+     * u = (w / 2) P00 Xc / Zc + (w / 2)(1 - P02), likewise
+     * v = (1 - y_ndc) h / 2 = (h / 2) P11 Yc / Zc + (h / 2)(1 + P12) */
+    const double *p = proj.m; /* column-major: p[col * 4 + row] */
+    out->perspective = p[3 * 4 + 3] == 0.0 && p[2 * 4 + 3] == -1.0 && p[1 * 4 + 0] == 0.0 && p[0 * 4 + 1] == 0.0;
+    if (out->perspective) {
+        double w = (double)vp.width, h = (double)vp.height;
+        out->fx = 0.5 * w * p[0];
+        out->fy = 0.5 * h * p[1 * 4 + 1];
+        out->cx = 0.5 * w * (1.0 - p[2 * 4 + 0]);
+        out->cy = 0.5 * h * (1.0 + p[2 * 4 + 1]);
+    }
+    return MVR_OK;
+}
+
 mvr_result mvr_scene_camera_view(const mvr_scene *s, mvr_node_id node, mvr_view_desc *out)
 {
     if (!s || !out || node.id == 0 || node.id > s->node_count)

@@ -816,6 +816,31 @@ mvr_result mvr_view_set_create(const mvr_view_set_desc *desc, mvr_view_set **out
 void mvr_view_set_destroy(mvr_view_set *set);
 mvr_result mvr_view_set_update(mvr_view_set *set, uint32_t index, const mvr_view_desc *view);
 uint32_t mvr_view_set_count(const mvr_view_set *set);
+
+/* Camera metadata of a view for data pipelines (issue 21): what each pixel
+ * of its viewport sees, in double, whatever the GPU's relative matrices.
+ * Conventions: the world is glTF's (right-handed, +Y up, metres if the file
+ * says so); world_to_camera / camera_to_world (column-major) use the OpenGL
+ * camera (x right, y up, looking along -Z, as glTF cameras and NeRF's
+ * transforms.json); fx, fy, cx, cy are pinhole intrinsics in pixels for the
+ * OpenCV / COLMAP camera (x right, y down, looking along +Z): a camera point
+ * (X, Y, Z) lands at u = fx X / Z + cx, v = fy Y / Z + cy, measured from the
+ * viewport's top-left corner with pixel k covering [k, k + 1) (COLMAP's; its
+ * centre is k + 0.5: subtract 0.5 for OpenCV's integer centres).
+ * projection: the OpenGL clip matrix (z in [-1, 1]; mvr's reversed-Z is
+ * the GPU's business). Orthographic views have no pinhole: perspective is
+ * false and fx .. cy are 0. width, height: the view's viewport on a layer of
+ * that size. */
+typedef struct mvr_view_camera {
+    uint32_t width, height;
+    bool perspective;
+    double fx, fy, cx, cy;
+    double projection[16];
+    double world_to_camera[16];
+    double camera_to_world[16];
+} mvr_view_camera;
+mvr_result mvr_view_set_get_camera(const mvr_view_set *set, uint32_t index, uint32_t layer_width,
+                                   uint32_t layer_height, mvr_view_camera *out);
 const char *mvr_view_set_last_error(const mvr_view_set *set);
 
 
