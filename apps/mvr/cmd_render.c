@@ -63,7 +63,11 @@ static const cli_option render_table[] = {
      "mvr info FILE lists them (default: the file's own materials)", NULL, NULL, NULL},
     {CLI_OPT_STRING, R_SIZE, "--size", NULL, "WxH", 0, 0, NULL, "layer size in pixels (default: 640x480)", NULL,
      NULL, NULL},
-    {CLI_OPT_STRING, R_OUT, "--out", NULL, "DIR", 0, 0, NULL, "output directory (default: out), created if missing",
+    {CLI_OPT_STRING, R_OUT, "--out", NULL, "DIR", 0, 0, NULL,
+     "output directory (default: out), created if missing; besides\n"
+     "the images: cameras.json (each view's intrinsics, extrinsics and\n"
+     "projection, conventions stated) and transforms.json (NeRF's\n"
+     "layout), of the first frame's views",
      NULL, NULL, NULL},
     {CLI_OPT_CHOICE, R_VIEW_PATH, "--view-path", NULL, "P", 0, 0, "auto|multiview|loop",
      "auto | multiview | loop (default: auto; MVR_VIEW_PATH wins)", NULL, NULL, NULL},
@@ -621,6 +625,9 @@ int mvr_cmd_render(int argc, char **argv)
             fprintf(stderr, "mvr render: cannot write %s\n", sheet);
             frames_ok = false;
         }
+        /* the camera metadata of the first frame's views */
+        if (frames_ok && f == 0)
+            frames_ok = render_output_write_cameras(&o, views, n);
     }
     free(floats);
     if (!frames_ok)

@@ -104,6 +104,15 @@ void json_double(json_writer *w, const char *key, double value)
         fputs("null", w->out); /* JSON has no NaN or infinity */
 }
 
+void json_double_exact(json_writer *w, const char *key, double value)
+{
+    key_prefix(w, key);
+    if (isfinite(value))
+        fprintf(w->out, "%.17g", value); /* round-trips every double */
+    else
+        fputs("null", w->out);
+}
+
 void json_bool(json_writer *w, const char *key, bool value)
 {
     key_prefix(w, key);

@@ -18,7 +18,8 @@ void json_begin_array(json_writer *w, const char *key);
 void json_end_array(json_writer *w);
 void json_string(json_writer *w, const char *key, const char *value);
 void json_int(json_writer *w, const char *key, long long value);
-void json_double(json_writer *w, const char *key, double value);
+void json_double(json_writer *w, const char *key, double value);       /* 9 significant digits */
+void json_double_exact(json_writer *w, const char *key, double value); /* 17: the same double read back */
 void json_bool(json_writer *w, const char *key, bool value);
 void json_null(json_writer *w, const char *key);
 

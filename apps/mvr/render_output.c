@@ -6,6 +6,7 @@
 #include "render_output.h"
 
 #include <errno.h>
+#include <math.h>
 #include <spawn.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -413,4 +414,85 @@ bool render_output_find_on_path(const char *name, char *buf, size_t size)
     }
     buf[0] = '\0';
     return false;
+}
+
+/* a column-major 4x4 as 4 rows of 4 (JSON's natural reading order) */
+static void json_matrix_rows(json_writer *jw, const char *key, const double m[16])
+{
+    json_begin_array(jw, key);
+    for (int r = 0; r < 4; ++r) {
+        json_begin_array(jw, NULL);
+        for (int c = 0; c < 4; ++c)
+            json_double_exact(jw, NULL, m[c * 4 + r]);
+        json_end_array(jw);
+    }
+    json_end_array(jw);
+}
+
+bool render_output_write_cameras(const render_options *o, const mvr_view_set *views, uint32_t n)
+{
+    char path[4096];
+    bool ok = true;
+    for (int file = 0; file < 2 && ok; ++file) {
+        snprintf(path, sizeof path, "%s/%s", o->out_dir, file == 0 ? "cameras.json" : "transforms.json");
+        FILE *f = fopen(path, "w");
+        if (!f) {
+            fprintf(stderr, "mvr render: cannot write %s\n", path);
+            return false;
+        }
+        json_writer jw = {.out = f};
+        json_begin_object(&jw, NULL);
+        if (file == 0) {
+            json_string(&jw, "world", "glTF: right-handed, +Y up");
+            json_string(&jw, "extrinsics", "world_to_camera, camera_to_world: 4 rows of 4; OpenGL camera: x right, "
+                                           "y up, looking along -Z");
+            json_string(&jw, "intrinsics", "fx, fy, cx, cy in pixels; OpenCV / COLMAP camera: x right, y down, "
+                                           "looking along +Z; u = fx X / Z + cx from the image's left edge, v = fy "
+                                           "Y / Z + cy from its top edge; pixel k covers [k, k + 1) (subtract 0.5 "
+                                           "for integer pixel centres)");
+            json_string(&jw, "projection", "OpenGL clip from camera space, 4 rows of 4, z in [-1, 1]");
+        } else {
+            json_string(&jw, "convention", "NeRF (instant-ngp, nerfstudio): transform_matrix is camera-to-world "
+                                           "with the OpenGL camera; world glTF (+Y up)");
+        }
+        json_begin_array(&jw, "frames");
+        for (uint32_t k = 0; k < n && ok; ++k) {
+            mvr_view_camera cam;
+            if (mvr_view_set_get_camera(views, k, o->width, o->height, &cam) != MVR_OK) {
+                ok = false;
+                break;
+            }
+            char image[4096];
+            view_file(image, sizeof image, o, k, o->frames_set ? 0 : -1);
+            const char *name = strrchr(image, '/') ? strrchr(image, '/') + 1 : image;
+            json_begin_object(&jw, NULL);
+            json_string(&jw, "file_path", name);
+            json_int(&jw, "w", cam.width);
+            json_int(&jw, "h", cam.height);
+            if (cam.perspective) {
+                json_double_exact(&jw, "fl_x", cam.fx);
+                json_double_exact(&jw, "fl_y", cam.fy);
+                json_double_exact(&jw, "cx", cam.cx);
+                json_double_exact(&jw, "cy", cam.cy);
+                json_double_exact(&jw, "camera_angle_x", 2.0 * atan(0.5 * cam.width / cam.fx));
+            }
+            if (file == 0) {
+                json_int(&jw, "view", k);
+                json_bool(&jw, "perspective", cam.perspective);
+                json_matrix_rows(&jw, "projection", cam.projection);
+                json_matrix_rows(&jw, "world_to_camera", cam.world_to_camera);
+                json_matrix_rows(&jw, "camera_to_world", cam.camera_to_world);
+            } else {
+                json_matrix_rows(&jw, "transform_matrix", cam.camera_to_world);
+            }
+            json_end_object(&jw);
+        }
+        json_end_array(&jw);
+        json_end_object(&jw);
+        fputc('\n', f);
+        ok = fclose(f) == 0 && ok;
+        if (!ok)
+            fprintf(stderr, "mvr render: writing %s failed\n", path);
+    }
+    return ok;
 }

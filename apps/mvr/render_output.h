@@ -56,4 +56,10 @@ void render_output_print_animation(const render_options *o, const mvr_scene *sce
  * the last image, the contact sheet (sheet) and the videos. */
 void render_output_print_files(const render_options *o, uint32_t n, const char *sheet);
 
+/* The views' camera metadata next to the images (the first frame's poses):
+ * cameras.json (mvr_view_set_get_camera's, conventions stated in it) and
+ * transforms.json (the NeRF layout instant-ngp and nerfstudio read: OpenGL
+ * camera-to-world matrices, row by row, per-frame intrinsics). */
+bool render_output_write_cameras(const render_options *o, const mvr_view_set *views, uint32_t n);
+
 #endif

@@ -1,0 +1,93 @@
+#!/usr/bin/env python3
+"""ctest: the camera metadata mvr render writes next to its images (cameras.json, transforms.json).
+
+  python3 test_cli_cameras.py MVR FILE OUT
+
+For sphere, orbit and stereo layouts: one entry per image, named as the images are; random world
+points in front of each camera projected the NeRF way (transforms.json: OpenGL camera-to-world,
+fl_x, fl_y, cx, cy) land where cameras.json's OpenGL projection x world_to_camera puts them (within
+1e-6 pixel); camera_to_world inverts world_to_camera; a sphere's views all look at one point.
+Python's standard library only."""
+import json
+import math
+import os
+import random
+import subprocess
+import sys
+
+MVR, FILE, OUT = sys.argv[1:4]
+failures = []
+
+
+def expect(ok, what):
+    if not ok:
+        failures.append(what)
+        print("FAIL:", what)
+
+
+def mat_vec(m, v):
+    return [sum(m[r][c] * v[c] for c in range(4)) for r in range(4)]
+
+
+def mat_mul(a, b):
+    return [[sum(a[r][k] * b[k][c] for k in range(4)) for c in range(4)] for r in range(4)]
+
+
+for layout, views in (("sphere", 7), ("orbit", 6), ("stereo", 2)):
+    out = os.path.join(OUT, layout)
+    run = subprocess.run([MVR, "render", FILE, "--layout", layout, "--views", str(views), "--size", "80x60",
+                          "--out", out, "--quiet"], capture_output=True, text=True)
+    expect(run.returncode == 0, "%s: mvr render exits %d: %s" % (layout, run.returncode, run.stderr))
+    if run.returncode != 0:
+        continue
+    cams = json.load(open(os.path.join(out, "cameras.json")))
+    nerf = json.load(open(os.path.join(out, "transforms.json")))
+    expect(len(cams["frames"]) == views and len(nerf["frames"]) == views, "%s: %d entries" % (layout, views))
+    rng = random.Random(7)
+    worst = 0.0
+    for c, n in zip(cams["frames"], nerf["frames"]):
+        expect(os.path.exists(os.path.join(out, n["file_path"])), "%s: %s exists" % (layout, n["file_path"]))
+        expect(c["w"] == 80 and c["h"] == 60, "%s: size %dx%d" % (layout, c["w"], c["h"]))
+        c2w, w2c, proj = n["transform_matrix"], c["world_to_camera"], c["projection"]
+        ident = mat_mul(c2w, w2c)
+        err = max(abs(ident[r][k] - (1.0 if r == k else 0.0)) for r in range(4) for k in range(4))
+        expect(err < 1e-12, "%s: camera_to_world x world_to_camera off identity by %g" % (layout, err))
+        for _ in range(50):
+            # a point in front of the camera (OpenGL camera space: looking along -Z), in the world
+            pc = [rng.uniform(-1, 1), rng.uniform(-1, 1), -rng.uniform(0.5, 10), 1.0]
+            p = mat_vec(c2w, pc)
+            # NeRF: world -> camera with the inverse of transform_matrix (here: world_to_camera), then
+            # the pinhole with OpenGL's y up and -Z forward
+            x, y, z, _ = mat_vec(w2c, p)
+            u = n["fl_x"] * x / -z + n["cx"]
+            v = n["fl_y"] * -y / -z + n["cy"]
+            # OpenGL: clip = projection x world_to_camera x p, pixels from the top-left corner
+            clip = mat_vec(proj, mat_vec(w2c, p))
+            ug = (clip[0] / clip[3] + 1) * 0.5 * c["w"]
+            vg = (1 - clip[1] / clip[3]) * 0.5 * c["h"]
+            worst = max(worst, abs(u - ug), abs(v - vg))
+    expect(worst < 1e-6, "%s: NeRF and OpenGL projections differ by %g pixel" % (layout, worst))
+    if layout == "sphere":
+        # every camera's forward axis (-Z of camera_to_world) passes through one point (the scene's centre)
+        frames = cams["frames"]
+        eye0 = [frames[0]["camera_to_world"][r][3] for r in range(3)]
+        fwd0 = [-frames[0]["camera_to_world"][r][2] for r in range(3)]
+        d0 = math.sqrt(sum((eye0[r]) ** 2 for r in range(3)))
+        # the centre: eye0 + t fwd0 with t the distance to it, the same for every view (they orbit at one radius)
+        eye1 = [frames[1]["camera_to_world"][r][3] for r in range(3)]
+        fwd1 = [-frames[1]["camera_to_world"][r][2] for r in range(3)]
+        # closest approach of the two axes
+        w0 = [eye0[r] - eye1[r] for r in range(3)]
+        a = sum(f * f for f in fwd0)
+        b = sum(fwd0[r] * fwd1[r] for r in range(3))
+        cc = sum(f * f for f in fwd1)
+        d = sum(fwd0[r] * w0[r] for r in range(3))
+        e = sum(fwd1[r] * w0[r] for r in range(3))
+        den = a * cc - b * b
+        s = (b * e - cc * d) / den
+        t = (a * e - b * d) / den
+        gap = math.sqrt(sum((eye0[r] + s * fwd0[r] - eye1[r] - t * fwd1[r]) ** 2 for r in range(3)))
+        expect(gap < 1e-9 * max(d0, 1.0), "sphere: views 0 and 1 look at points %g apart" % gap)
+    print("%-7s %d views: NeRF vs OpenGL projection within %.2g pixel" % (layout, views, worst))
+
+sys.exit(1 if failures else 0)
