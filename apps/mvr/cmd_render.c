@@ -23,7 +23,7 @@ enum {
     R_TRANSPARENCY, R_SUPERSAMPLE, R_MSAA, R_AA, R_REFERENCE, R_FORMAT, R_TARGET_FORMAT, R_SHADOWS, R_SHADOW_SIZE,
     R_EXPOSURE, R_EXPOSURE_SCALE, R_CAMERA_EXPOSURE, R_EXPOSURE_PER_VIEW, R_DITHER, R_CLEAR, R_TONE_MAP, R_FRAMES,
     R_STATS, R_STRICT, R_MEMORY_BUDGET, R_PROGRAM_CACHE, R_QUIET, R_PLAN, R_ANIMATION, R_TIME, R_LOOP, R_FPS, R_VIDEO,
-    R_SKINNING, R_VARIANT
+    R_SKINNING, R_VARIANT, R_COLMAP
 };
 
 #define MAX_FRAMES 100000
@@ -164,6 +164,10 @@ static const cli_option render_table_animation[] = {
 static const cli_option render_table_tail[] = {
     {CLI_OPT_STRING, R_STATS, "--stats", NULL, "FILE.json", 0, 0, NULL, "write the last frame's stats as JSON", NULL,
      NULL, NULL},
+    {CLI_OPT_FLAG, R_COLMAP, "--colmap", NULL, NULL, 0, 0, NULL,
+     "also write COLMAP's text model of the views into DIR/colmap:\n"
+     "cameras.txt (PINHOLE), images.txt (world-to-camera poses),\n"
+     "an empty points3D.txt", NULL, NULL, NULL},
     {CLI_OPT_FLAG, R_PLAN, "--plan", NULL, NULL, 0, 0, NULL,
      "print the last frame's plan: its passes in order, each with\n"
      "its views and why it runs", NULL, NULL, NULL},
@@ -274,6 +278,7 @@ static bool apply(const cli_arg *arg, render_options *o)
     case R_OUT: o->out_dir = v; break;
     case R_STATS: o->stats_file = v; break;
     case R_PLAN: o->plan = true; break;
+    case R_COLMAP: o->colmap = true; break;
     case R_MEMORY_BUDGET: o->memory_budget = (uint64_t)arg->number << 20; break;
     case R_PROGRAM_CACHE: o->program_cache = v; break;
     case R_VIEW_PATH: o->view_path = (mvr_view_path)(MVR_VIEW_PATH_AUTO + arg->choice); break;

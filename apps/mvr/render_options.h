@@ -22,6 +22,7 @@ typedef struct render_options {
     const char *out_dir;
     const char *stats_file;
     bool plan;                   /* --plan */
+    bool colmap;                 /* --colmap */
     mvr_view_path view_path;
     mvr_material_path material_path;
     mvr_depth_mode depth_mode;

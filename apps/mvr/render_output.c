@@ -429,6 +429,78 @@ static void json_matrix_rows(json_writer *jw, const char *key, const double m[16
     json_end_array(jw);
 }
 
+/* COLMAP's text model (its documentation, "Output Format"): a PINHOLE
+ * camera per view (fx fy cx cy, pixel centres at k + 0.5 as mvr's), each
+ * image's world-to-camera rotation (Hamilton quaternion, w first) and
+ * translation in COLMAP's camera (x right, y down, looking along +Z: the
+ * OpenGL camera's y and z negated), no 2D points; an empty points3D.txt. */
+static bool write_colmap(const render_options *o, const mvr_view_set *views, uint32_t n)
+{
+    char dir[4096], path[4096 + 16];
+    snprintf(dir, sizeof dir, "%s/colmap", o->out_dir);
+    if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
+        fprintf(stderr, "mvr render: cannot create %s: %s\n", dir, strerror(errno));
+        return false;
+    }
+    FILE *files[3] = {NULL, NULL, NULL};
+    static const char *const names[3] = {"cameras.txt", "images.txt", "points3D.txt"};
+    bool ok = true;
+    for (int k = 0; k < 3; ++k) {
+        snprintf(path, sizeof path, "%s/%s", dir, names[k]);
+        files[k] = fopen(path, "w");
+        ok = ok && files[k];
+    }
+    if (ok) {
+        fprintf(files[0], "# Camera list with one line of data per camera:\n#   CAMERA_ID, MODEL, WIDTH, HEIGHT, "
+                          "PARAMS[]\n# Number of cameras: %u\n", n);
+        fprintf(files[1], "# Image list with two lines of data per image:\n#   IMAGE_ID, QW, QX, QY, QZ, TX, TY, TZ, "
+                          "CAMERA_ID, NAME\n#   POINTS2D[] as (X, Y, POINT3D_ID)\n# Number of images: %u\n", n);
+        fprintf(files[2], "# 3D point list (empty: mvr writes no points)\n");
+    }
+    for (uint32_t k = 0; k < n && ok; ++k) {
+        mvr_view_camera cam;
+        ok = mvr_view_set_get_camera(views, k, o->width, o->height, &cam) == MVR_OK;
+        if (!ok || !cam.perspective)
+            continue; /* an orthographic view has no pinhole */
+        fprintf(files[0], "%u PINHOLE %u %u %.17g %.17g %.17g %.17g\n", k + 1, cam.width, cam.height, cam.fx, cam.fy,
+                cam.cx, cam.cy);
+        /* R, t of COLMAP's camera: rows 1 and 2 of the OpenGL world_to_camera negated */
+        double r[3][3], t[3];
+        for (int i = 0; i < 3; ++i) {
+            double sign = i == 0 ? 1.0 : -1.0;
+            for (int j = 0; j < 3; ++j)
+                r[i][j] = sign * cam.world_to_camera[j * 4 + i];
+            t[i] = sign * cam.world_to_camera[3 * 4 + i];
+        }
+        /* the rotation's quaternion (Shepperd's method: the largest of w, x, y, z first) */
+        double tr = r[0][0] + r[1][1] + r[2][2], q[4];
+        if (tr > 0) {
+            double s = 2.0 * sqrt(tr + 1.0);
+            q[0] = 0.25 * s, q[1] = (r[2][1] - r[1][2]) / s, q[2] = (r[0][2] - r[2][0]) / s, q[3] = (r[1][0] - r[0][1]) / s;
+        } else if (r[0][0] > r[1][1] && r[0][0] > r[2][2]) {
+            double s = 2.0 * sqrt(1.0 + r[0][0] - r[1][1] - r[2][2]);
+            q[0] = (r[2][1] - r[1][2]) / s, q[1] = 0.25 * s, q[2] = (r[0][1] + r[1][0]) / s, q[3] = (r[0][2] + r[2][0]) / s;
+        } else if (r[1][1] > r[2][2]) {
+            double s = 2.0 * sqrt(1.0 + r[1][1] - r[0][0] - r[2][2]);
+            q[0] = (r[0][2] - r[2][0]) / s, q[1] = (r[0][1] + r[1][0]) / s, q[2] = 0.25 * s, q[3] = (r[1][2] + r[2][1]) / s;
+        } else {
+            double s = 2.0 * sqrt(1.0 + r[2][2] - r[0][0] - r[1][1]);
+            q[0] = (r[1][0] - r[0][1]) / s, q[1] = (r[0][2] + r[2][0]) / s, q[2] = (r[1][2] + r[2][1]) / s, q[3] = 0.25 * s;
+        }
+        char image[4096];
+        view_file(image, sizeof image, o, k, o->frames_set ? 0 : -1);
+        const char *name = strrchr(image, '/') ? strrchr(image, '/') + 1 : image;
+        fprintf(files[1], "%u %.17g %.17g %.17g %.17g %.17g %.17g %.17g %u %s\n\n", k + 1, q[0], q[1], q[2], q[3], t[0],
+                t[1], t[2], k + 1, name);
+    }
+    for (int k = 0; k < 3; ++k)
+        if (files[k] && fclose(files[k]) != 0)
+            ok = false;
+    if (!ok)
+        fprintf(stderr, "mvr render: writing the COLMAP model into %s failed\n", dir);
+    return ok;
+}
+
 bool render_output_write_cameras(const render_options *o, const mvr_view_set *views, uint32_t n)
 {
     char path[4096];
@@ -494,5 +566,7 @@ bool render_output_write_cameras(const render_options *o, const mvr_view_set *vi
         if (!ok)
             fprintf(stderr, "mvr render: writing %s failed\n", path);
     }
+    if (ok && o->colmap)
+        ok = write_colmap(o, views, n);
     return ok;
 }

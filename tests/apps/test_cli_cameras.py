@@ -1,12 +1,14 @@
 #!/usr/bin/env python3
-"""ctest: the camera metadata mvr render writes next to its images (cameras.json, transforms.json).
+"""ctest: the camera metadata mvr render writes next to its images (cameras.json, transforms.json,
+and with --colmap COLMAP's text model).
 
   python3 test_cli_cameras.py MVR FILE OUT
 
 For sphere, orbit and stereo layouts: one entry per image, named as the images are; random world
 points in front of each camera projected the NeRF way (transforms.json: OpenGL camera-to-world,
 fl_x, fl_y, cx, cy) land where cameras.json's OpenGL projection x world_to_camera puts them (within
-1e-6 pixel); camera_to_world inverts world_to_camera; a sphere's views all look at one point.
+1e-6 pixel), and so do COLMAP's (quaternion and translation of images.txt, PINHOLE parameters of
+cameras.txt); camera_to_world inverts world_to_camera; a sphere's views all look at one point.
 Python's standard library only."""
 import json
 import math
@@ -36,15 +38,34 @@ def mat_mul(a, b):
 for layout, views in (("sphere", 7), ("orbit", 6), ("stereo", 2)):
     out = os.path.join(OUT, layout)
     run = subprocess.run([MVR, "render", FILE, "--layout", layout, "--views", str(views), "--size", "80x60",
-                          "--out", out, "--quiet"], capture_output=True, text=True)
+                          "--out", out, "--quiet", "--colmap"], capture_output=True, text=True)
     expect(run.returncode == 0, "%s: mvr render exits %d: %s" % (layout, run.returncode, run.stderr))
     if run.returncode != 0:
         continue
     cams = json.load(open(os.path.join(out, "cameras.json")))
     nerf = json.load(open(os.path.join(out, "transforms.json")))
     expect(len(cams["frames"]) == views and len(nerf["frames"]) == views, "%s: %d entries" % (layout, views))
+    # COLMAP: camera id -> (fx, fy, cx, cy); image name -> (R, t, camera id)
+    colmap_cams, colmap_images = {}, {}
+    for line in open(os.path.join(out, "colmap", "cameras.txt")):
+        if line.startswith("#") or not line.strip():
+            continue
+        f = line.split()
+        expect(f[1] == "PINHOLE", "%s: camera model %s" % (layout, f[1]))
+        colmap_cams[int(f[0])] = [float(x) for x in f[4:8]]
+    for line in open(os.path.join(out, "colmap", "images.txt")):
+        if line.startswith("#") or not line.strip():
+            continue
+        f = line.split()
+        w, x, y, z = (float(v) for v in f[1:5])
+        rot = [[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+               [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+               [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]]
+        colmap_images[f[9]] = (rot, [float(v) for v in f[5:8]], int(f[8]))
+    expect(len(colmap_images) == views and len(colmap_cams) == views, "%s: COLMAP lists %d images, %d cameras" %
+           (layout, len(colmap_images), len(colmap_cams)))
     rng = random.Random(7)
-    worst = 0.0
+    worst = worst_colmap = 0.0
     for c, n in zip(cams["frames"], nerf["frames"]):
         expect(os.path.exists(os.path.join(out, n["file_path"])), "%s: %s exists" % (layout, n["file_path"]))
         expect(c["w"] == 80 and c["h"] == 60, "%s: size %dx%d" % (layout, c["w"], c["h"]))
@@ -66,7 +87,14 @@ for layout, views in (("sphere", 7), ("orbit", 6), ("stereo", 2)):
             ug = (clip[0] / clip[3] + 1) * 0.5 * c["w"]
             vg = (1 - clip[1] / clip[3]) * 0.5 * c["h"]
             worst = max(worst, abs(u - ug), abs(v - vg))
+            if n["file_path"] in colmap_images:
+                rot, t, cid = colmap_images[n["file_path"]]
+                fx, fy, cx, cy = colmap_cams[cid]
+                xc = [sum(rot[r][k] * p[k] for k in range(3)) + t[r] for r in range(3)]
+                worst_colmap = max(worst_colmap, abs(fx * xc[0] / xc[2] + cx - ug), abs(fy * xc[1] / xc[2] + cy - vg))
     expect(worst < 1e-6, "%s: NeRF and OpenGL projections differ by %g pixel" % (layout, worst))
+    expect(len(colmap_images) == views and worst_colmap < 1e-6,
+           "%s: COLMAP and OpenGL projections differ by %g pixel" % (layout, worst_colmap))
     if layout == "sphere":
         # every camera's forward axis (-Z of camera_to_world) passes through one point (the scene's centre)
         frames = cams["frames"]
@@ -88,6 +116,7 @@ for layout, views in (("sphere", 7), ("orbit", 6), ("stereo", 2)):
         t = (a * e - b * d) / den
         gap = math.sqrt(sum((eye0[r] + s * fwd0[r] - eye1[r] - t * fwd1[r]) ** 2 for r in range(3)))
         expect(gap < 1e-9 * max(d0, 1.0), "sphere: views 0 and 1 look at points %g apart" % gap)
-    print("%-7s %d views: NeRF vs OpenGL projection within %.2g pixel" % (layout, views, worst))
+    print("%-7s %d views: NeRF vs OpenGL projection within %.2g pixel, COLMAP within %.2g" %
+          (layout, views, worst, worst_colmap))
 
 sys.exit(1 if failures else 0)
