@@ -50,6 +50,7 @@ const ASSETS = [
     { name: 'spec_gloss', file: 'spec_gloss.gltf', camera: 0 },
     { name: 'films', file: 'films.gltf', camera: 0 },
     { name: 'sheen', file: 'sheen.gltf', camera: 0 },
+    { name: 'principled', file: 'principled.gltf', camera: 0 },
 ];
 const ENVS = [
     { name: 'uniform', file: 'uniform.hdr' },

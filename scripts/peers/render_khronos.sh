@@ -5,8 +5,9 @@
 #
 #   scripts/peers/render_khronos.sh [--assets] [--precision highp|as-is] [--out DIR]
 #
-#   --assets       first regenerate the test assets (scripts/peers/make_assets.py; textured.gltf and
-#                  sheen.gltf with Blender's glTF exporter: needs Debian's blender and python3-numpy)
+#   --assets       first regenerate the test assets (scripts/peers/make_assets.py; textured.gltf,
+#                  sheen.gltf and principled.gltf with Blender's glTF exporter: needs Debian's
+#                  blender and python3-numpy)
 #   --precision    highp (default): the renderer's shaders get highp int/sampler precision, without
 #                  which llvmpipe collapses its IBL prefilter; as-is: unchanged (for the record)
 #   --out DIR      write the PNGs and manifest.json there instead of tests/data/peers
@@ -75,6 +76,9 @@ if [ $assets -eq 1 ]; then
     blender -b --factory-startup --python "$here/blender_sheen.py" -- "$data" "$tmp" >"$tmp/blender_sheen.log" 2>&1 \
         || { cat "$tmp/blender_sheen.log" >&2; die "blender failed (sheen)"; }
     grep -q 'wrote .*sheen.gltf' "$tmp/blender_sheen.log" || { cat "$tmp/blender_sheen.log" >&2; die "blender wrote no sheen.gltf"; }
+    blender -b --factory-startup --python "$here/blender_principled.py" -- "$data" "$tmp" >"$tmp/blender_principled.log" 2>&1 \
+        || { cat "$tmp/blender_principled.log" >&2; die "blender failed (principled)"; }
+    grep -q 'wrote .*principled.gltf' "$tmp/blender_principled.log" || { cat "$tmp/blender_principled.log" >&2; die "blender wrote no principled.gltf"; }
 fi
 
 log "rendering with $("$chromium_bin" --version 2>/dev/null | head -n 1)"
