@@ -112,6 +112,24 @@ mvr_gltf_options budget(uint64_t bytes)
 
 bool has(const std::string &s, const std::string &part) { return s.find(part) != std::string::npos; }
 
+size_t check_refusals(mvr_test_state *t, const files &f, const std::string &prefix)
+{
+    size_t refused = 0;
+    for (const auto &h : f.list) {
+        if (h.name.rfind(prefix, 0) != 0 || h.refused_naming.empty())
+            continue;
+        ++refused;
+        const char *n = h.name.c_str();
+        outcome o = load(t, f.path(h.name), defaults());
+        CHECK_MSG(t, o.r == MVR_ERROR_INVALID_ASSET, "%s: %s, expected MVR_ERROR_INVALID_ASSET (%s)", n,
+                  mvr_result_name(o.r), o.msg.c_str());
+        CHECK_MSG(t, has(o.msg, h.refused_naming), "%s: the message lacks '%s': %s", n, h.refused_naming.c_str(),
+                  o.msg.c_str());
+        CHECK_MSG(t, o.scene == nullptr, "%s: a scene on failure", n);
+    }
+    return refused;
+}
+
 void no_outside_facts(mvr_test_state *t, const outcome &o, const char *what, const std::vector<std::string> &sizes)
 {
     std::vector<std::string> texts = o.all_logged;

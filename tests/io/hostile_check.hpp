@@ -62,6 +62,11 @@ mvr_gltf_options budget(uint64_t bytes);
 
 bool has(const std::string &s, const std::string &part);
 
+// Loads every file whose name starts with prefix and that is to be refused
+// naming something: MVR_ERROR_INVALID_ASSET, that naming in the message, no
+// scene. Returns how many there were.
+size_t check_refusals(mvr_test_state *t, const files &f, const std::string &prefix);
+
 // The loader said nothing about a file outside the folder: not its size,
 // not that it exists.
 void no_outside_facts(mvr_test_state *t, const outcome &o, const char *what, const std::vector<std::string> &sizes);

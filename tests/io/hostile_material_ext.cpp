@@ -100,19 +100,7 @@ void material_ext_files(files &f)
 void material_extensions_are_checked(mvr_test_state *t)
 {
     const files &f = F();
-    size_t refused = 0;
-    for (const auto &h : f.list) {
-        if (h.name.rfind("matext_", 0) != 0 || h.refused_naming.empty())
-            continue;
-        ++refused;
-        const char *n = h.name.c_str();
-        outcome o = load(t, f.path(h.name), defaults());
-        CHECK_MSG(t, o.r == MVR_ERROR_INVALID_ASSET, "%s: %s, expected MVR_ERROR_INVALID_ASSET (%s)", n,
-                  mvr_result_name(o.r), o.msg.c_str());
-        CHECK_MSG(t, has(o.msg, h.refused_naming), "%s: the message lacks '%s': %s", n, h.refused_naming.c_str(),
-                  o.msg.c_str());
-        CHECK_MSG(t, o.scene == nullptr, "%s: a scene on failure", n);
-    }
+    size_t refused = check_refusals(t, f, "matext_");
     CHECK_MSG(t, refused >= 9, "%zu matext_* files refused", refused);
     outcome v = load(t, f.path("matext_valid.gltf"), defaults());
     CHECK_MSG(t, v.r == MVR_OK && v.warnings.empty(), "matext_valid: %s %s", v.msg.c_str(),

@@ -144,19 +144,7 @@ void variant_files(files &f)
 void material_variants_are_checked(mvr_test_state *t)
 {
     const files &f = F();
-    size_t refused = 0;
-    for (const auto &h : f.list) {
-        if (h.name.rfind("variants_", 0) != 0 || h.refused_naming.empty())
-            continue;
-        ++refused;
-        const char *n = h.name.c_str();
-        outcome o = load(t, f.path(h.name), defaults());
-        CHECK_MSG(t, o.r == MVR_ERROR_INVALID_ASSET, "%s: %s, expected MVR_ERROR_INVALID_ASSET (%s)", n,
-                  mvr_result_name(o.r), o.msg.c_str());
-        CHECK_MSG(t, has(o.msg, h.refused_naming), "%s: the message lacks '%s': %s", n, h.refused_naming.c_str(),
-                  o.msg.c_str());
-        CHECK_MSG(t, o.scene == nullptr, "%s: a scene on failure", n);
-    }
+    size_t refused = check_refusals(t, f, "variants_");
     CHECK_MSG(t, refused >= 20, "%zu variants_* files refused", refused);
     {
         outcome o = load(t, f.path("variants_valid.gltf"), defaults());

@@ -631,19 +631,7 @@ void read_callback_replaces_file_access(mvr_test_state *t)
 void skins_morphs_and_animations_are_checked(mvr_test_state *t)
 {
     const files &f = F();
-    size_t refused = 0;
-    for (const auto &h : f.list) {
-        if (h.refused_naming.empty())
-            continue;
-        ++refused;
-        const char *n = h.name.c_str();
-        outcome o = load(t, f.path(h.name), defaults());
-        CHECK_MSG(t, o.r == MVR_ERROR_INVALID_ASSET, "%s: %s, expected MVR_ERROR_INVALID_ASSET (%s)", n,
-                  mvr_result_name(o.r), o.msg.c_str());
-        CHECK_MSG(t, has(o.msg, h.refused_naming), "%s: the message lacks '%s': %s", n, h.refused_naming.c_str(),
-                  o.msg.c_str());
-        CHECK_MSG(t, o.scene == nullptr, "%s: a scene on failure", n);
-    }
+    size_t refused = check_refusals(t, f, "");
     CHECK_MSG(t, refused >= 30, "%zu anim_* files refused", refused);
     {
         outcome o = load(t, f.path("anim_valid.gltf"), defaults());
@@ -743,18 +731,7 @@ void ktx2_containers_are_checked(mvr_test_state *t)
 void compressed_geometry_is_checked(mvr_test_state *t)
 {
     const files &f = F();
-    size_t refused = 0;
-    for (const auto &h : f.list) {
-        if (h.name.rfind("codec_", 0) != 0 || h.refused_naming.empty())
-            continue;
-        ++refused;
-        const char *n = h.name.c_str();
-        outcome o = load(t, f.path(h.name), defaults());
-        CHECK_MSG(t, o.r == MVR_ERROR_INVALID_ASSET, "%s: %s, expected MVR_ERROR_INVALID_ASSET (%s)", n,
-                  mvr_result_name(o.r), o.msg.c_str());
-        CHECK_MSG(t, has(o.msg, h.refused_naming), "%s: the message lacks '%s': %s", n, h.refused_naming.c_str(),
-                  o.msg.c_str());
-    }
+    size_t refused = check_refusals(t, f, "codec_");
     CHECK_MSG(t, refused >= 30, "%zu codec_* files refused", refused);
     // valid: an unlit orange quad (meshopt) and blue Suzanne (Draco), framed
     struct valid {
