@@ -22,6 +22,7 @@
 #include "gl_test_util.h"
 #include "mvr/mvr.h"
 #include "shader_gen.h"
+#include "render_views.h"
 #include "skin_render.h"
 
 #define W 64
@@ -85,35 +86,11 @@ static mvr_view_set *front_views(mvr_test_state *t, uint32_t n)
 static void *render_with(mvr_test_state *t, mvr_context *ctx, mvr_scene *s, mvr_view_set *vs, mvr_view_path path,
                          mvr_material_path material_path, mvr_color_format format, uint32_t *features)
 {
-    uint32_t n = mvr_view_set_count(vs);
-    mvr_renderer_desc rd = {.context = ctx, .view_path = path, .material_path = material_path};
-    mvr_renderer *r = NULL;
-    mvr_target *tg = NULL;
-    mvr_environment *env = NULL;
-    mvr_environment_desc ed = {.source = MVR_ENVIRONMENT_UNIFORM};
-    mvr_target_desc td = {.width = W, .height = H, .layers = n, .color_format = format};
-    bool ok = mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &tg) == MVR_OK &&
-              mvr_environment_create(&ed, &env, NULL) == MVR_OK;
-    CHECK(t, ok);
-    mvr_render_desc desc = {.exposure = 1.0f, .environment = env};
-    ok = ok && mvr_renderer_render(r, s, vs, tg, &desc) == MVR_OK;
-    CHECK_MSG(t, ok, "render: %s", r ? mvr_renderer_last_error(r) : "");
-    bool f32 = format == MVR_COLOR_FORMAT_RGBA32F;
-    size_t layer = (size_t)W * H * 4 * (f32 ? sizeof(float) : 1);
-    uint8_t *out = ok ? malloc(layer * n) : NULL;
-    for (uint32_t k = 0; out && k < n; ++k)
-        CHECK(t, mvr_renderer_read_layer(r, tg, k, f32 ? MVR_READBACK_RGBA32F : MVR_READBACK_RGBA8,
-                                         out + k * layer, layer) == MVR_OK);
-    *features = 0;
-    for (uint32_t i = 0; r && i < mvr_renderer_program_count(r); ++i) {
-        mvr_program_info info;
-        if (mvr_renderer_get_program_info(r, i, &info) && info.mesh)
-            *features |= info.features;
-    }
-    mvr_environment_destroy(env);
-    mvr_target_destroy(tg);
-    mvr_renderer_destroy(r);
-    return out;
+    render_views_opts o = {.width = W, .height = H, .path = path, .material_path = material_path, .format = format,
+                           .environment = true, .environment_source = MVR_ENVIRONMENT_UNIFORM};
+    render_views_out r = render_views(t, ctx, s, vs, &o);
+    *features = r.features;
+    return r.pixels;
 }
 
 static void *render(mvr_test_state *t, mvr_context *ctx, mvr_scene *s, mvr_view_set *vs, mvr_view_path path,

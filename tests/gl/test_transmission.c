@@ -21,6 +21,7 @@
 #include "gl_test_util.h"
 #include "mvr/mvr.h"
 #include "shader_gen.h"
+#include "render_views.h"
 #include "skin_render.h"
 
 #define W 64
@@ -118,36 +119,10 @@ typedef struct result {
 static result render(mvr_test_state *t, mvr_context *ctx, mvr_scene *s, mvr_view_set *vs, mvr_view_path path,
                      mvr_material_path mpath, bool environment)
 {
-    result out = {0};
-    uint32_t n = mvr_view_set_count(vs);
-    mvr_renderer_desc rd = {.context = ctx, .view_path = path, .material_path = mpath};
-    mvr_renderer *r = NULL;
-    mvr_target *tg = NULL;
-    mvr_environment *env = NULL;
-    mvr_environment_desc ed = {.source = MVR_ENVIRONMENT_NEUTRAL};
-    mvr_target_desc td = {.width = W, .height = H, .layers = n};
-    bool ok = mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &tg) == MVR_OK &&
-              (!environment || mvr_environment_create(&ed, &env, NULL) == MVR_OK);
-    CHECK(t, ok);
-    mvr_render_desc desc = {.exposure = 1.0f, .environment = env, .clear_color = {0, 0, 0, 1}};
-    ok = ok && mvr_renderer_render(r, s, vs, tg, &desc) == MVR_OK;
-    CHECK_MSG(t, ok, "render: %s", r ? mvr_renderer_last_error(r) : "");
-    size_t layer = (size_t)W * H * 4;
-    out.px = ok ? malloc(layer * n) : NULL;
-    for (uint32_t k = 0; out.px && k < n; ++k)
-        CHECK(t, mvr_renderer_read_layer(r, tg, k, MVR_READBACK_RGBA8, out.px + k * layer, layer) == MVR_OK);
-    if (r) {
-        mvr_renderer_get_stats(r, &out.stats);
-        for (uint32_t i = 0; i < mvr_renderer_program_count(r); ++i) {
-            mvr_program_info info;
-            if (mvr_renderer_get_program_info(r, i, &info) && info.mesh)
-                out.features |= info.features;
-        }
-    }
-    mvr_environment_destroy(env);
-    mvr_target_destroy(tg);
-    mvr_renderer_destroy(r);
-    return out;
+    render_views_opts o = {.width = W, .height = H, .path = path, .material_path = mpath, .environment = environment,
+                           .environment_source = MVR_ENVIRONMENT_NEUTRAL, .clear = {0, 0, 0, 1}};
+    render_views_out r = render_views(t, ctx, s, vs, &o);
+    return (result){r.pixels, r.stats, r.features};
 }
 
 static double to_linear(uint8_t c)
