@@ -68,19 +68,23 @@ static void put_i(uint8_t *dst, const int32_t *v, size_t n)
     {name, MVR_STD140_##type, offset, MEMBER_SIZE_##type, count, stride, MEMBER_MSTRIDE_##type}
 #define MEMBER_SIZE_VEC4 16u
 #define MEMBER_SIZE_IVEC4 16u
+#define MEMBER_SIZE_UVEC4 16u
 #define MEMBER_SIZE_MAT4 64u
 #define MEMBER_MSTRIDE_VEC4 0u
 #define MEMBER_MSTRIDE_IVEC4 0u
+#define MEMBER_MSTRIDE_UVEC4 0u
 #define MEMBER_MSTRIDE_MAT4 16u
 
 static const mvr_block_member views_members[] = {
     ARRAY("mvr_view_proj", MAT4, MVR_VIEWS_VIEW_PROJ_OFFSET, MVR_VIEWS_PER_BLOCK, MVR_VIEW_MATRIX_SIZE),
     ARRAY("mvr_eye_position", VEC4, MVR_VIEWS_EYE_POSITION_OFFSET, MVR_VIEWS_PER_BLOCK, MVR_VIEW_EYE_SIZE),
     ARRAY("mvr_view_info", IVEC4, MVR_VIEWS_VIEW_INFO_OFFSET, MVR_VIEWS_PER_BLOCK, MVR_VIEW_INFO_SIZE),
+    ARRAY("mvr_view_matrix", MAT4, MVR_VIEWS_VIEW_MATRIX_OFFSET, MVR_VIEWS_PER_BLOCK, MVR_VIEW_MATRIX_SIZE),
 };
 static const mvr_block_member draw_members[] = {
     MEMBER("model", MAT4, MVR_DRAW_MODEL_OFFSET),
-    MEMBER("normal_matrix", MAT4, MVR_DRAW_NORMAL_MATRIX_OFFSET),
+    ARRAY("normal_matrix", VEC4, MVR_DRAW_NORMAL_MATRIX_OFFSET, 3u, 16u),
+    MEMBER("ids", UVEC4, MVR_DRAW_IDS_OFFSET),
     MEMBER("info", IVEC4, MVR_DRAW_INFO_OFFSET),
 };
 static const mvr_block_member material_members[] = {
@@ -170,7 +174,7 @@ static int compare_draws(const void *pa, const void *pb)
 /* A skinned draw's joint matrices are already world and relative to the
  * origin: its model is the identity (exactly, so both skinning paths agree). */
 static void pack_draw_block(uint8_t *dst, const mvr_dmat4 *world, mvr_dvec3 origin, uint32_t material,
-                           const mvr_deform *deform)
+                           const mvr_deform *deform, const uint32_t ids[4])
 {
     bool skinned = deform && deform->joint_base >= 0;
     mvr_dmat4 identity = mvr_dmat4_identity();
@@ -178,7 +182,8 @@ static void pack_draw_block(uint8_t *dst, const mvr_dmat4 *world, mvr_dvec3 orig
     mvr_dmat4 nm = skinned ? identity : mvr_dmat4_normal_matrix(world);
     mvr_mat4f normal = mvr_dmat4_to_float(&nm);
     put_f(dst + MVR_DRAW_MODEL_OFFSET, model.m, 16);
-    put_f(dst + MVR_DRAW_NORMAL_MATRIX_OFFSET, normal.m, 16);
+    put_f(dst + MVR_DRAW_NORMAL_MATRIX_OFFSET, normal.m, 12);
+    memcpy(dst + MVR_DRAW_IDS_OFFSET, ids, 4 * sizeof *ids);
     int32_t info[4] = {(int32_t)material, deform ? deform->joint_base : -1, deform ? deform->morph_base : -1,
                        deform ? deform->delta_base : -1};
     put_i(dst + MVR_DRAW_INFO_OFFSET, info, 4);
@@ -513,8 +518,14 @@ mvr_result mvr_frame_build(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin, u
         mvr_draw *d = &f->draws[i];
         uint32_t material_slot = d->material == MVR_NO_INDEX ? s->material_count : d->material;
         d->block = i;
+        /* the extra outputs' IDs: mvr's ids (index + 1) */
+        const scene_node *node = &s->nodes[d->node];
+        uint32_t first = node->mesh < s->mesh_count ? s->meshes[node->mesh].first_primitive : d->primitive;
+        uint32_t ids[4] = {d->node + 1u, node->mesh < s->mesh_count ? node->mesh + 1u : 0u,
+                           d->material == MVR_NO_INDEX ? 0u : d->material + 1u, d->primitive - first + 1u};
         pack_draw_block(f->draw_blocks + (size_t)i * stride, &f->world[d->node], origin,
-                        material_slot % material_capacity, d->deform != MVR_NO_INDEX ? &f->deforms[d->deform] : NULL);
+                        material_slot % material_capacity, d->deform != MVR_NO_INDEX ? &f->deforms[d->deform] : NULL,
+                        ids);
     }
     memset(f->pass_first, 0, sizeof f->pass_first);
     memset(f->pass_count, 0, sizeof f->pass_count);

@@ -23,7 +23,10 @@
 /* mvr_draw (shaders/mesh.vert.glsl): an array of struct mvr_draw_data, one per
  * draw, spaced the GL's uniform offset alignment apart (padding vec4s) */
 #define MVR_DRAW_MODEL_OFFSET 0u          /* mat4 model */
-#define MVR_DRAW_NORMAL_MATRIX_OFFSET 64u /* mat4 normal_matrix */
+#define MVR_DRAW_NORMAL_MATRIX_OFFSET 64u /* vec4 normal_matrix[3]: the columns of a mat3 */
+#define MVR_DRAW_IDS_OFFSET 112u          /* uvec4 ids: node, mesh, material, primitive (extra outputs;
+                                             node / mesh / material id, 0 = the default material;
+                                             primitive: its index in the mesh + 1) */
 #define MVR_DRAW_INFO_OFFSET 128u         /* ivec4 info; x: material index; y, z, w: deform.glsl's
                                              joint base, morph header, morph delta base (-1: none) */
 #define MVR_DRAW_BLOCK_SIZE 144u          /* the struct without padding */
@@ -61,7 +64,8 @@
 #define MVR_LIGHT_SPOT_OFFSET 48u          /* vec4 spot */
 #define MVR_LIGHT_BLOCK_SIZE 64u
 
-/* mvr_views (shaders/views.glsl): three arrays of MVR_VIEWS_PER_BLOCK */
+/* mvr_views (shaders/views.glsl): four arrays of MVR_VIEWS_PER_BLOCK (the
+ * view matrices are sent only for extra outputs) */
 #define MVR_VIEWS_PER_BLOCK 64u       /* MVR_MAX_VIEWS of the shaders */
 #define MVR_VIEW_MATRIX_SIZE 64u      /* array stride of mat4 mvr_view_proj[] */
 #define MVR_VIEW_EYE_SIZE 16u         /* array stride of vec4 mvr_eye_position[] */
@@ -69,7 +73,8 @@
 #define MVR_VIEWS_VIEW_PROJ_OFFSET 0u
 #define MVR_VIEWS_EYE_POSITION_OFFSET (MVR_VIEWS_VIEW_PROJ_OFFSET + MVR_VIEWS_PER_BLOCK * MVR_VIEW_MATRIX_SIZE)
 #define MVR_VIEWS_VIEW_INFO_OFFSET (MVR_VIEWS_EYE_POSITION_OFFSET + MVR_VIEWS_PER_BLOCK * MVR_VIEW_EYE_SIZE)
-#define MVR_VIEWS_BLOCK_SIZE (MVR_VIEWS_VIEW_INFO_OFFSET + MVR_VIEWS_PER_BLOCK * MVR_VIEW_INFO_SIZE)
+#define MVR_VIEWS_VIEW_MATRIX_OFFSET (MVR_VIEWS_VIEW_INFO_OFFSET + MVR_VIEWS_PER_BLOCK * MVR_VIEW_INFO_SIZE)
+#define MVR_VIEWS_BLOCK_SIZE (MVR_VIEWS_VIEW_MATRIX_OFFSET + MVR_VIEWS_PER_BLOCK * MVR_VIEW_MATRIX_SIZE)
 
 /* mvr_shadows (shaders/mesh.frag.glsl, MVR_SHADOWS): per layer, per light */
 #define MVR_SHADOWS_LAYERS MVR_SHADER_MAX_SHADOW_LAYERS        /* MVR_MAX_SHADOW_LAYERS */
@@ -85,6 +90,7 @@
 typedef enum mvr_std140_type {
     MVR_STD140_VEC4 = 0,
     MVR_STD140_IVEC4,
+    MVR_STD140_UVEC4,
     MVR_STD140_MAT4   /* column-major, matrix stride 16 */
 } mvr_std140_type;
 

@@ -187,9 +187,10 @@ mvr_result mvr_frame_plan_build(mvr_frame_plan *p, const mvr_frame_plan_input *i
     uint32_t views = in->views->count;
     p->count = 0;
     p->chunk_count = 0;
-    /* records: 3 before the views, at most 7 + its views per chunk, 2 after */
+    /* records: 3 before the views, at most 7 + its views per chunk, 2 after, one
+     * per chunk for the extra outputs */
     if (!grow((void **)&p->chunks, &p->chunk_cap, views + 1, sizeof *p->chunks) ||
-        !grow((void **)&p->records, &p->cap, 8 * views + 8, sizeof *p->records))
+        !grow((void **)&p->records, &p->cap, 9 * views + 8, sizeof *p->records))
         return MVR_ERROR_OUT_OF_MEMORY;
     p->views = views;
     p->width = in->width;
@@ -232,6 +233,15 @@ mvr_result mvr_frame_plan_build(mvr_frame_plan *p, const mvr_frame_plan_input *i
             p->post ? "exposure, tone map and encode of the HDR views"
                     : "linear exposure, no tone map or dither: the views are final");
     r->multiview = p->multiview;
+    for (uint32_t c = 0; in->outputs && c < p->chunk_count; ++c) {
+        const mvr_view_chunk *ch = &p->chunks[c];
+        uint32_t blend = in->draws[MVR_PASS_BLEND];
+        r = add(p, MVR_PLAN_OUTPUTS_BLEND, blend ? MVR_PLAN_RUN : MVR_PLAN_SKIP, c, ch->base, ch->count,
+                blend ? "the front-most blended surface above the alpha cutoff, outputs alone"
+                      : "no blended draws: the view pass wrote every output");
+        r->multiview = p->multiview && ch->count > 1;
+        r->draws = blend;
+    }
     return MVR_OK;
 }
 
@@ -246,7 +256,8 @@ const char *mvr_plan_kind_name(mvr_plan_kind kind)
 {
     static const char *const names[MVR_PLAN_KIND_COUNT] = {
         "env-prefilter", "upload", "preskin", "shadow-maps", "view-pass",           "opaque",       "mask",
-        "background",    "blend",  "blend-view",  "msaa-resolve", "supersample-resolve", "post", "transmission"};
+        "background",    "blend",  "blend-view",  "msaa-resolve", "supersample-resolve", "post", "transmission",
+        "outputs-blend"};
     return (unsigned)kind < MVR_PLAN_KIND_COUNT ? names[kind] : "?";
 }
 
@@ -300,7 +311,7 @@ size_t mvr_frame_plan_format(const mvr_frame_plan *p, char *buf, size_t size)
         if (r->kind == MVR_PLAN_SHADOW_MAPS && r->draws)
             put(&t, "%s%u layers", sep, r->draws), sep = ", ";
         else if ((r->kind >= MVR_PLAN_OPAQUE && r->kind <= MVR_PLAN_BLEND_VIEW && r->kind != MVR_PLAN_BACKGROUND) ||
-                 r->kind == MVR_PLAN_TRANSMISSION)
+                 r->kind == MVR_PLAN_TRANSMISSION || r->kind == MVR_PLAN_OUTPUTS_BLEND)
             put(&t, "%s%u draws", sep, r->draws), sep = ", ";
         if (r->depth)
             put(&t, "%swith depth", sep);

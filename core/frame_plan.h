@@ -51,6 +51,8 @@ typedef enum mvr_plan_kind {
     MVR_PLAN_POST,               /* exposure, tone map, encode of an HDR frame */
     MVR_PLAN_TRANSMISSION,       /* sub-pass: the chunk's opaque views into the mip-mapped array
                                     transmissive draws sample (before the blend sub-pass) */
+    MVR_PLAN_OUTPUTS_BLEND,      /* one chunk's blended draws into the extra outputs alone (after
+                                    every colour record: nothing the colour reads sees its depth) */
     MVR_PLAN_KIND_COUNT
 } mvr_plan_kind;
 
@@ -107,6 +109,7 @@ typedef struct mvr_frame_plan_input {
     bool deforms_moved;          /* ... whose joints or weights changed since the last capture */
     uint32_t draws[MVR_PASS_KIND_COUNT]; /* the frame's opaque, mask and blend lists */
     uint32_t transmissive;       /* of the blend list: draws that sample the opaque views */
+    bool outputs;                /* the target has extra outputs (depth, normals, IDs) */
 } mvr_frame_plan_input;
 
 typedef struct mvr_frame_plan {

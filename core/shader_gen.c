@@ -252,6 +252,13 @@ bool mvr_shader_variant_valid(const mvr_shader_variant *v, char *why, size_t why
                        (unsigned)v->draw_stride);
         return false;
     }
+    if ((v->outputs & ~MVR_SHADER_OUT_ALL_) || (v->outputs && v->program != MVR_PROGRAM_MESH) ||
+        ((v->outputs & MVR_SHADER_OUT_NORMAL_CAMERA) && !(v->outputs & MVR_SHADER_OUT_NORMAL)) ||
+        (v->outputs == MVR_SHADER_OUT_ONLY)) {
+        mvr_str_format(why, why_size, "outputs 0x%x invalid (mesh only; camera space needs normals; "
+                       "an outputs-only variant needs an output)", (unsigned)v->outputs);
+        return false;
+    }
     if (v->draw_capacity > MVR_SHADER_MAX_DRAW_CAPACITY || (v->draw_capacity && v->program != MVR_PROGRAM_MESH)) {
         mvr_str_format(why, why_size, "draw capacity %u invalid (mesh only, at most %d)",
                        (unsigned)v->draw_capacity, MVR_SHADER_MAX_DRAW_CAPACITY);
@@ -313,6 +320,18 @@ bool mvr_shader_source(const mvr_shader_variant *v, mvr_shader_stage stage, mvr_
                        "#define MVR_DIRECTIONAL_LIGHTS %u\n#define MVR_POINT_LIGHTS %u\n"
                        "#define MVR_SPOT_LIGHTS %u\n",
                        v->directional_lights, v->point_lights, v->spot_lights);
+        static const feature_define outputs[] = {
+            {MVR_SHADER_OUT_GEOMETRY, "MVR_OUT_GEOMETRY"},
+            {MVR_SHADER_OUT_NORMAL, "MVR_OUT_NORMAL"},
+            {MVR_SHADER_OUT_IDS, "MVR_OUT_IDS"},
+            {MVR_SHADER_OUT_NORMAL_CAMERA, "MVR_OUT_NORMAL_CAMERA"},
+            {MVR_SHADER_OUT_ONLY, "MVR_OUT_ONLY"},
+        };
+        for (size_t i = 0; i < MVR_ARRAY_COUNT(outputs); ++i)
+            if (v->outputs & outputs[i].bit)
+                mvr_sb_appendf(out, "#define %s 1\n", outputs[i].name);
+        if (v->outputs & (MVR_SHADER_OUT_GEOMETRY | MVR_SHADER_OUT_NORMAL | MVR_SHADER_OUT_IDS))
+            mvr_sb_append(out, "#define MVR_OUTPUTS 1\n");
     }
     size_t count;
     const feature_define *defs = program_defines(v->program, &count);
@@ -341,7 +360,7 @@ bool mvr_shader_source(const mvr_shader_variant *v, mvr_shader_stage stage, mvr_
 void mvr_shader_variant_name(const mvr_shader_variant *v, char *out, size_t size)
 {
     const char *program = mvr_program_kind_name(v->program);
-    char views[16], materials[16] = "", draws[16] = "", stride[16] = "";
+    char views[16], materials[16] = "", draws[16] = "", stride[16] = "", outputs[16] = "";
     if (v->num_views > 0)
         mvr_str_format(views, sizeof views, "mv%u", (unsigned)v->num_views);
     else
@@ -352,9 +371,11 @@ void mvr_shader_variant_name(const mvr_shader_variant *v, char *out, size_t size
         mvr_str_format(draws, sizeof draws, "-i%u", (unsigned)v->draw_capacity);
     if (v->draw_stride > 144)
         mvr_str_format(stride, sizeof stride, "-s%u", (unsigned)v->draw_stride);
-    mvr_str_format(out, size, "%s-%s-f%05x-l%u.%u.%u%s%s%s", program ? program : "invalid", views,
+    if (v->outputs)
+        mvr_str_format(outputs, sizeof outputs, "-o%x", (unsigned)v->outputs);
+    mvr_str_format(out, size, "%s-%s-f%05x-l%u.%u.%u%s%s%s%s", program ? program : "invalid", views,
                    (unsigned)v->features, v->directional_lights, v->point_lights, v->spot_lights,
-                   materials, draws, stride);
+                   materials, draws, stride, outputs);
 }
 
 /* All bits of a program except those that exclude each other. */
@@ -414,6 +435,14 @@ bool mvr_shader_variant_enumerate(unsigned index, uint32_t max_views, mvr_shader
             out->spot_lights = 1;
             /* the lit mesh variants also read instanced draw blocks */
             out->draw_capacity = MVR_SHADER_MAX_DRAW_CAPACITY;
+            /* and write every extra output: all features with them, the
+             * blended set as the outputs-only pass draws it */
+            if (program == MVR_PROGRAM_MESH && fs == define_count + 1)
+                out->outputs = MVR_SHADER_OUT_GEOMETRY | MVR_SHADER_OUT_NORMAL | MVR_SHADER_OUT_IDS |
+                               MVR_SHADER_OUT_NORMAL_CAMERA;
+            else if (program == MVR_PROGRAM_MESH && fs == define_count + 2)
+                out->outputs = MVR_SHADER_OUT_GEOMETRY | MVR_SHADER_OUT_NORMAL | MVR_SHADER_OUT_IDS |
+                               MVR_SHADER_OUT_ONLY;
         }
         return true;
     }

@@ -100,6 +100,18 @@ typedef enum mvr_background_feature {
     MVR_BACKGROUND_FEATURE_ALL_ = (1u << 1) - 1u
 } mvr_background_feature;
 
+/* Extra outputs of the mesh program (mvr_shader_variant.outputs): each an
+ * extra colour attachment of the view pass (location = attachment), written
+ * at the end of the fragment stage (gl/targets.c allocates them). */
+#define MVR_SHADER_OUT_GEOMETRY (1u << 0) /* location 1, RGBA32F: depth along -Z, ray distance, coverage */
+#define MVR_SHADER_OUT_NORMAL (1u << 1)   /* location 2, RGBA32F: unit normal, world space */
+#define MVR_SHADER_OUT_IDS (1u << 2)      /* location 3, RGBA32UI: node, mesh, material, primitive */
+#define MVR_SHADER_OUT_NORMAL_CAMERA (1u << 3) /* with NORMAL: in the view's camera space */
+/* the blended draws' outputs pass: no lighting, no colour; alpha below the
+ * cutoff uniform discards (the front-most surface above it is recorded) */
+#define MVR_SHADER_OUT_ONLY (1u << 4)
+#define MVR_SHADER_OUT_ALL_ ((1u << 5) - 1u)
+
 #define MVR_SHADER_MAX_LIGHTS_PER_TYPE 8
 #define MVR_SHADER_MAX_SHADOW_LAYERS 16
 
@@ -114,6 +126,7 @@ typedef struct mvr_shader_variant {
     uint16_t draw_stride;       /* bytes between per-draw blocks: 144 (std140 size of the block),
                                    or more where the GL's uniform offset alignment asks (padding
                                    makes the array's stride match); 0 = 144 */
+    uint8_t outputs;            /* MVR_SHADER_OUT_* (mesh only; 0 = colour alone) */
 } mvr_shader_variant;
 
 #define MVR_SHADER_DEFAULT_MATERIAL_CAPACITY 64

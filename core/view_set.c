@@ -223,6 +223,17 @@ void mvr_view_gpu_matrices(const mvr_view_desc *v, mvr_dvec3 origin, mvr_viewpor
     eye_rel[3] = 1.0f;
 }
 
+void mvr_view_gpu_view_matrix(const mvr_view_desc *v, mvr_dvec3 origin, float view_matrix[16])
+{
+    mvr_dvec3 rel = mvr_dvec3_sub(mvr_dvec3_make(v->position[0], v->position[1], v->position[2]), origin);
+    mvr_dquat q = {v->orientation[0], v->orientation[1], v->orientation[2], v->orientation[3]};
+    if (q.x == 0 && q.y == 0 && q.z == 0 && q.w == 0)
+        q.w = 1;
+    mvr_dmat4 view = mvr_dmat4_view(rel, q);
+    mvr_mat4f f = mvr_dmat4_to_float(&view);
+    memcpy(view_matrix, f.m, sizeof f.m);
+}
+
 mvr_result mvr_view_set_get_camera(const mvr_view_set *s, uint32_t index, uint32_t layer_width, uint32_t layer_height,
                                    mvr_view_camera *out)
 {

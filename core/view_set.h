@@ -29,5 +29,8 @@ mvr_dmat4 mvr_view_relative_view_proj(const mvr_view_desc *view, mvr_dvec3 origi
 /* view_proj relative to origin (float) and the eye position relative to origin. */
 void mvr_view_gpu_matrices(const mvr_view_desc *view, mvr_dvec3 origin, mvr_viewport vp,
                            bool reversed, float view_proj[16], float eye_rel[4]);
+/* The view matrix relative to origin (float): world (relative) to the
+ * view's OpenGL camera, for the extra outputs' depth and normals. */
+void mvr_view_gpu_view_matrix(const mvr_view_desc *view, mvr_dvec3 origin, float view_matrix[16]);
 
 #endif

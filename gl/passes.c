@@ -230,6 +230,8 @@ static mvr_result upload_frame(mvr_renderer *r, const mvr_view_set *views, const
     float matrices[VIEWS_PER_BLOCK][16];
     float eyes[VIEWS_PER_BLOCK][4];
     int32_t infos[VIEWS_PER_BLOCK][4];
+    float view_matrices[VIEWS_PER_BLOCK][16]; /* extra outputs only */
+    bool outputs = t->shader_outputs != 0;
     for (uint32_t b = 0; b < lay->view_blocks; ++b) {
         uint32_t first = b * VIEWS_PER_BLOCK;
         uint32_t n = views->count - first < VIEWS_PER_BLOCK ? views->count - first : VIEWS_PER_BLOCK;
@@ -237,6 +239,8 @@ static mvr_result upload_frame(mvr_renderer *r, const mvr_view_set *views, const
             const mvr_view_desc *v = &views->views[first + k];
             mvr_viewport vp = mvr_view_viewport(v, t->desc.width, t->desc.height);
             mvr_view_gpu_matrices(v, views->origin, vp, r->reversed_z, matrices[k], eyes[k]);
+            if (outputs)
+                mvr_view_gpu_view_matrix(v, views->origin, view_matrices[k]);
             uint32_t mask = mvr_view_light_mask(f, v);
             memset(infos[k], 0, sizeof infos[k]);
             memcpy(&infos[k][0], &mask, sizeof mask);
@@ -249,6 +253,11 @@ static mvr_result upload_frame(mvr_renderer *r, const mvr_view_set *views, const
         gl->BufferSubData(GL_UNIFORM_BUFFER, at + (GLintptr)MVR_VIEWS_VIEW_INFO_OFFSET,
                           (GLsizeiptr)n * VIEW_INFO_SIZE, infos);
         r->view_upload_bytes += (uint64_t)n * (MVR_VIEW_MATRIX_SIZE + MVR_VIEW_EYE_SIZE + VIEW_INFO_SIZE);
+        if (outputs) {
+            gl->BufferSubData(GL_UNIFORM_BUFFER, at + (GLintptr)MVR_VIEWS_VIEW_MATRIX_OFFSET,
+                              (GLsizeiptr)n * MVR_VIEW_MATRIX_SIZE, view_matrices);
+            r->view_upload_bytes += (uint64_t)n * MVR_VIEW_MATRIX_SIZE;
+        }
     }
     return upload_compacted(r, chunks, chunk_count, lay, seg + rel_compact, compact_bytes);
 }
@@ -259,6 +268,9 @@ typedef struct pass_context {
     const frame_layout *lay;
     const mvr_render_desc *desc;
     uint32_t output_features;
+    uint32_t shader_outputs;     /* the target's extra outputs (MVR_SHADER_OUT_*, 0 = none) */
+    bool outputs_only;           /* the blended draws' outputs pass */
+    float output_alpha_cutoff;
     uint32_t num_views;          /* 0 on the loop path */
     int32_t view_base;           /* within the bound view block */
     uint32_t last_features;      /* program lookup cache */
@@ -270,6 +282,7 @@ typedef struct pass_context {
     GLintptr compact;            /* the pass's compacted blocks, or -1 */
     uint32_t compact_next;       /* next compacted block to draw */
     const mvr_view_set *view_set;
+    mvr_target *target;
 } pass_context;
 
 static bool visible_in_pass(const mvr_renderer *r, const pass_context *pc, uint32_t draw)
@@ -371,6 +384,13 @@ static uint32_t inert_features(const mvr_renderer *r, uint32_t features)
     return f;
 }
 
+/* What the outputs-only pass keeps of a blended draw's features: its
+ * geometry, normals and alpha; nothing that lights. */
+#define OUTPUTS_ONLY_FEATURES                                                                                         \
+    (MVR_FEATURE_NORMALS | MVR_FEATURE_UV0 | MVR_FEATURE_UV1 | MVR_FEATURE_COLOR0 | MVR_FEATURE_BASE_COLOR_TEX |       \
+     MVR_FEATURE_TEXTURE_TRANSFORM | MVR_FEATURE_ALPHA_BLEND | MVR_FEATURE_DOUBLE_SIDED | MVR_FEATURE_MATERIAL_ARRAYS | \
+     MVR_DEFORM_FEATURES)
+
 static mvr_result bind_program(pass_context *pc, uint32_t features)
 {
     mvr_renderer *r = pc->r;
@@ -378,10 +398,15 @@ static mvr_result bind_program(pass_context *pc, uint32_t features)
     if (!e || pc->last_features != features) {
         const mvr_frame *f = &r->frame;
         uint32_t all = features | pc->output_features | (r->force_inert_features ? inert_features(r, features) : 0u);
+        if (pc->outputs_only)
+            all = features & OUTPUTS_ONLY_FEATURES;
         mvr_shader_variant v = mvr_renderer_mesh_variant(r, all, pc->num_views);
-        v.directional_lights = (uint8_t)f->light_counts[0];
-        v.point_lights = (uint8_t)f->light_counts[1];
-        v.spot_lights = (uint8_t)f->light_counts[2];
+        v.outputs = (uint8_t)(pc->shader_outputs | (pc->outputs_only ? MVR_SHADER_OUT_ONLY : 0u));
+        if (!pc->outputs_only) {
+            v.directional_lights = (uint8_t)f->light_counts[0];
+            v.point_lights = (uint8_t)f->light_counts[1];
+            v.spot_lights = (uint8_t)f->light_counts[2];
+        }
         mvr_result res = mvr_renderer_program(r, &v, &e);
         if (res != MVR_OK)
             return res;
@@ -390,6 +415,10 @@ static mvr_result bind_program(pass_context *pc, uint32_t features)
     }
     mvr_state_program(&r->state, e->program);
     const mvr_gl_api_table *gl = r->gl;
+    if (pc->outputs_only && e->output_alpha_cutoff != pc->output_alpha_cutoff) {
+        gl->Uniform1f(e->loc_output_alpha_cutoff, pc->output_alpha_cutoff);
+        e->output_alpha_cutoff = pc->output_alpha_cutoff;
+    }
     if (e->view_base != pc->view_base) {
         gl->Uniform1i(e->loc_view_base, pc->view_base);
         e->view_base = pc->view_base;
@@ -520,11 +549,19 @@ static mvr_result draw_list(pass_context *pc, mvr_pass_kind kind)
             first_visible = i;
     if (first_visible == f->pass_count[kind])
         return MVR_OK;
-    r->stats.sub_passes[kind]++;
-    if (kind == MVR_PASS_BLEND) {
+    if (!pc->outputs_only)
+        r->stats.sub_passes[kind]++;
+    if (pc->outputs_only) {
+        /* the front-most surface above the cutoff: depth written; a
+         * transmissive surface meets its own depth (<= / >=) */
+        mvr_state_depth(st, true, r->reversed_z ? GL_GEQUAL : GL_LEQUAL, GL_TRUE);
+        mvr_state_blend(st, false, GL_ONE, GL_ZERO, GL_ONE, GL_ZERO);
+    } else if (kind == MVR_PASS_BLEND) {
         /* glTF BLEND: non-premultiplied "over"; blended surfaces do not write depth */
         mvr_state_depth(st, true, depth_func, GL_FALSE);
         mvr_state_blend(st, true, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+        /* their outputs come from the outputs-only pass (an ID is not blended) */
+        mvr_target_draw_buffers(pc->target, MVR_DRAW_COLOR);
     } else {
         mvr_state_depth(st, true, depth_func, GL_TRUE);
         mvr_state_blend(st, false, GL_ONE, GL_ZERO, GL_ONE, GL_ZERO);
@@ -538,7 +575,7 @@ static mvr_result draw_list(pass_context *pc, mvr_pass_kind kind)
         const mvr_draw *d = &f->draws[pos];
         if (!visible_in_pass(r, pc, pos))
             continue;
-        if (kind == MVR_PASS_BLEND) {
+        if (kind == MVR_PASS_BLEND && !pc->outputs_only) {
             /* a transmissive surface not blended by its alpha mode writes
              * depth, opaque, in the back-to-front order */
             bool blended = (d->features & MVR_FEATURE_ALPHA_BLEND) != 0;
@@ -564,13 +601,16 @@ static mvr_result draw_list(pass_context *pc, mvr_pass_kind kind)
             mvr_state_ubo_range(st, MVR_BLOCK_MATERIALS, g->material_ubo,
                                 (GLintptr)d->material_page * g->material_page_stride,
                                 (GLsizeiptr)r->material_capacity * MVR_MATERIAL_BLOCK_SIZE);
-        mvr_bind_draw_textures(r, d, d->features, pc->groups_used, &pc->groups_used_count);
+        mvr_bind_draw_textures(r, d, pc->outputs_only ? d->features & OUTPUTS_ONLY_FEATURES : d->features,
+                               pc->groups_used, &pc->groups_used_count);
         mvr_submit_draw(r, d, instances);
         r->stats.instanced_draw_calls += instances > 1;
         r->stats.draws += instances;
         r->stats.draw_calls++;
         i += span - 1;
     }
+    if (kind == MVR_PASS_BLEND && !pc->outputs_only)
+        mvr_target_draw_buffers(pc->target, MVR_DRAW_ALL);
     return MVR_OK;
 }
 
@@ -679,6 +719,7 @@ static mvr_result build_plan(mvr_renderer *r, const mvr_view_set *views, const m
     in.path = path;
     in.blend_policy = r->blend_policy;
     in.background = desc->background != MVR_BACKGROUND_COLOR;
+    in.outputs = t->shader_outputs != 0;
     in.environment = desc->environment != NULL;
     /* KHR_materials_sheen: its maps only for a frame that draws it */
     r->sheen_frame = false;
@@ -737,6 +778,12 @@ static void setup_frame_state(frame_exec *fx)
     pc->desc = desc;
     pc->groups_used = r->gpu.arrays ? r->groups_used : NULL;
     pc->view_set = fx->views;
+    pc->target = fx->t;
+    pc->shader_outputs = fx->t->shader_outputs;
+    if ((pc->shader_outputs & MVR_SHADER_OUT_NORMAL) && desc->normal_space == MVR_NORMAL_SPACE_CAMERA)
+        pc->shader_outputs |= MVR_SHADER_OUT_NORMAL_CAMERA;
+    pc->output_alpha_cutoff = desc->output_alpha_cutoff > 0.0f ? desc->output_alpha_cutoff : 0.5f;
+    r->stats.outputs = fx->t->desc.outputs;
     st_rebind_setup(r);
     if (fx->plan->encode_in_mesh) /* a supersampled target draws linear floats; its resolve encodes */
         pc->output_features |= MVR_FEATURE_SRGB_OUTPUT;
@@ -854,6 +901,17 @@ static mvr_result exec_view_pass(frame_exec *fx, const mvr_plan_record *rec)
     mvr_state_depth(st, true, r->reversed_z ? GL_GREATER : GL_LESS, GL_TRUE);
     r->gl->ClearBufferfv(GL_COLOR, 0, fx->clear);
     r->gl->ClearBufferfv(GL_DEPTH, 0, &fx->clear_depth);
+    /* extra outputs: 0 where nothing is drawn (draw buffer k + 1 is attachment k + 1) */
+    static const GLfloat zero_f[4] = {0, 0, 0, 0};
+    static const GLuint zero_u[4] = {0, 0, 0, 0};
+    for (uint32_t k = 0; k < MVR_TARGET_OUTPUT_ARRAYS; ++k) {
+        if (!t->output_arrays[k])
+            continue;
+        if (k == MVR_TARGET_OUTPUT_IDS)
+            r->gl->ClearBufferuiv(GL_COLOR, (GLint)(k + 1), zero_u);
+        else
+            r->gl->ClearBufferfv(GL_COLOR, (GLint)(k + 1), zero_f);
+    }
     if (partial)
         mvr_state_scissor_test(st, false);
 
@@ -898,8 +956,48 @@ static mvr_result exec_view_pass(frame_exec *fx, const mvr_plan_record *rec)
  * over it */
 static mvr_result exec_background(frame_exec *fx)
 {
-    return mvr_environment_draw_background(fx->r, fx->desc, fx->pc.num_views, fx->pc.view_base,
-                                           fx->plan->encode_in_mesh, fx->pc.mesh_exposure);
+    /* the background writes colour alone: no extra output is left undefined */
+    mvr_target_draw_buffers(fx->t, MVR_DRAW_COLOR);
+    mvr_result res = mvr_environment_draw_background(fx->r, fx->desc, fx->pc.num_views, fx->pc.view_base,
+                                                     fx->plan->encode_in_mesh, fx->pc.mesh_exposure);
+    mvr_target_draw_buffers(fx->t, MVR_DRAW_ALL);
+    return res;
+}
+
+/* The extra outputs of a chunk's blended draws (after every colour pass,
+ * so nothing the colour reads, such as an HDR frame's metered depth, sees
+ * its depth writes): the chunk's framebuffer again, outputs alone. */
+static mvr_result exec_outputs_blend(frame_exec *fx, const mvr_plan_record *rec)
+{
+    mvr_renderer *r = fx->r;
+    mvr_state_cache *st = &r->state;
+    const mvr_view_chunk *ch = &fx->plan->chunks[rec->chunk];
+    GLuint fbo = 0;
+    mvr_result res = mvr_target_framebuffer(fx->t, ch->base, rec->multiview ? ch->count : 0, &fbo);
+    if (res != MVR_OK)
+        return res;
+    mvr_state_draw_framebuffer(st, fbo);
+    mvr_state_viewport(st, ch->viewport.x, ch->viewport.y, (GLsizei)ch->viewport.width, (GLsizei)ch->viewport.height);
+    mvr_state_scissor_test(st, false);
+    mvr_state_color_mask(st, true);
+    uint32_t block = ch->base / VIEWS_PER_BLOCK;
+    mvr_state_ubo_range(st, MVR_BLOCK_VIEWS, r->ring.buffer,
+                        fx->lay.views + (GLintptr)block * fx->view_block_stride, VIEW_BLOCK_SIZE);
+    pass_context *pc = &fx->pc;
+    pc->num_views = rec->multiview ? ch->count : 0;
+    pc->first_view = ch->base;
+    pc->views = ch->count;
+    pc->view_base = (int32_t)(ch->base - block * VIEWS_PER_BLOCK);
+    pc->compact = -1;
+    pc->last_program = NULL;
+    pc->outputs_only = true;
+    mvr_target_draw_buffers(fx->t, MVR_DRAW_OUTPUTS);
+    res = draw_list(pc, MVR_PASS_BLEND);
+    mvr_target_draw_buffers(fx->t, MVR_DRAW_ALL);
+    pc->outputs_only = false;
+    pc->last_program = NULL;
+    r->stats.output_blend_passes++;
+    return res;
 }
 
 /* A view's own blend pass, into its layer and depth: after the multiview
@@ -1037,6 +1135,8 @@ static mvr_result exec_record(frame_exec *fx, const mvr_plan_record *rec)
         return exec_supersample_resolve(fx);
     case MVR_PLAN_POST:
         return exec_post(fx);
+    case MVR_PLAN_OUTPUTS_BLEND:
+        return exec_outputs_blend(fx, rec);
     default:
         return MVR_OK;
     }

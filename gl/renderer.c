@@ -516,7 +516,7 @@ static bool same_variant(const mvr_shader_variant *a, const mvr_shader_variant *
     return a->program == b->program && a->features == b->features && a->num_views == b->num_views &&
            a->directional_lights == b->directional_lights && a->point_lights == b->point_lights &&
            a->spot_lights == b->spot_lights && a->material_capacity == b->material_capacity &&
-           a->draw_capacity == b->draw_capacity && a->draw_stride == b->draw_stride;
+           a->draw_capacity == b->draw_capacity && a->draw_stride == b->draw_stride && a->outputs == b->outputs;
 }
 
 mvr_shader_variant mvr_renderer_mesh_variant(const mvr_renderer *r, uint32_t features, uint32_t num_views)
@@ -563,6 +563,8 @@ mvr_result mvr_renderer_program(mvr_renderer *r, const mvr_shader_variant *v, mv
     e->loc_view_base = r->gl->GetUniformLocation(program, "mvr_view_base");
     e->loc_ambient = r->gl->GetUniformLocation(program, "mvr_ambient");
     e->loc_exposure = r->gl->GetUniformLocation(program, "mvr_exposure");
+    e->loc_output_alpha_cutoff = r->gl->GetUniformLocation(program, "mvr_output_alpha_cutoff");
+    e->output_alpha_cutoff = NAN;
     e->loc_layer_base = r->gl->GetUniformLocation(program, "mvr_layer_base");
     e->loc_factor = r->gl->GetUniformLocation(program, "mvr_factor");
     e->loc_post_exposure = r->gl->GetUniformLocation(program, "mvr_post_exposure");

@@ -28,6 +28,8 @@ typedef struct mvr_program_entry {
     mvr_shader_variant variant;
     GLuint program;
     GLint loc_view_base, loc_ambient, loc_exposure;
+    GLint loc_output_alpha_cutoff;   /* outputs-only variants */
+    float output_alpha_cutoff;       /* its value set (NaN: none yet) */
     GLint loc_layer_base, loc_factor, loc_post_exposure, loc_clear_depth;  /* composite programs */
     GLint loc_env_sh, loc_env_rotation, loc_env_intensity, loc_env_max_lod; /* mesh (IBL), background */
     GLint loc_face_base, loc_face_size, loc_equirect_lod, loc_roughness, loc_samples, loc_source_size,
@@ -149,6 +151,10 @@ typedef struct mvr_fbo_entry {
     GLuint fbo;
 } mvr_fbo_entry;
 
+/* The extra outputs' arrays of a target: colour attachment k + 1 and the
+ * shader's location k + 1 (core/shader_gen.h MVR_SHADER_OUT_*). */
+enum { MVR_TARGET_OUTPUT_GEOMETRY = 0, MVR_TARGET_OUTPUT_NORMAL, MVR_TARGET_OUTPUT_IDS, MVR_TARGET_OUTPUT_ARRAYS };
+
 struct mvr_target {
     mvr_renderer *renderer;      /* NULL once the renderer (or its context) is destroyed */
     mvr_target *next;            /* in renderer->targets */
@@ -179,6 +185,10 @@ struct mvr_target {
      * times the size, linear float) and resolved into the color array */
     GLuint ss_color;
     GLenum ss_format;
+    /* extra outputs (desc.outputs): the arrays behind colour attachments
+     * 1..3 of every view framebuffer (0 = not asked for) */
+    GLuint output_arrays[MVR_TARGET_OUTPUT_ARRAYS];
+    uint32_t shader_outputs;     /* MVR_SHADER_OUT_GEOMETRY / _NORMAL / _IDS they give */
 };
 
 typedef struct mvr_timer {
@@ -330,7 +340,14 @@ void mvr_gpu_scene_release(mvr_renderer *r);
  * supersample resolve writes). */
 mvr_result mvr_target_framebuffer(mvr_target *t, uint32_t base, uint32_t count, GLuint *out);
 mvr_result mvr_target_output_framebuffer(mvr_target *t, uint32_t base, uint32_t count, GLuint *out);
-enum { MVR_FBO_HDR = 1, MVR_FBO_LUMINANCE = 2, MVR_FBO_LUMINANCE_TOP = 3 };
+enum { MVR_FBO_HDR = 1, MVR_FBO_LUMINANCE = 2, MVR_FBO_LUMINANCE_TOP = 3, MVR_FBO_OUTPUT_ARRAY = 4 /* + k */ };
+/* Extra outputs: one layer of output array k alone (what read_output reads). */
+mvr_result mvr_target_output_array_framebuffer(mvr_target *t, uint32_t k, uint32_t layer, GLuint *out);
+/* Which colour attachments of the bound view framebuffer are drawn: the
+ * colour (MVR_DRAW_COLOR), the extra outputs (MVR_DRAW_OUTPUTS) or both
+ * (the framebuffer's own setting, which every sub-pass leaves behind). */
+enum { MVR_DRAW_COLOR = 1, MVR_DRAW_OUTPUTS = 2, MVR_DRAW_ALL = 3 };
+void mvr_target_draw_buffers(mvr_target *t, int which);
 /* HDR frames: makes hdr_color (and the multisampled HDR renderbuffer). */
 mvr_result mvr_target_ensure_hdr(mvr_target *t);
 /* Auto-exposure: the log-luminance array; framebuffers of its level 0

@@ -164,7 +164,8 @@ static mvr_result make_array(mvr_target *t, GLuint *name, const char *what, GLen
     gl->GenTextures(1, name);
     mvr_state_texture(&r->state, 0, GL_TEXTURE_2D_ARRAY, *name);
     gl->TexStorage3D(GL_TEXTURE_2D_ARRAY, 1, format, (GLsizei)width, (GLsizei)height, (GLsizei)t->desc.layers);
-    double mib = (double)width * height * t->desc.layers * (format == GL_RGBA32F ? 16 : format == GL_RGBA16F ? 8 : 4) /
+    double mib = (double)width * height * t->desc.layers *
+                 (format == GL_RGBA32F || format == GL_RGBA32UI ? 16 : format == GL_RGBA16F ? 8 : 4) /
                  (1024.0 * 1024.0);
     return mvr_renderer_check_alloc(r, "%s (%ux%u, %u layers, %s, %.1f %s)", what, width, height,
                                     t->desc.layers, format_name, mib >= 1024.0 ? mib / 1024.0 : mib,
@@ -193,6 +194,21 @@ static mvr_result make_arrays(mvr_target *t, uint32_t factor, GLenum ss_format)
     if (res == MVR_OK)
         res = make_array(t, &t->depth, "mvr_target_create: depth array", GL_DEPTH_COMPONENT32F, "depth32f",
                          desc->width * factor, desc->height * factor);
+    /* extra outputs: full float (a depth in metres keeps 24 bits) and exact integers */
+    static const struct { uint32_t bits, shader; GLenum format; const char *what, *name; } arrays[] = {
+        {MVR_OUTPUT_BIT(MVR_OUTPUT_DEPTH) | MVR_OUTPUT_BIT(MVR_OUTPUT_DISTANCE) | MVR_OUTPUT_BIT(MVR_OUTPUT_COVERAGE),
+         MVR_SHADER_OUT_GEOMETRY, GL_RGBA32F, "mvr_target_create: depth, distance and coverage array", "rgba32f"},
+        {MVR_OUTPUT_BIT(MVR_OUTPUT_NORMAL), MVR_SHADER_OUT_NORMAL, GL_RGBA32F, "mvr_target_create: normal array",
+         "rgba32f"},
+        {MVR_OUTPUT_BIT(MVR_OUTPUT_IDS), MVR_SHADER_OUT_IDS, GL_RGBA32UI, "mvr_target_create: ID array", "rgba32ui"},
+    };
+    _Static_assert(MVR_ARRAY_COUNT(arrays) == MVR_TARGET_OUTPUT_ARRAYS, "one array per kind");
+    for (uint32_t k = 0; k < MVR_TARGET_OUTPUT_ARRAYS && res == MVR_OK; ++k)
+        if (desc->outputs & arrays[k].bits) {
+            res = make_array(t, &t->output_arrays[k], arrays[k].what, arrays[k].format, arrays[k].name, desc->width,
+                             desc->height);
+            t->shader_outputs |= arrays[k].shader;
+        }
     return res;
 }
 
@@ -251,6 +267,21 @@ mvr_result mvr_target_create(mvr_renderer *r, const mvr_target_desc *d, mvr_targ
     if (desc.samples > 1 && desc.samples > (uint32_t)c->limits.max_samples)
         return fail_create(r, MVR_ERROR_UNSUPPORTED, "mvr_target_create: %u samples; GL_MAX_SAMPLES is %d",
                            desc.samples, c->limits.max_samples);
+    if (desc.outputs & ~((MVR_OUTPUT_BIT(MVR_OUTPUT_COUNT) - 1u) & ~MVR_OUTPUT_BIT(MVR_OUTPUT_COLOR)))
+        return fail_create(r, MVR_ERROR_INVALID_ARGUMENT, "mvr_target_create: unknown output bits 0x%x",
+                           desc.outputs & ~((MVR_OUTPUT_BIT(MVR_OUTPUT_COUNT) - 1u) & ~MVR_OUTPUT_BIT(MVR_OUTPUT_COLOR)));
+    if (desc.outputs && (desc.samples > 1 || desc.supersample > 1))
+        return fail_create(r, MVR_ERROR_INVALID_ARGUMENT,
+                           "mvr_target_create: extra outputs (depth, normals, IDs) need a target without "
+                           "anti-aliasing: an ID or a depth is not averaged (%s)",
+                           desc.samples > 1 ? "multisampled" : "supersampled");
+    if ((desc.outputs & ~MVR_OUTPUT_BIT(MVR_OUTPUT_IDS)) && !c->ext.ext_color_buffer_float)
+        return fail_create(r, MVR_ERROR_UNSUPPORTED,
+                           "mvr_target_create: depth, distance, normal and coverage outputs need float colour "
+                           "buffers (OpenGL ES 3.2 or EXT_color_buffer_float), which %s lacks", c->renderer);
+    if (desc.outputs && c->limits.max_draw_buffers < 4)
+        return fail_create(r, MVR_ERROR_UNSUPPORTED, "mvr_target_create: extra outputs need 4 draw buffers; %s has %d",
+                           c->renderer, c->limits.max_draw_buffers);
     if (!desc.external_color_texture && (desc.external_level || desc.external_base_layer))
         return fail_create(r, MVR_ERROR_INVALID_ARGUMENT,
                            "mvr_target_create: external_level / external_base_layer need an external texture");
@@ -303,7 +334,9 @@ void mvr_target_release_gl(mvr_target *t)
     t->fbo_count = 0;
     if (t->owns_color)
         mvr_renderer_delete(r, MVR_GL_TEXTURE, &t->color);
-    GLuint *textures[] = {&t->depth, &t->ss_color, &t->msaa_array_color, &t->msaa_array_depth, &t->hdr_color, &t->lum};
+    GLuint *textures[] = {&t->depth,     &t->ss_color, &t->msaa_array_color,  &t->msaa_array_depth,  &t->hdr_color,
+                          &t->lum,       &t->output_arrays[0], &t->output_arrays[1], &t->output_arrays[2]};
+    _Static_assert(MVR_TARGET_OUTPUT_ARRAYS == 3, "every output array released");
     for (size_t i = 0; i < MVR_ARRAY_COUNT(textures); ++i)
         mvr_renderer_delete(r, MVR_GL_TEXTURE, textures[i]);
     mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &t->msaa_fbo);
@@ -432,9 +465,48 @@ static mvr_result target_framebuffer(mvr_target *t, uint32_t base, uint32_t coun
         if (!output)
             gl->FramebufferTextureLayer(GL_DRAW_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, t->depth, 0, (GLint)base);
     }
+    /* the extra outputs: more layered attachments of the same views */
+    if (!output && t->shader_outputs) {
+        for (uint32_t k = 0; k < MVR_TARGET_OUTPUT_ARRAYS; ++k) {
+            if (!t->output_arrays[k])
+                continue;
+            if (count > 0)
+                gl->FramebufferTextureMultiviewOVR(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT1 + k, t->output_arrays[k],
+                                                   0, (GLint)base, (GLsizei)count);
+            else
+                gl->FramebufferTextureLayer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT1 + k, t->output_arrays[k], 0,
+                                            (GLint)base);
+        }
+        mvr_target_draw_buffers(t, MVR_DRAW_ALL);
+    }
     char where[96];
     mvr_str_format(where, sizeof where, "framebuffer for layers %u..%u%s", base, base + (count ? count : 1) - 1,
                    count ? " (multiview)" : "");
+    return fbo_check(t, where);
+}
+
+void mvr_target_draw_buffers(mvr_target *t, int which)
+{
+    if (!t->shader_outputs)
+        return;
+    GLenum bufs[1 + MVR_TARGET_OUTPUT_ARRAYS];
+    bufs[0] = (which & MVR_DRAW_COLOR) ? GL_COLOR_ATTACHMENT0 : GL_NONE;
+    for (uint32_t k = 0; k < MVR_TARGET_OUTPUT_ARRAYS; ++k)
+        bufs[k + 1] = (which & MVR_DRAW_OUTPUTS) && t->output_arrays[k] ? GL_COLOR_ATTACHMENT1 + k : GL_NONE;
+    t->renderer->gl->DrawBuffers((GLsizei)MVR_ARRAY_COUNT(bufs), bufs);
+}
+
+mvr_result mvr_target_output_array_framebuffer(mvr_target *t, uint32_t k, uint32_t layer, GLuint *out)
+{
+    mvr_fbo_entry key = {.base = layer, .count = 0, .output = true, .aux = (uint8_t)(MVR_FBO_OUTPUT_ARRAY + k)};
+    bool created = false;
+    mvr_result res = fbo_find_or_create(t, key, out, &created);
+    if (res != MVR_OK || !created)
+        return res;
+    t->renderer->gl->FramebufferTextureLayer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, t->output_arrays[k], 0,
+                                             (GLint)layer);
+    char where[96];
+    mvr_str_format(where, sizeof where, "framebuffer of output array %u, layer %u", k, layer);
     return fbo_check(t, where);
 }
 

@@ -148,8 +148,11 @@ uniform MVR_SAMPLER mvr_sheen_roughness_tex;
 in vec3 v_position;
 in vec3 v_to_eye;
 flat in int v_material;
-#if defined(MVR_LIGHT_MASKS) || defined(MVR_TRANSMISSION)
+#if defined(MVR_LIGHT_MASKS) || defined(MVR_TRANSMISSION) || defined(MVR_OUTPUTS)
 flat in int v_view;
+#endif
+#ifdef MVR_OUT_IDS
+flat in uvec4 v_ids;
 #endif
 #ifdef MVR_TRANSMISSION
 flat in vec3 v_model_scale;
@@ -171,6 +174,19 @@ in vec4 v_color0;
 #endif
 
 layout(location = 0) out vec4 o_color;
+// The extra outputs (core/shader_gen.h): location = colour attachment
+#ifdef MVR_OUT_GEOMETRY
+layout(location = 1) out vec4 o_geometry; // depth along the camera's -Z, distance to the eye, coverage
+#endif
+#ifdef MVR_OUT_NORMAL
+layout(location = 2) out vec4 o_normal;
+#endif
+#ifdef MVR_OUT_IDS
+layout(location = 3) out uvec4 o_ids;     // node, mesh, material, primitive
+#endif
+#ifdef MVR_OUT_ONLY
+uniform float mvr_output_alpha_cutoff;
+#endif
 
 // The array layer of texture role `role` (0 on the per-material path).
 int mvr_layer(mvr_material m, int role)
@@ -798,7 +814,65 @@ float mvr_shadow(int light, vec3 p, vec3 n_offset, float dist)
 }
 #endif
 
-#ifdef MVR_SHADOW_CASTER
+#ifdef MVR_OUTPUTS
+// The extra outputs of a fragment: its depth along the view's axis and its
+// distance to the eye (both from the eye-to-point vector, which is
+// interpolated exactly), and the geometry's normal: the interpolated vertex
+// normal (the face's where there is none), turned to the viewer on the back of
+// a double-sided surface. Normal maps are not applied: the normal describes
+// the same surface as the depth.
+void mvr_write_outputs()
+{
+    mat4 view = mvr_view_matrix[v_view];
+#ifdef MVR_OUT_GEOMETRY
+    vec3 axis = vec3(view[0][2], view[1][2], view[2][2]); // the camera's +Z in the world; it looks along -Z
+    o_geometry = vec4(dot(v_to_eye, axis), length(v_to_eye), 1.0, 0.0);
+#endif
+#ifdef MVR_OUT_NORMAL
+    vec3 face_n = mvr_safe_normalize(cross(dFdx(v_position), dFdy(v_position)), vec3(0.0, 0.0, 1.0));
+#ifdef MVR_NORMALS
+    vec3 n = mvr_safe_normalize(v_normal, face_n);
+#else
+    vec3 n = face_n;
+#endif
+#ifdef MVR_DOUBLE_SIDED
+    if (!gl_FrontFacing)
+        n = -n;
+#endif
+#ifdef MVR_OUT_NORMAL_CAMERA
+    n = mvr_safe_normalize(mat3(view) * n, n);
+#endif
+    o_normal = vec4(n, 0.0);
+#endif
+#ifdef MVR_OUT_IDS
+    o_ids = v_ids;
+#endif
+}
+#endif
+
+#ifdef MVR_OUT_ONLY
+// The blended draws' outputs pass (after their colour): the front-most
+// surface whose alpha reaches the cutoff is recorded (depth test and write);
+// nothing is lit, the colour attachment is not a draw buffer.
+void main()
+{
+    mvr_material m = mvr_material_table[v_material];
+    float alpha = 1.0;
+#ifdef MVR_ALPHA_BLEND
+    alpha = m.base_color_factor.a;
+#ifdef MVR_COLOR0
+    alpha *= v_color0.a;
+#endif
+#ifdef MVR_BASE_COLOR_TEX
+    alpha *= MVR_SAMPLE_ROLE(mvr_base_color_tex, MVR_ROLE_BASE_COLOR, m).a;
+#endif
+#endif
+    if (alpha < mvr_output_alpha_cutoff)
+        discard;
+    o_color = vec4(0.0);
+    mvr_write_outputs();
+}
+#elif defined(MVR_SHADOW_CASTER)
 // The shadow map pass: depth only (the color attachment is masked), with the
 // material's alpha test for masked casters.
 void main()
@@ -840,6 +914,9 @@ void main()
 #ifdef MVR_UNLIT
     // KHR_materials_unlit: the base color is the result; emissive is ignored.
     o_color = mvr_output(base);
+#ifdef MVR_OUTPUTS
+    mvr_write_outputs();
+#endif
 #else
     float metallic = m.params.x;
     float roughness = m.params.y;
@@ -1136,6 +1213,9 @@ void main()
     emissive *= 1.0 - coat_mix; // under the coat
 #endif
     o_color = mvr_output(vec4(color + emissive, base.a));
+#ifdef MVR_OUTPUTS
+    mvr_write_outputs();
+#endif
 #endif
 }
 #endif // MVR_SHADOW_CASTER

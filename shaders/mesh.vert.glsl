@@ -9,7 +9,8 @@
 // (256 bytes on many desktop GPUs).
 struct mvr_draw_data {
     mat4 model;              // relative to the view origin
-    mat4 normal_matrix;      // inverse-transpose of the model's upper 3x3
+    vec4 normal_matrix[3];   // inverse-transpose of the model's upper 3x3 (columns)
+    uvec4 ids;               // node, mesh, material, primitive (the extra outputs' IDs)
     ivec4 info;              // x: material index; y: joint texel base (< 0: not skinned);
                              // z: morph header texel (< 0: no targets); w: morph delta base
 #if MVR_DRAW_PAD > 0
@@ -35,8 +36,11 @@ layout(location = 5) in vec4 a_color0;
 out vec3 v_position;         // world, relative to the view origin
 out vec3 v_to_eye;           // eye - position: linear, so interpolation is exact
 flat out int v_material;
-#if defined(MVR_LIGHT_MASKS) || defined(MVR_TRANSMISSION)
+#if defined(MVR_LIGHT_MASKS) || defined(MVR_TRANSMISSION) || defined(MVR_OUTPUTS)
 flat out int v_view;         // within the view block
+#endif
+#ifdef MVR_OUT_IDS
+flat out uvec4 v_ids;
 #endif
 #ifdef MVR_TRANSMISSION
 flat out vec3 v_model_scale; // the model matrix's axis scales (KHR_materials_volume's thickness is in model units)
@@ -68,14 +72,18 @@ void main()
     v_position = world.xyz;
     v_to_eye = mvr_eye_position[view].xyz - world.xyz;
     v_material = mvr_draws[gl_InstanceID].info.x;
-#if defined(MVR_LIGHT_MASKS) || defined(MVR_TRANSMISSION)
+#if defined(MVR_LIGHT_MASKS) || defined(MVR_TRANSMISSION) || defined(MVR_OUTPUTS)
     v_view = view;
+#endif
+#ifdef MVR_OUT_IDS
+    v_ids = mvr_draws[gl_InstanceID].ids;
 #endif
 #ifdef MVR_TRANSMISSION
     v_model_scale = vec3(length(mvr_model[0].xyz), length(mvr_model[1].xyz), length(mvr_model[2].xyz));
 #endif
 #ifdef MVR_NORMALS
-    v_normal = mat3(mvr_draws[gl_InstanceID].normal_matrix) * normal;
+    v_normal = mat3(mvr_draws[gl_InstanceID].normal_matrix[0].xyz, mvr_draws[gl_InstanceID].normal_matrix[1].xyz,
+                    mvr_draws[gl_InstanceID].normal_matrix[2].xyz) * normal;
 #endif
 #ifdef MVR_TANGENTS
     v_tangent = vec4(mat3(mvr_model) * tangent.xyz, tangent.w);

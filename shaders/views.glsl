@@ -7,6 +7,7 @@ layout(std140) uniform mvr_views {
     mat4 mvr_view_proj[MVR_MAX_VIEWS];
     vec4 mvr_eye_position[MVR_MAX_VIEWS];   // xyz relative to the origin
     ivec4 mvr_view_info[MVR_MAX_VIEWS];     // x: bit i set = light i shines in the view
+    mat4 mvr_view_matrix[MVR_MAX_VIEWS];    // world (relative) to camera; sent only for extra outputs
 };
 
 // First view of this pass: a multiview pass covers views

@@ -195,7 +195,7 @@ int main(int argc, char **argv)
         views = make_views(w, h);
     }
     mvr_renderer_desc rd = {.context = ctx};
-    mvr_target_desc td = {w, h, 2, MVR_COLOR_FORMAT_DEFAULT, swapchain, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT};
+    mvr_target_desc td = {w, h, 2, MVR_COLOR_FORMAT_DEFAULT, swapchain, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
     if (!scene || !views || mvr_renderer_create(&rd, &r, &err) != MVR_OK) {
         fprintf(stderr, "embed: %s\n", scene && views ? err.message : "scene");
         goto done;

@@ -115,7 +115,7 @@ static bool run_env_config(const bench_options *o, mvr_context *ctx, mvr_scene *
         fprintf(stderr, "mvr bench: %s: %s\n", name, err.message);
         return false;
     }
-    mvr_target_desc td = {w, h, n, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT};
+    mvr_target_desc td = {w, h, n, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
     mvr_render_desc desc = *base;
     desc.environment_samples = reference ? o->reference_samples : 0;
     if (given) {

@@ -16,6 +16,7 @@
 #include "commands.h"
 #include "mvr/mvr_gltf.h"
 #include "render_options.h"
+#include "render_aovs.h"
 #include "render_output.h"
 
 enum {
@@ -23,7 +24,7 @@ enum {
     R_TRANSPARENCY, R_SUPERSAMPLE, R_MSAA, R_AA, R_REFERENCE, R_FORMAT, R_TARGET_FORMAT, R_SHADOWS, R_SHADOW_SIZE,
     R_EXPOSURE, R_EXPOSURE_SCALE, R_CAMERA_EXPOSURE, R_EXPOSURE_PER_VIEW, R_DITHER, R_CLEAR, R_TONE_MAP, R_FRAMES,
     R_STATS, R_STRICT, R_MEMORY_BUDGET, R_PROGRAM_CACHE, R_QUIET, R_PLAN, R_ANIMATION, R_TIME, R_LOOP, R_FPS, R_VIDEO,
-    R_SKINNING, R_VARIANT, R_COLMAP
+    R_SKINNING, R_VARIANT, R_COLMAP, R_OUTPUTS, R_NORMAL_SPACE, R_ALPHA_CUTOFF
 };
 
 #define MAX_FRAMES 100000
@@ -164,6 +165,20 @@ static const cli_option render_table_animation[] = {
 static const cli_option render_table_tail[] = {
     {CLI_OPT_STRING, R_STATS, "--stats", NULL, "FILE.json", 0, 0, NULL, "write the last frame's stats as JSON", NULL,
      NULL, NULL},
+    {CLI_OPT_STRING, R_OUTPUTS, "--outputs", NULL, "LIST", 0, 0, NULL,
+     "also write each view's depth, distance, normal, ids, coverage\n"
+     "(a comma list, or all) as NumPy files DIR/depth_VV.npy ...:\n"
+     "float32 H x W (depth along the camera's -Z, ray distance,\n"
+     "coverage), float32 H x W x 3 (normal), uint32 H x W x 4 (node,\n"
+     "mesh, material, primitive ids); 0 where nothing is; rows top\n"
+     "to bottom, as the images", NULL, "--msaa --supersample --aa --reference",
+     "extra outputs are not averaged: they need a target without anti-aliasing"},
+    {CLI_OPT_CHOICE, R_NORMAL_SPACE, "--normal-space", NULL, "S", 0, 0, "world|camera",
+     "world | camera: the space of --outputs normal (default: world;\n"
+     "camera: OpenGL's, x right, y up, +Z towards the viewer)", NULL, NULL, NULL},
+    {CLI_OPT_STRING, R_ALPHA_CUTOFF, "--alpha-cutoff", NULL, "A", 0, 0, NULL,
+     "--outputs: a blended surface is recorded where its alpha is at\n"
+     "least A, in (0, 1] (default: 0.5; below: seen through)", NULL, NULL, NULL},
     {CLI_OPT_FLAG, R_COLMAP, "--colmap", NULL, NULL, 0, 0, NULL,
      "also write COLMAP's text model of the views into DIR/colmap:\n"
      "cameras.txt (PINHOLE), images.txt (world-to-camera poses),\n"
@@ -279,6 +294,20 @@ static bool apply(const cli_arg *arg, render_options *o)
     case R_STATS: o->stats_file = v; break;
     case R_PLAN: o->plan = true; break;
     case R_COLMAP: o->colmap = true; break;
+    case R_OUTPUTS:
+        if (!render_aovs_parse(v, &o->outputs))
+            return false;
+        break;
+    case R_NORMAL_SPACE: o->render.normal_space = (mvr_normal_space)arg->choice; break;
+    case R_ALPHA_CUTOFF: {
+        double a = 0;
+        if (!parse_double(v, &a) || !(a > 0.0 && a <= 1.0)) {
+            fprintf(stderr, "mvr render: --alpha-cutoff takes a number in (0, 1]\n");
+            return false;
+        }
+        o->render.output_alpha_cutoff = (float)a;
+        break;
+    }
     case R_MEMORY_BUDGET: o->memory_budget = (uint64_t)arg->number << 20; break;
     case R_PROGRAM_CACHE: o->program_cache = v; break;
     case R_VIEW_PATH: o->view_path = (mvr_view_path)(MVR_VIEW_PATH_AUTO + arg->choice); break;
@@ -568,7 +597,8 @@ int mvr_cmd_render(int argc, char **argv)
     }
     uint32_t n = mvr_view_set_count(views);
     uint32_t ss = o.supersample;
-    mvr_target_desc td = {o.width * ss, o.height * ss, n, o.format, 0, 0, 0, o.msaa, 0, o.aa};
+    mvr_target_desc td = {.width = o.width * ss, .height = o.height * ss, .layers = n, .color_format = o.format,
+                          .samples = o.msaa, .anti_aliasing = o.aa, .outputs = o.outputs};
     if (mvr_target_create(renderer, &td, &target) != MVR_OK) {
         fprintf(stderr, "mvr render: %s\n", mvr_renderer_last_error(renderer));
         goto done;
@@ -625,6 +655,9 @@ int mvr_cmd_render(int argc, char **argv)
             break;
         }
         frames_ok = render_output_write_views(&o, renderer, target, n, layers, floats, o.frames_set ? (int64_t)f : -1);
+        if (frames_ok && o.outputs)
+            frames_ok = render_aovs_write(o.out_dir, renderer, target, n, o.width, o.height, o.outputs,
+                                          o.frames_set ? (int64_t)f : -1, render_output_frame_digits(o.frames));
         /* the contact sheet: the first frame (the one --time alone gives) */
         if (frames_ok && f == 0 && !render_output_write_contact_sheet(sheet, layers, n, o.width, o.height)) {
             fprintf(stderr, "mvr render: cannot write %s\n", sheet);

@@ -23,6 +23,7 @@ typedef struct render_options {
     const char *stats_file;
     bool plan;                   /* --plan */
     bool colmap;                 /* --colmap */
+    uint32_t outputs;            /* --outputs: mvr_target_desc.outputs (0 = colour alone) */
     mvr_view_path view_path;
     mvr_material_path material_path;
     mvr_depth_mode depth_mode;

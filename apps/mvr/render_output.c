@@ -262,7 +262,7 @@ bool render_output_choose_animation(const render_options *o, const mvr_scene *sc
 }
 
 /* Digits of a sequence's frame numbers: 4, more past 10000 frames. */
-static int frame_digits(uint32_t frames)
+int render_output_frame_digits(uint32_t frames)
 {
     int digits = 4;
     for (uint32_t last = frames - 1; last >= 10000; last /= 10)
@@ -278,7 +278,7 @@ static void view_file(char *buf, size_t size, const render_options *o, uint32_t 
     if (frame < 0)
         len = snprintf(buf, size, "%s/view_%02u.%s", o->out_dir, view, ext);
     else
-        len = snprintf(buf, size, "%s/view_%02u_f%0*lld.%s", o->out_dir, view, frame_digits(o->frames),
+        len = snprintf(buf, size, "%s/view_%02u_f%0*lld.%s", o->out_dir, view, render_output_frame_digits(o->frames),
                        (long long)frame, ext);
     if (len < 0 || (size_t)len >= size)
         buf[0] = '\0'; /* --out too long: the write fails, naming no file */
@@ -342,7 +342,7 @@ bool render_output_encode_videos(const render_options *o, uint32_t n)
     }
     dir[d] = '\0';
     for (uint32_t k = 0; k < n; ++k) {
-        snprintf(input, sizeof input, "%s/view_%02u_f%%0%dd.png", dir, k, frame_digits(o->frames));
+        snprintf(input, sizeof input, "%s/view_%02u_f%%0%dd.png", dir, k, render_output_frame_digits(o->frames));
         video_file(output, sizeof output, o->video, k, n);
         char *args[] = {"ffmpeg", "-hide_banner", "-loglevel", "error", "-nostdin", "-y", "-framerate", rate,
                         "-start_number", "0", "-i", input, "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-pix_fmt",

@@ -62,4 +62,7 @@ void render_output_print_files(const render_options *o, uint32_t n, const char *
  * camera-to-world matrices, row by row, per-frame intrinsics). */
 bool render_output_write_cameras(const render_options *o, const mvr_view_set *views, uint32_t n);
 
+/* Digits of a sequence's frame numbers (view_00_fNNNN.png). */
+int render_output_frame_digits(uint32_t frames);
+
 #endif

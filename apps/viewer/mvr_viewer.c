@@ -253,7 +253,7 @@ static bool make_renderer(viewer *v)
     layer_size(v, v->view_count, &v->layer_w, &v->layer_h);
     /* the sRGB target mvr render uses (blending in linear light); its bytes
      * are copied to the window as they are */
-    mvr_target_desc td = {v->layer_w, v->layer_h, v->view_count, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT};
+    mvr_target_desc td = {v->layer_w, v->layer_h, v->view_count, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
     if (mvr_target_create(v->renderer, &td, &v->target) != MVR_OK) {
         fprintf(stderr, "mvr-viewer: %s\n", mvr_renderer_last_error(v->renderer));
         return false;

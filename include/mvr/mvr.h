@@ -1212,6 +1212,16 @@ typedef struct mvr_target_desc {
      * samples > 1. */
     uint32_t supersample;
     mvr_anti_aliasing anti_aliasing;
+    /* Extra outputs per view (mvr_output, below): MVR_OUTPUT_BIT(MVR_OUTPUT_DEPTH) | ...; 0 =
+     * colour alone. Each is an extra colour attachment of the same layered
+     * framebuffers, drawn in the same passes as the colour (multiview or
+     * loop, the same bytes); one not asked for is not allocated or written.
+     * Depth, distance and coverage share one RGBA32F array, normals take
+     * one RGBA32F array, IDs one RGBA32UI array. Not with anti-aliasing
+     * (samples, supersample or MSAA / SUPERSAMPLE / AUTO): an ID or a depth
+     * is not averaged. Needs float colour buffers (OpenGL ES 3.2, or
+     * EXT_color_buffer_float) for depth, distance, normal and coverage. */
+    uint32_t outputs;
 } mvr_target_desc;
 
 /* Allocates the target's arrays and framebuffers; any the GL refuses fails
@@ -1285,6 +1295,13 @@ typedef enum mvr_background {
 } mvr_background;
 const char *mvr_background_name(mvr_background background);
 
+/* The space of MVR_OUTPUT_NORMAL. */
+typedef enum mvr_normal_space {
+    MVR_NORMAL_SPACE_WORLD = 0,  /* glTF's world: right-handed, +Y up */
+    MVR_NORMAL_SPACE_CAMERA      /* the view's OpenGL camera: x right, y up, +Z towards the viewer */
+} mvr_normal_space;
+const char *mvr_normal_space_name(mvr_normal_space space);
+
 typedef struct mvr_render_desc {
     float clear_color[4];        /* linear RGBA */
     float exposure;              /* LINEAR: multiplies the lit color; 0 = 1 */
@@ -1312,6 +1329,11 @@ typedef struct mvr_render_desc {
      * importance samples per lobe (diffuse and GGX) from the unfiltered cube
      * map: slow ground truth to measure the maps' error against. */
     uint32_t environment_samples;
+    /* Extra outputs (the target's): the normals' space, and the alpha from
+     * which a blended (transparent) surface is recorded in depth, distance,
+     * normal, IDs and coverage (0 = 0.5; see mvr_output). */
+    mvr_normal_space normal_space;
+    float output_alpha_cutoff;
 } mvr_render_desc;
 
 /* The photometric exposure of an EV100 (see mvr_exposure_mode): the
@@ -1335,6 +1357,41 @@ typedef enum mvr_readback_format {
  * framebuffer: the layer is attached alone to a read framebuffer. */
 mvr_result mvr_renderer_read_layer(mvr_renderer *renderer, mvr_target *target, uint32_t layer,
                                    mvr_readback_format format, void *dst, size_t size);
+
+/* Extra outputs per view (mvr_target_desc.outputs) and what
+ * mvr_renderer_read_output gives of each, per pixel. Every output describes
+ * the same surface at a pixel: the front-most opaque or alpha-masked
+ * surface (its pixel centre's fragment, as the colour), or a blended
+ * (transparent) surface in front of it whose alpha (base colour factor x
+ * texture x vertex colour) reaches mvr_render_desc.output_alpha_cutoff (the
+ * front-most of those; surfaces below the cutoff are seen through). A
+ * transmissive surface counts as opaque. Pixels without a surface read 0.
+ * Depth and distance are in world units (relative to the view set's origin
+ * in float, so as precise as the colour's geometry). */
+typedef enum mvr_output {
+    MVR_OUTPUT_COLOR = 0,        /* 4 x uint8: the stored colour (as MVR_READBACK_RGBA8) */
+    MVR_OUTPUT_DEPTH,            /* float32: the point's depth along the camera's -Z axis (view-space -z) */
+    MVR_OUTPUT_DISTANCE,         /* float32: its distance to the camera's centre (the ray's length) */
+    MVR_OUTPUT_NORMAL,           /* 3 x float32: the unit normal of the geometry (interpolated vertex
+                                    normals, else the face's; not normal maps), facing the viewer on
+                                    the back of a double-sided surface; mvr_render_desc.normal_space */
+    MVR_OUTPUT_IDS,              /* 4 x uint32: node id, mesh id, material id (0 = the default
+                                    material), primitive (its index in the mesh + 1): mvr's ids
+                                    (mvr_node_id.id ...), exact and the same on every path */
+    MVR_OUTPUT_COVERAGE,         /* float32: 1 where a surface is recorded, else 0 */
+    MVR_OUTPUT_COUNT
+} mvr_output;
+#define MVR_OUTPUT_BIT(output) (1u << (output))
+const char *mvr_output_name(mvr_output output);
+/* Bytes per pixel mvr_renderer_read_output writes (0 for an unknown output). */
+size_t mvr_output_pixel_size(mvr_output output);
+
+/* Reads one layer's output into dst in the output's own type, rows bottom
+ * to top (GL order, as mvr_renderer_read_layer). size must be at least
+ * width * height * mvr_output_pixel_size(output). An output the target was
+ * not created with fails, naming it. */
+mvr_result mvr_renderer_read_output(mvr_renderer *renderer, mvr_target *target, uint32_t layer, mvr_output output,
+                                    void *dst, size_t size);
 
 typedef struct mvr_frame_stats {
     mvr_view_path view_path;     /* the path that ran */
@@ -1420,6 +1477,11 @@ typedef struct mvr_frame_stats {
      * with their roles' neutral values (each warned about once per upload). */
     uint32_t images_compressed;
     uint32_t images_unsampleable;
+    /* Extra outputs: the target's (mvr_target_desc.outputs) that were
+     * drawn, and the outputs-only passes of blended draws (one per chunk
+     * of views with blended draws; 0 without outputs). */
+    uint32_t outputs;
+    uint32_t output_blend_passes;
 } mvr_frame_stats;
 
 /* The supersampling resolve: box-filters linear RGBA float pixels (width x

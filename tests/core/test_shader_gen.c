@@ -28,7 +28,7 @@ static void every_embedded_file_is_nonempty(mvr_test_state *t)
 
 static void version_comes_first_and_defines_follow_features(mvr_test_state *t)
 {
-    mvr_shader_variant v = {MVR_PROGRAM_MESH, MVR_FEATURE_UV0 | MVR_FEATURE_BASE_COLOR_TEX, 0, 1, 0, 0, 0, 0, 0};
+    mvr_shader_variant v = {MVR_PROGRAM_MESH, MVR_FEATURE_UV0 | MVR_FEATURE_BASE_COLOR_TEX, 0, 1, 0, 0, 0, 0, 0, 0};
     char *vs = source_of(&v, MVR_SHADER_STAGE_VERTEX);
     char *fs = source_of(&v, MVR_SHADER_STAGE_FRAGMENT);
     CHECK(t, vs && fs);
@@ -49,7 +49,7 @@ static void version_comes_first_and_defines_follow_features(mvr_test_state *t)
 
 static void multiview_layout_only_in_vertex_stage(mvr_test_state *t)
 {
-    mvr_shader_variant v = {MVR_PROGRAM_MESH, 0, 6, 0, 0, 0, 0, 0, 0};
+    mvr_shader_variant v = {MVR_PROGRAM_MESH, 0, 6, 0, 0, 0, 0, 0, 0, 0};
     char *vs = source_of(&v, MVR_SHADER_STAGE_VERTEX);
     char *fs = source_of(&v, MVR_SHADER_STAGE_FRAGMENT);
     CHECK(t, vs && fs);
@@ -69,7 +69,7 @@ static void multiview_layout_only_in_vertex_stage(mvr_test_state *t)
 static void invalid_variants_are_refused(mvr_test_state *t)
 {
     char why[256];
-    mvr_shader_variant v = {MVR_PROGRAM_MESH, MVR_FEATURE_ALPHA_MASK | MVR_FEATURE_ALPHA_BLEND, 0, 0, 0, 0, 0, 0, 0};
+    mvr_shader_variant v = {MVR_PROGRAM_MESH, MVR_FEATURE_ALPHA_MASK | MVR_FEATURE_ALPHA_BLEND, 0, 0, 0, 0, 0, 0, 0, 0};
     CHECK(t, !mvr_shader_variant_valid(&v, why, sizeof why));
     CHECK(t, strstr(why, "alpha") != NULL);
     uint32_t unknown = ~mvr_shader_feature_mask(MVR_PROGRAM_MESH);
@@ -77,20 +77,30 @@ static void invalid_variants_are_refused(mvr_test_state *t)
         v.features = unknown & (0u - unknown);
         CHECK(t, !mvr_shader_variant_valid(&v, why, sizeof why));
     }
-    v = (mvr_shader_variant){MVR_PROGRAM_COMPOSITE, MVR_FEATURE_NORMAL_TEX, 0, 0, 0, 0, 0, 0, 0};
+    v = (mvr_shader_variant){MVR_PROGRAM_COMPOSITE, MVR_FEATURE_NORMAL_TEX, 0, 0, 0, 0, 0, 0, 0, 0};
     CHECK(t, !mvr_shader_variant_valid(&v, why, sizeof why));
-    v = (mvr_shader_variant){MVR_PROGRAM_COMPOSITE, 0, 0, 1, 0, 0, 0, 0, 0};
+    v = (mvr_shader_variant){MVR_PROGRAM_COMPOSITE, 0, 0, 1, 0, 0, 0, 0, 0, 0};
     CHECK(t, !mvr_shader_variant_valid(&v, why, sizeof why));
-    v = (mvr_shader_variant){MVR_PROGRAM_MESH, 0, 1000, 0, 0, 0, 0, 0, 0};
+    v = (mvr_shader_variant){MVR_PROGRAM_MESH, 0, 1000, 0, 0, 0, 0, 0, 0, 0};
     CHECK(t, !mvr_shader_variant_valid(&v, why, sizeof why));
-    v = (mvr_shader_variant){MVR_PROGRAM_MESH, 0, 0, MVR_SHADER_MAX_LIGHTS_PER_TYPE + 1, 0, 0, 0, 0, 0};
+    v = (mvr_shader_variant){MVR_PROGRAM_MESH, 0, 0, MVR_SHADER_MAX_LIGHTS_PER_TYPE + 1, 0, 0, 0, 0, 0, 0};
     CHECK(t, !mvr_shader_variant_valid(&v, why, sizeof why));
-    v = (mvr_shader_variant){MVR_PROGRAM_MESH, 0, 0, 0, 0, 0, 0, MVR_SHADER_MAX_DRAW_CAPACITY + 1, 0};
+    v = (mvr_shader_variant){MVR_PROGRAM_MESH, 0, 0, 0, 0, 0, 0, MVR_SHADER_MAX_DRAW_CAPACITY + 1, 0, 0};
     CHECK(t, !mvr_shader_variant_valid(&v, why, sizeof why));
     CHECK(t, strstr(why, "draw capacity") != NULL);
-    v = (mvr_shader_variant){MVR_PROGRAM_COMPOSITE, 0, 0, 0, 0, 0, 0, 2, 0};
+    v = (mvr_shader_variant){MVR_PROGRAM_COMPOSITE, 0, 0, 0, 0, 0, 0, 2, 0, 0};
     CHECK(t, !mvr_shader_variant_valid(&v, why, sizeof why));
-    v = (mvr_shader_variant){(mvr_program_kind)42, 0, 0, 0, 0, 0, 0, 0, 0};
+    /* extra outputs: mesh only, camera space needs normals, outputs-only needs an output */
+    v = (mvr_shader_variant){MVR_PROGRAM_COMPOSITE, 0, 0, 0, 0, 0, 0, 0, 0, MVR_SHADER_OUT_IDS};
+    CHECK(t, !mvr_shader_variant_valid(&v, why, sizeof why));
+    v = (mvr_shader_variant){MVR_PROGRAM_MESH, 0, 0, 0, 0, 0, 0, 0, 0, MVR_SHADER_OUT_NORMAL_CAMERA};
+    CHECK(t, !mvr_shader_variant_valid(&v, why, sizeof why));
+    v = (mvr_shader_variant){MVR_PROGRAM_MESH, 0, 0, 0, 0, 0, 0, 0, 0, MVR_SHADER_OUT_ONLY};
+    CHECK(t, !mvr_shader_variant_valid(&v, why, sizeof why));
+    CHECK(t, strstr(why, "outputs") != NULL);
+    v = (mvr_shader_variant){MVR_PROGRAM_MESH, 0, 0, 0, 0, 0, 0, 0, 0, MVR_SHADER_OUT_IDS | MVR_SHADER_OUT_ONLY};
+    CHECK(t, mvr_shader_variant_valid(&v, why, sizeof why));
+    v = (mvr_shader_variant){(mvr_program_kind)42, 0, 0, 0, 0, 0, 0, 0, 0, 0};
     CHECK(t, !mvr_shader_variant_valid(&v, why, sizeof why));
     mvr_str_builder sb = {0};
     CHECK(t, !mvr_shader_source(&v, MVR_SHADER_STAGE_VERTEX, &sb, why, sizeof why));

@@ -88,6 +88,8 @@ static GLenum gl_type(mvr_std140_type t)
         return GL_FLOAT_VEC4;
     case MVR_STD140_IVEC4:
         return GL_INT_VEC4;
+    case MVR_STD140_UVEC4:
+        return GL_UNSIGNED_INT_VEC4;
     case MVR_STD140_MAT4:
         return GL_FLOAT_MAT4;
     }

@@ -24,7 +24,7 @@ static uint8_t *render_stereo(mvr_test_state *t, mvr_context *ctx, mvr_view_path
     mvr_target *target = NULL;
     uint32_t w = MW * supersample, h = MH * supersample;
     mvr_target_desc td = {w, h, 2, supersample > 1 ? MVR_COLOR_FORMAT_RGBA32F : MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0,
-                          samples, 0, MVR_ANTI_ALIASING_DEFAULT};
+                          samples, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
     bool ok = mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK &&
               mvr_renderer_render(r, s, vs, target, NULL) == MVR_OK;
     CHECK_MSG(t, ok, "%s", r ? mvr_renderer_last_error(r) : "renderer");
@@ -118,7 +118,7 @@ static void msaa_is_closer_to_the_reference(mvr_test_state *t)
     mvr_renderer *r = NULL;
     mvr_target *target = NULL;
     CHECK(t, mvr_renderer_create(&rd, &r, NULL) == MVR_OK);
-    mvr_target_desc td = {16, 16, 1, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, (uint32_t)caps->limits.max_samples * 2, 0, MVR_ANTI_ALIASING_DEFAULT};
+    mvr_target_desc td = {16, 16, 1, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, (uint32_t)caps->limits.max_samples * 2, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
     CHECK(t, mvr_target_create(r, &td, &target) == MVR_ERROR_UNSUPPORTED && target == NULL);
     CHECK_MSG(t, strstr(mvr_renderer_last_error(r), "GL_MAX_SAMPLES") != NULL, "%s", mvr_renderer_last_error(r));
     mvr_renderer_destroy(r);
@@ -170,7 +170,7 @@ static void supersampling_on_every_path(mvr_test_state *t)
     const uint32_t counts[2] = {2, 8};
     for (int d = 0; d < 2; ++d)
         for (int c = 0; c < 2; ++c) {
-            mvr_target_desc td = {MW, MH, counts[c], MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 2, MVR_ANTI_ALIASING_DEFAULT};
+            mvr_target_desc td = {MW, MH, counts[c], MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 2, MVR_ANTI_ALIASING_DEFAULT, 0};
             mvr_frame_stats sm, sl;
             uint8_t *loop = render_demo_target(t, ctx, demos[d], counts[c], MVR_VIEW_PATH_LOOP, &td, &sl);
             uint8_t *multi = mv ? render_demo_target(t, ctx, demos[d], counts[c], MVR_VIEW_PATH_MULTIVIEW, &td, &sm)
@@ -193,9 +193,9 @@ static void supersampling_on_every_path(mvr_test_state *t)
     /* closer to the 4x4 reference than plain; an RGBA8 target (the resolve
      * encodes) within one step of the sRGB one (the GL encodes) */
     const size_t pixels = (size_t)MW * MH * 2;
-    mvr_target_desc plain_td = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT};
-    mvr_target_desc ss_td = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 2, MVR_ANTI_ALIASING_DEFAULT};
-    mvr_target_desc ss8_td = {MW, MH, 2, MVR_COLOR_FORMAT_RGBA8, 0, 0, 0, 0, 2, MVR_ANTI_ALIASING_DEFAULT};
+    mvr_target_desc plain_td = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+    mvr_target_desc ss_td = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 2, MVR_ANTI_ALIASING_DEFAULT, 0};
+    mvr_target_desc ss8_td = {MW, MH, 2, MVR_COLOR_FORMAT_RGBA8, 0, 0, 0, 0, 2, MVR_ANTI_ALIASING_DEFAULT, 0};
     uint8_t *plain = render_demo_target(t, ctx, "stereo", 2, MVR_VIEW_PATH_AUTO, &plain_td, NULL);
     uint8_t *ss = render_demo_target(t, ctx, "stereo", 2, MVR_VIEW_PATH_AUTO, &ss_td, NULL);
     uint8_t *ss8 = render_demo_target(t, ctx, "stereo", 2, MVR_VIEW_PATH_AUTO, &ss8_td, NULL);
@@ -220,8 +220,8 @@ static void supersampling_on_every_path(mvr_test_state *t)
     mvr_renderer *r = NULL;
     mvr_target *target = NULL;
     CHECK(t, mvr_renderer_create(&rd, &r, NULL) == MVR_OK);
-    mvr_target_desc bad1 = {16, 16, 1, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 5, MVR_ANTI_ALIASING_DEFAULT};
-    mvr_target_desc bad2 = {16, 16, 1, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 4, 2, MVR_ANTI_ALIASING_DEFAULT};
+    mvr_target_desc bad1 = {16, 16, 1, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 5, MVR_ANTI_ALIASING_DEFAULT, 0};
+    mvr_target_desc bad2 = {16, 16, 1, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 4, 2, MVR_ANTI_ALIASING_DEFAULT, 0};
     CHECK(t, mvr_target_create(r, &bad1, &target) == MVR_ERROR_INVALID_ARGUMENT && !target);
     CHECK(t, mvr_target_create(r, &bad2, &target) == MVR_ERROR_INVALID_ARGUMENT && !target);
     mvr_renderer_destroy(r);
@@ -239,11 +239,11 @@ static void anti_aliasing_choices(mvr_test_state *t)
         return;
     const mvr_caps *caps = mvr_context_caps(ctx);
     const size_t bytes = (size_t)MW * MH * 4 * 2;
-    mvr_target_desc four = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 4, 0, MVR_ANTI_ALIASING_DEFAULT};
-    mvr_target_desc autod = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_AUTO};
-    mvr_target_desc ss = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_SUPERSAMPLE};
-    mvr_target_desc none = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 4, 2, MVR_ANTI_ALIASING_NONE};
-    mvr_target_desc plain = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT};
+    mvr_target_desc four = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 4, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+    mvr_target_desc autod = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_AUTO, 0};
+    mvr_target_desc ss = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_SUPERSAMPLE, 0};
+    mvr_target_desc none = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 4, 2, MVR_ANTI_ALIASING_NONE, 0};
+    mvr_target_desc plain = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
     mvr_frame_stats st_four, st_auto, st_ss, st_none, st_plain;
     uint8_t *a = render_demo_target(t, ctx, "stereo", 2, MVR_VIEW_PATH_MULTIVIEW, &four, &st_four);
     uint8_t *b = render_demo_target(t, ctx, "stereo", 2, MVR_VIEW_PATH_MULTIVIEW, &autod, &st_auto);
@@ -285,7 +285,7 @@ static void anti_aliasing_choices(mvr_test_state *t)
     mvr_renderer *r = NULL;
     mvr_target *target = NULL;
     if (mvr_renderer_create(&rd, &r, NULL) == MVR_OK) {
-        mvr_target_desc bad = {16, 16, 1, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, (mvr_anti_aliasing)99};
+        mvr_target_desc bad = {16, 16, 1, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, (mvr_anti_aliasing)99, 0};
         CHECK(t, mvr_target_create(r, &bad, &target) == MVR_ERROR_INVALID_ARGUMENT && !target);
         CHECK(t, strstr(mvr_renderer_last_error(r), "anti-aliasing") != NULL);
     }

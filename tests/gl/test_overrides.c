@@ -171,7 +171,7 @@ static void overrides_win_over_the_descriptor(mvr_test_state *t)
         CHECK_EQ_INT(t, r->ubo_alignment, 2048);
         CHECK(t, r->draw_capacity >= 1);
         /* MSAA off multiview: the target keeps no multisampled multiview */
-        mvr_target_desc td = {32, 32, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 4, 0, MVR_ANTI_ALIASING_DEFAULT};
+        mvr_target_desc td = {32, 32, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 4, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
         mvr_target *target = NULL;
         if (mvr_target_create(r, &td, &target) == MVR_OK)
             CHECK_EQ_INT(t, target->msaa_multiview, MVR_MSAA_MV_NONE);

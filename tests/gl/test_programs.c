@@ -51,11 +51,11 @@ static void a_broken_variant_reports_the_log(mvr_test_state *t)
     if (!ctx)
         return;
     /* more views than the GL allows: refused before compiling, with the limit named */
-    mvr_shader_variant v = {MVR_PROGRAM_MESH, 0, (uint32_t)mvr_context_caps(ctx)->limits.max_views_ovr + 1, 0, 0, 0, 0, 0, 0};
+    mvr_shader_variant v = {MVR_PROGRAM_MESH, 0, (uint32_t)mvr_context_caps(ctx)->limits.max_views_ovr + 1, 0, 0, 0, 0, 0, 0, 0};
     CHECK(t, mvr_context_check_shader_variant(ctx, &v) == MVR_ERROR_UNSUPPORTED);
     CHECK(t, strstr(mvr_context_last_error(ctx), "GL_MAX_VIEWS_OVR") != NULL);
     /* feature bits that do not exist: refused, named */
-    v = (mvr_shader_variant){MVR_PROGRAM_COMPOSITE, 1u << 20, 0, 0, 0, 0, 0, 0, 0};
+    v = (mvr_shader_variant){MVR_PROGRAM_COMPOSITE, 1u << 20, 0, 0, 0, 0, 0, 0, 0, 0};
     CHECK(t, mvr_context_check_shader_variant(ctx, &v) == MVR_ERROR_INVALID_ARGUMENT);
     CHECK(t, strstr(mvr_context_last_error(ctx), "composite") != NULL);
     mvr_context_destroy(ctx);

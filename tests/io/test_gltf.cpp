@@ -319,7 +319,7 @@ static void physical_lights_are_exposed_by_default(mvr_test_state *t)
     rd.context = ctx;
     mvr_renderer *r = nullptr;
     mvr_target *target = nullptr;
-    mvr_target_desc td = {W, H, 1, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT};
+    mvr_target_desc td = {W, H, 1, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
     bool ok = mvr_renderer_create(&rd, &r, &err) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK;
     for (int k = 0; ok && k < 2; ++k) {
         mvr_render_desc desc = {};

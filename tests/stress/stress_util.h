@@ -170,7 +170,7 @@ static inline void *stress_render(mvr_test_state *t, mvr_context *ctx, mvr_scene
         CHECK_MSG(t, 0, "renderer: %s", err.message);
         return NULL;
     }
-    mvr_target_desc td = {o->width, o->height, n, o->format, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT};
+    mvr_target_desc td = {o->width, o->height, n, o->format, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
     mvr_render_desc desc = {.clear_color = {o->clear[0], o->clear[1], o->clear[2], o->clear[3]},
                             .exposure = 1.0f,
                             .tone_map = MVR_TONE_MAP_NONE,

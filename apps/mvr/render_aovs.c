@@ -1,0 +1,127 @@
+/* mvr render --outputs (render_aovs.h). The .npy format (NumPy's own, version
+ * 1.0): the magic "\x93NUMPY", version 1 0, a little-endian uint16 header
+ * length, and a Python dict literal padded with spaces to a multiple of 64
+ * bytes ending in '\n', then the raw C-order data
+ * (https://numpy.org/doc/stable/reference/generated/numpy.lib.format.html). */
+#include "render_aovs.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+bool render_aovs_parse(const char *list, uint32_t *out_bits)
+{
+    uint32_t bits = 0;
+    const char *p = list;
+    while (*p) {
+        const char *end = strchr(p, ',');
+        size_t len = end ? (size_t)(end - p) : strlen(p);
+        bool found = false;
+        if (len == 3 && strncmp(p, "all", 3) == 0) {
+            bits |= (MVR_OUTPUT_BIT(MVR_OUTPUT_COUNT) - 1u) & ~MVR_OUTPUT_BIT(MVR_OUTPUT_COLOR);
+            found = true;
+        }
+        for (int k = MVR_OUTPUT_DEPTH; k < MVR_OUTPUT_COUNT && !found; ++k) {
+            const char *name = mvr_output_name((mvr_output)k);
+            if (strlen(name) == len && strncmp(p, name, len) == 0) {
+                bits |= MVR_OUTPUT_BIT(k);
+                found = true;
+            }
+        }
+        if (!found) {
+            fprintf(stderr, "mvr render: --outputs: unknown output '%.*s' (depth, distance, normal, ids, coverage "
+                            "or all)\n", (int)len, p);
+            return false;
+        }
+        p += len;
+        if (*p == ',')
+            p++;
+    }
+    if (!bits) {
+        fprintf(stderr, "mvr render: --outputs takes a list: depth,distance,normal,ids,coverage or all\n");
+        return false;
+    }
+    *out_bits = bits;
+    return true;
+}
+
+static bool write_npy(const char *path, const char *descr, uint32_t h, uint32_t w, uint32_t channels,
+                      const void *data, size_t bytes)
+{
+    char dict[128];
+    if (channels > 1)
+        snprintf(dict, sizeof dict, "{'descr': '%s', 'fortran_order': False, 'shape': (%u, %u, %u), }", descr, h, w,
+                 channels);
+    else
+        snprintf(dict, sizeof dict, "{'descr': '%s', 'fortran_order': False, 'shape': (%u, %u), }", descr, h, w);
+    size_t len = strlen(dict);
+    size_t total = 10 + len + 1;
+    size_t padded = (total + 63) / 64 * 64;
+    char header[256];
+    memcpy(header, "\x93NUMPY\x01\x00", 8);
+    uint16_t hl = (uint16_t)(padded - 10);
+    header[8] = (char)(hl & 0xFF);
+    header[9] = (char)(hl >> 8);
+    memcpy(header + 10, dict, len);
+    memset(header + 10 + len, ' ', padded - total);
+    header[padded - 1] = '\n';
+    FILE *f = fopen(path, "wb");
+    if (!f) {
+        fprintf(stderr, "mvr render: cannot write %s: %s\n", path, strerror(errno));
+        return false;
+    }
+    bool ok = fwrite(header, 1, padded, f) == padded && fwrite(data, 1, bytes, f) == bytes;
+    ok = fclose(f) == 0 && ok;
+    if (!ok)
+        fprintf(stderr, "mvr render: cannot write %s\n", path);
+    return ok;
+}
+
+bool render_aovs_write(const char *dir, mvr_renderer *r, mvr_target *t, uint32_t views, uint32_t width,
+                       uint32_t height, uint32_t bits, int64_t frame, int frame_digits)
+{
+    size_t row_max = (size_t)width * 16, pixels = (size_t)width * height;
+    uint8_t *buf = malloc(pixels * 16), *row = malloc(row_max);
+    bool ok = buf && row;
+    if (!ok)
+        fprintf(stderr, "mvr render: --outputs: out of memory\n");
+    for (int k = MVR_OUTPUT_DEPTH; ok && k < MVR_OUTPUT_COUNT; ++k) {
+        if (!(bits & MVR_OUTPUT_BIT(k)))
+            continue;
+        mvr_output output = (mvr_output)k;
+        size_t px = mvr_output_pixel_size(output), stride = px * width;
+        for (uint32_t v = 0; ok && v < views; ++v) {
+            if (mvr_renderer_read_output(r, t, v, output, buf, pixels * px) != MVR_OK) {
+                fprintf(stderr, "mvr render: reading %s of view %u: %s\n", mvr_output_name(output), v,
+                        mvr_renderer_last_error(r));
+                ok = false;
+                break;
+            }
+            /* GL rows run bottom to top; images (and arrays) top to bottom */
+            for (uint32_t y = 0; y < height / 2; ++y) {
+                uint8_t *a = buf + (size_t)y * stride, *b = buf + (size_t)(height - 1 - y) * stride;
+                memcpy(row, a, stride);
+                memcpy(a, b, stride);
+                memcpy(b, row, stride);
+            }
+            char path[4096];
+            int len = frame < 0 ? snprintf(path, sizeof path, "%s/%s_%02u.npy", dir, mvr_output_name(output), v)
+                                : snprintf(path, sizeof path, "%s/%s_%02u_f%0*lld.npy", dir, mvr_output_name(output),
+                                           v, frame_digits, (long long)frame);
+            if (len < 0 || (size_t)len >= sizeof path) {
+                fprintf(stderr, "mvr render: --out is too long\n");
+                ok = false;
+                break;
+            }
+            /* the data in this machine's byte order, which the descr states */
+            uint16_t one = 1;
+            bool little = *(const uint8_t *)&one == 1;
+            const char *descr = output == MVR_OUTPUT_IDS ? (little ? "<u4" : ">u4") : (little ? "<f4" : ">f4");
+            ok = write_npy(path, descr, height, width, (uint32_t)(px / 4), buf, pixels * px);
+        }
+    }
+    free(buf);
+    free(row);
+    return ok;
+}

@@ -1,0 +1,20 @@
+/* mvr render --outputs: each view's extra outputs (depth, distance, normals,
+ * IDs, coverage) as NumPy .npy files next to its image. */
+#ifndef MVR_APP_RENDER_AOVS_H
+#define MVR_APP_RENDER_AOVS_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "mvr/mvr.h"
+
+/* "depth,normal,ids" (or "all") -> mvr_target_desc.outputs bits; false with a message on stderr. */
+bool render_aovs_parse(const char *list, uint32_t *out_bits);
+
+/* Writes DIR/<output>_VV.npy (or <output>_VV_fNNNN.npy for frame >= 0) for
+ * every output in bits and view of the target: rows top to bottom, the
+ * output's own type (float32 H x W, float32 H x W x 3, uint32 H x W x 4). */
+bool render_aovs_write(const char *dir, mvr_renderer *r, mvr_target *t, uint32_t views, uint32_t width,
+                       uint32_t height, uint32_t bits, int64_t frame, int frame_digits);
+
+#endif
