@@ -9,9 +9,15 @@ points in front of each camera projected the NeRF way (transforms.json: OpenGL c
 fl_x, fl_y, cx, cy) land where cameras.json's OpenGL projection x world_to_camera puts them (within
 1e-6 pixel), and so do COLMAP's (quaternion and translation of images.txt, PINHOLE parameters of
 cameras.txt); camera_to_world inverts world_to_camera; a sphere's views all look at one point.
+With --outputs depth,ids (NumPy files, read here without NumPy): every covered pixel of a view,
+unprojected the NeRF way with its depth, lands in the other views on pixels whose depth agrees
+with its own where it is not hidden (a dataset's multi-view consistency; a flipped row order or a
+wrong convention breaks it), and depth > 0 exactly where an ID is.
 Python's standard library only."""
+import ast
 import json
 import math
+import struct
 import os
 import random
 import subprocess
@@ -118,5 +124,77 @@ for layout, views in (("sphere", 7), ("orbit", 6), ("stereo", 2)):
         expect(gap < 1e-9 * max(d0, 1.0), "sphere: views 0 and 1 look at points %g apart" % gap)
     print("%-7s %d views: NeRF vs OpenGL projection within %.2g pixel, COLMAP within %.2g" %
           (layout, views, worst, worst_colmap))
+
+
+
+def load_npy(path):
+    """A NumPy .npy file (version 1.0, C order, little-endian float32 or uint32): (shape, flat values)."""
+    data = open(path, "rb").read()
+    expect(data[:8] == b"\x93NUMPY\x01\x00", "%s: .npy magic" % path)
+    hlen = struct.unpack("<H", data[8:10])[0]
+    header = ast.literal_eval(data[10:10 + hlen].decode("latin1"))
+    expect((10 + hlen) % 64 == 0 and not header["fortran_order"], "%s: header %r" % (path, header))
+    code = {"<f4": "f", "<u4": "I"}[header["descr"]]
+    count = 1
+    for d in header["shape"]:
+        count *= d
+    return header["shape"], struct.unpack("<%d%s" % (count, code), data[10 + hlen:10 + hlen + 4 * count])
+
+
+out = os.path.join(OUT, "outputs")
+views = 5
+run = subprocess.run([MVR, "render", FILE, "--layout", "sphere", "--views", str(views), "--size", "64x48",
+                      "--out", out, "--quiet", "--outputs", "depth,ids"], capture_output=True, text=True)
+expect(run.returncode == 0, "outputs: mvr render exits %d: %s" % (run.returncode, run.stderr))
+if run.returncode == 0:
+    nerf = json.load(open(os.path.join(out, "transforms.json")))
+    W, H = 64, 48
+    depth, ids, w2c = [], [], []
+    for k, n in enumerate(nerf["frames"]):
+        shape, d = load_npy(os.path.join(out, "depth_%02d.npy" % k))
+        expect(shape == (H, W), "depth_%02d: shape %r" % (k, shape))
+        shape, i = load_npy(os.path.join(out, "ids_%02d.npy" % k))
+        expect(shape == (H, W, 4), "ids_%02d: shape %r" % (k, shape))
+        depth.append(d)
+        ids.append(i)
+        c2w = n["transform_matrix"]
+        # the inverse of a rigid transform: R^T, -R^T t
+        r = [[c2w[j][i2] for j in range(3)] for i2 in range(3)]
+        t = [-sum(r[i2][j] * c2w[j][3] for j in range(3)) for i2 in range(3)]
+        w2c.append((r, t))
+        mismatched = sum(1 for p in range(W * H) if (d[p] > 0) != (i[4 * p] != 0))
+        expect(mismatched == 0, "view %d: %d pixels where depth and IDs disagree on coverage" % (k, mismatched))
+    agree = checked = 0
+    for a, na in enumerate(nerf["frames"]):
+        c2w = na["transform_matrix"]
+        for y in range(H):
+            for x in range(W):
+                z = depth[a][y * W + x]
+                if z <= 0:
+                    continue
+                # NeRF: pixel centre (x + 0.5, y + 0.5) from the top-left, camera looking along -Z, y up
+                pc = [(x + 0.5 - na["cx"]) / na["fl_x"] * z, -(y + 0.5 - na["cy"]) / na["fl_y"] * z, -z]
+                p = [sum(c2w[r][k] * pc[k] for k in range(3)) + c2w[r][3] for r in range(3)]
+                for b, nb in enumerate(nerf["frames"]):
+                    if b == a:
+                        continue
+                    r, t = w2c[b]
+                    q = [sum(r[i2][k] * p[k] for k in range(3)) + t[i2] for i2 in range(3)]
+                    if q[2] >= 0:
+                        continue
+                    u = nb["fl_x"] * q[0] / -q[2] + nb["cx"]
+                    v = nb["fl_y"] * -q[1] / -q[2] + nb["cy"]
+                    if not (0 <= u < W and 0 <= v < H):
+                        continue
+                    zb = depth[b][int(v) * W + int(u)]
+                    if zb <= 0 or zb < -q[2] * 0.98:
+                        continue  # hidden in view b (something nearer), or off the surface's edge
+                    checked += 1
+                    agree += abs(zb + q[2]) <= 0.02 * -q[2]
+    frac = agree / checked if checked else 0.0
+    expect(checked > 1000 and frac > 0.9,
+           "outputs: %d of %d cross-view reprojections agree in depth (%.1f%%)" % (agree, checked, 100 * frac))
+    print("outputs %d views: %d cross-view reprojections, %.1f%% agree within 2%% in depth" %
+          (views, checked, 100 * frac))
 
 sys.exit(1 if failures else 0)
