@@ -814,6 +814,27 @@ float mvr_shadow(int light, vec3 p, vec3 n_offset, float dist)
 }
 #endif
 
+#ifndef MVR_SHADOW_CASTER
+// The surface's normal before normal maps: the interpolated vertex normal, or
+// the geometric normal from screen-space derivatives (always defined for a
+// rasterized triangle) where there is none or it is degenerate; negated on
+// the back of a double-sided surface.
+vec3 mvr_surface_normal()
+{
+    vec3 face_n = mvr_safe_normalize(cross(dFdx(v_position), dFdy(v_position)), vec3(0.0, 0.0, 1.0));
+#ifdef MVR_NORMALS
+    vec3 n = mvr_safe_normalize(v_normal, face_n);
+#else
+    vec3 n = face_n;
+#endif
+#ifdef MVR_DOUBLE_SIDED
+    if (!gl_FrontFacing)
+        n = -n;
+#endif
+    return n;
+}
+#endif
+
 #ifdef MVR_OUTPUTS
 // The extra outputs of a fragment: its depth along the view's axis and its
 // distance to the eye (both from the eye-to-point vector, which is
@@ -829,16 +850,7 @@ void mvr_write_outputs()
     o_geometry = vec4(dot(v_to_eye, axis), length(v_to_eye), 1.0, 0.0);
 #endif
 #ifdef MVR_OUT_NORMAL
-    vec3 face_n = mvr_safe_normalize(cross(dFdx(v_position), dFdy(v_position)), vec3(0.0, 0.0, 1.0));
-#ifdef MVR_NORMALS
-    vec3 n = mvr_safe_normalize(v_normal, face_n);
-#else
-    vec3 n = face_n;
-#endif
-#ifdef MVR_DOUBLE_SIDED
-    if (!gl_FrontFacing)
-        n = -n;
-#endif
+    vec3 n = mvr_surface_normal();
 #ifdef MVR_OUT_NORMAL_CAMERA
     n = mvr_safe_normalize(mat3(view) * n, n);
 #endif
@@ -929,18 +941,7 @@ void main()
     roughness = clamp(roughness, 0.0, 1.0);
     float alpha = max(roughness * roughness, 1e-3);
 
-    // Geometric normal from screen-space derivatives: always defined for a
-    // rasterized triangle, used where the interpolated normal is degenerate.
-    vec3 face_n = mvr_safe_normalize(cross(dFdx(v_position), dFdy(v_position)), vec3(0.0, 0.0, 1.0));
-#ifdef MVR_NORMALS
-    vec3 n = mvr_safe_normalize(v_normal, face_n);
-#else
-    vec3 n = face_n;
-#endif
-#ifdef MVR_DOUBLE_SIDED
-    if (!gl_FrontFacing)
-        n = -n;
-#endif
+    vec3 n = mvr_surface_normal();
     vec3 n_offset = n;       // shadow receivers move along the surface normal, not the normal map's
 #if defined(MVR_NORMAL_TEX) || defined(MVR_CLEARCOAT) || defined(MVR_ANISOTROPY)
     // The tangent frame is the front side's; a back face of a double-sided
