@@ -745,3 +745,26 @@ bool mvr_scene_lights_physical(const mvr_scene *s)
     return info.max_light_intensity[MVR_LIGHT_DIRECTIONAL] > 20.0f ||
            info.max_light_intensity[MVR_LIGHT_POINT] > 100.0f || info.max_light_intensity[MVR_LIGHT_SPOT] > 100.0f;
 }
+
+const char *mvr_scene_node_name(const mvr_scene *s, mvr_node_id node)
+{
+    return s && node.id >= 1 && node.id <= s->node_count ? s->nodes[node.id - 1].name : NULL;
+}
+
+const char *mvr_scene_mesh_name(const mvr_scene *s, mvr_mesh_id mesh)
+{
+    return s && mesh.id >= 1 && mesh.id <= s->mesh_count ? s->meshes[mesh.id - 1].name : NULL;
+}
+
+const char *mvr_scene_material_name(const mvr_scene *s, mvr_material_id material)
+{
+    return s && material.id >= 1 && material.id <= s->material_count ? s->materials[material.id - 1].name : NULL;
+}
+
+mvr_mesh_id mvr_scene_node_mesh(const mvr_scene *s, mvr_node_id node)
+{
+    mvr_mesh_id id = {0};
+    if (s && node.id >= 1 && node.id <= s->node_count && s->nodes[node.id - 1].mesh != MVR_NO_INDEX)
+        id.id = s->nodes[node.id - 1].mesh + 1;
+    return id;
+}

@@ -663,9 +663,11 @@ int mvr_cmd_render(int argc, char **argv)
             fprintf(stderr, "mvr render: cannot write %s\n", sheet);
             frames_ok = false;
         }
-        /* the camera metadata of the first frame's views */
+        /* the camera metadata of the first frame's views (and what the IDs name) */
         if (frames_ok && f == 0)
             frames_ok = render_output_write_cameras(&o, views, n);
+        if (frames_ok && f == 0 && (o.outputs & MVR_OUTPUT_BIT(MVR_OUTPUT_IDS)))
+            frames_ok = render_aovs_write_ids(o.out_dir, scene);
     }
     free(floats);
     if (!frames_ok)

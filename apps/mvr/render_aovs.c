@@ -5,6 +5,8 @@
  * (https://numpy.org/doc/stable/reference/generated/numpy.lib.format.html). */
 #include "render_aovs.h"
 
+#include "json.h"
+
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -124,4 +126,53 @@ bool render_aovs_write(const char *dir, mvr_renderer *r, mvr_target *t, uint32_t
     free(buf);
     free(row);
     return ok;
+}
+
+bool render_aovs_write_ids(const char *dir, const mvr_scene *scene)
+{
+    char path[4096];
+    int len = snprintf(path, sizeof path, "%s/ids.json", dir);
+    FILE *f = len > 0 && (size_t)len < sizeof path ? fopen(path, "w") : NULL;
+    if (!f) {
+        fprintf(stderr, "mvr render: cannot write %s/ids.json\n", dir);
+        return false;
+    }
+    mvr_scene_info info;
+    mvr_scene_get_info(scene, &info);
+    json_writer jw = {.out = f};
+    json_begin_object(&jw, NULL);
+    json_string(&jw, "channels", "node, mesh, material, primitive (index in the mesh + 1); 0 = none");
+    json_begin_array(&jw, "nodes");
+    for (uint32_t k = 1; k <= info.nodes; ++k) {
+        mvr_node_id node = {k};
+        json_begin_object(&jw, NULL);
+        json_int(&jw, "id", k);
+        json_string(&jw, "name", mvr_scene_node_name(scene, node));
+        json_int(&jw, "mesh", mvr_scene_node_mesh(scene, node).id);
+        json_end_object(&jw);
+    }
+    json_end_array(&jw);
+    json_begin_array(&jw, "meshes");
+    for (uint32_t k = 1; k <= info.meshes; ++k) {
+        json_begin_object(&jw, NULL);
+        json_int(&jw, "id", k);
+        json_string(&jw, "name", mvr_scene_mesh_name(scene, (mvr_mesh_id){k}));
+        json_end_object(&jw);
+    }
+    json_end_array(&jw);
+    json_begin_array(&jw, "materials");
+    for (uint32_t k = 1; k <= info.materials; ++k) {
+        json_begin_object(&jw, NULL);
+        json_int(&jw, "id", k);
+        json_string(&jw, "name", mvr_scene_material_name(scene, (mvr_material_id){k}));
+        json_end_object(&jw);
+    }
+    json_end_array(&jw);
+    json_end_object(&jw);
+    fputc('\n', f);
+    if (fclose(f) != 0) {
+        fprintf(stderr, "mvr render: cannot write %s\n", path);
+        return false;
+    }
+    return true;
 }

@@ -17,4 +17,8 @@ bool render_aovs_parse(const char *list, uint32_t *out_bits);
 bool render_aovs_write(const char *dir, mvr_renderer *r, mvr_target *t, uint32_t views, uint32_t width,
                        uint32_t height, uint32_t bits, int64_t frame, int frame_digits);
 
+/* DIR/ids.json: what the IDs of --outputs ids name (nodes with their mesh,
+ * meshes, materials: id and name). */
+bool render_aovs_write_ids(const char *dir, const mvr_scene *scene);
+
 #endif

@@ -763,6 +763,14 @@ typedef struct mvr_scene_info {
  * asks), so an auto-exposed, tone-mapped render is the one to show. */
 bool mvr_scene_lights_physical(const mvr_scene *scene);
 void mvr_scene_get_info(const mvr_scene *scene, mvr_scene_info *out);
+/* What the extra outputs' IDs (MVR_OUTPUT_IDS) name: ids run 1..count of
+ * mvr_scene_info. Names are "" when unnamed (owned by the scene); NULL for
+ * an id the scene does not have. */
+const char *mvr_scene_node_name(const mvr_scene *scene, mvr_node_id node);
+const char *mvr_scene_mesh_name(const mvr_scene *scene, mvr_mesh_id mesh);
+const char *mvr_scene_material_name(const mvr_scene *scene, mvr_material_id material);
+/* The mesh a node draws (0: none or no such node). */
+mvr_mesh_id mvr_scene_node_mesh(const mvr_scene *scene, mvr_node_id node);
 
 /* Nodes that carry a camera, in node order. */
 uint32_t mvr_scene_camera_node_count(const mvr_scene *scene);

@@ -164,6 +164,17 @@ if run.returncode == 0:
         w2c.append((r, t))
         mismatched = sum(1 for p in range(W * H) if (d[p] > 0) != (i[4 * p] != 0))
         expect(mismatched == 0, "view %d: %d pixels where depth and IDs disagree on coverage" % (k, mismatched))
+    # ids.json names every node and mesh the IDs use, and a node's mesh is the mesh channel
+    names = json.load(open(os.path.join(out, "ids.json")))
+    node_mesh = {n["id"]: n["mesh"] for n in names["nodes"]}
+    mesh_ids = {m["id"] for m in names["meshes"]}
+    seen = set()
+    for i in ids:
+        for p in range(W * H):
+            if i[4 * p]:
+                seen.add((i[4 * p], i[4 * p + 1]))
+    expect(seen and all(node_mesh.get(n) == m and m in mesh_ids for n, m in seen),
+           "outputs: ids.json does not name the (node, mesh) pairs %r" % sorted(seen))
     agree = checked = 0
     for a, na in enumerate(nerf["frames"]):
         c2w = na["transform_matrix"]

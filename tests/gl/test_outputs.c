@@ -344,7 +344,11 @@ static void transparent_surfaces_follow_the_cutoff(mvr_test_state *t)
         CHECK_MSG(t, strong > 500 && faint == 0 && on_sphere > 500, "strong %u, faint %u, sphere %u", strong, faint,
                   on_sphere);
         CHECK_MSG(t, background_faint > 100, "%u background pixels tinted by the faint quad", background_faint);
-        /* the strong quad is in front of the sphere: its depth is the nearer */
+        /* what the IDs name */
+        CHECK(t, strcmp(mvr_scene_mesh_name(s, (mvr_mesh_id){2}), "strong") == 0);
+        CHECK(t, mvr_scene_node_mesh(s, quads[1]).id == 3 && !mvr_scene_mesh_name(s, (mvr_mesh_id){4}));
+        CHECK(t, mvr_scene_node_name(s, sphere) && !mvr_scene_node_name(s, (mvr_node_id){0}));
+        /* the strong quad's IDs: its node, mesh 2, material 2, primitive 1 */
         for (size_t i = 0; i < px; ++i)
             if (mv.ids[4 * i] == quads[0].id)
                 CHECK(t, mv.ids[4 * i + 1] == 2 && mv.ids[4 * i + 2] == 2 && mv.ids[4 * i + 3] == 1);
