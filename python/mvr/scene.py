@@ -1,0 +1,386 @@
+"""Scenes (a glTF file, or objects added in code) and environments."""
+import ctypes
+import os
+
+import numpy as np
+
+from . import _native as N
+from ._common import (Error, Handle, as_c_double, as_c_float, bytes_or_none, check, check_created, logger)
+
+
+def _f32(a, cols, what, rows=None):
+    """A C-contiguous float32 (rows, cols) copy of an array-like, checked."""
+    arr = np.asarray(a, dtype=np.float32)
+    if arr.ndim not in (1, 2) or arr.size % cols or (arr.ndim == 2 and arr.shape[1] != cols):
+        raise ValueError("%s: an (N, %d) array expected, got shape %s" % (what, cols, arr.shape))
+    arr = np.ascontiguousarray(arr.reshape(-1, cols))
+    if rows is not None and arr.shape[0] != rows:
+        raise ValueError("%s: %d rows of %d expected, got %d" % (what, rows, cols, arr.shape[0]))
+    if not np.all(np.isfinite(arr)):
+        raise ValueError("%s: NaN or infinite values" % what)
+    return arr
+
+
+def _ptr(arr, ctype):
+    return arr.ctypes.data_as(ctypes.POINTER(ctype)) if arr is not None else None
+
+
+class Scene(Handle):
+    """An mvr_scene: load a glTF file with Scene.load(path), or build one
+    with Scene() and the add_* methods. Ids returned by add_* are ints (the
+    C ids; 0 = none). Close it (or use `with`) to free it; a scene holds no
+    GL, so it may be closed before or after the Context that rendered it."""
+
+    _what = "mvr.Scene"
+
+    def __init__(self):
+        super().__init__()
+        self.gltf_info = None  # dict, for scenes from Scene.load
+        self._logger = logger()
+        desc = N.desc(N.mvr_scene_desc)
+        desc.logger = self._logger
+        out = ctypes.c_void_p()
+        err = N.mvr_error()
+        check_created(N.C.mvr_scene_create(ctypes.byref(desc), ctypes.byref(out), ctypes.byref(err)), err,
+                      "mvr_scene_create")
+        self._handle = out.value
+
+    @classmethod
+    def _adopt(cls, handle):
+        self = cls.__new__(cls)
+        Handle.__init__(self)
+        self.gltf_info = None
+        self._logger = logger()
+        self._handle = handle
+        return self
+
+    def _destroy(self, handle):
+        N.C.mvr_scene_destroy(handle)
+
+    def _check(self, result, what):
+        check(result, lambda: N.text(N.C.mvr_scene_last_error(self._handle)), what)
+
+    # ------------------------------------------------------------ loading
+
+    @classmethod
+    def load(cls, path, *, scene=None, strict=False, memory_budget=0, base_dir=None, allowed_root=None):
+        """Loads a .gltf or .glb file (mvr_gltf_load_file). scene: the index
+        of the file's scene (None = its default); strict: missing images are
+        errors; memory_budget: bytes (0 = 2 GiB); allowed_root: a folder
+        whose files are admitted besides the file's own. Raises mvr.Error
+        with the loader's message."""
+        if N.C.mvr_gltf_load_file is None:
+            raise Error("this mvr was built without the glTF loader (libmvr_gltf.so)", "MVR_ERROR_UNSUPPORTED")
+        opts = N.desc(N.mvr_gltf_options)
+        opts.scene = 0 if scene is None else int(scene) + 1
+        opts.strict = bool(strict)
+        opts.memory_budget = int(memory_budget)
+        keep = [bytes_or_none(base_dir), bytes_or_none(allowed_root)]
+        opts.base_dir = keep[0]
+        opts.file_access.allowed_root = keep[1]
+        lg = logger()
+        opts.logger = lg
+        out = ctypes.c_void_p()
+        info = N.out(N.mvr_gltf_info)
+        err = N.mvr_error()
+        r = N.C.mvr_gltf_load_file(os.fsencode(path), ctypes.byref(opts), ctypes.byref(out), ctypes.byref(info),
+                                   ctypes.byref(err))
+        check_created(r, err, "mvr_gltf_load_file")
+        self = cls._adopt(out.value)
+        self.gltf_info = {name: getattr(info, name) for name in N.mvr_gltf_info.field_names()}
+        return self
+
+    # ------------------------------------------------------------ adding objects
+
+    def add_image(self, rgba, name=None):
+        """An RGBA8 image: a (height, width, 4) uint8 array, rows top first."""
+        arr = np.ascontiguousarray(rgba, dtype=np.uint8)
+        if arr.ndim != 3 or arr.shape[2] != 4:
+            raise ValueError("add_image: a (height, width, 4) uint8 array expected, got shape %s" % (arr.shape,))
+        d = N.desc(N.mvr_image_desc)
+        d.width, d.height = arr.shape[1], arr.shape[0]
+        d.rgba8 = _ptr(arr, ctypes.c_uint8)
+        d.name = bytes_or_none(name)
+        out = N.Id()
+        self._check(N.C.mvr_scene_add_image(self.handle, ctypes.byref(d), ctypes.byref(out)), "add_image")
+        return out.id
+
+    def add_material(self, *, base_color=(1, 1, 1, 1), metallic=1.0, roughness=1.0, emissive=(0, 0, 0),
+                     emissive_strength=1.0, alpha_mode="opaque", alpha_cutoff=0.5, double_sided=False, unlit=False,
+                     base_color_texture=0, metallic_roughness_texture=0, normal_texture=0, emissive_texture=0,
+                     occlusion_texture=0, ior=1.5, name=None):
+        """A glTF metallic-roughness material (glTF's defaults); textures are
+        image ids from add_image (TEXCOORD_0). Returns its id."""
+        d = N.C.mvr_material_defaults()
+        d.base_color_factor = as_c_float(base_color, 4, "base_color")
+        d.metallic_factor = float(metallic)
+        d.roughness_factor = float(roughness)
+        d.emissive_factor = as_c_float(emissive, 3, "emissive")
+        d.emissive_strength = float(emissive_strength)
+        d.alpha_mode = N.ALPHA_MODE(alpha_mode, "alpha_mode")
+        d.alpha_cutoff = float(alpha_cutoff)
+        d.double_sided = bool(double_sided)
+        d.unlit = bool(unlit)
+        d.ior = float(ior)
+        for role, image in (("base_color", base_color_texture), ("metallic_roughness", metallic_roughness_texture),
+                            ("normal", normal_texture), ("emissive", emissive_texture),
+                            ("occlusion", occlusion_texture)):
+            getattr(d, role).image.id = int(image)
+        keep = bytes_or_none(name)
+        d.name = keep
+        # in a buffer with slack, like every descriptor (N.desc)
+        dd = N.desc(N.mvr_material_desc)
+        ctypes.memmove(ctypes.addressof(dd), ctypes.addressof(d), ctypes.sizeof(d))
+        out = N.Id()
+        self._check(N.C.mvr_scene_add_material(self.handle, ctypes.byref(dd), ctypes.byref(out)), "add_material")
+        return out.id
+
+    def add_mesh(self, primitives=None, *, name=None, **primitive):
+        """A mesh of one or more primitives. Each is a dict (or, for one
+        primitive, keyword arguments) of: positions (N x 3), normals (N x 3),
+        tangents (N x 4), texcoords0 / texcoords1 (N x 2), colors (N x 4,
+        linear RGBA), indices (M, uint16 or uint32; none: non-indexed),
+        material (an id; 0 = the default), mode ("triangles", "lines",
+        "points"). Arrays are copied. Returns the mesh id."""
+        if primitives is None:
+            primitives = [primitive]
+        elif primitive:
+            raise TypeError("add_mesh: give primitives=[...] or one primitive's keyword arguments, not both")
+        if isinstance(primitives, dict):
+            primitives = [primitives]
+        keep = []
+        prims = (N.mvr_primitive_desc * len(primitives))()
+        for k, p in enumerate(primitives):
+            known = {"positions", "normals", "tangents", "texcoords0", "texcoords1", "colors", "indices",
+                     "material", "mode"}
+            unknown = set(p) - known
+            if unknown:
+                raise TypeError("add_mesh: primitive %d: unknown keys %s" % (k, ", ".join(sorted(unknown))))
+            if p.get("positions") is None:
+                raise ValueError("add_mesh: primitive %d has no positions" % k)
+            pos = _f32(p["positions"], 3, "primitive %d positions" % k)
+            n = pos.shape[0]
+            d = prims[k]
+            d.vertex_count = n
+            d.positions = _ptr(pos, ctypes.c_float)
+            keep.append(pos)
+            for attr, cols in (("normals", 3), ("tangents", 4), ("texcoords0", 2), ("texcoords1", 2),
+                               ("colors", 4)):
+                if p.get(attr) is not None:
+                    a = _f32(p[attr], cols, "primitive %d %s" % (k, attr), rows=n)
+                    keep.append(a)
+                    setattr(d, attr, _ptr(a, ctypes.c_float))
+            if p.get("indices") is not None:
+                idx = np.asarray(p["indices"]).reshape(-1)
+                if idx.size and (idx.min() < 0 or idx.max() >= n):
+                    raise ValueError("add_mesh: primitive %d: indices outside 0..%d" % (k, n - 1))
+                if idx.dtype == np.uint16:
+                    idx = np.ascontiguousarray(idx)
+                    d.indices16 = _ptr(idx, ctypes.c_uint16)
+                else:
+                    idx = np.ascontiguousarray(idx, dtype=np.uint32)
+                    d.indices32 = _ptr(idx, ctypes.c_uint32)
+                d.index_count = idx.size
+                keep.append(idx)
+            d.material.id = int(p.get("material", 0) or 0)
+            d.mode = N.PRIMITIVE_MODE(p.get("mode", "triangles"), "mode")
+        md = N.desc(N.mvr_mesh_desc)
+        md.primitives = prims
+        md.primitive_count = len(primitives)
+        keep_name = bytes_or_none(name)
+        md.name = keep_name
+        out = N.Id()
+        self._check(N.C.mvr_scene_add_mesh(self.handle, ctypes.byref(md), ctypes.byref(out)), "add_mesh")
+        return out.id
+
+    def add_light(self, type="directional", *, color=(1, 1, 1), intensity=1.0, range=0.0, inner_cone_angle=0.0,
+                  outer_cone_angle=0.0, cast_shadows=False, layers=0):
+        """A KHR_lights_punctual light (shines along its node's -Z): type
+        "directional" (lux), "point" or "spot" (candela). Returns its id."""
+        d = N.desc(N.mvr_light_desc)
+        d.type = N.LIGHT_TYPE(type, "light type")
+        d.color = as_c_float(color, 3, "color")
+        d.intensity = float(intensity)
+        d.range = float(range)
+        d.inner_cone_angle = float(inner_cone_angle)
+        d.outer_cone_angle = float(outer_cone_angle)
+        d.cast_shadows = bool(cast_shadows)
+        d.layers = int(layers)
+        out = N.Id()
+        self._check(N.C.mvr_scene_add_light(self.handle, ctypes.byref(d), ctypes.byref(out)), "add_light")
+        return out.id
+
+    def add_camera(self, *, yfov=0.0, aspect=0.0, znear=0.0, zfar=0.0, xmag=None, ymag=None):
+        """A camera (put it on a node): perspective (yfov radians, 0 = 60
+        degrees; aspect 0 = the viewport's), or orthographic when xmag and
+        ymag (half extents) are given. Returns its id."""
+        p = N.desc(N.mvr_projection)
+        if xmag is not None or ymag is not None:
+            p.type = N.PROJECTION_TYPE("orthographic")
+            p.xmag, p.ymag = float(xmag or 0), float(ymag or 0)
+        else:
+            p.yfov, p.aspect = float(yfov), float(aspect)
+        p.znear, p.zfar = float(znear), float(zfar)
+        out = N.Id()
+        self._check(N.C.mvr_scene_add_camera(self.handle, ctypes.byref(p), ctypes.byref(out)), "add_camera")
+        return out.id
+
+    def add_node(self, *, mesh=0, light=0, camera=0, parent=0, translation=(0, 0, 0), rotation=(0, 0, 0, 1),
+                 scale=(1, 1, 1), matrix=None, name=None):
+        """A node: translation, rotation (quaternion x, y, z, w), scale, or a
+        4x4 matrix (numpy layout: row-major, m[:3, 3] the translation);
+        what it carries (mesh, light, camera ids) and its parent (a node id,
+        0 = a root). Returns its id (the node id of the `ids` output)."""
+        d = N.desc(N.mvr_node_desc)
+        d.parent.id, d.mesh.id, d.light.id, d.camera.id = int(parent), int(mesh), int(light), int(camera)
+        d.translation = as_c_double(translation, 3, "translation")
+        d.rotation = as_c_double(rotation, 4, "rotation")
+        d.scale = as_c_double(scale, 3, "scale")
+        if matrix is not None:
+            m = np.asarray(matrix, dtype=np.float64)
+            if m.shape != (4, 4):
+                raise ValueError("matrix: a 4x4 array expected, got shape %s" % (m.shape,))
+            d.use_matrix = True
+            d.matrix = as_c_double(m.T.reshape(-1), 16, "matrix")  # column-major
+        keep = bytes_or_none(name)
+        d.name = keep
+        out = N.Id()
+        self._check(N.C.mvr_scene_add_node(self.handle, ctypes.byref(d), ctypes.byref(out)), "add_node")
+        return out.id
+
+    def set_node_transform(self, node, translation=(0, 0, 0), rotation=(0, 0, 0, 1), scale=(1, 1, 1)):
+        self._check(N.C.mvr_scene_set_node_transform(
+            self.handle, N.Id(int(node)), as_c_double(translation, 3, "translation"),
+            as_c_double(rotation, 4, "rotation"), as_c_double(scale, 3, "scale")), "set_node_transform")
+
+    def set_ambient(self, rgb):
+        """Uniform ambient radiance from every direction (linear RGB)."""
+        N.C.mvr_scene_set_ambient(self.handle, as_c_float(rgb, 3, "ambient"))
+
+    # ------------------------------------------------------------ queries
+
+    @property
+    def info(self):
+        """Counts (images, materials, meshes, nodes, ...) and world bounds."""
+        i = N.out(N.mvr_scene_info)
+        N.C.mvr_scene_get_info(self.handle, ctypes.byref(i))
+        d = {name: getattr(i, name) for name in N.mvr_scene_info.field_names()}
+        for k in ("bounds_min", "bounds_max", "max_light_intensity"):
+            d[k] = tuple(d[k])
+        return d
+
+    @property
+    def camera_nodes(self):
+        """The node ids of nodes that carry a camera, in node order."""
+        h = self.handle
+        return [N.C.mvr_scene_camera_node(h, k).id for k in range(N.C.mvr_scene_camera_node_count(h))]
+
+    @property
+    def animations(self):
+        """[(name, start, end)] in seconds, in the file's order."""
+        h = self.handle
+        out = []
+        for k in range(N.C.mvr_scene_animation_count(h)):
+            ai = N.out(N.mvr_animation_info)
+            self._check(N.C.mvr_scene_get_animation_info(h, k, ctypes.byref(ai)), "animation info")
+            out.append((N.text(ai.name), ai.start, ai.end))
+        return out
+
+    def apply_animation(self, animation, time, *, loop=False):
+        """Poses the scene at `time` seconds of an animation: its index, its
+        name, or "all" (every animation at that time)."""
+        index = self._animation_index(animation)
+        wrap = N.ANIMATION_WRAP("loop" if loop else "clamp")
+        self._check(N.C.mvr_scene_apply_animation(self.handle, index, float(time), wrap), "apply_animation")
+
+    def _animation_index(self, animation):
+        if isinstance(animation, str):
+            if animation == "all":
+                return N.ANIMATION_ALL
+            k = ctypes.c_uint32()
+            self._check(N.C.mvr_scene_find_animation(self.handle, animation.encode(), ctypes.byref(k)), "animation")
+            return k.value
+        return int(animation)
+
+    def reset_pose(self):
+        N.C.mvr_scene_reset_pose(self.handle)
+
+    @property
+    def variants(self):
+        """Material variant names (KHR_materials_variants), in order."""
+        h = self.handle
+        return [N.text(N.C.mvr_scene_variant_name(h, k)) for k in range(N.C.mvr_scene_variant_count(h))]
+
+    def select_variant(self, variant):
+        """Selects a material variant by name or index; None: the default."""
+        if variant is None:
+            index = N.VARIANT_DEFAULT
+        elif isinstance(variant, str):
+            k = ctypes.c_uint32()
+            self._check(N.C.mvr_scene_find_variant(self.handle, variant.encode(), ctypes.byref(k)), "variant")
+            index = k.value
+        else:
+            index = int(variant)
+        self._check(N.C.mvr_scene_select_variant(self.handle, index), "select_variant")
+
+
+class Environment(Handle):
+    """Image-based lighting (mvr_environment): source "neutral" (the built-in
+    studio), "uniform" (color: one radiance from everywhere), or an
+    equirectangular image of linear radiance: pixels = (height, width, 3 or
+    4) floats, rows top first (Environment.from_file reads .hdr / .exr).
+    intensity multiplies it, rotation turns it (degrees about +Y)."""
+
+    _what = "mvr.Environment"
+
+    def __init__(self, source="neutral", *, pixels=None, color=(1, 1, 1), intensity=1.0, rotation=0.0,
+                 specular_size=0, specular_samples=0):
+        super().__init__()
+        if pixels is not None:
+            source = "pixels"
+        d = N.desc(N.mvr_environment_desc)
+        d.source = N.ENV_SOURCE(source, "environment source")
+        keep = None
+        if d.source == N.ENV_SOURCE("pixels"):
+            if pixels is None:
+                raise ValueError("Environment: source 'pixels' needs pixels")
+            a = np.asarray(pixels, dtype=np.float32)
+            if a.ndim != 3 or a.shape[2] not in (3, 4):
+                raise ValueError("Environment: pixels must be (height, width, 3 or 4), got %s" % (a.shape,))
+            if a.shape[2] == 3:
+                a = np.concatenate([a, np.ones(a.shape[:2] + (1,), np.float32)], axis=2)
+            keep = np.ascontiguousarray(a)
+            d.pixels = _ptr(keep, ctypes.c_float)
+            d.width, d.height = keep.shape[1], keep.shape[0]
+        d.color = as_c_float(color, 3, "color")
+        d.intensity = float(intensity)
+        d.rotation = float(rotation)
+        d.specular_size = int(specular_size)
+        d.specular_samples = int(specular_samples)
+        self._logger = logger()
+        d.logger = self._logger
+        out = ctypes.c_void_p()
+        err = N.mvr_error()
+        check_created(N.C.mvr_environment_create(ctypes.byref(d), ctypes.byref(out), ctypes.byref(err)), err,
+                      "mvr_environment_create")
+        self._handle = out.value
+
+    @classmethod
+    def from_file(cls, path, **kwargs):
+        """An equirectangular .hdr / .exr (or any image OpenImageIO reads)."""
+        if N.C.mvr_image_read is None:
+            raise Error("this mvr was built without image I/O (libmvr_image.so)", "MVR_ERROR_UNSUPPORTED")
+        img = N.out(N.mvr_image_data)
+        err = N.mvr_error()
+        check_created(N.C.mvr_image_read(os.fsencode(path), N.PIXEL_TYPE("f32"), ctypes.byref(img),
+                                         ctypes.byref(err)), err, "mvr_image_read")
+        try:
+            count = img.width * img.height * 4
+            pixels = np.ctypeslib.as_array(ctypes.cast(img.pixels, ctypes.POINTER(ctypes.c_float)), (count,))
+            pixels = pixels.reshape(img.height, img.width, 4).copy()
+        finally:
+            N.C.mvr_image_free(ctypes.byref(img))
+        return cls("pixels", pixels=pixels, **kwargs)
+
+    def _destroy(self, handle):
+        N.C.mvr_environment_destroy(handle)

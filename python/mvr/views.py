@@ -1,0 +1,267 @@
+"""View sets: layouts around a scene, a file's camera, or camera poses and
+intrinsics given as numpy arrays; and each view's camera metadata."""
+import ctypes
+import math
+
+import numpy as np
+
+from . import _native as N
+from ._common import Error, Handle, check, check_created
+
+# frustum half-angles the library takes (core/view_set.c: |angle| < 1.5707)
+_MAX_ANGLE = 1.5707
+
+
+def _mat(cols16):
+    """16 doubles, column-major (C) -> a 4x4 numpy array (M @ p)."""
+    return np.array(cols16[:], dtype=np.float64).reshape(4, 4).T.copy()
+
+
+class Camera:
+    """A view's camera metadata (mvr_view_camera), for a layer of some size.
+
+    width, height: the view's viewport in pixels. K (3x3) = [[fx, 0, cx],
+    [0, fy, cy], [0, 0, 1]] is the pinhole of the OpenCV / COLMAP camera (x
+    right, y down, looking along +Z) with pixel k covering [k, k + 1) from
+    the image's top-left corner: a camera point (X, Y, Z) lands at
+    u = fx X / Z + cx, v = fy Y / Z + cy, which is column u, row v of the
+    arrays render() returns (rows top to bottom). world_to_camera and
+    camera_to_world (4x4, numpy layout: M @ [x, y, z, 1]) use the OpenGL
+    camera (x right, y up, looking along -Z: glTF's, NeRF's
+    transforms.json); flip its y and z axes for OpenCV's. projection is
+    the OpenGL clip matrix (z in [-1, 1]). Orthographic views have
+    perspective False and no pinhole (K is None, fx .. cy are 0)."""
+
+    def __init__(self, c):
+        self.width, self.height = c.width, c.height
+        self.perspective = bool(c.perspective)
+        self.fx, self.fy, self.cx, self.cy = c.fx, c.fy, c.cx, c.cy
+        self.projection = _mat(c.projection)
+        self.world_to_camera = _mat(c.world_to_camera)
+        self.camera_to_world = _mat(c.camera_to_world)
+
+    @property
+    def K(self):
+        if not self.perspective:
+            return None
+        return np.array([[self.fx, 0.0, self.cx], [0.0, self.fy, self.cy], [0.0, 0.0, 1.0]])
+
+    @property
+    def position(self):
+        return self.camera_to_world[:3, 3].copy()
+
+    def project(self, points):
+        """World points (N x 3) -> pixel coordinates (N x 2: column u, row
+        v; continuous, pixel k covers [k, k + 1)) and depth along the view
+        axis (N: positive in front of the camera)."""
+        p = np.asarray(points, dtype=np.float64).reshape(-1, 3)
+        cam = p @ self.world_to_camera[:3, :3].T + self.world_to_camera[:3, 3]
+        z = -cam[:, 2]  # OpenCV's Z
+        if not self.perspective:
+            raise Error("project: an orthographic view has no pinhole")
+        u = self.fx * cam[:, 0] / z + self.cx
+        v = self.fy * -cam[:, 1] / z + self.cy
+        return np.stack([u, v], axis=1), z
+
+    def to_dict(self):
+        """JSON-ready: lists for the matrices (rows)."""
+        return {"width": self.width, "height": self.height, "perspective": self.perspective, "fx": self.fx,
+                "fy": self.fy, "cx": self.cx, "cy": self.cy, "projection": self.projection.tolist(),
+                "world_to_camera": self.world_to_camera.tolist(),
+                "camera_to_world": self.camera_to_world.tolist()}
+
+    def __repr__(self):
+        return "Camera(%dx%d, fx=%.6g, fy=%.6g, cx=%.6g, cy=%.6g, position=%s)" % (
+            self.width, self.height, self.fx, self.fy, self.cx, self.cy, np.round(self.position, 6).tolist())
+
+
+def look_at(eye, target, up=(0.0, 1.0, 0.0)):
+    """A camera_to_world matrix (4x4, OpenGL camera: looking along -Z) at
+    eye looking at target."""
+    eye, target, up = (np.asarray(v, dtype=np.float64) for v in (eye, target, up))
+    f = target - eye
+    if not np.linalg.norm(f) > 0:
+        raise ValueError("look_at: eye and target are the same point")
+    f = f / np.linalg.norm(f)
+    s = np.cross(f, up)
+    if not np.linalg.norm(s) > 1e-12:
+        raise ValueError("look_at: up is parallel to the viewing direction")
+    s = s / np.linalg.norm(s)
+    u = np.cross(s, f)
+    m = np.eye(4)
+    m[:3, 0], m[:3, 1], m[:3, 2], m[:3, 3] = s, u, -f, eye
+    return m
+
+
+def _quaternion(r):
+    """Rotation matrix -> unit quaternion (x, y, z, w)."""
+    t = r[0, 0] + r[1, 1] + r[2, 2]
+    if t > 0:
+        s = math.sqrt(t + 1.0) * 2
+        q = ((r[2, 1] - r[1, 2]) / s, (r[0, 2] - r[2, 0]) / s, (r[1, 0] - r[0, 1]) / s, 0.25 * s)
+    elif r[0, 0] > r[1, 1] and r[0, 0] > r[2, 2]:
+        s = math.sqrt(1.0 + r[0, 0] - r[1, 1] - r[2, 2]) * 2
+        q = (0.25 * s, (r[0, 1] + r[1, 0]) / s, (r[0, 2] + r[2, 0]) / s, (r[2, 1] - r[1, 2]) / s)
+    elif r[1, 1] > r[2, 2]:
+        s = math.sqrt(1.0 + r[1, 1] - r[0, 0] - r[2, 2]) * 2
+        q = ((r[0, 1] + r[1, 0]) / s, 0.25 * s, (r[1, 2] + r[2, 1]) / s, (r[0, 2] - r[2, 0]) / s)
+    else:
+        s = math.sqrt(1.0 + r[2, 2] - r[0, 0] - r[1, 1]) * 2
+        q = ((r[0, 2] + r[2, 0]) / s, (r[1, 2] + r[2, 1]) / s, 0.25 * s, (r[1, 0] - r[0, 1]) / s)
+    q = np.array(q)
+    return q / np.linalg.norm(q)
+
+
+def _stack(a, shape, what):
+    arr = np.asarray(a, dtype=np.float64)
+    if arr.shape == shape:
+        arr = arr[None]
+    if arr.ndim != 3 or arr.shape[1:] != shape:
+        raise ValueError("%s: a %s array or a stack of them expected, got shape %s" % (what, shape, arr.shape))
+    if not np.all(np.isfinite(arr)):
+        raise ValueError("%s: NaN or infinite values" % what)
+    return arr
+
+
+class Views(Handle):
+    """An mvr_view_set: one view per layer of a render. Make one with
+    Views.layout (around a scene), Views.from_camera (a file's camera) or
+    Views.from_poses (numpy poses and intrinsics)."""
+
+    _what = "mvr.Views"
+
+    def __init__(self, handle):
+        super().__init__()
+        self._handle = handle
+
+    def _destroy(self, handle):
+        N.C.mvr_view_set_destroy(handle)
+
+    @classmethod
+    def layout(cls, scene, layout="stereo", *, count=0, aspect=1.0, ipd=0.0, rows=0, elevation=None):
+        """Views laid out around the scene's bounding sphere
+        (mvr_view_set_frame_scene): layout "stereo", "cube", "ring", "grid",
+        "sphere" or "orbit"; count 0 = the layout's own (2, 6, 8, 9, 50, 24);
+        aspect = width / height of the images; ipd 0 = 1/30 of the framing
+        distance; orbit: rows (rings; 0 = 3) and elevation = (lowest,
+        highest) in radians (None = -15 and 60 degrees)."""
+        d = N.desc(N.mvr_framing_desc)
+        d.layout = N.LAYOUT(layout, "layout")
+        d.views, d.aspect, d.ipd, d.rows = int(count), float(aspect), float(ipd), int(rows)
+        if elevation is not None:
+            d.elevation_min, d.elevation_max = (float(e) for e in elevation)
+        out = ctypes.c_void_p()
+        err = N.mvr_error()
+        check_created(N.C.mvr_view_set_frame_scene(scene.handle, ctypes.byref(d), ctypes.byref(out),
+                                                   ctypes.byref(err)), err, "mvr_view_set_frame_scene")
+        return cls(out.value)
+
+    @classmethod
+    def from_camera(cls, scene, camera=0, *, count=1, ipd=0.0):
+        """Views from a camera of the scene (mvr_view_set_from_camera):
+        camera = its index among scene.camera_nodes; count eyes ipd apart
+        along the camera's x axis (1 = the camera itself)."""
+        nodes = scene.camera_nodes
+        if not 0 <= camera < len(nodes):
+            raise Error("from_camera: the scene has %d camera nodes; %r is not one" % (len(nodes), camera))
+        out = ctypes.c_void_p()
+        err = N.mvr_error()
+        check_created(N.C.mvr_view_set_from_camera(scene.handle, N.Id(nodes[camera]), int(count), float(ipd),
+                                                   ctypes.byref(out), ctypes.byref(err)), err,
+                      "mvr_view_set_from_camera")
+        return cls(out.value)
+
+    @classmethod
+    def from_poses(cls, camera_to_world, intrinsics=None, size=None, *, yfov=0.0, znear=0.0, zfar=0.0,
+                   convention="opengl", origin=None):
+        """Views from camera poses: camera_to_world is (4, 4) or (N, 4, 4)
+        (rigid: rotation and translation; convention "opengl": the camera
+        looks along -Z with +Y up, as Camera.camera_to_world, glTF and
+        NeRF's transforms.json; "opencv": along +Z with +Y down, as COLMAP
+        and OpenCV). intrinsics: K, (3, 3) or (N, 3, 3) pinhole matrices in
+        pixels of an image of size = (width, height) (pixel k covers
+        [k, k + 1)); rendered at that size, Views.camera gives the same K;
+        at another size K scales with it. Without intrinsics: a symmetric
+        perspective of yfov radians (0 = 60 degrees). znear 0 = 0.05, zfar
+        0 = infinite. origin: the point the GPU sees as 0 (None = the
+        views' centroid)."""
+        poses = _stack(camera_to_world, (4, 4), "camera_to_world")
+        flip = {"opengl": np.diag([1.0, 1.0, 1.0]), "opencv": np.diag([1.0, -1.0, -1.0])}
+        if convention not in flip:
+            raise ValueError("convention: 'opengl' or 'opencv', got %r" % (convention,))
+        n = poses.shape[0]
+        ks = None
+        if intrinsics is not None:
+            ks = _stack(intrinsics, (3, 3), "intrinsics")
+            if ks.shape[0] == 1:
+                ks = np.repeat(ks, n, axis=0)
+            if ks.shape[0] != n:
+                raise ValueError("intrinsics: %d matrices for %d poses" % (ks.shape[0], n))
+            if size is None:
+                raise ValueError("intrinsics need size=(width, height): the image they are in pixels of")
+            width, height = (float(s) for s in size)
+            if not (width > 0 and height > 0):
+                raise ValueError("size: positive width and height expected, got %r" % (size,))
+        views = (N.mvr_view_desc * n)()
+        for i in range(n):
+            m = poses[i]
+            r = m[:3, :3] @ flip[convention]
+            if not np.allclose(m[3], [0, 0, 0, 1], atol=1e-9):
+                raise ValueError("camera_to_world[%d]: the last row must be (0, 0, 0, 1)" % i)
+            if not np.allclose(r.T @ r, np.eye(3), atol=1e-6) or np.linalg.det(r) < 0:
+                raise ValueError("camera_to_world[%d]: not a rotation (scaled, sheared or mirrored)" % i)
+            v = views[i]
+            v.position[:] = m[:3, 3].tolist()
+            v.orientation[:] = _quaternion(r).tolist()
+            p = v.projection
+            p.znear, p.zfar = float(znear), float(zfar)
+            if ks is None:
+                p.type = N.PROJECTION_TYPE("perspective")
+                p.yfov = float(yfov)
+                continue
+            k = ks[i]
+            fx, fy, cx, cy = k[0, 0], k[1, 1], k[0, 2], k[1, 2]
+            if abs(k[0, 1]) > 1e-12 or not np.allclose(k[2], [0, 0, 1]) or abs(k[1, 0]) > 1e-12:
+                raise ValueError("intrinsics[%d]: [[fx, 0, cx], [0, fy, cy], [0, 0, 1]] expected (no skew)" % i)
+            if not (fx > 0 and fy > 0):
+                raise ValueError("intrinsics[%d]: fx and fy must be positive" % i)
+            # the image's edges, seen from the camera: u = 0 and u = width,
+            # v = 0 (top) and v = height; GL's up is OpenCV's -y
+            p.type = N.PROJECTION_TYPE("frustum")
+            p.angle_left = math.atan(-cx / fx)
+            p.angle_right = math.atan((width - cx) / fx)
+            p.angle_up = math.atan(cy / fy)
+            p.angle_down = math.atan(-(height - cy) / fy)
+            for name in ("angle_left", "angle_right", "angle_up", "angle_down"):
+                if abs(getattr(p, name)) >= _MAX_ANGLE:
+                    raise ValueError("intrinsics[%d]: the image's edge reaches 90 degrees from the axis (%s)" %
+                                     (i, name))
+        d = N.desc(N.mvr_view_set_desc)
+        d.view_count = n
+        d.views = views
+        if origin is not None:
+            d.origin_set = True
+            d.origin[:] = [float(o) for o in origin]
+        out = ctypes.c_void_p()
+        err = N.mvr_error()
+        check_created(N.C.mvr_view_set_create(ctypes.byref(d), ctypes.byref(out), ctypes.byref(err)), err,
+                      "mvr_view_set_create")
+        return cls(out.value)
+
+    def __len__(self):
+        return N.C.mvr_view_set_count(self.handle)
+
+    def camera(self, index, width, height):
+        """View `index`'s Camera on a layer of width x height pixels."""
+        n = len(self)
+        if not 0 <= index < n:
+            raise Error("camera: view %r of %d views" % (index, n))
+        c = N.out(N.mvr_view_camera)
+        h = self.handle
+        check(N.C.mvr_view_set_get_camera(h, int(index), int(width), int(height), ctypes.byref(c)),
+              lambda: N.text(N.C.mvr_view_set_last_error(h)), "mvr_view_set_get_camera(%d, %dx%d)" %
+              (index, width, height))
+        return Camera(c)
+
+    def cameras(self, width, height):
+        return [self.camera(i, width, height) for i in range(len(self))]
