@@ -1,0 +1,54 @@
+"""Fixtures of the Python package's tests (ctest python_mvr; by hand:
+PYTHONPATH=python python3 -m pytest tests/python, with the README's build/).
+
+MVR_PY_REFERENCE: the C helper tests/python/py_reference.c (default:
+build/tests/py_reference); MVR_PY_OUT: where the tests write (default: a
+temporary folder per test)."""
+import os
+import pathlib
+import subprocess
+
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+PEERS = ROOT / "tests" / "data" / "peers"
+
+
+def reference_path():
+    return pathlib.Path(os.environ.get("MVR_PY_REFERENCE", ROOT / "build" / "tests" / "py_reference"))
+
+
+@pytest.fixture(scope="session")
+def reference():
+    """Runs the C helper; returns its stdout (asserts it succeeded)."""
+    exe = reference_path()
+    assert exe.exists(), "%s is missing: build the py_reference target" % exe
+
+    def run(*args, check=True):
+        p = subprocess.run([str(exe)] + [str(a) for a in args], capture_output=True, text=True)
+        if check:
+            assert p.returncode == 0, "py_reference %s: exit %d\n%s%s" % (
+                " ".join(map(str, args)), p.returncode, p.stdout, p.stderr)
+        return p
+
+    return run
+
+
+@pytest.fixture(scope="session")
+def ctx():
+    import mvr
+    with mvr.Context() as c:
+        yield c
+
+
+@pytest.fixture
+def out_dir(request, tmp_path):
+    base = os.environ.get("MVR_PY_OUT")
+    if not base:
+        return tmp_path
+    d = pathlib.Path(base) / request.node.name.replace("[", "_").replace("]", "")
+    if d.exists():
+        for f in d.iterdir():
+            f.unlink()
+    d.mkdir(parents=True, exist_ok=True)
+    return d
