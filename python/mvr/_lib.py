@@ -49,11 +49,11 @@ def _load_all():
         path = d / _soname("mvr")
         tried.append("%s (%s)" % (path, why))
         if path.exists():
-            return _load_from(d, True)
+            return _load_from(d)
     if exclusive:
         raise ImportError("mvr: MVR_LIBRARY_DIR=%s holds no %s" % (dirs[0][1], _soname("mvr")))
     try:
-        return _load_from(None, False)
+        return _load_from(None)
     except OSError as e:
         tried.append("%s through the dynamic loader (%s)" % (_soname("mvr"), e))
     raise ImportError("mvr: libmvr.so not found; looked for " + "; ".join(tried) +
@@ -61,13 +61,13 @@ def _load_all():
                       "<prefix>/lib of `cmake --install`).")
 
 
-def _load_from(folder, required_dir):
+def _load_from(folder):
     libs = {}
     for name in _NAMES:
         target = str(folder / _soname(name)) if folder is not None else _soname(name)
         try:
-            # RTLD_GLOBAL: libmvr_gltf.so resolves libmvr.so's symbols from it
-            libs[name] = ctypes.CDLL(target, mode=ctypes.RTLD_GLOBAL)
+            # libmvr.so.0 first: the others find it by its soname, wherever installed
+            libs[name] = ctypes.CDLL(target)
         except OSError:
             if name == "mvr":
                 raise
