@@ -15,10 +15,10 @@ package's folder, the source tree's build/) and what every output holds.
 """
 from ._common import ClosedError, Error
 from ._lib import LIBRARY_DIR
-from .context import OUTPUTS, Context, RenderedView, has_outputs
+from .context import OUTPUTS, Context, RenderedView
 from .scene import Environment, Scene
 from .views import Camera, Views, look_at
 
 __all__ = ["Camera", "ClosedError", "Context", "Environment", "Error", "LIBRARY_DIR", "OUTPUTS", "RenderedView",
-           "Scene", "Views", "has_outputs", "look_at"]
+           "Scene", "Views", "look_at"]
 __version__ = "0.1.0"

@@ -43,8 +43,14 @@ def check_created(result, err, what):
 _LEVELS = {1: logging.ERROR, 2: logging.WARNING, 3: logging.INFO, 4: logging.DEBUG}
 
 
+_ERROR_RESULT = N.LOG_ID("error_result")
+
+
 def _forward(level, msg_id, message, user_data):
-    log.log(_LEVELS.get(level, logging.INFO), "%s", N.text(message))
+    # a failed call's own message becomes the mvr.Error it raises: logged
+    # again at ERROR it would print twice (logging's last-resort handler)
+    py_level = logging.DEBUG if msg_id == _ERROR_RESULT else _LEVELS.get(level, logging.INFO)
+    log.log(py_level, "%s", N.text(message))
 
 
 # one callback for the whole process: ctypes keeps it alive as long as the module

@@ -55,6 +55,8 @@ RESULT = Enum("mvr_result", [("ok", "MVR_OK")] + [(n, "MVR_ERROR_" + n.upper()) 
     "invalid_argument", "out_of_memory", "unsupported", "no_display", "context", "gl", "shader", "framebuffer",
     "io", "parse", "invalid_asset", "internal")])
 LOG_LEVEL = _seq("mvr_log_level", "MVR_LOG_", ["default", "error", "warning", "info", "debug"])
+LOG_ID = _seq("mvr_log_id", "MVR_LOG_ID_", ["general", "error_result", "context", "provider_fallback",
+                                           "extension_dropped", "driver_bug", "gl_debug", "gl_error", "shader"])
 PROVIDER = _seq("mvr_context_provider", "MVR_CONTEXT_PROVIDER_",
                 ["default", "surfaceless", "device", "pbuffer", "osmesa", "external"])
 GL_API = _seq("mvr_gl_api", "MVR_GL_API_", ["default", "gles", "desktop"])
@@ -87,21 +89,16 @@ BACKGROUND = Enum("mvr_background", [("color", "MVR_BACKGROUND_COLOR"), ("enviro
 READBACK = _seq("mvr_readback_format", "MVR_READBACK_", ["rgba8", "rgba32f"])
 LAYOUT = _seq("mvr_view_layout", "MVR_LAYOUT_", ["stereo", "cube", "ring", "grid", "sphere", "orbit"])
 PIXEL_TYPE = _seq("mvr_pixel_type", "MVR_PIXEL_", ["u8", "f32"])
-# per-view outputs (mvr_renderer_read_output): in libraries that have them
+# per-view outputs (mvr_target_desc.outputs, mvr_renderer_read_output)
 OUTPUT = _seq("mvr_output", "MVR_OUTPUT_", ["color", "depth", "distance", "normal", "ids", "coverage"])
 NORMAL_SPACE = _seq("mvr_normal_space", "MVR_NORMAL_SPACE_", ["world", "camera"])
 
-ENUMS = [RESULT, LOG_LEVEL, PROVIDER, GL_API, ALPHA_MODE, PRIMITIVE_MODE, LIGHT_TYPE, PROJECTION_TYPE, FILTER, WRAP,
+ENUMS = [RESULT, LOG_LEVEL, LOG_ID, PROVIDER, GL_API, ALPHA_MODE, PRIMITIVE_MODE, LIGHT_TYPE, PROJECTION_TYPE, FILTER, WRAP,
          ANIMATION_WRAP, ENV_SOURCE, VIEW_PATH, MATERIAL_PATH, SKINNING_PATH, DEPTH_MODE, TRANSPARENCY, TONE_MAP,
-         COLOR_FORMAT, ANTI_ALIASING, SHADOW_MODE, EXPOSURE_MODE, BACKGROUND, READBACK, LAYOUT, PIXEL_TYPE]
-OUTPUT_ENUMS = [OUTPUT, NORMAL_SPACE]
+         COLOR_FORMAT, ANTI_ALIASING, SHADOW_MODE, EXPOSURE_MODE, BACKGROUND, READBACK, LAYOUT, PIXEL_TYPE, OUTPUT,
+         NORMAL_SPACE]
 
-# Whether this libmvr has per-view outputs (depth, normals, ids: the
-# outputs API); its structs then carry the fields that came with it.
-HAVE_OUTPUTS = hasattr(_lib.core, "mvr_renderer_read_output")
-if HAVE_OUTPUTS:
-    ENUMS = ENUMS + OUTPUT_ENUMS
-# bytes per pixel of each output as read back (mvr_output_pixel_size)
+# channels and type of each output as read back (mvr_output_pixel_size bytes a pixel)
 OUTPUT_PIXEL = {"color": (4, "uint8"), "depth": (1, "float32"), "distance": (1, "float32"),
                 "normal": (3, "float32"), "ids": (4, "uint32"), "coverage": (1, "float32")}
 
@@ -264,8 +261,7 @@ mvr_renderer_desc = _struct("mvr_renderer_desc", [
 mvr_target_desc = _struct("mvr_target_desc", [
     ("width", c_uint32), ("height", c_uint32), ("layers", c_uint32), ("color_format", c_int),
     ("external_color_texture", c_uint32), ("external_level", c_uint32), ("external_base_layer", c_uint32),
-    ("samples", c_uint32), ("supersample", c_uint32), ("anti_aliasing", c_int)] +
-    ([("outputs", c_uint32)] if HAVE_OUTPUTS else []))
+    ("samples", c_uint32), ("supersample", c_uint32), ("anti_aliasing", c_int), ("outputs", c_uint32)])
 mvr_shadow_desc = _struct("mvr_shadow_desc", [
     ("mode", c_int), ("map_size", c_uint32), ("cascades", c_uint32), ("distance", c_double),
     ("slope_bias", c_float), ("constant_bias", c_float), ("normal_bias", c_float)])
@@ -274,8 +270,8 @@ mvr_render_desc = _struct("mvr_render_desc", [
     ("exposure_mode", c_int), ("ev100", c_double), ("aperture", c_double), ("shutter", c_double), ("iso", c_double),
     ("exposure_compensation", c_float), ("exposure_key", c_float), ("ev100_min", c_float), ("ev100_max", c_float),
     ("exposure_per_view", c_bool), ("dither", c_bool), ("environment", c_void_p), ("background", c_int),
-    ("background_blur", c_float), ("environment_samples", c_uint32)] +
-    ([("normal_space", c_int), ("output_alpha_cutoff", c_float)] if HAVE_OUTPUTS else []))
+    ("background_blur", c_float), ("environment_samples", c_uint32), ("normal_space", c_int),
+    ("output_alpha_cutoff", c_float)])
 mvr_frame_stats = _struct("mvr_frame_stats", [
     ("view_path", c_int), ("views", c_uint32), ("passes", c_uint32), ("multiview_passes", c_uint32),
     ("draws", c_uint32), ("draw_calls", c_uint32), ("instanced_draw_calls", c_uint32), ("program_binds", c_uint32),
@@ -292,7 +288,8 @@ mvr_frame_stats = _struct("mvr_frame_stats", [
     ("background_draws", c_uint32), ("cpu_ms", c_double), ("gpu_ms", c_double), ("images_downscaled", c_uint32),
     ("joints", c_uint32), ("skinning_path", c_int), ("morph_targets_active", c_uint32),
     ("animation_upload_bytes", c_uint64), ("preskin_passes", c_uint32), ("transmission_copies", c_uint32),
-    ("transmission_bytes", c_uint64), ("images_compressed", c_uint32), ("images_unsampleable", c_uint32)])
+    ("transmission_bytes", c_uint64), ("images_compressed", c_uint32), ("images_unsampleable", c_uint32),
+    ("outputs", c_uint32), ("output_blend_passes", c_uint32)])
 
 # mvr_gltf.h
 mvr_gltf_file_access = _struct("mvr_gltf_file_access", [
@@ -407,7 +404,6 @@ _decl(core, "mvr_render_desc_choose_exposure", None, P, POINTER(mvr_render_desc)
 _decl(core, "mvr_view_path_name", c_char_p, c_int)
 _decl(core, "mvr_material_path_name", c_char_p, c_int)
 _decl(core, "mvr_depth_mode_name", c_char_p, c_int)
-# the outputs API (None in a libmvr without it)
 _decl(core, "mvr_renderer_read_output", R, P, P, c_uint32, c_int, c_void_p, c_size_t)
 _decl(core, "mvr_output_name", c_char_p, c_int)
 _decl(core, "mvr_output_pixel_size", c_size_t, c_int)

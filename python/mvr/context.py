@@ -41,12 +41,6 @@ class RenderedView:
         return "RenderedView(%d: %s)" % (self.index, got)
 
 
-def has_outputs():
-    """Whether this libmvr renders per-view outputs beyond colour (depth,
-    distance, normals, ids, coverage: mvr_renderer_read_output)."""
-    return N.HAVE_OUTPUTS
-
-
 class _Target:
     def __init__(self, handle, key):
         self.handle, self.key = handle, key
@@ -152,8 +146,7 @@ class Context(Handle):
         td.width, td.height, td.layers = width, height, layers
         td.color_format = color_format
         td.samples = samples
-        if outputs_mask:
-            td.outputs = outputs_mask
+        td.outputs = outputs_mask
         out = ctypes.c_void_p()
         check(N.C.mvr_target_create(self._renderer, ctypes.byref(td), ctypes.byref(out)), self._renderer_error,
               "mvr_target_create")
@@ -193,9 +186,6 @@ class Context(Handle):
             if o not in OUTPUTS:
                 raise ValueError("outputs: %r is not one of %s" % (o, ", ".join(OUTPUTS)))
         extra = [o for o in outputs if o != "color"]
-        if extra and not N.HAVE_OUTPUTS:
-            raise Error("outputs %s: this libmvr has no per-view outputs beyond colour "
-                        "(mvr_renderer_read_output)" % ", ".join(extra), "MVR_ERROR_UNSUPPORTED")
         mask = 0
         for o in extra:
             mask |= 1 << N.OUTPUT(o)
@@ -227,11 +217,8 @@ class Context(Handle):
             rd.exposure_mode = N.EXPOSURE_MODE(exposure_mode, "exposure_mode")
         if tone_map is not None:
             rd.tone_map = N.TONE_MAP(tone_map, "tone_map")
-        if N.HAVE_OUTPUTS:
-            rd.normal_space = N.NORMAL_SPACE(normal_space, "normal_space")
-            rd.output_alpha_cutoff = float(alpha_cutoff)
-        elif normal_space != "world":
-            raise Error("normal_space: this libmvr has no normal output", "MVR_ERROR_UNSUPPORTED")
+        rd.normal_space = N.NORMAL_SPACE(normal_space, "normal_space")
+        rd.output_alpha_cutoff = float(alpha_cutoff)
         check(N.C.mvr_renderer_render(self._renderer, scene.handle, views.handle, target, ctypes.byref(rd)),
               self._renderer_error, "mvr_renderer_render")
 

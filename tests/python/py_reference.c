@@ -11,9 +11,8 @@
  *       colour (0.1, 0.2, 0.3, 1), VIEW_PATH (auto | multiview | loop); writes
  *       OUT/color_K.bin (the layer's RGBA8 bytes as mvr_renderer_read_layer
  *       gives them: rows bottom to top), OUT/camera_K.txt (mvr_view_camera,
- *       %.17g), and with the outputs API (OUTPUTS: a comma list such as
- *       depth,normal,ids) OUT/<output>_K.bin as mvr_renderer_read_output
- *       gives them. Prints "outputs yes" or "outputs no" (the header's API).
+ *       %.17g), and for OUTPUTS (a comma list such as depth,normal,ids)
+ *       OUT/<output>_K.bin as mvr_renderer_read_output gives them.
  */
 #include <stddef.h>
 #include <stdio.h>
@@ -160,10 +159,7 @@ static void layout_structs(void)
     S(mvr_target_desc); F(mvr_target_desc, width); F(mvr_target_desc, height); F(mvr_target_desc, layers);
     F(mvr_target_desc, color_format); F(mvr_target_desc, external_color_texture); F(mvr_target_desc, external_level);
     F(mvr_target_desc, external_base_layer); F(mvr_target_desc, samples); F(mvr_target_desc, supersample);
-    F(mvr_target_desc, anti_aliasing);
-#ifdef MVR_OUTPUT_BIT
-    F(mvr_target_desc, outputs);
-#endif
+    F(mvr_target_desc, anti_aliasing); F(mvr_target_desc, outputs);
     S(mvr_shadow_desc); F(mvr_shadow_desc, mode); F(mvr_shadow_desc, map_size); F(mvr_shadow_desc, cascades);
     F(mvr_shadow_desc, distance); F(mvr_shadow_desc, slope_bias); F(mvr_shadow_desc, constant_bias);
     F(mvr_shadow_desc, normal_bias);
@@ -173,10 +169,8 @@ static void layout_structs(void)
     F(mvr_render_desc, exposure_compensation); F(mvr_render_desc, exposure_key); F(mvr_render_desc, ev100_min);
     F(mvr_render_desc, ev100_max); F(mvr_render_desc, exposure_per_view); F(mvr_render_desc, dither);
     F(mvr_render_desc, environment); F(mvr_render_desc, background); F(mvr_render_desc, background_blur);
-    F(mvr_render_desc, environment_samples);
-#ifdef MVR_OUTPUT_BIT
-    F(mvr_render_desc, normal_space); F(mvr_render_desc, output_alpha_cutoff);
-#endif
+    F(mvr_render_desc, environment_samples); F(mvr_render_desc, normal_space);
+    F(mvr_render_desc, output_alpha_cutoff);
     S(mvr_frame_stats); F(mvr_frame_stats, view_path); F(mvr_frame_stats, views); F(mvr_frame_stats, passes);
     F(mvr_frame_stats, multiview_passes); F(mvr_frame_stats, draws); F(mvr_frame_stats, draw_calls);
     F(mvr_frame_stats, instanced_draw_calls); F(mvr_frame_stats, program_binds); F(mvr_frame_stats, texture_binds);
@@ -195,7 +189,8 @@ static void layout_structs(void)
     F(mvr_frame_stats, images_downscaled); F(mvr_frame_stats, joints); F(mvr_frame_stats, skinning_path);
     F(mvr_frame_stats, morph_targets_active); F(mvr_frame_stats, animation_upload_bytes);
     F(mvr_frame_stats, preskin_passes); F(mvr_frame_stats, transmission_copies); F(mvr_frame_stats, transmission_bytes);
-    F(mvr_frame_stats, images_compressed); F(mvr_frame_stats, images_unsampleable);
+    F(mvr_frame_stats, images_compressed); F(mvr_frame_stats, images_unsampleable); F(mvr_frame_stats, outputs);
+    F(mvr_frame_stats, output_blend_passes);
     S(mvr_gltf_file_access); F(mvr_gltf_file_access, allowed_root); F(mvr_gltf_file_access, read);
     F(mvr_gltf_file_access, release); F(mvr_gltf_file_access, user_data);
     S(mvr_gltf_options); F(mvr_gltf_options, scene); F(mvr_gltf_options, base_dir); F(mvr_gltf_options, max_file_bytes);
@@ -215,6 +210,9 @@ static void layout_enums(void)
     E(MVR_ERROR_NO_DISPLAY); E(MVR_ERROR_CONTEXT); E(MVR_ERROR_GL); E(MVR_ERROR_SHADER); E(MVR_ERROR_FRAMEBUFFER);
     E(MVR_ERROR_IO); E(MVR_ERROR_PARSE); E(MVR_ERROR_INVALID_ASSET); E(MVR_ERROR_INTERNAL);
     E(MVR_LOG_DEFAULT); E(MVR_LOG_ERROR); E(MVR_LOG_WARNING); E(MVR_LOG_INFO); E(MVR_LOG_DEBUG);
+    E(MVR_LOG_ID_GENERAL); E(MVR_LOG_ID_ERROR_RESULT); E(MVR_LOG_ID_CONTEXT); E(MVR_LOG_ID_PROVIDER_FALLBACK);
+    E(MVR_LOG_ID_EXTENSION_DROPPED); E(MVR_LOG_ID_DRIVER_BUG); E(MVR_LOG_ID_GL_DEBUG); E(MVR_LOG_ID_GL_ERROR);
+    E(MVR_LOG_ID_SHADER);
     E(MVR_CONTEXT_PROVIDER_DEFAULT); E(MVR_CONTEXT_PROVIDER_SURFACELESS); E(MVR_CONTEXT_PROVIDER_DEVICE);
     E(MVR_CONTEXT_PROVIDER_PBUFFER); E(MVR_CONTEXT_PROVIDER_OSMESA); E(MVR_CONTEXT_PROVIDER_EXTERNAL);
     E(MVR_GL_API_DEFAULT); E(MVR_GL_API_GLES); E(MVR_GL_API_DESKTOP);
@@ -245,14 +243,9 @@ static void layout_enums(void)
     E(MVR_LAYOUT_ORBIT);
     E(MVR_PIXEL_U8); E(MVR_PIXEL_F32);
     E(MVR_ERROR_MESSAGE_SIZE); E(MVR_CAPS_STRING_SIZE); E(MVR_IMAGE_MAX_LEVELS);
-#ifdef MVR_OUTPUT_BIT
     E(MVR_OUTPUT_COLOR); E(MVR_OUTPUT_DEPTH); E(MVR_OUTPUT_DISTANCE); E(MVR_OUTPUT_NORMAL); E(MVR_OUTPUT_IDS);
     E(MVR_OUTPUT_COVERAGE);
     E(MVR_NORMAL_SPACE_WORLD); E(MVR_NORMAL_SPACE_CAMERA);
-    printf("OUTPUTS 1\n");
-#else
-    printf("OUTPUTS 0\n");
-#endif
 }
 
 static int load(const char *path)
@@ -321,23 +314,18 @@ static int render(int argc, char **argv)
                                          : strcmp(path, "multiview") == 0 ? MVR_VIEW_PATH_MULTIVIEW
                                                                           : MVR_VIEW_PATH_AUTO};
     mvr_target_desc td = {.width = w, .height = h};
-    uint32_t outputs[8];
+    mvr_output outputs[8];
     uint32_t output_count = 0;
-#ifdef MVR_OUTPUT_BIT
     if (argc > 9) {
         char list[256];
         snprintf(list, sizeof list, "%s", argv[9]);
         for (char *tok = strtok(list, ","); tok && output_count < 8; tok = strtok(NULL, ","))
             for (int o = 1; o < MVR_OUTPUT_COUNT; ++o)
                 if (strcmp(tok, mvr_output_name((mvr_output)o)) == 0) {
-                    outputs[output_count++] = (uint32_t)o;
+                    outputs[output_count++] = (mvr_output)o;
                     td.outputs |= MVR_OUTPUT_BIT(o);
                 }
     }
-    printf("outputs yes\n");
-#else
-    printf("outputs no\n");
-#endif
 
     int rc = 1;
     mvr_error err;
@@ -392,17 +380,14 @@ static int render(int argc, char **argv)
             goto done;
         }
         for (uint32_t i = 0; i < output_count; ++i) {
-#ifdef MVR_OUTPUT_BIT
-            size_t size = (size_t)w * h * mvr_output_pixel_size((mvr_output)outputs[i]);
-            if (mvr_renderer_read_output(renderer, target, k, (mvr_output)outputs[i], pixels, size) != MVR_OK ||
-                write_file(out, mvr_output_name((mvr_output)outputs[i]), k, pixels, size)) {
+            size_t size = (size_t)w * h * mvr_output_pixel_size(outputs[i]);
+            if (mvr_renderer_read_output(renderer, target, k, outputs[i], pixels, size) != MVR_OK ||
+                write_file(out, mvr_output_name(outputs[i]), k, pixels, size)) {
                 fprintf(stderr, "py_reference: layer %u: %s\n", k, mvr_renderer_last_error(renderer));
                 goto done;
             }
-#endif
         }
     }
-    (void)outputs;
     rc = 0;
 done:
     free(pixels);

@@ -61,11 +61,6 @@ def test_image_order_and_camera_pixels(ctx, two_quads):
 
 
 def test_outputs_of_a_known_scene(ctx, two_quads):
-    if not mvr.has_outputs():
-        with pytest.raises(mvr.Error, match="no per-view outputs"):
-            with mvr.Views.from_poses(np.eye(4), K, (W, H)) as views:
-                ctx.render(two_quads[0], views, (W, H), outputs=("color", "depth"))
-        pytest.skip("this libmvr has no per-view outputs yet (mvr_renderer_read_output)")
     scene, ids = two_quads
     # view 0 at the origin; view 1 to the right, turned to face the red quad
     # (camera-space normals then differ from world ones)
@@ -91,7 +86,13 @@ def test_outputs_of_a_known_scene(ctx, two_quads):
     assert v1.coverage[r, c] == 1.0
     assert np.allclose(v1.normal[r, c], (0, 0, 1), atol=1e-5)
     assert np.allclose(n1[r, c], v1.camera.world_to_camera[:3, :3] @ (0, 0, 1), atol=1e-5)
-    assert v1.depth[r, c] == pytest.approx(-(v1.camera.world_to_camera @ (0, 1, -5, 1))[2], rel=1e-4)
+    # the oblique quad's depth at the pixel's centre: where that ray meets z = -5
+    # (the direction's camera z is -1, so the ray's parameter is the depth)
+    ray = np.array([(c + 0.5 - K[0, 2]) / K[0, 0], -(r + 0.5 - K[1, 2]) / K[1, 1], -1.0])
+    origin, direction = v1.camera.position, v1.camera.camera_to_world[:3, :3] @ ray
+    t = (-5.0 - origin[2]) / direction[2]
+    assert v1.depth[r, c] == pytest.approx(t, rel=1e-5)
+    assert v1.distance[r, c] == pytest.approx(t * np.linalg.norm(ray), rel=1e-5)
 
 
 def test_bad_file_raises_mvrs_message(reference, tmp_path):
@@ -209,3 +210,24 @@ def test_scene_queries():
         s.apply_animation(0, 0.5 * (anims[0][1] + anims[0][2]))
         s.apply_animation("all", 0.0, loop=True)
         s.reset_pose()
+
+
+def test_log_goes_to_python_logging(caplog, tmp_path):
+    """Warnings reach logging.getLogger("mvr"); a failed call's message is
+    the exception's, and is not logged again above DEBUG."""
+    f = tmp_path / "made_up.gltf"
+    f.write_text('{"asset": {"version": "2.0"}, "extensionsUsed": ["EXT_made_up"], "scenes": [{"nodes": [0]}],'
+                 ' "nodes": [{"name": "a"}]}')
+    with caplog.at_level("INFO", logger="mvr"):
+        with mvr.Scene.load(f) as s:
+            assert s.gltf_info["warnings"] == 1
+        warnings = [r for r in caplog.records if r.name == "mvr" and r.levelname == "WARNING"]
+        assert len(warnings) == 1 and "EXT_made_up" in warnings[0].getMessage()
+        caplog.clear()
+        with pytest.raises(mvr.Error):
+            mvr.Scene.load(tmp_path / "missing.gltf")
+        with mvr.Context() as ctx, mvr.Scene() as s, mvr.Views.from_poses(np.eye(4)) as v:
+            with pytest.raises(mvr.Error, match="not averaged") as e:
+                ctx.render(s, v, (8, 8), outputs=("depth",), samples=4)
+            assert e.value.result == "MVR_ERROR_INVALID_ARGUMENT"
+        assert not [r for r in caplog.records if r.levelno >= 30], [r.getMessage() for r in caplog.records]
