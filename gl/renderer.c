@@ -451,6 +451,7 @@ static void release_gl(mvr_renderer *r)
         t->next = NULL;
         t->renderer = NULL;
     }
+    mvr_readbacks_release(r);
     mvr_shadows_release(r);
     mvr_transmission_release(r);
     mvr_environment_release(r);

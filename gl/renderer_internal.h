@@ -236,6 +236,7 @@ struct mvr_renderer {
     const mvr_gl_api_table *gl;  /* &ctx->gl */
     mvr_renderer *next_in_context; /* in ctx->renderers */
     mvr_target *targets;         /* alive targets: detached when the renderer goes */
+    struct mvr_readback *readbacks; /* alive readbacks (gl/readback_async.c): detached likewise */
     mvr_oversized_image oversized_images; /* resolved: never DEFAULT */
     uint32_t sampleable_formats; /* bits 1u << mvr_image_format the GL samples (caps, overrides) */
     mvr_logger logger;
@@ -359,6 +360,8 @@ mvr_result mvr_target_luminance_framebuffer(mvr_target *t, int kind, uint32_t ba
  * [base, base + count) are drawn into (count > 1), or (count 0) one
  * multisampled layer to resolve from (the array mode). */
 mvr_result mvr_target_msaa_framebuffer(mvr_target *t, uint32_t base, uint32_t count, GLuint *out);
+/* readback_async.c: releases every readback's GL objects and detaches it. */
+void mvr_readbacks_release(mvr_renderer *r);
 /* Releases the target's GL objects (mvr_renderer_delete) and keeps its memory. */
 void mvr_target_release_gl(mvr_target *t);
 /* The size views are drawn at: the layer size times the supersample factor. */

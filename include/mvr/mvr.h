@@ -1546,6 +1546,49 @@ bool mvr_renderer_get_pass_stats(const mvr_renderer *renderer, uint32_t index, m
  * length of the whole text, as snprintf does. */
 size_t mvr_renderer_format_plan(const mvr_renderer *renderer, char *buf, size_t size);
 
+/* ------------------------------------------------------------------ asynchronous readback
+ *
+ * mvr_renderer_read_layer waits for the GPU and copies at once. A readback
+ * instead queues the copy of some layers into a GL pixel buffer object and
+ * a fence, and returns: the application renders the next views (into
+ * another target) while the copy completes, asks whether it is ready
+ * without blocking, and collects the pixels when it needs them. The bytes
+ * are mvr_renderer_read_layer's, layer for layer. A readback keeps its
+ * buffer from read to read (it grows, never shrinks), so a stream of reads
+ * allocates nothing per frame. It belongs to the renderer it was created
+ * with; destroying that renderer (or its context) releases its GL objects,
+ * as it does a target's (its calls then fail; destroy frees it). */
+typedef struct mvr_readback mvr_readback;
+
+typedef struct mvr_read_desc {
+    uint32_t first_layer;
+    uint32_t layer_count;        /* 0 = every layer from first_layer on */
+    mvr_readback_format format;  /* as mvr_renderer_read_layer's */
+} mvr_read_desc;
+
+mvr_result mvr_readback_create(mvr_renderer *renderer, mvr_readback **out);
+/* Also drops a read not finished. NULL is ignored. */
+void mvr_readback_destroy(mvr_readback *readback);
+/* Queues the read of layers [first_layer, first_layer + layer_count) of the
+ * target as it is now (after the renders issued so far; the target may be
+ * rendered into again or destroyed before the read finishes). Refused while
+ * the readback holds a read not yet finished. */
+mvr_result mvr_renderer_begin_read(mvr_renderer *renderer, mvr_target *target, const mvr_read_desc *desc,
+                                   mvr_readback *readback);
+/* Whether the pending read has completed on the GPU, without waiting
+ * (*ready false while it has not; a readback with no read pending fails). */
+mvr_result mvr_renderer_read_ready(mvr_renderer *renderer, mvr_readback *readback, bool *ready);
+/* Waits for the pending read if needed and copies it into dst: layer k of
+ * the read at dst + k * mvr_readback_layer_size, rows bottom to top (GL
+ * order), as mvr_renderer_read_layer writes one layer; size must be at least
+ * mvr_readback_size. The readback is then free for the next read. */
+mvr_result mvr_renderer_finish_read(mvr_renderer *renderer, mvr_readback *readback, void *dst, size_t size);
+/* Bytes of one layer and of the whole pending read (0 when none is pending),
+ * and its layers. */
+size_t mvr_readback_layer_size(const mvr_readback *readback);
+size_t mvr_readback_size(const mvr_readback *readback);
+uint32_t mvr_readback_layer_count(const mvr_readback *readback);
+
 
 /* ------------------------------------------------------------------ framing
  *
