@@ -144,6 +144,24 @@ uint32_t mvr_view_set_count(const mvr_view_set *s)
     return s ? s->count : 0;
 }
 
+mvr_result mvr_view_set_get_view(const mvr_view_set *s, uint32_t index, mvr_view_desc *out)
+{
+    if (!s || !out || index >= s->count)
+        return MVR_ERROR_INVALID_ARGUMENT;
+    *out = s->views[index];
+    return MVR_OK;
+}
+
+mvr_result mvr_view_set_get_origin(const mvr_view_set *s, double out[3])
+{
+    if (!s || !out)
+        return MVR_ERROR_INVALID_ARGUMENT;
+    out[0] = s->origin.x;
+    out[1] = s->origin.y;
+    out[2] = s->origin.z;
+    return MVR_OK;
+}
+
 const char *mvr_view_set_last_error(const mvr_view_set *s)
 {
     return s ? s->last_error : "mvr_view_set_last_error: view set is NULL";

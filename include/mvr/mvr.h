@@ -824,6 +824,14 @@ mvr_result mvr_view_set_create(const mvr_view_set_desc *desc, mvr_view_set **out
 void mvr_view_set_destroy(mvr_view_set *set);
 mvr_result mvr_view_set_update(mvr_view_set *set, uint32_t index, const mvr_view_desc *view);
 uint32_t mvr_view_set_count(const mvr_view_set *set);
+/* View `index` as given (or last updated), and the set's origin (as given, or
+ * the centroid of its views): a set made of some of its views with this
+ * origin (origin_set) renders them as the whole set does (what is fitted
+ * to all the views of a render, such as shadow cascades and one shared
+ * auto-exposure, is then fitted to that set's). Fail on NULL or an index
+ * past the end. */
+mvr_result mvr_view_set_get_view(const mvr_view_set *set, uint32_t index, mvr_view_desc *out);
+mvr_result mvr_view_set_get_origin(const mvr_view_set *set, double out[3]);
 
 /* Camera metadata of a view for data pipelines (issue 21): what each pixel
  * of its viewport sees, in double, whatever the GPU's relative matrices.

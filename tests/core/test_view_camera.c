@@ -108,4 +108,42 @@ static void pinhole_matches_the_gpu(mvr_test_state *t)
     }
 }
 
-MVR_TEST_MAIN(TEST(pinhole_matches_the_gpu))
+/* The getters give back the views as given and the origin the GPU sees:
+ * the centroid of the positions, or the one given (what a set of some of
+ * its views needs to render them as the whole set does). */
+static void views_and_origin_come_back(mvr_test_state *t)
+{
+    mvr_view_desc v[3] = {0};
+    double eyes[3][3] = {{1, 2, 3}, {4, 5, 6}, {7, 8, 12}}, at[3] = {0, 0, 0}, up[3] = {0, 1, 0};
+    for (int i = 0; i < 3; ++i) {
+        mvr_view_look_at(&v[i], eyes[i], at, up);
+        v[i].projection = (mvr_projection){.type = MVR_PROJECTION_PERSPECTIVE, .yfov = 0.5 + 0.1 * i, .znear = 0.1};
+        v[i].light_layers = 1u << i;
+    }
+    v[2].disabled = true;
+    for (int given = 0; given < 2; ++given) {
+        mvr_view_set_desc d = {.view_count = 3, .views = v, .origin_set = given, .origin = {100, -200, 1e7}};
+        mvr_view_set *vs = NULL;
+        CHECK(t, mvr_view_set_create(&d, &vs, NULL) == MVR_OK);
+        if (!vs)
+            continue;
+        for (uint32_t i = 0; i < 3; ++i) {
+            mvr_view_desc got;
+            CHECK(t, mvr_view_set_get_view(vs, i, &got) == MVR_OK && memcmp(&got, &v[i], sizeof got) == 0);
+        }
+        mvr_view_desc got;
+        CHECK(t, mvr_view_set_get_view(vs, 3, &got) == MVR_ERROR_INVALID_ARGUMENT);
+        CHECK(t, mvr_view_set_get_view(vs, 0, NULL) == MVR_ERROR_INVALID_ARGUMENT);
+        double o[3];
+        CHECK(t, mvr_view_set_get_origin(vs, o) == MVR_OK);
+        if (given)
+            CHECK(t, o[0] == 100 && o[1] == -200 && o[2] == 1e7);
+        else
+            CHECK_MSG(t, fabs(o[0] - 4) < 1e-12 && fabs(o[1] - 5) < 1e-12 && fabs(o[2] - 7) < 1e-12,
+                      "centroid %g %g %g", o[0], o[1], o[2]);
+        CHECK(t, mvr_view_set_get_origin(NULL, o) == MVR_ERROR_INVALID_ARGUMENT);
+        mvr_view_set_destroy(vs);
+    }
+}
+
+MVR_TEST_MAIN(TEST(pinhole_matches_the_gpu), TEST(views_and_origin_come_back))
