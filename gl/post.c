@@ -235,6 +235,9 @@ mvr_result mvr_post_run(mvr_renderer *r, mvr_target *t, const mvr_view_set *view
                 count++;
             }
         shared = count ? shared / count : log2(key);
+        /* for a caller metering views over several renders (mvr render's stream) */
+        r->stats.exposure_measured_views = count;
+        r->stats.exposure_log2_luminance = count ? shared - log2(pre_exposure) : 0.0;
         for (uint32_t v = 0; v < n; ++v) {
             double m = d->exposure_per_view && measured[v] ? mean_log2[v] : shared;
             double log2_avg = m - log2(pre_exposure);

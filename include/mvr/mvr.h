@@ -1498,6 +1498,14 @@ typedef struct mvr_frame_stats {
      * of views with blended draws; 0 without outputs). */
     uint32_t outputs;
     uint32_t output_blend_passes;
+    /* Auto-exposure: the views whose luminance was measured (some lit
+     * pixel; the others do not count) and the mean over them of each one's
+     * average log2 luminance (before exposure), which the shared EV100
+     * follows from (EV100 = it - log2(1.2 * exposure_key) - compensation,
+     * clamped): what a caller that renders a view set in parts needs to
+     * meter them all as one render would. 0 without auto-exposure. */
+    uint32_t exposure_measured_views;
+    double exposure_log2_luminance;
 } mvr_frame_stats;
 
 /* The supersampling resolve: box-filters linear RGBA float pixels (width x

@@ -275,5 +275,63 @@ static void tone_mappers_match_their_formulas(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
+/* The stats a caller pools to meter views rendered in parts (mvr render's
+ * stream): 4 views, one looking at the black sky alone (not measured); the
+ * measured luminances of parts of 2 views, weighted by their measured
+ * views, give the EV100 of one render of the 4. */
+static void auto_exposure_pools_over_parts(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    mvr_scene *s = sunny_scene(t);
+    mvr_projection proj = {.yfov = 0.9, .znear = 0.1};
+    const double eyes[4][3] = {{0, 2.5, 6}, {4, 1.5, 3}, {0, 30, 0.01}, {-3, 3, 4}};
+    const double at[4][3] = {{0, 0.3, -1}, {0, 0, -1}, {0, 1000, 0}, {0, 0, 0}};
+    mvr_view_desc v[4];
+    for (int i = 0; i < 4; ++i)
+        v[i] = stress_view(eyes[i], at[i], proj);
+    mvr_view_set *all = stress_view_set(t, v, 4, NULL);
+    double origin[3] = {0, 0, 0};
+    CHECK(t, mvr_view_set_get_origin(all, origin) == MVR_OK);
+    mvr_view_set *part[2] = {stress_view_set(t, v, 2, origin), stress_view_set(t, v + 2, 2, origin)};
+    mvr_render_desc rd = {.clear_color = {0, 0, 0, 1}, .exposure_mode = MVR_EXPOSURE_AUTO, .exposure_compensation = 0.5f,
+                          .tone_map = MVR_TONE_MAP_KHR_PBR_NEUTRAL};
+    mvr_frame_stats st_all, st_part[2];
+    uint8_t *img = render_desc(t, ctx, s, all, MVR_VIEW_PATH_AUTO, MVR_COLOR_FORMAT_DEFAULT, 48, 32, &rd, &st_all);
+    free(img);
+    double sum = 0.0;
+    uint32_t measured = 0;
+    for (int k = 0; k < 2; ++k) {
+        img = render_desc(t, ctx, s, part[k], MVR_VIEW_PATH_AUTO, MVR_COLOR_FORMAT_DEFAULT, 48, 32, &rd, &st_part[k]);
+        free(img);
+        sum += st_part[k].exposure_log2_luminance * st_part[k].exposure_measured_views;
+        measured += st_part[k].exposure_measured_views;
+    }
+    CHECK_EQ_INT(t, st_all.exposure_measured_views, 3);
+    CHECK_EQ_INT(t, measured, 3);
+    /* the EV100 the stats give: the average on the key (0.18), less the compensation */
+    double key = log2(1.2 * (double)0.18f);
+    double ev_all = st_all.exposure_log2_luminance - key - 0.5;
+    double ev_pooled = sum / (measured ? measured : 1) - key - 0.5;
+    /* weighted by views instead, the view that saw nothing would count */
+    double ev_by_views = (st_part[0].exposure_log2_luminance + st_part[1].exposure_log2_luminance) / 2 - key - 0.5;
+    printf("  EV100 %.4f (one render, stats %.4f), pooled over parts %.4f (parts alone %.4f, %.4f)\n",
+           st_all.exposure_ev100, ev_all, ev_pooled, st_part[0].exposure_ev100, st_part[1].exposure_ev100);
+    CHECK_MSG(t, fabs(ev_all - st_all.exposure_ev100) < 1e-9, "the stats give EV100 %.6f, the render ran %.6f", ev_all,
+              st_all.exposure_ev100);
+    CHECK_MSG(t, fabs(ev_pooled - st_all.exposure_ev100) < 1e-3, "pooled %.6f, one render %.6f", ev_pooled,
+              st_all.exposure_ev100);
+    /* the parts alone, or pooled by view count, miss it by more than that */
+    CHECK_MSG(t, fabs(st_part[0].exposure_ev100 - st_all.exposure_ev100) > 1e-2, "part 0: %.4f",
+              st_part[0].exposure_ev100);
+    CHECK_MSG(t, fabs(ev_by_views - st_all.exposure_ev100) > 3e-3, "pooled by views: %.4f", ev_by_views);
+    mvr_view_set_destroy(part[0]);
+    mvr_view_set_destroy(part[1]);
+    mvr_view_set_destroy(all);
+    mvr_scene_destroy(s);
+    mvr_context_destroy(ctx);
+}
+
 MVR_TEST_MAIN(TEST(auto_exposure_tames_the_sun), TEST(post_pass_is_the_same_on_both_paths),
-              TEST(tone_mappers_match_their_formulas))
+              TEST(tone_mappers_match_their_formulas), TEST(auto_exposure_pools_over_parts))
