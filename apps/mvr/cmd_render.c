@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "cli_common.h"
+#include "cli_progress.h"
 #include "cli_options.h"
 #include "cli_env.h"
 #include "cli_scene.h"
@@ -18,13 +19,14 @@
 #include "render_options.h"
 #include "render_aovs.h"
 #include "render_output.h"
+#include "render_stream.h"
 
 enum {
     R_DEMO = 1, R_VIEWS, R_CAMERA, R_LAYOUT, R_IPD, R_SCENE, R_SIZE, R_OUT, R_VIEW_PATH, R_MATERIAL_PATH, R_DEPTH,
     R_TRANSPARENCY, R_SUPERSAMPLE, R_MSAA, R_AA, R_REFERENCE, R_FORMAT, R_TARGET_FORMAT, R_SHADOWS, R_SHADOW_SIZE,
     R_EXPOSURE, R_EXPOSURE_SCALE, R_CAMERA_EXPOSURE, R_EXPOSURE_PER_VIEW, R_DITHER, R_CLEAR, R_TONE_MAP, R_FRAMES,
     R_STATS, R_STRICT, R_MEMORY_BUDGET, R_PROGRAM_CACHE, R_QUIET, R_PLAN, R_ANIMATION, R_TIME, R_LOOP, R_FPS, R_VIDEO,
-    R_SKINNING, R_VARIANT, R_COLMAP, R_OUTPUTS, R_NORMAL_SPACE, R_ALPHA_CUTOFF
+    R_SKINNING, R_VARIANT, R_COLMAP, R_OUTPUTS, R_NORMAL_SPACE, R_ALPHA_CUTOFF, R_READBACK, R_NO_PROGRESS, R_ENCODERS
 };
 
 #define MAX_FRAMES 100000
@@ -196,7 +198,18 @@ static const cli_option render_table_tail[] = {
      "off disables it (default: $XDG_CACHE_HOME/mvr/programs or\n"
      "~/.cache/mvr/programs); D is created if missing and must be\n"
      "a directory you can write to", NULL, NULL, NULL},
-    {CLI_OPT_FLAG, R_QUIET, "--quiet", NULL, NULL, 0, 0, NULL, "print only errors", NULL, NULL, NULL},
+    {CLI_OPT_CHOICE, R_READBACK, "--readback", NULL, "R", 0, 0, "stream|sync",
+     "stream: chunks of GL_MAX_VIEWS_OVR views through a ring of\n"
+     "targets, read back asynchronously, encoded on threads (memory\n"
+     "bounded whatever the view count); sync: one target of every\n"
+     "view, each read and written in turn (default: stream)", NULL, NULL, NULL},
+    {CLI_OPT_U32, R_ENCODERS, "--encoders", NULL, "N", 1, 64, NULL,
+     "image encoding threads of --readback stream (default: 2)", NULL, NULL, NULL},
+    {CLI_OPT_FLAG, R_NO_PROGRESS, "--no-progress", NULL, NULL, 0, 0, NULL,
+     "no progress line (shown on a terminal: views done, views/s,\n"
+     "time left)", NULL, NULL, NULL},
+    {CLI_OPT_FLAG, R_QUIET, "--quiet", NULL, NULL, 0, 0, NULL, "print only errors (no progress line)", NULL, NULL,
+     NULL},
     END,
 };
 
@@ -229,6 +242,9 @@ static bool apply(const cli_arg *arg, render_options *o)
     const char *v = arg->value;
     switch (arg->opt->id) {
     case R_QUIET: o->quiet = true; break;
+    case R_READBACK: o->readback = arg->choice == 1 ? RENDER_READBACK_SYNC : RENDER_READBACK_STREAM; break;
+    case R_NO_PROGRESS: o->no_progress = true; break;
+    case R_ENCODERS: o->encoders = arg->number; break;
     case R_STRICT: o->strict = true; break;
     case R_DEMO: o->demo = v; break;
     case R_VIEWS: o->views = arg->number; break;
@@ -547,6 +563,7 @@ int mvr_cmd_render(int argc, char **argv)
     cli_env_used env_used;
     memset(&env_used, 0, sizeof env_used);
     uint8_t **layers = NULL;
+    render_stream *stream = NULL; /* --readback stream (the default) */
     rc = MVR_EXIT_FAILURE;
     if (mvr_context_create(&o.context, &ctx, &err) != MVR_OK) {
         fprintf(stderr, "mvr render: %s\n", err.message);
@@ -599,7 +616,12 @@ int mvr_cmd_render(int argc, char **argv)
     uint32_t ss = o.supersample;
     mvr_target_desc td = {.width = o.width * ss, .height = o.height * ss, .layers = n, .color_format = o.format,
                           .samples = o.msaa, .anti_aliasing = o.aa, .outputs = o.outputs};
-    if (mvr_target_create(renderer, &td, &target) != MVR_OK) {
+    if (o.outputs)
+        o.readback = RENDER_READBACK_SYNC; /* the streamed path reads colour only (for now) */
+    if (o.readback == RENDER_READBACK_STREAM) {
+        if (!render_stream_create(&o, ctx, renderer, n, o.frames, &stream))
+            goto done;
+    } else if (mvr_target_create(renderer, &td, &target) != MVR_OK) {
         fprintf(stderr, "mvr render: %s\n", mvr_renderer_last_error(renderer));
         goto done;
     }
@@ -608,16 +630,18 @@ int mvr_cmd_render(int argc, char **argv)
         rc = MVR_EXIT_USAGE;
         goto done;
     }
-    layers = calloc(n, sizeof *layers);
-    if (!layers)
+    /* the synchronous path holds every view's bytes (the stream its own few buffers) */
+    layers = stream ? NULL : calloc(n, sizeof *layers);
+    if (!stream && !layers)
         goto done;
     size_t pixels = (size_t)o.width * o.height;
-    for (uint32_t k = 0; k < n; ++k)
+    for (uint32_t k = 0; layers && k < n; ++k)
         if (!(layers[k] = malloc(pixels * 4)))
             goto done;
-    float *floats = o.exr ? malloc(pixels * 4 * sizeof *floats) : NULL;
-    if (o.exr && !floats)
+    float *floats = o.exr && !stream ? malloc(pixels * 4 * sizeof *floats) : NULL;
+    if (o.exr && !stream && !floats)
         goto done;
+    double started = cli_now();
     /* frame f at --time + f / --fps; without --frames one frame, written as
      * view_VV.png */
     char sheet[4096];
@@ -649,17 +673,21 @@ int mvr_cmd_render(int argc, char **argv)
             views = posed;
         }
         anim.last_time = t;
-        if (mvr_renderer_render(renderer, scene, views, target, &o.render) != MVR_OK) {
+        if (stream) {
+            frames_ok = render_stream_frame(stream, scene, views, &o.render, o.frames_set ? (int64_t)f : -1, f == 0);
+        } else if (mvr_renderer_render(renderer, scene, views, target, &o.render) != MVR_OK) {
             fprintf(stderr, "mvr render: %s\n", mvr_renderer_last_error(renderer));
             frames_ok = false;
             break;
+        } else {
+            frames_ok = render_output_write_views(&o, renderer, target, n, layers, floats,
+                                                  o.frames_set ? (int64_t)f : -1);
+            if (frames_ok && o.outputs)
+                frames_ok = render_aovs_write(o.out_dir, renderer, target, n, o.width, o.height, o.outputs,
+                                              o.frames_set ? (int64_t)f : -1, render_output_frame_digits(o.frames));
         }
-        frames_ok = render_output_write_views(&o, renderer, target, n, layers, floats, o.frames_set ? (int64_t)f : -1);
-        if (frames_ok && o.outputs)
-            frames_ok = render_aovs_write(o.out_dir, renderer, target, n, o.width, o.height, o.outputs,
-                                          o.frames_set ? (int64_t)f : -1, render_output_frame_digits(o.frames));
         /* the contact sheet: the first frame (the one --time alone gives) */
-        if (frames_ok && f == 0 && !render_output_write_contact_sheet(sheet, layers, n, o.width, o.height)) {
+        if (!stream && frames_ok && f == 0 && !render_output_write_contact_sheet(sheet, layers, n, o.width, o.height)) {
             fprintf(stderr, "mvr render: cannot write %s\n", sheet);
             frames_ok = false;
         }
@@ -670,12 +698,21 @@ int mvr_cmd_render(int argc, char **argv)
             frames_ok = render_aovs_write_ids(o.out_dir, scene);
     }
     free(floats);
+    if (frames_ok && stream)
+        frames_ok = render_stream_finish(stream, sheet);
     if (!frames_ok)
         goto done;
+    render_readback_info readback = {.mode = RENDER_READBACK_SYNC, .images = (uint64_t)n * o.frames,
+                                     .seconds = cli_now() - started};
+    if (stream)
+        render_stream_get_info(stream, &readback);
     if (o.video && !render_output_encode_videos(&o, n))
         goto done;
     mvr_frame_stats st;
-    mvr_renderer_get_stats(renderer, &st);
+    if (stream)
+        render_stream_get_stats(stream, &st); /* the last frame's chunks, summed */
+    else
+        mvr_renderer_get_stats(renderer, &st);
     if (o.plan) {
         size_t need = mvr_renderer_format_plan(renderer, NULL, 0) + 1;
         char *text = malloc(need);
@@ -692,7 +729,7 @@ int mvr_cmd_render(int argc, char **argv)
             goto done;
         }
         render_output_write_stats_json(f, renderer, &st, o.scene_file ? o.scene_file : o.demo, o.width, o.height, ss,
-                                       o.scene_file ? &gltf_info : NULL, &env_used, &o.render, &o, &anim);
+                                       o.scene_file ? &gltf_info : NULL, &env_used, &o.render, &o, &anim, &readback);
         fclose(f);
     }
     if (!o.quiet) {
@@ -753,6 +790,7 @@ int mvr_cmd_render(int argc, char **argv)
         }
         render_output_print_animation(&o, scene, &anim, &st);
         render_output_print_files(&o, n, sheet);
+        render_output_print_readback(&readback);
     }
     rc = MVR_EXIT_OK;
 done:
@@ -760,6 +798,7 @@ done:
         for (uint32_t k = 0; k < mvr_view_set_count(views); ++k)
             free(layers[k]);
     free(layers);
+    render_stream_destroy(stream);
     mvr_target_destroy(target);
     mvr_renderer_destroy(renderer);
     mvr_view_set_destroy(views);

@@ -9,6 +9,13 @@
 #include "cli_env.h"
 #include "mvr/mvr.h"
 
+/* --readback: how the views come back from the GL and go to files. */
+typedef enum render_readback {
+    RENDER_READBACK_STREAM = 0,  /* chunks of GL_MAX_VIEWS_OVR views through a ring of targets, read
+                                    asynchronously, encoded on threads (render_stream.c) */
+    RENDER_READBACK_SYNC         /* one target of every view, each layer read and written in turn */
+} render_readback;
+
 typedef struct render_options {
     mvr_context_desc context;
     const char *demo;
@@ -51,7 +58,25 @@ typedef struct render_options {
     const char *video;           /* --video FILE: each view's sequence through ffmpeg */
     char ffmpeg[4096];           /* with video: the ffmpeg found on PATH */
     mvr_skinning_path skinning;
+    render_readback readback;    /* --readback */
+    bool no_progress;            /* --no-progress */
+    uint32_t encoders;           /* --encoders N: image encoding threads of the stream (0 = 2) */
 } render_options;
+
+/* How the frames were read back and written: the summary and the stats. */
+typedef struct render_readback_info {
+    render_readback mode;
+    uint32_t chunk;              /* stream: views per chunk (per target of the ring) */
+    uint32_t ring;               /* stream: targets (and readbacks) in the ring */
+    uint32_t encoders;           /* stream: encoding threads */
+    uint32_t sheet_factor;       /* stream: contact sheet tiles 1/N of a view's size (1 = full size) */
+    bool exposure_metered;       /* stream: auto-exposure metered over every view first, then fixed */
+    double exposure_ev100;       /* the EV100 it fixed */
+    bool shadows_per_chunk;      /* stream: directional shadow cascades fitted to each chunk's views */
+    const uint32_t *culled_per_view; /* stream: the last frame's, per view; NULL: the renderer's */
+    uint64_t images;             /* view images written */
+    double seconds;              /* from the first render to the last image written */
+} render_readback_info;
 
 /* What posed the frames (for the summary and the stats). */
 typedef struct render_animation {

@@ -74,7 +74,7 @@ void render_output_print_animation(const render_options *o, const mvr_scene *sce
 void render_output_write_stats_json(FILE *f, const mvr_renderer *r, const mvr_frame_stats *s, const char *demo,
                                     uint32_t w, uint32_t h, uint32_t supersample, const mvr_gltf_info *load,
                                     const cli_env_used *env, const mvr_render_desc *rd, const render_options *o,
-                                    const render_animation *anim)
+                                    const render_animation *anim, const render_readback_info *readback)
 {
     json_writer jw = {f, 0, {false}, {0}};
     json_begin_object(&jw, NULL);
@@ -106,7 +106,7 @@ void render_output_write_stats_json(FILE *f, const mvr_renderer *r, const mvr_fr
     json_int(&jw, "culled", s->culled);
     json_begin_array(&jw, "culled_per_view");
     for (uint32_t v = 0; v < s->views; ++v)
-        json_int(&jw, NULL, mvr_renderer_view_culled(r, v));
+        json_int(&jw, NULL, readback->culled_per_view ? readback->culled_per_view[v] : mvr_renderer_view_culled(r, v));
     json_end_array(&jw);
     json_begin_object(&jw, "sub_passes");
     json_int(&jw, "opaque", s->sub_passes[0]);
@@ -203,7 +203,47 @@ void render_output_write_stats_json(FILE *f, const mvr_renderer *r, const mvr_fr
     }
     json_end_array(&jw);
     write_animation_json(&jw, o, anim, s);
+    /* how the images came back (pass_stats and --plan: the last chunk's when streamed) */
+    json_begin_object(&jw, "readback");
+    json_string(&jw, "mode", readback->mode == RENDER_READBACK_STREAM ? "stream" : "sync");
+    if (readback->mode == RENDER_READBACK_STREAM) {
+        json_int(&jw, "chunk_views", readback->chunk);
+        json_int(&jw, "ring_targets", readback->ring);
+        json_int(&jw, "encoders", readback->encoders);
+        json_int(&jw, "contact_sheet_factor", readback->sheet_factor);
+        json_bool(&jw, "exposure_metered", readback->exposure_metered);
+        json_bool(&jw, "shadows_per_chunk", readback->shadows_per_chunk);
+        if (readback->exposure_metered)
+            json_double(&jw, "metered_ev100", readback->exposure_ev100);
+    }
+    json_int(&jw, "images", (long long)readback->images);
+    json_double(&jw, "seconds", readback->seconds);
+    json_double(&jw, "views_per_second", readback->seconds > 0 ? (double)readback->images / readback->seconds : 0.0);
     json_end_object(&jw);
+    json_end_object(&jw);
+}
+
+void render_output_print_readback(const render_readback_info *rb)
+{
+    double rate = rb->seconds > 0 ? (double)rb->images / rb->seconds : 0.0;
+    if (rb->mode == RENDER_READBACK_STREAM) {
+        printf("  readback    stream: chunks of %u view%s through %u targets, %u encoder thread%s; %llu images in "
+               "%.2f s (%.1f views/s)\n",
+               rb->chunk, rb->chunk == 1 ? "" : "s", rb->ring, rb->encoders, rb->encoders == 1 ? "" : "s",
+               (unsigned long long)rb->images, rb->seconds, rate);
+        if (rb->sheet_factor > 1)
+            printf("  contact     tiles at 1/%u of the views' size (the sheet stays within 4096 x 4096)\n",
+                   rb->sheet_factor);
+        if (rb->exposure_metered)
+            printf("  exposure    metered over every view first: EV100 %.2f for all of them\n", rb->exposure_ev100);
+        if (rb->shadows_per_chunk)
+            printf("  shadows     directional cascades fitted to each chunk's views (--readback sync: to the "
+                   "first 64 views)\n");
+    } else {
+        printf("  readback    sync: every view in one target, read and written in turn; %llu images in %.2f s "
+               "(%.1f views/s)\n",
+               (unsigned long long)rb->images, rb->seconds, rate);
+    }
 }
 
 /* Lays the views out in a grid (side by side up to 4, then ~square). */
@@ -271,7 +311,7 @@ int render_output_frame_digits(uint32_t frames)
 }
 
 /* DIR/view_VV.EXT, or frame f of a sequence: DIR/view_VV_fFFFF.EXT. */
-static void view_file(char *buf, size_t size, const render_options *o, uint32_t view, int64_t frame)
+void render_output_view_file(char *buf, size_t size, const render_options *o, uint32_t view, int64_t frame)
 {
     const char *ext = o->exr ? "exr" : "png";
     int len;
@@ -299,7 +339,7 @@ bool render_output_write_views(const render_options *o, mvr_renderer *r, mvr_tar
         if (o->exr && ss <= 1 && o->format == MVR_COLOR_FORMAT_RGBA16F)
             cli_encode_srgb(floats, layers[k], pixels); /* the sheet shows display values */
         char path[4096];
-        view_file(path, sizeof path, o, k, frame);
+        render_output_view_file(path, sizeof path, o, k, frame);
         mvr_image_view view = {o->width, o->height, o->exr ? MVR_PIXEL_F32 : MVR_PIXEL_U8, true,
                                o->exr ? (const void *)floats : (const void *)layers[k]};
         mvr_error err;
@@ -374,8 +414,8 @@ bool render_output_encode_videos(const render_options *o, uint32_t n)
 void render_output_print_files(const render_options *o, uint32_t n, const char *sheet)
 {
     char first[4096], last[4096];
-    view_file(first, sizeof first, o, 0, o->frames_set ? 0 : -1);
-    view_file(last, sizeof last, o, n - 1, o->frames_set ? (int64_t)o->frames - 1 : -1);
+    render_output_view_file(first, sizeof first, o, 0, o->frames_set ? 0 : -1);
+    render_output_view_file(last, sizeof last, o, n - 1, o->frames_set ? (int64_t)o->frames - 1 : -1);
     const char *last_name = strrchr(last, '/') ? strrchr(last, '/') + 1 : last;
     if (o->frames_set)
         printf("  images      %s .. %s (%u frame%s of %u view%s)\n", first, last_name, o->frames,
@@ -488,7 +528,7 @@ static bool write_colmap(const render_options *o, const mvr_view_set *views, uin
             q[0] = (r[1][0] - r[0][1]) / s, q[1] = (r[0][2] + r[2][0]) / s, q[2] = (r[1][2] + r[2][1]) / s, q[3] = 0.25 * s;
         }
         char image[4096];
-        view_file(image, sizeof image, o, k, o->frames_set ? 0 : -1);
+        render_output_view_file(image, sizeof image, o, k, o->frames_set ? 0 : -1);
         const char *name = strrchr(image, '/') ? strrchr(image, '/') + 1 : image;
         fprintf(files[1], "%u %.17g %.17g %.17g %.17g %.17g %.17g %.17g %u %s\n\n", k + 1, q[0], q[1], q[2], q[3], t[0],
                 t[1], t[2], k + 1, name);
@@ -535,7 +575,7 @@ bool render_output_write_cameras(const render_options *o, const mvr_view_set *vi
                 break;
             }
             char image[4096];
-            view_file(image, sizeof image, o, k, o->frames_set ? 0 : -1);
+            render_output_view_file(image, sizeof image, o, k, o->frames_set ? 0 : -1);
             const char *name = strrchr(image, '/') ? strrchr(image, '/') + 1 : image;
             json_begin_object(&jw, NULL);
             json_string(&jw, "file_path", name);

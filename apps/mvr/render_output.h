@@ -27,6 +27,10 @@ bool render_output_choose_animation(const render_options *o, const mvr_scene *sc
 bool render_output_write_views(const render_options *o, mvr_renderer *r, mvr_target *t, uint32_t n, uint8_t **layers,
                                float *floats, int64_t frame);
 
+/* The file of view `view` of frame `frame` (-1: not a sequence):
+ * DIR/view_VV.EXT or DIR/view_VV_fFFFF.EXT ("" when it does not fit). */
+void render_output_view_file(char *buf, size_t size, const render_options *o, uint32_t view, int64_t frame);
+
 /* Lays the n bottom-up w x h layers out in a grid (side by side up to 4,
  * then ~square) and writes them to path as one image. */
 bool render_output_write_contact_sheet(const char *path, uint8_t *const *layers, uint32_t n, uint32_t w, uint32_t h);
@@ -41,11 +45,17 @@ bool render_output_find_on_path(const char *name, char *buf, size_t size);
 
 /* The last frame's stats as JSON into f: the scene (demo: its name or
  * file), the glTF load (load NULL: none), the environment used, the
- * programs and passes, and the animation that posed the frames. */
+ * programs and passes, the animation that posed the frames, and how the
+ * images came back (readback; its culled_per_view, when set, replaces the
+ * renderer's). */
 void render_output_write_stats_json(FILE *f, const mvr_renderer *r, const mvr_frame_stats *s, const char *demo,
                                     uint32_t w, uint32_t h, uint32_t supersample, const mvr_gltf_info *load,
                                     const cli_env_used *env, const mvr_render_desc *rd, const render_options *o,
-                                    const render_animation *anim);
+                                    const render_animation *anim, const render_readback_info *readback);
+
+/* The summary's line on how the images came back: the path, and images
+ * written per second from the first render to the last file. */
+void render_output_print_readback(const render_readback_info *readback);
 
 /* The summary's lines for the first and the last frame's pose and the last
  * frame's skinning (none when nothing was posed or skinned). */

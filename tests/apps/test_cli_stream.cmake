@@ -1,0 +1,124 @@
+# ctest script: mvr render --readback stream (the default: chunks of GL_MAX_VIEWS_OVR views through a
+# ring of targets, asynchronous readback, encoding on threads) writes the same files as --readback sync
+# (one target of every view, each layer read and written in turn), byte for byte: a real exporter's
+# model (Blender's Suzanne, tests/data/peers/textured.gltf) seen by 14 views on a sphere (3 chunks on
+# llvmpipe's 6 views), with 1, 2 and 3 encoders, as EXR, supersampled, and an animated file's frame
+# sequence; the stats say how it ran; the contact sheet of wide views stays within 4096 pixels; names
+# grow past 99 views; a terminal gets a progress line (--no-progress and pipes none).
+# cmake -DMVR=path/to/mvr -DPEERS=tests/data/peers -DOUT=dir -P test_cli_stream.cmake
+include(${CMAKE_CURRENT_LIST_DIR}/cli_expect.cmake)
+file(REMOVE_RECURSE ${OUT})
+file(MAKE_DIRECTORY ${OUT})
+set(FILE ${PEERS}/textured.gltf)
+
+# render_into(DIR ARGS...): mvr render ARGS --out OUT/DIR --quiet, which must exit 0
+function(render_into dir)
+  run(rc so se render ${ARGN} --out ${OUT}/${dir} --quiet)
+  if(NOT rc EQUAL 0)
+    message("FAIL: render ${ARGN} exits ${rc}: ${se}")
+    math(EXPR n_failed "${n_failed} + 1")
+  else()
+    math(EXPR n_passed "${n_passed} + 1")
+  endif()
+  set(n_failed ${n_failed} PARENT_SCOPE)
+  set(n_passed ${n_passed} PARENT_SCOPE)
+endfunction()
+
+# same_files(A B COUNT): every file of OUT/B (the synchronous run) is in OUT/A with the same
+# bytes, and there are COUNT of them
+function(same_files a b count)
+  file(GLOB files RELATIVE ${OUT}/${b} ${OUT}/${b}/*)
+  list(LENGTH files n)
+  set(differ "")
+  set(n_differ 0)
+  foreach(f ${files})
+    execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${OUT}/${a}/${f} ${OUT}/${b}/${f} RESULT_VARIABLE d)
+    if(NOT d EQUAL 0)
+      list(APPEND differ ${f})
+      math(EXPR n_differ "${n_differ} + 1")
+    endif()
+  endforeach()
+  expect("${a} and ${b}: ${count} files (got ${n})" n EQUAL ${count})
+  expect("${a} writes ${b}'s bytes; these differ: ${differ}" n_differ EQUAL 0)
+  set(n_failed ${n_failed} PARENT_SCOPE)
+  set(n_passed ${n_passed} PARENT_SCOPE)
+endfunction()
+
+set(SPHERE ${FILE} --layout sphere --views 14 --size 64x64)
+render_into(sync ${SPHERE} --readback sync --stats ${OUT}/sync.json)
+render_into(stream ${SPHERE} --stats ${OUT}/stream.json)
+render_into(stream1 ${SPHERE} --readback stream --encoders 1)
+render_into(stream3 ${SPHERE} --encoders 3)
+# 14 views, the contact sheet, cameras.json, transforms.json
+same_files(stream sync 17)
+same_files(stream1 sync 17)
+same_files(stream3 sync 17)
+
+# the stats: every view of the frame, how it came back
+file(READ ${OUT}/stream.json js)
+string(JSON mode ERROR_VARIABLE e1 GET "${js}" readback mode)
+string(JSON chunk ERROR_VARIABLE e2 GET "${js}" readback chunk_views)
+string(JSON images ERROR_VARIABLE e3 GET "${js}" readback images)
+string(JSON views ERROR_VARIABLE e4 GET "${js}" views)
+string(JSON culled ERROR_VARIABLE e5 LENGTH "${js}" culled_per_view)
+expect("stream.json: readback stream, 14 images of 14 views, 14 culled counts (${mode} ${images} ${views} ${culled}; ${e1}${e3}${e4}${e5})"
+       mode STREQUAL "stream" AND images EQUAL 14 AND views EQUAL 14 AND culled EQUAL 14)
+expect("stream.json: chunks of 1 .. 14 views (${chunk} ${e2})" chunk GREATER 0 AND chunk LESS 15)
+file(READ ${OUT}/sync.json js)
+string(JSON mode ERROR_VARIABLE e1 GET "${js}" readback mode)
+expect("sync.json: readback sync (${mode} ${e1})" mode STREQUAL "sync")
+
+# EXR (a float target, linear values; the sheet from the sRGB-encoded floats), supersampling (a
+# float target 2x the size, resolved on the encoder threads), and 7 views of an animated file over
+# 2 frames (view_VV_fFFFF.png)
+render_into(exr_sync ${FILE} --layout ring --views 8 --size 48x48 --format exr --readback sync)
+render_into(exr ${FILE} --layout ring --views 8 --size 48x48 --format exr)
+same_files(exr exr_sync 11)
+render_into(ss_sync ${FILE} --layout orbit --views 7 --size 32x32 --supersample 2 --readback sync)
+render_into(ss ${FILE} --layout orbit --views 7 --size 32x32 --supersample 2)
+same_files(ss ss_sync 10)
+set(ANIM ${PEERS}/rigged.gltf --layout orbit --views 7 --size 32x32 --frames 2)
+render_into(anim_sync ${ANIM} --readback sync)
+render_into(anim ${ANIM})
+same_files(anim anim_sync 17)
+
+# wide views: the sheet's tiles shrink to keep it within 4096 pixels (6 columns of 1024 would be 6164)
+run(rc so se render ${FILE} --layout ring --views 30 --size 1024x32 --out ${OUT}/wide)
+expect("30 wide views exit 0 (got ${rc}): ${se}" rc EQUAL 0)
+expect("the summary says the tiles are halved: ${so}" so MATCHES "tiles at 1/2 of the views' size")
+if(EXISTS ${OUT}/wide/contact_sheet.png)
+  file(READ ${OUT}/wide/contact_sheet.png ihdr OFFSET 16 LIMIT 8 HEX) # PNG: width, height (big-endian)
+  string(SUBSTRING "${ihdr}" 0 8 w_hex)
+  math(EXPR sheet_w "0x${w_hex}")
+  expect("the sheet is 6 tiles of 512 and 5 gaps of 4 wide (got ${sheet_w})" sheet_w EQUAL 3092)
+endif()
+
+# past 99 views the numbers grow a digit
+render_into(many --demo cube --views 101 --size 8x8)
+expect("view_100.png after view_99.png" EXISTS ${OUT}/many/view_99.png AND EXISTS ${OUT}/many/view_100.png)
+
+# bad values are refused before anything runs
+run(rc so se render --demo stereo --readback fast --out ${OUT}/bad)
+expect("--readback fast exits 2 (got ${rc}): ${se}" rc EQUAL 2 AND se MATCHES "stream")
+run(rc so se render --demo stereo --encoders 0 --out ${OUT}/bad)
+expect("--encoders 0 exits 2 (got ${rc})" rc EQUAL 2)
+run(rc so se render --help)
+expect("--help documents --readback, --encoders, --no-progress" so MATCHES "--readback R" AND so MATCHES "--encoders N"
+       AND so MATCHES "--no-progress")
+
+# a progress line on a terminal (script(1) gives the run one), none on a pipe or with --no-progress
+run(rc so se render ${SPHERE} --out ${OUT}/pipe)
+expect("no progress line on a pipe: ${se}" NOT se MATCHES "views/s +ETA")
+find_program(SCRIPT script)
+if(SCRIPT)
+  execute_process(COMMAND ${SCRIPT} -qec "${MVR} render ${FILE} --layout sphere --views 14 --size 64x64 --out ${OUT}/tty"
+                          /dev/null RESULT_VARIABLE rc OUTPUT_VARIABLE so ERROR_VARIABLE se)
+  expect("on a terminal: a progress line with views/s and the final count (${rc}): ${so}"
+         rc EQUAL 0 AND so MATCHES "[[][#.]+[]] [0-9]+/14 views +[0-9.]+ views/s" AND so MATCHES "14/14 views")
+  execute_process(COMMAND ${SCRIPT} -qec "${MVR} render ${FILE} --layout sphere --views 14 --size 64x64 --out ${OUT}/tty --no-progress"
+                          /dev/null RESULT_VARIABLE rc OUTPUT_VARIABLE so ERROR_VARIABLE se)
+  expect("--no-progress: none (${rc}): ${so}" rc EQUAL 0 AND NOT so MATCHES "/14 views")
+else()
+  message("script(1) not found: the terminal's progress line is not checked")
+endif()
+expect_summary("mvr render --readback")
