@@ -75,7 +75,7 @@ typedef struct render_readback_info {
     bool shadows_per_chunk;      /* stream: directional shadow cascades fitted to each chunk's views */
     const uint32_t *culled_per_view; /* stream: the last frame's, per view; NULL: the renderer's */
     uint64_t images;             /* view images written */
-    double seconds;              /* from the first render to the last image written */
+    double seconds;              /* from the first render to the last file written (the contact sheet) */
 } render_readback_info;
 
 /* What posed the frames (for the summary and the stats). */

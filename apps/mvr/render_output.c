@@ -227,12 +227,13 @@ void render_output_print_readback(const render_readback_info *rb)
 {
     double rate = rb->seconds > 0 ? (double)rb->images / rb->seconds : 0.0;
     if (rb->mode == RENDER_READBACK_STREAM) {
-        printf("  readback    stream: chunks of %u view%s through %u targets, %u encoder thread%s; %llu images in "
+        printf("  readback    stream: chunks of %u view%s through %u target%s, %u encoder thread%s; %llu images in "
                "%.2f s (%.1f views/s)\n",
-               rb->chunk, rb->chunk == 1 ? "" : "s", rb->ring, rb->encoders, rb->encoders == 1 ? "" : "s",
+               rb->chunk, rb->chunk == 1 ? "" : "s", rb->ring, rb->ring == 1 ? "" : "s", rb->encoders,
+               rb->encoders == 1 ? "" : "s",
                (unsigned long long)rb->images, rb->seconds, rate);
         if (rb->sheet_factor > 1)
-            printf("  contact     tiles at 1/%u of the views' size (the sheet stays within 4096 x 4096)\n",
+            printf("  contact     tiles at 1/%u of the views' size (the sheet stays within 4 megapixels)\n",
                    rb->sheet_factor);
         if (rb->exposure_metered)
             printf("  exposure    metered over every view first: EV100 %.2f for all of them\n", rb->exposure_ev100);

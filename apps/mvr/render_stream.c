@@ -29,13 +29,14 @@
 #include "mvr/mvr_image.h"
 #include "render_output.h"
 
-#define RING 2                   /* targets (and readbacks) in flight */
+#define RING 2                   /* targets (and readbacks) in flight (fewer for fewer chunks) */
 #define SPARE_BUFFERS 1          /* chunk buffers beyond the ring's, for the encoders to work from */
 #define MAX_ENCODERS 64
 #define VIEW_BLOCK 64            /* the library's view blocks (MVR_VIEWS_PER_BLOCK): its multiview
                                     chunks never cross one, and neither do the stream's */
-#define SLOT_BUDGET ((size_t)256 << 20) /* bytes of one chunk's readback before the chunk shrinks */
+#define SLOT_BUDGET ((size_t)64 << 20) /* bytes of one chunk's readback before the chunk shrinks */
 #define SHEET_MAX 4096           /* contact sheet side, pixels */
+#define SHEET_PIXELS (2048u * 2048u) /* and area: 16 MiB (OpenImageIO copies it once more to write it) */
 #define METER_SIZE 128           /* auto-exposure metering: layers at most this on their long side */
 
 typedef struct chunk_buffer {
@@ -83,6 +84,7 @@ struct render_stream {
     mvr_readback_format read_format;
     size_t layer_bytes;          /* one layer as read back */
     ring_slot ring[RING];
+    uint32_t ring_count;         /* slots used: RING, or the chunks of the whole run if fewer */
     uint64_t serial;
     mvr_target *meter;           /* auto-exposure metering (made on first use) */
     bool metered;
@@ -93,6 +95,7 @@ struct render_stream {
     pthread_cond_t work, done;   /* a job queued or stop; a job done */
     bool lock_made;
     chunk_buffer buffers[RING + SPARE_BUFFERS];
+    uint32_t buffer_count;       /* likewise */
     chunk_buffer *free_buffers;
     job *queue;
     uint32_t queue_cap, queue_head, queue_count;
@@ -117,7 +120,8 @@ struct render_stream {
 /* The synchronous path's layout (render_output_write_contact_sheet): side
  * by side up to 4 views, then about square, 4 pixels apart; tiles shrunk
  * by the smallest integer factor that keeps the sheet within SHEET_MAX on
- * each side (1 = full size, the same image as the synchronous path's). */
+ * each side and SHEET_PIXELS in all (1 = full size, the same image as the
+ * synchronous path's). */
 static bool sheet_create(contact_sheet *c, uint32_t n, uint32_t w, uint32_t h)
 {
     uint32_t cols = n <= 4 ? n : 1;
@@ -128,7 +132,7 @@ static bool sheet_create(contact_sheet *c, uint32_t n, uint32_t w, uint32_t h)
     for (;; ++f) {
         uint32_t tw = w / f ? w / f : 1, th = h / f ? h / f : 1;
         uint64_t W = (uint64_t)cols * tw + (cols - 1) * gap, H = (uint64_t)rows * th + (rows - 1) * gap;
-        if ((W <= SHEET_MAX && H <= SHEET_MAX) || (tw == 1 && th == 1)) {
+        if ((W <= SHEET_MAX && H <= SHEET_MAX && W * H <= SHEET_PIXELS) || (tw == 1 && th == 1)) {
             c->tile_w = tw;
             c->tile_h = th;
             c->width = (uint32_t)W;
@@ -334,7 +338,7 @@ static bool harvest_ready(render_stream *s)
 {
     for (;;) {
         ring_slot *oldest = NULL;
-        for (int i = 0; i < RING; ++i)
+        for (uint32_t i = 0; i < s->ring_count; ++i)
             if (s->ring[i].busy && (!oldest || s->ring[i].serial < oldest->serial))
                 oldest = &s->ring[i];
         bool ready = false;
@@ -487,7 +491,7 @@ bool render_stream_frame(render_stream *s, mvr_scene *scene, const mvr_view_set 
     for (uint32_t base = 0; base < s->views;) {
         uint32_t count = chunk_count(s, base);
         /* the target the oldest read came from: read it out first */
-        ring_slot *slot = &s->ring[s->serial % RING];
+        ring_slot *slot = &s->ring[s->serial % s->ring_count];
         if (slot->busy && !harvest(s, slot))
             return false;
         mvr_view_set *part = chunk_views(views, base, count);
@@ -528,8 +532,8 @@ bool render_stream_frame(render_stream *s, mvr_scene *scene, const mvr_view_set 
 bool render_stream_finish(render_stream *s, const char *sheet_path)
 {
     /* what is in flight, oldest first */
-    for (int k = 0; k < RING; ++k) {
-        ring_slot *slot = &s->ring[(s->serial + (uint64_t)k) % RING];
+    for (uint32_t k = 0; k < s->ring_count; ++k) {
+        ring_slot *slot = &s->ring[(s->serial + k) % s->ring_count];
         if (slot->busy && !harvest(s, slot))
             return false;
     }
@@ -538,7 +542,7 @@ bool render_stream_finish(render_stream *s, const char *sheet_path)
         if (s->failed)
             break;
         bool busy = false;
-        for (int i = 0; i < RING + SPARE_BUFFERS; ++i)
+        for (uint32_t i = 0; i < s->buffer_count; ++i)
             busy = busy || s->buffers[i].pending > 0;
         if (!busy)
             break;
@@ -557,7 +561,6 @@ bool render_stream_finish(render_stream *s, const char *sheet_path)
         fprintf(stderr, "mvr render: %s\n", s->error);
     uint64_t done = s->images_done;
     pthread_mutex_unlock(&s->lock);
-    s->seconds = s->start > 0.0 ? cli_now() - s->start : 0.0;
     cli_progress_end(&s->progress, done);
     if (failed)
         return false;
@@ -569,6 +572,8 @@ bool render_stream_finish(render_stream *s, const char *sheet_path)
             return false;
         }
     }
+    /* as the synchronous path counts: every file, the sheet included */
+    s->seconds = s->start > 0.0 ? cli_now() - s->start : 0.0;
     return true;
 }
 
@@ -633,21 +638,29 @@ bool render_stream_create(const render_options *o, mvr_context *ctx, mvr_rendere
     s->float_target = o->format == MVR_COLOR_FORMAT_RGBA16F || o->format == MVR_COLOR_FORMAT_RGBA32F;
     s->read_format = s->float_target ? MVR_READBACK_RGBA32F : MVR_READBACK_RGBA8;
     s->layer_bytes = (size_t)s->w * s->ss * s->h * s->ss * (s->float_target ? 16 : 4);
-    /* a chunk: one multiview pass, fewer views where its layers would take
-     * more than SLOT_BUDGET to read back (supersampled float layers) */
+    /* a chunk: one multiview pass; when the views take more than one, fewer
+     * views where its layers would take more than SLOT_BUDGET to read back
+     * (supersampled float layers), as the ring holds several */
     int max_views = mvr_context_caps(ctx)->limits.max_views_ovr;
     s->chunk = max_views > 1 ? (uint32_t)max_views : 1u;
     if (s->chunk > VIEW_BLOCK)
         s->chunk = VIEW_BLOCK;
-    while (s->chunk > 1 && s->layer_bytes * s->chunk > SLOT_BUDGET)
-        s->chunk--;
-    if (s->chunk > views)
+    if (s->chunk >= views)
         s->chunk = views;
+    while (s->chunk > 1 && s->layer_bytes * s->chunk > SLOT_BUDGET && s->chunk < views)
+        s->chunk--;
     s->total_images = (uint64_t)views * frames;
     bool ok = (s->culled = calloc(views, sizeof *s->culled)) != NULL;
-    s->queue_cap = (RING + SPARE_BUFFERS) * s->chunk;
+    /* no more targets and buffers than the run has chunks */
+    uint64_t chunks = 0;
+    for (uint32_t base = 0; base < views; base += chunk_count(s, base))
+        chunks++;
+    chunks *= frames;
+    s->ring_count = chunks < RING ? (uint32_t)chunks : RING;
+    s->buffer_count = chunks < RING + SPARE_BUFFERS ? (uint32_t)chunks : RING + SPARE_BUFFERS;
+    s->queue_cap = s->buffer_count * s->chunk;
     ok = ok && (s->queue = calloc(s->queue_cap, sizeof *s->queue)) != NULL;
-    for (int i = 0; ok && i < RING + SPARE_BUFFERS; ++i) {
+    for (uint32_t i = 0; ok && i < s->buffer_count; ++i) {
         ok = (s->buffers[i].pixels = malloc(s->layer_bytes * s->chunk)) != NULL;
         s->buffers[i].next = s->free_buffers;
         s->free_buffers = &s->buffers[i];
@@ -660,7 +673,7 @@ bool render_stream_create(const render_options *o, mvr_context *ctx, mvr_rendere
     }
     mvr_target_desc td = {.width = s->w * s->ss, .height = s->h * s->ss, .layers = s->chunk,
                           .color_format = o->format, .samples = o->msaa, .anti_aliasing = o->aa};
-    for (int i = 0; i < RING; ++i)
+    for (uint32_t i = 0; i < s->ring_count; ++i)
         if (mvr_target_create(r, &td, &s->ring[i].target) != MVR_OK ||
             mvr_readback_create(r, &s->ring[i].readback) != MVR_OK) {
             fprintf(stderr, "mvr render: %s\n", mvr_renderer_last_error(r));
@@ -716,7 +729,7 @@ void render_stream_get_info(const render_stream *s, render_readback_info *out)
     memset(out, 0, sizeof *out);
     out->mode = RENDER_READBACK_STREAM;
     out->chunk = s->chunk;
-    out->ring = RING;
+    out->ring = s->ring_count;
     out->encoders = s->encoder_count;
     out->sheet_factor = s->sheet.factor;
     out->exposure_metered = s->metered;

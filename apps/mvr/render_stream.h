@@ -3,8 +3,8 @@
  * small ring while the previous chunk's layers come back through an
  * asynchronous readback (pixel buffer objects and a fence), and encoded
  * into files on worker threads. Memory is bounded by the ring, the few
- * chunk buffers the encoders work from and the contact sheet (at most
- * 4096 x 4096), whatever the number of views. The images are the
+ * chunk buffers the encoders work from and the contact sheet (at most 4
+ * megapixels, 4096 a side), whatever the number of views. The images are the
  * synchronous path's, byte for byte (docs/guide.md says where a render of
  * every view at once may differ: shadow cascades, dithering, per-view auto
  * exposure; a shared auto-exposure is metered over every view first).

@@ -92,7 +92,8 @@ render_into(anim_sync ${ANIM} --readback sync)
 render_into(anim ${ANIM})
 same_files(anim anim_sync 17)
 
-# wide views: the sheet's tiles shrink to keep it within 4096 pixels (6 columns of 1024 would be 6164)
+# wide views: the sheet's tiles shrink to keep it within 4096 pixels a side (6 columns of 1024 would be
+# 6164) and 4 megapixels
 run(rc so se render ${FILE} --layout ring --views 30 --size 1024x32 --out ${OUT}/wide)
 expect("30 wide views exit 0 (got ${rc}): ${se}" rc EQUAL 0)
 expect("the summary says the tiles are halved: ${so}" so MATCHES "tiles at 1/2 of the views' size")
@@ -101,6 +102,18 @@ if(EXISTS ${OUT}/wide/contact_sheet.png)
   string(SUBSTRING "${ihdr}" 0 8 w_hex)
   math(EXPR sheet_w "0x${w_hex}")
   expect("the sheet is 6 tiles of 512 and 5 gaps of 4 wide (got ${sheet_w})" sheet_w EQUAL 3092)
+endif()
+
+# many views: 70 tiles of 256 would make 4.8 megapixels (9 x 8 tiles), so they are halved
+run(rc so se render --demo cube --views 70 --size 256x256 --out ${OUT}/area)
+expect("70 views of 256 exit 0 (got ${rc}): ${se}" rc EQUAL 0 AND so MATCHES "tiles at 1/2 of the views' size")
+if(EXISTS ${OUT}/area/contact_sheet.png)
+  file(READ ${OUT}/area/contact_sheet.png ihdr OFFSET 16 LIMIT 8 HEX)
+  string(SUBSTRING "${ihdr}" 0 8 w_hex)
+  string(SUBSTRING "${ihdr}" 8 8 h_hex)
+  math(EXPR sheet_w "0x${w_hex}")
+  math(EXPR sheet_h "0x${h_hex}")
+  expect("70 views: a sheet of 9 x 8 tiles of 128 (got ${sheet_w} x ${sheet_h})" sheet_w EQUAL 1184 AND sheet_h EQUAL 1052)
 endif()
 
 # past 99 views the numbers grow a digit
