@@ -258,4 +258,45 @@ static void bad_arguments_are_refused(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
-MVR_TEST_MAIN(TEST(async_equals_read_layer), TEST(read_sees_the_frame_it_began_on), TEST(bad_arguments_are_refused))
+/* The context destroyed under a pending read: the readback's calls fail
+ * (its renderer's context is gone), and destroying it and the renderer
+ * afterwards frees everything (ASan). */
+static void readback_outlives_its_context(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    mvr_scene *s = NULL;
+    mvr_view_set *vs = NULL;
+    mvr_demo_desc dd = {.views = 2, .width = W, .height = H};
+    CHECK(t, mvr_demo_create("stereo", &dd, &s, &vs, NULL) == MVR_OK);
+    mvr_renderer_desc rd = {.context = ctx};
+    mvr_renderer *r = NULL;
+    mvr_target *tg = NULL;
+    mvr_readback *rb = NULL;
+    mvr_target_desc td = {.width = W, .height = H, .layers = 2};
+    mvr_read_desc d = {0};
+    bool ok = s && mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &tg) == MVR_OK &&
+              mvr_readback_create(r, &rb) == MVR_OK && render_frame(t, r, s, vs, tg, 0) &&
+              mvr_renderer_begin_read(r, tg, &d, rb) == MVR_OK;
+    CHECK(t, ok);
+    mvr_context_destroy(ctx);
+    if (ok) {
+        uint8_t px[W * H * 4 * 2];
+        bool ready = true;
+        failed_with(t, r, mvr_renderer_finish_read(r, rb, px, sizeof px), "released with its renderer", "finish");
+        failed_with(t, r, mvr_renderer_read_ready(r, rb, &ready), "released with its renderer", "ready");
+        CHECK_EQ_INT(t, mvr_readback_size(rb), 0);
+        mvr_readback *late = NULL;
+        failed_with(t, r, mvr_readback_create(r, &late), "context was destroyed", "create after");
+        CHECK(t, late == NULL);
+    }
+    mvr_readback_destroy(rb);
+    mvr_target_destroy(tg);
+    mvr_renderer_destroy(r);
+    mvr_view_set_destroy(vs);
+    mvr_scene_destroy(s);
+}
+
+MVR_TEST_MAIN(TEST(async_equals_read_layer), TEST(read_sees_the_frame_it_began_on), TEST(bad_arguments_are_refused),
+              TEST(readback_outlives_its_context))
