@@ -289,7 +289,8 @@ mvr_frame_stats = _struct("mvr_frame_stats", [
     ("joints", c_uint32), ("skinning_path", c_int), ("morph_targets_active", c_uint32),
     ("animation_upload_bytes", c_uint64), ("preskin_passes", c_uint32), ("transmission_copies", c_uint32),
     ("transmission_bytes", c_uint64), ("images_compressed", c_uint32), ("images_unsampleable", c_uint32),
-    ("outputs", c_uint32), ("output_blend_passes", c_uint32)])
+    ("outputs", c_uint32), ("output_blend_passes", c_uint32), ("exposure_measured_views", c_uint32),
+    ("exposure_log2_luminance", c_double)])
 
 # mvr_gltf.h
 mvr_gltf_file_access = _struct("mvr_gltf_file_access", [

@@ -190,7 +190,8 @@ static void layout_structs(void)
     F(mvr_frame_stats, morph_targets_active); F(mvr_frame_stats, animation_upload_bytes);
     F(mvr_frame_stats, preskin_passes); F(mvr_frame_stats, transmission_copies); F(mvr_frame_stats, transmission_bytes);
     F(mvr_frame_stats, images_compressed); F(mvr_frame_stats, images_unsampleable); F(mvr_frame_stats, outputs);
-    F(mvr_frame_stats, output_blend_passes);
+    F(mvr_frame_stats, output_blend_passes); F(mvr_frame_stats, exposure_measured_views);
+    F(mvr_frame_stats, exposure_log2_luminance);
     S(mvr_gltf_file_access); F(mvr_gltf_file_access, allowed_root); F(mvr_gltf_file_access, read);
     F(mvr_gltf_file_access, release); F(mvr_gltf_file_access, user_data);
     S(mvr_gltf_options); F(mvr_gltf_options, scene); F(mvr_gltf_options, base_dir); F(mvr_gltf_options, max_file_bytes);
