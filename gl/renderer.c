@@ -208,11 +208,11 @@ mvr_result mvr_renderer_overrides_from_env(mvr_renderer_overrides *out, mvr_erro
     static const char *const features[] = {"inert"};
     static const char *const skinning_paths[] = {"auto", "vertex", "preskin"};
     enum { VIEW_PATH, MATERIAL_PATH, DEPTH, CULLING, INSTANCING, MSAA_MULTIVIEW, FORCE_FEATURES, UBO_ALIGNMENT,
-           SKINNING_PATH, DISABLE_FEATURES, COUNT };
+           SKINNING_PATH, DISABLE_FEATURES, TUNING, COUNT };
     static const char *const names[COUNT] = {"MVR_VIEW_PATH",      "MVR_MATERIAL_PATH", "MVR_DEPTH",
                                              "MVR_CULLING",        "MVR_INSTANCING",    "MVR_MSAA_MULTIVIEW",
                                              "MVR_FORCE_FEATURES", "MVR_UBO_ALIGNMENT", "MVR_SKINNING_PATH",
-                                             "MVR_DISABLE_FEATURES"};
+                                             "MVR_DISABLE_FEATURES", "MVR_TUNING"};
     mvr_renderer_overrides o;
     memset(&o, 0, sizeof o);
     for (int v = 0; v < COUNT; ++v) {
@@ -237,9 +237,12 @@ mvr_result mvr_renderer_overrides_from_env(mvr_renderer_overrides *out, mvr_erro
         case CULLING:
         case INSTANCING:
         case MSAA_MULTIVIEW:
+        case TUNING:
             res = parse_choice(names[v], value, switches, 2, &k, error);
-            *(v == CULLING ? &o.culling : v == INSTANCING ? &o.instancing : &o.msaa_multiview) =
-                (mvr_override_switch)k;
+            *(v == CULLING      ? &o.culling
+              : v == INSTANCING ? &o.instancing
+              : v == TUNING     ? &o.tuning
+                                : &o.msaa_multiview) = (mvr_override_switch)k;
             break;
         case SKINNING_PATH:
             res = parse_choice(names[v], value, skinning_paths, 3, &k, error);
@@ -290,6 +293,8 @@ static mvr_result check_overrides(const mvr_renderer_overrides *o, mvr_error *er
         field = "instancing", value = (int)o->instancing;
     else if ((unsigned)o->msaa_multiview > MVR_OVERRIDE_ON)
         field = "msaa_multiview", value = (int)o->msaa_multiview;
+    else if ((unsigned)o->tuning > MVR_OVERRIDE_ON)
+        field = "tuning", value = (int)o->tuning;
     if (field)
         return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
                              "mvr_renderer_create: overrides.%s %d is out of its enum's range", field, value);
@@ -344,6 +349,9 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
     if (depth_mode == MVR_DEPTH_MODE_REVERSED_Z && !clip_control)
         return mvr_error_set(error, MVR_ERROR_UNSUPPORTED,
                              "mvr_renderer_create: depth_mode reversed_z needs GL_EXT_clip_control (or GL 4.5)");
+    if ((unsigned)desc->tuning.mode > MVR_TUNING_OFF)
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_renderer_create: tuning.mode %d is not an mvr_tuning",
+                             (int)desc->tuning.mode);
     if (!mvr_skinning_path_name(desc->skinning_path))
         return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
                              "mvr_renderer_create: skinning_path %d is not an mvr_skinning_path",
@@ -373,6 +381,8 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
     r->force_inert_features = ov->force_inert_features;
     r->frame.disabled_features = ov->disable_features;
     r->culling = ov->culling ? ov->culling == MVR_OVERRIDE_ON : !desc->disable_culling;
+    r->tuning = ov->tuning ? ov->tuning == MVR_OVERRIDE_ON : desc->tuning.mode != MVR_TUNING_OFF;
+    r->tuning_desc = desc->tuning;
     r->msaa_multiview_off = ov->msaa_multiview == MVR_OVERRIDE_OFF;
     r->blend_policy = desc->transparency_order;
     r->oversized_images = desc->oversized_images == MVR_OVERSIZED_IMAGE_DEFAULT ? MVR_OVERSIZED_IMAGE_DOWNSCALE
@@ -789,8 +799,12 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
      * cannot be attached with multiview on some drivers (bugs struct) */
     bool level_ok = t_level_ok(r, target);
     mvr_view_path path = r->requested_path;
-    if (path == MVR_VIEW_PATH_AUTO)
-        path = auto_view_path(r, level_ok);
+    /* auto: the caps rule's choice is the prior the tuner measures around
+     * (below, with the GL: it may wait for the last frame's timer) */
+    bool tune = path == MVR_VIEW_PATH_AUTO;
+    mvr_view_path prior = tune ? auto_view_path(r, level_ok) : path;
+    if (tune)
+        path = prior;
     if (path == MVR_VIEW_PATH_MULTIVIEW && !multiview_usable(r))
         return mvr_renderer_fail(r, MVR_ERROR_UNSUPPORTED,
                                  "mvr_renderer_render: the multiview path was forced but %s has no "
@@ -806,6 +820,8 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
     mvr_result res = mvr_renderer_begin(r, "mvr_renderer_render");
     if (res != MVR_OK)
         return res;
+    if (tune)
+        path = mvr_tuning_view_path(r, views, target, prior, multiview_usable(r) && level_ok);
     double cpu_start = thread_cpu_ms();
     /* the application or another renderer may have changed GL state since */
     mvr_state_invalidate(&r->state);
@@ -859,6 +875,7 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
     st->images_compressed = r->gpu.compressed_count;
     st->images_unsampleable = r->gpu.unsampleable_count;
     st->cpu_ms = thread_cpu_ms() - cpu_start;
+    mvr_tuning_end_frame(r, prior, res == MVR_OK);
     return res;
 }
 

@@ -10,6 +10,7 @@
 #include "program.h"
 #include "shadow_plan.h"
 #include "state_cache.h"
+#include "tuner.h"
 #include "view_set.h"
 
 /* gl/transmission.c: the opaque views transmissive draws sample. */
@@ -258,6 +259,12 @@ struct mvr_renderer {
     bool culling;
     mvr_transparency_order blend_policy;
     mvr_view_path path_ran;      /* set by the frame: the path it took (0 before) */
+    /* auto's online tuner (gl/tuning.c): on or off, the test hook, and the
+     * frame whose cost is still to be recorded */
+    bool tuning;
+    mvr_tuning_desc tuning_desc;
+    mvr_tuner view_tuner;
+    struct { bool pending; uint32_t candidate; double cpu_ms; } tuning_frame;
     void *blend_order;           /* per-view order of the blend list (scratch) */
     size_t blend_order_cap;
     mvr_visibility vis;          /* per-view visibility of the frame's draws */
@@ -333,6 +340,12 @@ mvr_result mvr_renderer_program(mvr_renderer *r, const mvr_shader_variant *v, mv
 /* gpu_scene.c: uploads what changed in the scene (geometry, textures, materials). */
 mvr_result mvr_gpu_scene_sync(mvr_renderer *r, const mvr_scene *scene);
 void mvr_gpu_scene_release(mvr_renderer *r);
+
+/* tuning.c: the view path `auto` runs this frame (prior: the caps rule's;
+ * the tuner measures around it), and after the frame what to measure. */
+mvr_view_path mvr_tuning_view_path(mvr_renderer *r, const mvr_view_set *views, const mvr_target *t,
+                                   mvr_view_path prior, bool multiview_ok);
+void mvr_tuning_end_frame(mvr_renderer *r, mvr_view_path ran, bool ok);
 
 /* targets.c: a framebuffer for layers [base, base + count) (multiview when
  * count > 0) or one layer (count = 0), created on first use: the one views

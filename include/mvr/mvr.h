@@ -1069,6 +1069,32 @@ typedef enum mvr_skinning_path_override {
     MVR_SKINNING_PATH_OVERRIDE_PRESKIN
 } mvr_skinning_path_override;
 
+/* The online tuner behind `auto` (the view path): the first frames after a
+ * change of inputs (view count, target size, the scene's draw count by more
+ * than a factor of 2) run the candidates interleaved, each once to warm up
+ * (program compiles) and then 3 times, measured (the frame's cost: the larger
+ * of its submitting-thread CPU time and its GPU time from timestamp queries,
+ * taken outside multiview framebuffers; CPU time alone where the GL has no
+ * timer); the path with the lower median is kept unless it beats the caps
+ * rule's choice (the prior, which runs first) by less than 3%. 8 frames per
+ * change, at most 4 of them on the other path; settled frames are not
+ * measured. Every candidate gives the same pixels (tested). stats.auto_choice
+ * says what was measured and why the path runs. */
+typedef enum mvr_tuning {
+    MVR_TUNING_DEFAULT = 0,      /* on */
+    MVR_TUNING_ON,
+    MVR_TUNING_OFF               /* auto is the caps rule alone (the prior) */
+} mvr_tuning;
+
+typedef struct mvr_frame_stats mvr_frame_stats;
+typedef struct mvr_tuning_desc {
+    mvr_tuning mode;
+    /* Tests and experiments: the cost (ms) of each measured frame instead of
+     * the timers (path: the candidate it ran). NULL = the timers. */
+    double (*frame_cost)(void *user, mvr_view_path path, const mvr_frame_stats *stats);
+    void *user;
+} mvr_tuning_desc;
+
 typedef struct mvr_renderer_overrides {
     /* MVR_VIEW_PATH=auto|multiview|loop: the view path, whatever view_path asks */
     mvr_view_path_override view_path;
@@ -1107,6 +1133,8 @@ typedef struct mvr_renderer_overrides {
      * 1u << mvr_image_format; RGBA8's bit is ignored): tests of the
      * neutral-value fallback on a GL that has the formats. 0 = none */
     uint32_t disable_image_formats;
+    /* MVR_TUNING=on|off: the online tuner behind auto (mvr_tuning_desc) */
+    mvr_override_switch tuning;
 } mvr_renderer_overrides;
 
 /* The one place mvr reads the environment, and only when an application
@@ -1142,6 +1170,7 @@ typedef struct mvr_renderer_desc {
     mvr_oversized_image oversized_images;
     mvr_renderer_overrides overrides; /* 0 = none; win over the fields above */
     mvr_skinning_path skinning_path;
+    mvr_tuning_desc tuning;      /* what `auto` measures (view path AUTO only) */
 } mvr_renderer_desc;
 
 /*
@@ -1409,7 +1438,27 @@ size_t mvr_output_pixel_size(mvr_output output);
 mvr_result mvr_renderer_read_output(mvr_renderer *renderer, mvr_target *target, uint32_t layer, mvr_output output,
                                     void *dst, size_t size);
 
-typedef struct mvr_frame_stats {
+/* What `auto` measured and why the path runs (mvr_tuning_desc). */
+typedef enum mvr_auto_state {
+    MVR_AUTO_NONE = 0,           /* the path was asked for (not auto), or only one works here */
+    MVR_AUTO_RULE,               /* tuning off: the caps rule */
+    MVR_AUTO_TUNING,             /* this frame is one of the measured ones */
+    MVR_AUTO_SETTLED             /* the measured choice */
+} mvr_auto_state;
+const char *mvr_auto_state_name(mvr_auto_state state);
+
+typedef struct mvr_auto_choice {
+    mvr_auto_state state;
+    mvr_view_path prior;         /* the caps rule's choice */
+    mvr_view_path chosen;        /* what runs once settled (the prior until then) */
+    mvr_view_path candidates[2]; /* multiview, loop */
+    uint32_t samples[2];         /* measured frames of each */
+    double cost_ms[2];           /* their medians (settled), or the latest (tuning); < 0: none */
+    double margin;               /* settled: the chosen path's saving over the prior's median (0..1) */
+    uint32_t retunes;            /* input changes that started the measurement again */
+} mvr_auto_choice;
+
+struct mvr_frame_stats {
     mvr_view_path view_path;     /* the path that ran */
     uint32_t views;              /* enabled views rendered */
     uint32_t passes;             /* framebuffer passes (multiview chunks or loop views) */
@@ -1506,7 +1555,8 @@ typedef struct mvr_frame_stats {
      * meter them all as one render would. 0 without auto-exposure. */
     uint32_t exposure_measured_views;
     double exposure_log2_luminance;
-} mvr_frame_stats;
+    mvr_auto_choice auto_choice; /* the view path's `auto` */
+};
 
 /* The supersampling resolve: box-filters linear RGBA float pixels (width x
  * height, rows bottom-up or top-down alike) by an integer factor into dst

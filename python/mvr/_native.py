@@ -252,12 +252,13 @@ mvr_renderer_overrides = _struct("mvr_renderer_overrides", [
     ("view_path", c_int), ("material_path", c_int), ("depth_mode", c_int), ("culling", c_int),
     ("instancing", c_int), ("msaa_multiview", c_int), ("force_inert_features", c_bool),
     ("ubo_alignment", c_uint32), ("skinning_path", c_int), ("disable_features", c_uint32),
-    ("disable_image_formats", c_uint32)])
+    ("disable_image_formats", c_uint32), ("tuning", c_int)])
+mvr_tuning_desc = _struct("mvr_tuning_desc", [("mode", c_int), ("frame_cost", c_void_p), ("user", c_void_p)])
 mvr_renderer_desc = _struct("mvr_renderer_desc", [
     ("context", c_void_p), ("view_path", c_int), ("logger", mvr_logger), ("material_path", c_int),
     ("disable_culling", c_bool), ("program_cache_dir", c_char_p), ("disable_instancing", c_bool),
     ("depth_mode", c_int), ("transparency_order", c_int), ("oversized_images", c_int),
-    ("overrides", mvr_renderer_overrides), ("skinning_path", c_int)])
+    ("overrides", mvr_renderer_overrides), ("skinning_path", c_int), ("tuning", mvr_tuning_desc)])
 mvr_target_desc = _struct("mvr_target_desc", [
     ("width", c_uint32), ("height", c_uint32), ("layers", c_uint32), ("color_format", c_int),
     ("external_color_texture", c_uint32), ("external_level", c_uint32), ("external_base_layer", c_uint32),
@@ -272,6 +273,9 @@ mvr_render_desc = _struct("mvr_render_desc", [
     ("exposure_per_view", c_bool), ("dither", c_bool), ("environment", c_void_p), ("background", c_int),
     ("background_blur", c_float), ("environment_samples", c_uint32), ("normal_space", c_int),
     ("output_alpha_cutoff", c_float)])
+mvr_auto_choice = _struct("mvr_auto_choice", [
+    ("state", c_int), ("prior", c_int), ("chosen", c_int), ("candidates", c_int * 2), ("samples", c_uint32 * 2),
+    ("cost_ms", c_double * 2), ("margin", c_double), ("retunes", c_uint32)])
 mvr_frame_stats = _struct("mvr_frame_stats", [
     ("view_path", c_int), ("views", c_uint32), ("passes", c_uint32), ("multiview_passes", c_uint32),
     ("draws", c_uint32), ("draw_calls", c_uint32), ("instanced_draw_calls", c_uint32), ("program_binds", c_uint32),
@@ -290,7 +294,7 @@ mvr_frame_stats = _struct("mvr_frame_stats", [
     ("animation_upload_bytes", c_uint64), ("preskin_passes", c_uint32), ("transmission_copies", c_uint32),
     ("transmission_bytes", c_uint64), ("images_compressed", c_uint32), ("images_unsampleable", c_uint32),
     ("outputs", c_uint32), ("output_blend_passes", c_uint32), ("exposure_measured_views", c_uint32),
-    ("exposure_log2_luminance", c_double)])
+    ("exposure_log2_luminance", c_double), ("auto_choice", mvr_auto_choice)])
 
 # mvr_gltf.h
 mvr_gltf_file_access = _struct("mvr_gltf_file_access", [

@@ -152,10 +152,16 @@ static void layout_structs(void)
     F(mvr_renderer_overrides, msaa_multiview); F(mvr_renderer_overrides, force_inert_features);
     F(mvr_renderer_overrides, ubo_alignment); F(mvr_renderer_overrides, skinning_path);
     F(mvr_renderer_overrides, disable_features); F(mvr_renderer_overrides, disable_image_formats);
+    F(mvr_renderer_overrides, tuning);
+    S(mvr_tuning_desc); F(mvr_tuning_desc, mode); F(mvr_tuning_desc, frame_cost); F(mvr_tuning_desc, user);
+    S(mvr_auto_choice); F(mvr_auto_choice, state); F(mvr_auto_choice, prior); F(mvr_auto_choice, chosen);
+    F(mvr_auto_choice, candidates); F(mvr_auto_choice, samples); F(mvr_auto_choice, cost_ms);
+    F(mvr_auto_choice, margin); F(mvr_auto_choice, retunes);
     S(mvr_renderer_desc); F(mvr_renderer_desc, context); F(mvr_renderer_desc, view_path); F(mvr_renderer_desc, logger);
     F(mvr_renderer_desc, material_path); F(mvr_renderer_desc, disable_culling); F(mvr_renderer_desc, program_cache_dir);
     F(mvr_renderer_desc, disable_instancing); F(mvr_renderer_desc, depth_mode); F(mvr_renderer_desc, transparency_order);
     F(mvr_renderer_desc, oversized_images); F(mvr_renderer_desc, overrides); F(mvr_renderer_desc, skinning_path);
+    F(mvr_renderer_desc, tuning);
     S(mvr_target_desc); F(mvr_target_desc, width); F(mvr_target_desc, height); F(mvr_target_desc, layers);
     F(mvr_target_desc, color_format); F(mvr_target_desc, external_color_texture); F(mvr_target_desc, external_level);
     F(mvr_target_desc, external_base_layer); F(mvr_target_desc, samples); F(mvr_target_desc, supersample);
@@ -191,7 +197,7 @@ static void layout_structs(void)
     F(mvr_frame_stats, preskin_passes); F(mvr_frame_stats, transmission_copies); F(mvr_frame_stats, transmission_bytes);
     F(mvr_frame_stats, images_compressed); F(mvr_frame_stats, images_unsampleable); F(mvr_frame_stats, outputs);
     F(mvr_frame_stats, output_blend_passes); F(mvr_frame_stats, exposure_measured_views);
-    F(mvr_frame_stats, exposure_log2_luminance);
+    F(mvr_frame_stats, exposure_log2_luminance); F(mvr_frame_stats, auto_choice);
     S(mvr_gltf_file_access); F(mvr_gltf_file_access, allowed_root); F(mvr_gltf_file_access, read);
     F(mvr_gltf_file_access, release); F(mvr_gltf_file_access, user_data);
     S(mvr_gltf_options); F(mvr_gltf_options, scene); F(mvr_gltf_options, base_dir); F(mvr_gltf_options, max_file_bytes);

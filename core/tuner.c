@@ -1,0 +1,104 @@
+/* The online tuner behind `auto` (tuner.h). */
+#include "tuner.h"
+
+#include <string.h>
+
+static bool key_changed(const mvr_tuner_key *a, const mvr_tuner_key *b)
+{
+    if (a->views != b->views || a->width != b->width || a->height != b->height)
+        return true;
+    /* the scene: a factor of 2 in its draws (a few objects more is the same
+     * workload); 0 is not known yet (the first frame) */
+    if (!a->draws || !b->draws)
+        return false;
+    uint64_t x = a->draws ? a->draws : 1, y = b->draws ? b->draws : 1;
+    return x > 2 * y || y > 2 * x;
+}
+
+static double median(const double *v, uint32_t n)
+{
+    double s[MVR_TUNER_SAMPLES];
+    memcpy(s, v, n * sizeof *v);
+    for (uint32_t i = 1; i < n; ++i) /* insertion sort: n is 3 */
+        for (uint32_t j = i; j > 0 && s[j] < s[j - 1]; --j) {
+            double tmp = s[j];
+            s[j] = s[j - 1];
+            s[j - 1] = tmp;
+        }
+    return n % 2 ? s[n / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
+}
+
+static void settle(mvr_tuner *t)
+{
+    for (uint32_t c = 0; c < MVR_TUNER_CANDIDATES; ++c)
+        t->median[c] = median(t->costs[c], t->samples[c]);
+    uint32_t best = t->prior;
+    for (uint32_t c = 0; c < MVR_TUNER_CANDIDATES; ++c)
+        if (t->median[c] < t->median[best])
+            best = c;
+    double prior = t->median[t->prior];
+    double margin = prior > 0.0 ? 1.0 - t->median[best] / prior : 0.0;
+    /* within the noise the prior stays: switching must pay */
+    t->chosen = margin >= MVR_TUNER_MARGIN ? best : t->prior;
+    t->margin = t->chosen == t->prior ? 0.0 : margin;
+    t->phase = MVR_TUNER_SETTLED;
+}
+
+uint32_t mvr_tuner_next(mvr_tuner *t, mvr_tuner_key key, uint32_t prior, bool *measure)
+{
+    *measure = false;
+    if (prior >= MVR_TUNER_CANDIDATES)
+        prior = 0;
+    if (t->phase == MVR_TUNER_IDLE || key_changed(&t->key, &key) || prior != t->prior) {
+        uint32_t retunes = t->retunes + (t->phase != MVR_TUNER_IDLE);
+        memset(t, 0, sizeof *t);
+        t->retunes = retunes;
+        t->phase = MVR_TUNER_TUNING;
+        t->key = key;
+        t->prior = t->chosen = prior;
+    }
+    if (!t->key.draws)
+        t->key.draws = key.draws;
+    if (t->phase == MVR_TUNER_SETTLED)
+        return t->chosen;
+    /* warm-ups: the prior first, then each other candidate once */
+    for (uint32_t k = 0; k < MVR_TUNER_CANDIDATES; ++k) {
+        uint32_t c = (prior + k) % MVR_TUNER_CANDIDATES;
+        if (t->issued[c] == 0) {
+            t->issued[c]++;
+            return c;
+        }
+    }
+    /* then alternate: the candidate with the fewest frames run, the prior on a tie */
+    uint32_t next = prior;
+    for (uint32_t c = 0; c < MVR_TUNER_CANDIDATES; ++c)
+        if (t->issued[c] < t->issued[next])
+            next = c;
+    if (t->issued[next] > MVR_TUNER_SAMPLES) {
+        /* every sample issued but some not recorded (a cost never came): settle on what there is */
+        bool all = true;
+        for (uint32_t c = 0; c < MVR_TUNER_CANDIDATES; ++c)
+            all = all && t->samples[c] > 0;
+        if (all)
+            settle(t);
+        else
+            t->phase = MVR_TUNER_SETTLED; /* nothing measurable: the prior */
+        return t->chosen;
+    }
+    t->issued[next]++;
+    *measure = true;
+    return next;
+}
+
+void mvr_tuner_record(mvr_tuner *t, uint32_t c, double cost_ms)
+{
+    if (t->phase != MVR_TUNER_TUNING || c >= MVR_TUNER_CANDIDATES || !(cost_ms >= 0.0) ||
+        t->samples[c] >= MVR_TUNER_SAMPLES)
+        return;
+    t->costs[c][t->samples[c]++] = cost_ms;
+    bool done = true;
+    for (uint32_t k = 0; k < MVR_TUNER_CANDIDATES; ++k)
+        done = done && t->samples[k] == MVR_TUNER_SAMPLES;
+    if (done)
+        settle(t);
+}

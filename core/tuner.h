@@ -1,0 +1,60 @@
+/*
+ * The online tuner behind `auto` (issue 22): for a decision with several
+ * correct paths (today the view path: multiview or loop), it runs the
+ * candidates on the real frames, interleaved, and settles on the cheapest.
+ * Backend-free: the GL side says which frame ran which candidate at what
+ * cost; the tuner says which candidate the next frame runs.
+ *
+ * Schedule, from a change of inputs (the key): the prior (the caps rule's
+ * first guess) runs first, so the first frame is never slower than the rule;
+ * each candidate's first frame is a warm-up (it compiles its programs, ~130 ms
+ * per variant on llvmpipe) and is not counted; then the candidates alternate
+ * until each has MVR_TUNER_SAMPLES costs, and the one with the lowest median
+ * wins unless it beats the prior by less than MVR_TUNER_MARGIN (noise: the
+ * prior stays). Tuning costs 2 + 2 x MVR_TUNER_SAMPLES frames, at most half of
+ * them on a candidate other than the prior; after that no frame is measured.
+ * A key change (view count, target size, or the draw count by more than a
+ * factor of 2; a draw count of 0 is "not known yet" and takes the next one)
+ * starts again.
+ */
+#ifndef MVR_TUNER_H
+#define MVR_TUNER_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#define MVR_TUNER_CANDIDATES 2
+#define MVR_TUNER_SAMPLES 3
+#define MVR_TUNER_MARGIN 0.03
+
+typedef enum mvr_tuner_phase {
+    MVR_TUNER_IDLE = 0,          /* never keyed */
+    MVR_TUNER_TUNING,
+    MVR_TUNER_SETTLED
+} mvr_tuner_phase;
+
+typedef struct mvr_tuner_key {
+    uint32_t views, width, height, draws;
+} mvr_tuner_key;
+
+typedef struct mvr_tuner {
+    mvr_tuner_phase phase;
+    mvr_tuner_key key;
+    uint32_t prior;              /* the caps rule's candidate */
+    uint32_t chosen;             /* what runs once settled (the prior while tuning) */
+    uint32_t issued[MVR_TUNER_CANDIDATES];   /* frames run on each since the key changed */
+    uint32_t samples[MVR_TUNER_CANDIDATES];  /* costs recorded (warm-ups not counted) */
+    double costs[MVR_TUNER_CANDIDATES][MVR_TUNER_SAMPLES];
+    double median[MVR_TUNER_CANDIDATES];     /* once settled */
+    double margin;               /* settled: 1 - chosen's median / prior's */
+    uint32_t retunes;            /* key changes that restarted tuning */
+} mvr_tuner;
+
+/* The candidate the next frame runs, for these inputs and this prior; starts
+ * tuning again when the key changed materially. *measure: record the frame's
+ * cost (mvr_tuner_record) once known. */
+uint32_t mvr_tuner_next(mvr_tuner *t, mvr_tuner_key key, uint32_t prior, bool *measure);
+/* The cost (ms) of a frame that ran candidate c and was to be measured. */
+void mvr_tuner_record(mvr_tuner *t, uint32_t c, double cost_ms);
+
+#endif

@@ -1,0 +1,124 @@
+/* core: the online tuner behind auto (core/tuner.h), without GL: its
+ * schedule (the prior first, warm-ups not counted, interleaved samples), the
+ * choice (the cheaper median, the prior within the 3% margin), and when it
+ * measures again. */
+#include <string.h>
+
+#include "mvr_test.h"
+#include "tuner.h"
+
+/* Runs frames until settled with fixed costs per candidate; returns the frames run. */
+static uint32_t run(mvr_tuner *t, mvr_tuner_key key, uint32_t prior, const double cost[2], uint32_t ran[2])
+{
+    uint32_t frames = 0;
+    ran[0] = ran[1] = 0;
+    while (frames < 100) {
+        bool measure = false;
+        uint32_t c = mvr_tuner_next(t, key, prior, &measure);
+        if (t->phase == MVR_TUNER_SETTLED && !measure)
+            break;
+        ran[c]++;
+        frames++;
+        if (measure)
+            mvr_tuner_record(t, c, cost[c]);
+    }
+    return frames;
+}
+
+static void prior_first_then_interleaved(mvr_test_state *t)
+{
+    mvr_tuner tu;
+    memset(&tu, 0, sizeof tu);
+    mvr_tuner_key key = {6, 256, 256, 100};
+    bool measure = true;
+    /* the prior (1) first, unmeasured; the other's warm-up, unmeasured */
+    CHECK(t, mvr_tuner_next(&tu, key, 1, &measure) == 1 && !measure);
+    CHECK(t, mvr_tuner_next(&tu, key, 1, &measure) == 0 && !measure);
+    /* then alternating, measured, the prior on a tie */
+    uint32_t seq[6];
+    for (int i = 0; i < 6; ++i) {
+        seq[i] = mvr_tuner_next(&tu, key, 1, &measure);
+        CHECK(t, measure);
+        mvr_tuner_record(&tu, seq[i], seq[i] == 0 ? 5.0 : 10.0);
+    }
+    CHECK(t, seq[0] == 1 && seq[1] == 0 && seq[2] == 1 && seq[3] == 0 && seq[4] == 1 && seq[5] == 0);
+    CHECK(t, tu.phase == MVR_TUNER_SETTLED && tu.chosen == 0);
+    CHECK(t, tu.median[0] == 5.0 && tu.median[1] == 10.0 && tu.margin == 0.5);
+    /* settled: the choice, unmeasured */
+    CHECK(t, mvr_tuner_next(&tu, key, 1, &measure) == 0 && !measure);
+}
+
+static void the_margin_keeps_the_prior(mvr_test_state *t)
+{
+    mvr_tuner tu;
+    memset(&tu, 0, sizeof tu);
+    mvr_tuner_key key = {4, 128, 128, 10};
+    uint32_t ran[2];
+    /* 2% cheaper is noise: the prior stays */
+    const double close[2] = {9.8, 10.0};
+    uint32_t frames = run(&tu, key, 1, close, ran);
+    CHECK(t, frames == 2 + 2 * MVR_TUNER_SAMPLES && tu.chosen == 1 && tu.margin == 0.0);
+    /* at most half of the tuning frames on the other candidate */
+    CHECK(t, ran[0] <= frames / 2);
+    /* 10% cheaper pays */
+    memset(&tu, 0, sizeof tu);
+    const double clear[2] = {9.0, 10.0};
+    run(&tu, key, 1, clear, ran);
+    CHECK(t, tu.chosen == 0 && tu.margin > 0.09 && tu.margin < 0.11);
+    /* medians: one outlier frame does not decide */
+    memset(&tu, 0, sizeof tu);
+    bool measure;
+    mvr_tuner_next(&tu, key, 0, &measure);
+    mvr_tuner_next(&tu, key, 0, &measure);
+    const double costs[6] = {10.0, 12.0, 10.0, 50.0, 10.0, 12.0}; /* c0, c1, c0, c1, c0, c1 */
+    for (int i = 0; i < 6; ++i) {
+        uint32_t c = mvr_tuner_next(&tu, key, 0, &measure);
+        mvr_tuner_record(&tu, c, costs[i]);
+    }
+    CHECK(t, tu.phase == MVR_TUNER_SETTLED && tu.median[1] == 12.0 && tu.chosen == 0);
+}
+
+static void a_material_change_measures_again(mvr_test_state *t)
+{
+    mvr_tuner tu;
+    memset(&tu, 0, sizeof tu);
+    mvr_tuner_key key = {6, 256, 256, 100};
+    uint32_t ran[2];
+    const double cost[2] = {5.0, 10.0};
+    run(&tu, key, 1, cost, ran);
+    CHECK(t, tu.phase == MVR_TUNER_SETTLED && tu.retunes == 0);
+    bool measure;
+    /* a few more draws (less than x2): the same workload */
+    key.draws = 180;
+    CHECK(t, mvr_tuner_next(&tu, key, 1, &measure) == 0 && tu.phase == MVR_TUNER_SETTLED);
+    /* the view count, the size, twice the draws, another prior: again, the prior first */
+    mvr_tuner_key changes[3] = {{12, 256, 256, 100}, {6, 512, 256, 100}, {6, 256, 256, 361}};
+    for (int i = 0; i < 3; ++i) {
+        memset(&tu, 0, sizeof tu);
+        run(&tu, key, 1, cost, ran);
+        CHECK(t, mvr_tuner_next(&tu, changes[i], 1, &measure) == 1 && tu.phase == MVR_TUNER_TUNING);
+        CHECK(t, tu.retunes == 1);
+    }
+    memset(&tu, 0, sizeof tu);
+    run(&tu, key, 1, cost, ran);
+    CHECK(t, mvr_tuner_next(&tu, key, 0, &measure) == 0 && tu.phase == MVR_TUNER_TUNING);
+    /* costs that never come: settles on the prior, never loops */
+    memset(&tu, 0, sizeof tu);
+    uint32_t frames = 0;
+    while (tu.phase != MVR_TUNER_SETTLED && frames < 50) {
+        mvr_tuner_next(&tu, key, 1, &measure);
+        frames++;
+    }
+    CHECK(t, tu.phase == MVR_TUNER_SETTLED && tu.chosen == 1 && frames <= 2 + 2 * MVR_TUNER_SAMPLES + 1);
+    /* a negative or NaN cost is not a sample */
+    memset(&tu, 0, sizeof tu);
+    mvr_tuner_next(&tu, key, 1, &measure);
+    mvr_tuner_next(&tu, key, 1, &measure);
+    uint32_t c = mvr_tuner_next(&tu, key, 1, &measure);
+    mvr_tuner_record(&tu, c, -1.0);
+    mvr_tuner_record(&tu, c, 0.0 / 0.0);
+    CHECK(t, tu.samples[c] == 0);
+}
+
+MVR_TEST_MAIN(TEST(prior_first_then_interleaved), TEST(the_margin_keeps_the_prior),
+              TEST(a_material_change_measures_again))

@@ -1,0 +1,192 @@
+/* auto's online tuner (gl/tuning.c over core/tuner.h) on a real GL: with a
+ * cost hook that says multiview is cheaper it settles on multiview after its
+ * measured frames, reports the candidates and their costs, measures again
+ * when the view count changes, never changes a pixel while it switches; off,
+ * it is the caps rule; a pinned path is not tuned; with the real timers it
+ * settles with positive costs. */
+#define _POSIX_C_SOURCE 200809L
+#include <stdlib.h>
+#include <string.h>
+
+#include "gl_test_util.h"
+#include "mvr/mvr.h"
+#include "mvr_test.h"
+
+#define W 64
+#define H 48
+
+typedef struct costs {
+    double multiview, loop;
+    uint32_t calls;
+} costs;
+
+static double hook(void *user, mvr_view_path path, const mvr_frame_stats *stats)
+{
+    costs *c = user;
+    c->calls++;
+    (void)stats;
+    return path == MVR_VIEW_PATH_MULTIVIEW ? c->multiview : c->loop;
+}
+
+typedef struct rig {
+    mvr_renderer *r;
+    mvr_target *tg;
+    mvr_scene *scene;
+    mvr_view_set *views;
+} rig;
+
+static bool rig_make(mvr_test_state *t, const mvr_renderer_desc *rd, uint32_t views, rig *g)
+{
+    memset(g, 0, sizeof *g);
+    mvr_demo_desc dd = {.views = views, .width = W, .height = H};
+    mvr_target_desc td = {.width = W, .height = H, .layers = 16};
+    bool ok = mvr_demo_create("ring", &dd, &g->scene, &g->views, NULL) == MVR_OK &&
+              mvr_renderer_create(rd, &g->r, NULL) == MVR_OK && mvr_target_create(g->r, &td, &g->tg) == MVR_OK;
+    CHECK(t, ok);
+    return ok;
+}
+
+static void rig_free(rig *g)
+{
+    mvr_target_destroy(g->tg);
+    mvr_renderer_destroy(g->r);
+    mvr_view_set_destroy(g->views);
+    mvr_scene_destroy(g->scene);
+}
+
+/* One frame: its stats and every layer's bytes. */
+static bool frame(mvr_test_state *t, rig *g, uint8_t *px, mvr_frame_stats *st)
+{
+    mvr_render_desc desc = {.exposure = 1.0f};
+    bool ok = mvr_renderer_render(g->r, g->scene, g->views, g->tg, &desc) == MVR_OK;
+    CHECK_MSG(t, ok, "render: %s", mvr_renderer_last_error(g->r));
+    uint32_t n = mvr_view_set_count(g->views);
+    for (uint32_t k = 0; ok && k < n; ++k)
+        ok = mvr_renderer_read_layer(g->r, g->tg, k, MVR_READBACK_RGBA8, px + (size_t)k * W * H * 4, W * H * 4) ==
+             MVR_OK;
+    mvr_renderer_get_stats(g->r, st);
+    return ok;
+}
+
+static void settles_on_the_cheaper_path_without_changing_a_pixel(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    if (!mvr_context_caps(ctx)->ext.ovr_multiview2) {
+        mvr_context_destroy(ctx);
+        SKIP(t, "no GL_OVR_multiview2: one candidate, nothing to tune");
+    }
+    costs c = {.multiview = 5.0, .loop = 10.0};
+    mvr_renderer_desc rd = {.context = ctx, .tuning = {.frame_cost = hook, .user = &c}};
+    rig g;
+    size_t bytes = (size_t)W * H * 4 * 6;
+    uint8_t *first = malloc(bytes), *px = malloc(bytes);
+    if (rig_make(t, &rd, 6, &g) && first && px) {
+        mvr_frame_stats st;
+        CHECK(t, frame(t, &g, first, &st));
+        mvr_view_path prior = st.auto_choice.prior;
+        /* the first frame runs the caps rule's choice */
+        CHECK(t, st.view_path == prior && st.auto_choice.state == MVR_AUTO_TUNING);
+        uint32_t frames = 1, switched = 0;
+        mvr_view_path last = st.view_path;
+        while (st.auto_choice.state != MVR_AUTO_SETTLED && frames < 20) {
+            CHECK(t, frame(t, &g, px, &st));
+            CHECK_MSG(t, memcmp(px, first, bytes) == 0, "frame %u (%s) differs", frames,
+                      mvr_view_path_name(st.view_path));
+            switched += st.view_path != last;
+            last = st.view_path;
+            frames++;
+        }
+        const mvr_auto_choice *a = &st.auto_choice;
+        CHECK_MSG(t, a->state == MVR_AUTO_SETTLED && frames == 9, "settled after %u frames", frames);
+        CHECK(t, switched >= 2 && c.calls == 6);
+        CHECK(t, a->chosen == MVR_VIEW_PATH_MULTIVIEW && a->candidates[0] == MVR_VIEW_PATH_MULTIVIEW &&
+                 a->candidates[1] == MVR_VIEW_PATH_LOOP);
+        CHECK(t, a->samples[0] == 3 && a->samples[1] == 3 && a->cost_ms[0] == 5.0 && a->cost_ms[1] == 10.0);
+        CHECK(t, prior == MVR_VIEW_PATH_MULTIVIEW ? a->margin == 0.0 : a->margin == 0.5);
+        /* settled: multiview, measured no more, the same bytes */
+        for (int i = 0; i < 3; ++i) {
+            CHECK(t, frame(t, &g, px, &st) && memcmp(px, first, bytes) == 0);
+            CHECK(t, st.view_path == MVR_VIEW_PATH_MULTIVIEW && st.auto_choice.state == MVR_AUTO_SETTLED);
+        }
+        CHECK(t, c.calls == 6);
+        /* another view count: measured again, the prior first */
+        mvr_view_set_destroy(g.views);
+        mvr_scene_destroy(g.scene);
+        g.views = NULL;
+        g.scene = NULL;
+        mvr_demo_desc dd = {.views = 4, .width = W, .height = H};
+        CHECK(t, mvr_demo_create("ring", &dd, &g.scene, &g.views, NULL) == MVR_OK);
+        c.multiview = 20.0; /* now the loop is cheaper */
+        frames = 0;
+        do {
+            CHECK(t, frame(t, &g, px, &st));
+            if (frames == 0)
+                CHECK(t, st.view_path == prior && st.auto_choice.state == MVR_AUTO_TUNING &&
+                             st.auto_choice.retunes == 1);
+            frames++;
+        } while (st.auto_choice.state != MVR_AUTO_SETTLED && frames < 20);
+        CHECK(t, st.auto_choice.chosen == MVR_VIEW_PATH_LOOP && frames == 9);
+    }
+    free(first);
+    free(px);
+    rig_free(&g);
+    mvr_context_destroy(ctx);
+}
+
+static void off_pinned_and_real_timers(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    uint8_t *px = malloc((size_t)W * H * 4 * 6);
+    costs c = {.multiview = 1.0, .loop = 100.0};
+    /* off: the rule, every frame */
+    mvr_renderer_desc off = {.context = ctx, .tuning = {.mode = MVR_TUNING_OFF, .frame_cost = hook, .user = &c}};
+    rig g;
+    mvr_frame_stats st;
+    if (rig_make(t, &off, 6, &g) && px)
+        for (int i = 0; i < 10; ++i) {
+            CHECK(t, frame(t, &g, px, &st));
+            CHECK(t, st.auto_choice.state == MVR_AUTO_RULE && st.view_path == st.auto_choice.prior);
+        }
+    CHECK(t, c.calls == 0);
+    rig_free(&g);
+    /* pinned: no tuning, no auto */
+    mvr_renderer_desc pinned = {.context = ctx, .view_path = MVR_VIEW_PATH_LOOP,
+                                .tuning = {.frame_cost = hook, .user = &c}};
+    if (rig_make(t, &pinned, 6, &g) && px)
+        for (int i = 0; i < 10; ++i) {
+            CHECK(t, frame(t, &g, px, &st));
+            CHECK(t, st.auto_choice.state == MVR_AUTO_NONE && st.view_path == MVR_VIEW_PATH_LOOP);
+        }
+    CHECK(t, c.calls == 0);
+    rig_free(&g);
+    /* the real timers: settled after the measured frames, with positive costs */
+    mvr_renderer_desc real = {.context = ctx};
+    if (mvr_context_caps(ctx)->ext.ovr_multiview2 && rig_make(t, &real, 6, &g) && px) {
+        for (int i = 0; i < 9; ++i)
+            CHECK(t, frame(t, &g, px, &st));
+        const mvr_auto_choice *a = &st.auto_choice;
+        CHECK_MSG(t, a->state == MVR_AUTO_SETTLED && a->cost_ms[0] > 0.0 && a->cost_ms[1] > 0.0,
+                  "state %s, costs %.3f / %.3f ms", mvr_auto_state_name(a->state), a->cost_ms[0], a->cost_ms[1]);
+        printf("  measured: multiview %.2f ms, loop %.2f ms: %s (margin %.1f%%)\n", a->cost_ms[0], a->cost_ms[1],
+               mvr_view_path_name(a->chosen), 100.0 * a->margin);
+        rig_free(&g);
+    }
+    /* MVR_TUNING from the environment */
+    mvr_renderer_overrides ov;
+    setenv("MVR_TUNING", "off", 1);
+    CHECK(t, mvr_renderer_overrides_from_env(&ov, NULL) == MVR_OK && ov.tuning == MVR_OVERRIDE_OFF);
+    setenv("MVR_TUNING", "maybe", 1);
+    CHECK(t, mvr_renderer_overrides_from_env(&ov, NULL) == MVR_ERROR_INVALID_ARGUMENT);
+    unsetenv("MVR_TUNING");
+    mvr_renderer_desc bad = {.context = ctx, .tuning = {.mode = (mvr_tuning)9}};
+    mvr_renderer *r = NULL;
+    CHECK(t, mvr_renderer_create(&bad, &r, NULL) == MVR_ERROR_INVALID_ARGUMENT && !r);
+    free(px);
+    mvr_context_destroy(ctx);
+}
+
+MVR_TEST_MAIN(TEST(settles_on_the_cheaper_path_without_changing_a_pixel), TEST(off_pinned_and_real_timers))
