@@ -94,6 +94,10 @@ typedef struct bench_result {
     double maps_rmse, maps_psnr_db, maps_max_abs;
     bool maps_pareto;
     uint8_t *display;            /* views x w x h x RGBA8, sRGB-encoded */
+    /* view path auto: what its tuner measured and chose (measured frames
+     * start once it settled), and the frames that took */
+    mvr_auto_choice auto_choice;
+    uint32_t tuning_frames;
 } bench_result;
 
 typedef struct bench_run {
@@ -131,6 +135,11 @@ bool bench_plot(const bench_run *run);
 /* All of the above: the table on stdout and every file into run->out_dir;
  * false when any failed (each says why). */
 bool bench_write_reports(const bench_run *run);
+/* Auto against the best forced view path of its configuration (same name
+ * after the view path): *excess the fraction auto's median is above it (0
+ * within the noise: auto's q1 at most the best's q3); false when k is not
+ * an auto configuration with forced ones beside it. */
+bool bench_auto_excess(const bench_run *run, uint32_t k, uint32_t *best, double *excess);
 
 
 /* cmd_bench.c, shared with bench_env.c */

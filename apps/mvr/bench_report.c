@@ -58,6 +58,69 @@ static void print_env_table(const bench_run *run, FILE *out)
             run->reference_samples, (unsigned long long)run->compared_pixels);
 }
 
+bool bench_auto_excess(const bench_run *run, uint32_t k, uint32_t *best, double *excess)
+{
+    const bench_config *a = &run->configs[k];
+    const bench_result *ra = &run->results[k];
+    const char *rest = strchr(a->name, '/');
+    if (a->view_path != MVR_VIEW_PATH_AUTO || !ra->ran || !rest)
+        return false;
+    bool found = false;
+    for (uint32_t i = 0; i < run->count; ++i) {
+        const bench_config *c = &run->configs[i];
+        const char *other = strchr(c->name, '/');
+        if (i == k || c->view_path == MVR_VIEW_PATH_AUTO || !run->results[i].ran || !other || strcmp(other, rest) != 0 ||
+            c->reference)
+            continue;
+        if (!found || run->results[i].wall_median < run->results[*best].wall_median)
+            *best = i;
+        found = true;
+    }
+    if (!found)
+        return false;
+    const bench_result *rb = &run->results[*best];
+    *excess = ra->wall_q1 <= rb->wall_q3 ? 0.0 : ra->wall_median / rb->wall_median - 1.0;
+    return true;
+}
+
+/* Each auto configuration: what its tuner measured, and how far it is from
+ * the best forced view path; then the worst over the matrix. */
+static void print_auto_lines(const bench_run *run, FILE *out)
+{
+    double worst = -1.0;
+    uint32_t worst_k = 0;
+    for (uint32_t k = 0; k < run->count; ++k) {
+        uint32_t best = 0;
+        double excess = 0.0;
+        if (!bench_auto_excess(run, k, &best, &excess))
+            continue;
+        const bench_result *r = &run->results[k];
+        const mvr_auto_choice *a = &r->auto_choice;
+        if (a->state == MVR_AUTO_SETTLED)
+            fprintf(out, "auto %s: settled in %u frames on %s (tuner: multiview %.2f, loop %.2f ms; prior %s, margin %.0f%%)",
+                    run->configs[k].name, r->tuning_frames, mvr_view_path_name(a->chosen), a->cost_ms[0], a->cost_ms[1],
+                    mvr_view_path_name(a->prior), 100.0 * a->margin);
+        else
+            fprintf(out, "auto %s: %s (%s)", run->configs[k].name, mvr_auto_state_name(a->state),
+                    a->state == MVR_AUTO_RULE ? "tuning off: the caps rule" : "one path works here");
+        char verdict[64];
+        if (excess > 0.0)
+            snprintf(verdict, sizeof verdict, "%.1f%% slower beyond the noise", 100.0 * excess);
+        else
+            snprintf(verdict, sizeof verdict, "within the noise");
+        fprintf(out, "; %.2f ms against %s's %.2f: %s\n", r->wall_median, run->configs[best].name,
+                run->results[best].wall_median, verdict);
+        if (excess > worst) {
+            worst = excess;
+            worst_k = k;
+        }
+    }
+    if (worst >= 0.0)
+        fprintf(out, "auto against the best forced view path over the matrix: %s (worst: %s, +%.1f%% beyond the "
+                     "noise; target at most 5%%)\n",
+                worst <= 0.05 ? "within 5%" : "MORE than 5% slower", run->configs[worst_k].name, 100.0 * worst);
+}
+
 void bench_print_table(const bench_run *run, FILE *out)
 {
     if (run->env_axes) {
@@ -97,6 +160,7 @@ void bench_print_table(const bench_run *run, FILE *out)
     }
     if (run->omitted[0])
         fprintf(out, "(%s)\n", run->omitted);
+    print_auto_lines(run, out);
     fprintf(out, "wall ms: the median frame, q1..q3 its interquartile range (the noise), over frames taken in\n"
                  "  rounds that visit every configuration in turn (so a load change hits all of them).\n"
                  "* Pareto front: nothing else is at least as close to the reference and faster by more than\n"
@@ -229,6 +293,22 @@ bool bench_write_json(const bench_run *run, const char *path)
             continue;
         }
         json_string(&jw, "view_path_ran", r->view_path_ran);
+        uint32_t best = 0;
+        double excess = 0.0;
+        if (bench_auto_excess(run, k, &best, &excess)) {
+            const mvr_auto_choice *a = &r->auto_choice;
+            json_begin_object(&jw, "auto");
+            json_string(&jw, "state", mvr_auto_state_name(a->state));
+            json_string(&jw, "prior", mvr_view_path_name(a->prior));
+            json_string(&jw, "chosen", mvr_view_path_name(a->chosen));
+            json_double(&jw, "tuner_multiview_ms", a->cost_ms[0]);
+            json_double(&jw, "tuner_loop_ms", a->cost_ms[1]);
+            json_double(&jw, "margin", a->margin);
+            json_int(&jw, "tuning_frames", r->tuning_frames);
+            json_string(&jw, "best_forced", run->configs[best].name);
+            json_double(&jw, "excess_beyond_noise", excess);
+            json_end_object(&jw);
+        }
         json_double(&jw, "wall_ms_median", r->wall_median);
         json_double(&jw, "wall_ms_min", r->wall_min);
         json_double(&jw, "wall_ms_max", r->wall_max);

@@ -464,6 +464,18 @@ static bool setup_config(const bench_options *o, mvr_context *ctx, mvr_scene *sc
         pose(o, scene, f);
         ok = mvr_renderer_render(cr->r, scene, vs, cr->t, &o->render) == MVR_OK;
     }
+    /* auto is measured after tuning: more warm-up frames until its tuner settled */
+    mvr_frame_stats st;
+    mvr_renderer_get_stats(cr->r, &st);
+    for (uint32_t f = o->warmup; ok && c->view_path == MVR_VIEW_PATH_AUTO && st.auto_choice.state == MVR_AUTO_TUNING &&
+                                 f < o->warmup + 32;
+         ++f) {
+        pose(o, scene, f);
+        ok = mvr_renderer_render(cr->r, scene, vs, cr->t, &o->render) == MVR_OK;
+        mvr_renderer_get_stats(cr->r, &st);
+        res->tuning_frames = f + 1;
+    }
+    res->auto_choice = st.auto_choice;
     if (!ok) {
         fprintf(stderr, "mvr bench: %s: %s\n", c->name, mvr_renderer_last_error(cr->r));
         release_run(cr);
