@@ -2,6 +2,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "cli_common.h"
 #include "commands.h"
 #include "mvr/mvr.h"
 
@@ -22,6 +23,7 @@ static void usage(FILE *out)
 
 int main(int argc, char **argv)
 {
+    cli_tune_allocator();
     if (argc < 2) {
         usage(stderr);
         return MVR_EXIT_USAGE;

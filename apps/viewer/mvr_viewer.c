@@ -674,6 +674,7 @@ static void on_drop(GLFWwindow *w, int count, const char **paths)
 
 int main(int argc, char **argv)
 {
+    cli_tune_allocator();
     viewer_options o;
     int parsed = viewer_options_parse(argc, argv, &o);
     if (parsed != 0)
