@@ -2,9 +2,12 @@
  * each layer into one pixel buffer object, a fence after them, and the
  * copy out of the mapped buffer when the caller asks for the pixels. What a
  * read takes from a target (which attachment, which GL format and type,
- * how many bytes, what conversion) is decided by read_layout alone. */
+ * how many bytes, what conversion) is decided by read_layout alone: the
+ * colour in a format, or an extra output (depth, normals, IDs ...) from its
+ * own array. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -14,7 +17,8 @@
 typedef enum read_convert {
     READ_AS_IS = 0,
     READ_FLOAT_TO_BYTES,         /* a float target read as RGBA8 (GLES reads float buffers as FLOAT only) */
-    READ_BYTES_TO_FLOAT          /* an 8-bit target read as RGBA32F: normalized */
+    READ_BYTES_TO_FLOAT,         /* an 8-bit target read as RGBA32F: normalized */
+    READ_CHANNELS                /* an extra output: its channels of the 4 x 32-bit texels read */
 } read_convert;
 
 typedef struct read_layout {
@@ -23,6 +27,8 @@ typedef struct read_layout {
     uint32_t read_bpp;           /* bytes per pixel in the buffer */
     uint32_t out_bpp;            /* bytes per pixel the caller gets */
     read_convert convert;
+    uint32_t array;              /* an extra output's array (MVR_TARGET_OUTPUT_*); MVR_TARGET_OUTPUT_ARRAYS: the colour */
+    uint32_t first_channel;      /* READ_CHANNELS: the output's first 32-bit channel in the texel */
 } read_layout;
 
 struct mvr_readback {
@@ -35,16 +41,45 @@ struct mvr_readback {
     read_layout layout;
 };
 
-/* The read a format makes of a target's colour. Where other outputs land
- * (more attachments), they are chosen here too. false: no such read. */
-static bool read_layout_of(const mvr_target *t, mvr_readback_format format, read_layout *out)
+/* The read a desc makes of a target: its colour in a format, or an extra
+ * output from the array that holds it (as mvr_renderer_read_output reads
+ * it, gl/outputs.c: the RGBA texels GLES always reads, then the output's
+ * channels). false, with the reason in why: no such read. */
+static bool read_layout_of(const mvr_target *t, const mvr_read_desc *d, read_layout *out, char *why, size_t why_size)
 {
+    read_layout l = {.attachment = GL_COLOR_ATTACHMENT0, .gl_format = GL_RGBA, .array = MVR_TARGET_OUTPUT_ARRAYS};
+    if (d->output != MVR_OUTPUT_COLOR) {
+        if (!mvr_output_name(d->output)) {
+            snprintf(why, why_size, "unknown output %d", (int)d->output);
+            return false;
+        }
+        if (!(t->desc.outputs & MVR_OUTPUT_BIT(d->output))) {
+            snprintf(why, why_size, "the target was not created with the %s output (mvr_target_desc.outputs)",
+                     mvr_output_name(d->output));
+            return false;
+        }
+        switch (d->output) {
+        case MVR_OUTPUT_DEPTH: l.array = MVR_TARGET_OUTPUT_GEOMETRY, l.first_channel = 0; break;
+        case MVR_OUTPUT_DISTANCE: l.array = MVR_TARGET_OUTPUT_GEOMETRY, l.first_channel = 1; break;
+        case MVR_OUTPUT_COVERAGE: l.array = MVR_TARGET_OUTPUT_GEOMETRY, l.first_channel = 2; break;
+        case MVR_OUTPUT_NORMAL: l.array = MVR_TARGET_OUTPUT_NORMAL; break;
+        case MVR_OUTPUT_IDS:
+        default: l.array = MVR_TARGET_OUTPUT_IDS; break;
+        }
+        bool ids = l.array == MVR_TARGET_OUTPUT_IDS;
+        l.gl_format = ids ? GL_RGBA_INTEGER : GL_RGBA;
+        l.gl_type = ids ? GL_UNSIGNED_INT : GL_FLOAT;
+        l.read_bpp = 16;
+        l.out_bpp = (uint32_t)mvr_output_pixel_size(d->output);
+        l.convert = l.out_bpp == l.read_bpp ? READ_AS_IS : READ_CHANNELS;
+        *out = l;
+        return true;
+    }
     bool float_target = t->internal_format == GL_RGBA16F || t->internal_format == GL_RGBA32F;
-    read_layout l = {.attachment = GL_COLOR_ATTACHMENT0, .gl_format = GL_RGBA};
-    switch (format) {
+    switch (d->format) {
     case MVR_READBACK_RGBA8: l.out_bpp = 4; break;
     case MVR_READBACK_RGBA32F: l.out_bpp = 16; break;
-    default: return false;
+    default: snprintf(why, why_size, "unknown format %d", (int)d->format); return false;
     }
     l.gl_type = float_target ? GL_FLOAT : GL_UNSIGNED_BYTE;
     l.read_bpp = float_target ? 16 : 4;
@@ -168,8 +203,9 @@ mvr_result mvr_renderer_begin_read(mvr_renderer *r, mvr_target *t, const mvr_rea
         return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: layers %u .. %u of a target of %u", where,
                                  desc->first_layer, desc->first_layer + count - 1, layers);
     read_layout lay;
-    if (!read_layout_of(t, desc->format, &lay))
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: unknown format %d", where, (int)desc->format);
+    char why[160];
+    if (!read_layout_of(t, desc, &lay, why, sizeof why))
+        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: %s", where, why);
     size_t layer_bytes = 0, bytes = 0;
     if (!mvr_size_mul((size_t)t->desc.width * t->desc.height, lay.read_bpp, &layer_bytes) ||
         !mvr_size_mul(layer_bytes, count, &bytes) || bytes > (size_t)PTRDIFF_MAX)
@@ -186,7 +222,9 @@ mvr_result mvr_renderer_begin_read(mvr_renderer *r, mvr_target *t, const mvr_rea
     for (uint32_t k = 0; k < count && res == MVR_OK; ++k) {
         /* one layer attached alone: reading from a multiview framebuffer is an error */
         GLuint fbo = 0;
-        res = mvr_target_output_framebuffer(t, desc->first_layer + k, 0, &fbo);
+        res = lay.array == MVR_TARGET_OUTPUT_ARRAYS
+                  ? mvr_target_output_framebuffer(t, desc->first_layer + k, 0, &fbo)
+                  : mvr_target_output_array_framebuffer(t, lay.array, desc->first_layer + k, &fbo);
         if (res != MVR_OK)
             break;
         mvr_state_read_framebuffer(&r->state, fbo);
@@ -278,6 +316,13 @@ static void convert_layer(const read_layout *l, const void *src, void *dst, size
         float *out = dst;
         for (size_t i = 0; i < pixels * 4; ++i)
             out[i] = (float)in[i] / 255.0f;
+        return;
+    }
+    case READ_CHANNELS: {
+        const uint8_t *in = (const uint8_t *)src + l->first_channel * 4;
+        uint8_t *out = dst;
+        for (size_t i = 0; i < pixels; ++i)
+            memcpy(out + i * l->out_bpp, in + i * 16, l->out_bpp);
         return;
     }
     }

@@ -1619,7 +1619,8 @@ size_t mvr_renderer_format_plan(const mvr_renderer *renderer, char *buf, size_t 
  * a fence, and returns: the application renders the next views (into
  * another target) while the copy completes, asks whether it is ready
  * without blocking, and collects the pixels when it needs them. The bytes
- * are mvr_renderer_read_layer's, layer for layer. A readback keeps its
+ * are mvr_renderer_read_layer's (or mvr_renderer_read_output's for an extra
+ * output), layer for layer. A readback keeps its
  * buffer from read to read (it grows, never shrinks), so a stream of reads
  * allocates nothing per frame. It belongs to the renderer it was created
  * with; destroying that renderer (or its context) releases its GL objects,
@@ -1629,7 +1630,12 @@ typedef struct mvr_readback mvr_readback;
 typedef struct mvr_read_desc {
     uint32_t first_layer;
     uint32_t layer_count;        /* 0 = every layer from first_layer on */
-    mvr_readback_format format;  /* as mvr_renderer_read_layer's */
+    mvr_readback_format format;  /* as mvr_renderer_read_layer's (the colour only) */
+    /* MVR_OUTPUT_COLOR (0): the colour in `format`; another output (the
+     * target must have it, mvr_target_desc.outputs): that output in its own
+     * type, mvr_renderer_read_output's bytes layer for layer (`format` is
+     * not used) */
+    mvr_output output;
 } mvr_read_desc;
 
 mvr_result mvr_readback_create(mvr_renderer *renderer, mvr_readback **out);

@@ -1,9 +1,12 @@
 /* gl: asynchronous readback (gl/readback_async.c). What a readback gives is
  * mvr_renderer_read_layer's bytes, layer for layer: several layer ranges,
  * both formats of 8-bit and float targets, the multiview and loop paths,
- * one readback reused over several frames; a read is of the target as it
+ * one readback reused over several frames; each extra output (depth,
+ * distance, normals, IDs, coverage) read is mvr_renderer_read_output's
+ * bytes, on both paths; a read is of the target as it
  * was when the read began, whatever is rendered into it afterwards; bad
- * arguments are refused with a message naming what is wrong, and a
+ * arguments (an output the target lacks among them) are refused with a
+ * message naming what is wrong, and a
  * readback outlives its renderer without a leak or a crash (ASan). */
 #define _POSIX_C_SOURCE 200809L
 #include <stdlib.h>
@@ -119,6 +122,87 @@ static void async_equals_read_layer(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
+#define ALL_OUTPUTS                                                                                                   \
+    (MVR_OUTPUT_BIT(MVR_OUTPUT_DEPTH) | MVR_OUTPUT_BIT(MVR_OUTPUT_DISTANCE) | MVR_OUTPUT_BIT(MVR_OUTPUT_NORMAL) |       \
+     MVR_OUTPUT_BIT(MVR_OUTPUT_IDS) | MVR_OUTPUT_BIT(MVR_OUTPUT_COVERAGE))
+
+/* Every extra output of a target with all of them, read asynchronously over
+ * several layer ranges, is mvr_renderer_read_output's bytes layer for layer,
+ * on the loop and multiview paths; the colour of the same target still
+ * reads as before. Several readbacks hold reads of different outputs at
+ * once (as mvr render's stream does). */
+static void outputs_equal_read_output(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    mvr_scene *s = NULL;
+    mvr_view_set *vs = NULL;
+    mvr_demo_desc dd = {.views = VIEWS, .width = W, .height = H};
+    CHECK(t, mvr_demo_create("city", &dd, &s, &vs, NULL) == MVR_OK);
+    bool multiview = mvr_context_caps(ctx)->ext.ovr_multiview2;
+    const mvr_view_path paths[2] = {MVR_VIEW_PATH_LOOP, MVR_VIEW_PATH_MULTIVIEW};
+    const uint32_t ranges[][2] = {{0, VIEWS}, {2, 3}, {7, 1}};
+    int compared = 0;
+    for (int p = 0; p < 2 && s; ++p) {
+        if (paths[p] == MVR_VIEW_PATH_MULTIVIEW && !multiview) {
+            printf("  no GL_OVR_multiview2: the loop path only\n");
+            continue;
+        }
+        mvr_renderer_desc rd = {.context = ctx, .view_path = paths[p]};
+        mvr_renderer *r = NULL;
+        mvr_target *tg = NULL;
+        mvr_readback *rb[MVR_OUTPUT_COUNT] = {NULL};
+        mvr_target_desc td = {.width = W, .height = H, .layers = VIEWS, .outputs = ALL_OUTPUTS};
+        bool ok = mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &tg) == MVR_OK;
+        for (int k = 0; ok && k < MVR_OUTPUT_COUNT; ++k)
+            ok = mvr_readback_create(r, &rb[k]) == MVR_OK;
+        CHECK_MSG(t, ok, "setup: %s", r ? mvr_renderer_last_error(r) : "no renderer");
+        ok = ok && render_frame(t, r, s, vs, tg, 1);
+        for (size_t i = 0; ok && i < sizeof ranges / sizeof ranges[0]; ++i) {
+            uint32_t first = ranges[i][0], count = ranges[i][1];
+            /* every output's read begun before any is finished */
+            for (int k = 0; k < MVR_OUTPUT_COUNT; ++k) {
+                mvr_read_desc d = {.first_layer = first, .layer_count = count, .output = (mvr_output)k};
+                mvr_result res = mvr_renderer_begin_read(r, tg, &d, rb[k]);
+                CHECK_MSG(t, res == MVR_OK, "begin_read %s: %s", mvr_output_name((mvr_output)k),
+                          mvr_renderer_last_error(r));
+                ok = ok && res == MVR_OK;
+            }
+            for (int k = 0; ok && k < MVR_OUTPUT_COUNT; ++k) {
+                mvr_output out = (mvr_output)k;
+                size_t layer = (size_t)W * H * mvr_output_pixel_size(out);
+                CHECK_EQ_INT(t, mvr_readback_layer_size(rb[k]), layer);
+                CHECK_EQ_INT(t, mvr_readback_layer_count(rb[k]), count);
+                uint8_t *async = finish(t, r, rb[k], layer * count);
+                uint8_t *sync = malloc(layer * count);
+                bool nonzero = false;
+                for (uint32_t l = 0; sync && l < count; ++l)
+                    CHECK_MSG(t, mvr_renderer_read_output(r, tg, first + l, out, sync + layer * l, layer) == MVR_OK,
+                              "read_output: %s", mvr_renderer_last_error(r));
+                for (size_t b = 0; sync && b < layer * count && !nonzero; ++b)
+                    nonzero = sync[b] != 0;
+                CHECK_MSG(t, nonzero, "%s of layers %u+%u is all zero: the test tests nothing", mvr_output_name(out),
+                          first, count);
+                CHECK_MSG(t, sync && memcmp(async, sync, layer * count) == 0,
+                          "%s path, %s, layers %u+%u: async differs from read_output", mvr_view_path_name(paths[p]),
+                          mvr_output_name(out), first, count);
+                compared++;
+                free(async);
+                free(sync);
+            }
+        }
+        for (int k = 0; k < MVR_OUTPUT_COUNT; ++k)
+            mvr_readback_destroy(rb[k]);
+        mvr_target_destroy(tg);
+        mvr_renderer_destroy(r);
+    }
+    printf("  %d output reads compared\n", compared);
+    mvr_view_set_destroy(vs);
+    mvr_scene_destroy(s);
+    mvr_context_destroy(ctx);
+}
+
 /* A read is of the target as it was when it began: a frame rendered into
  * the same target before the read is finished does not show in it, and
  * the readiness query turns true without anyone waiting. Two readbacks in
@@ -222,6 +306,13 @@ static void bad_arguments_are_refused(mvr_test_state *t)
         failed_with(t, r, mvr_renderer_begin_read(r, tg, &bad, rb), "layers 1 .. 2 of a target of 2", "range");
         bad = (mvr_read_desc){.format = (mvr_readback_format)7};
         failed_with(t, r, mvr_renderer_begin_read(r, tg, &bad, rb), "unknown format 7", "format");
+        bad = (mvr_read_desc){.output = MVR_OUTPUT_DEPTH};
+        failed_with(t, r, mvr_renderer_begin_read(r, tg, &bad, rb),
+                    "the target was not created with the depth output", "an output the target lacks");
+        bad = (mvr_read_desc){.output = MVR_OUTPUT_IDS, .format = MVR_READBACK_RGBA32F};
+        failed_with(t, r, mvr_renderer_begin_read(r, tg, &bad, rb), "not created with the ids output", "ids");
+        bad = (mvr_read_desc){.output = (mvr_output)9};
+        failed_with(t, r, mvr_renderer_begin_read(r, tg, &bad, rb), "unknown output 9", "output");
         failed_with(t, r, mvr_renderer_finish_read(r, rb, px, sizeof px), "no read is pending", "finish, none");
         failed_with(t, r, mvr_renderer_read_ready(r, rb, &ready), "no read is pending", "ready, none");
         CHECK(t, !ready);
@@ -298,5 +389,5 @@ static void readback_outlives_its_context(mvr_test_state *t)
     mvr_scene_destroy(s);
 }
 
-MVR_TEST_MAIN(TEST(async_equals_read_layer), TEST(read_sees_the_frame_it_began_on), TEST(bad_arguments_are_refused),
+MVR_TEST_MAIN(TEST(async_equals_read_layer), TEST(outputs_equal_read_output), TEST(read_sees_the_frame_it_began_on), TEST(bad_arguments_are_refused),
               TEST(readback_outlives_its_context))
