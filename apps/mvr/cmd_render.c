@@ -616,8 +616,6 @@ int mvr_cmd_render(int argc, char **argv)
     uint32_t ss = o.supersample;
     mvr_target_desc td = {.width = o.width * ss, .height = o.height * ss, .layers = n, .color_format = o.format,
                           .samples = o.msaa, .anti_aliasing = o.aa, .outputs = o.outputs};
-    if (o.outputs)
-        o.readback = RENDER_READBACK_SYNC; /* the streamed path reads colour only (for now) */
     if (o.readback == RENDER_READBACK_STREAM) {
         if (!render_stream_create(&o, ctx, renderer, n, o.frames, &stream))
             goto done;

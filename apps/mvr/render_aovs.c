@@ -48,8 +48,11 @@ bool render_aovs_parse(const char *list, uint32_t *out_bits)
     return true;
 }
 
+/* The .npy of an h x w (x channels) array whose rows are given bottom to
+ * top (GL order): written top to bottom, as images and arrays run. false
+ * with the reason in why. */
 static bool write_npy(const char *path, const char *descr, uint32_t h, uint32_t w, uint32_t channels,
-                      const void *data, size_t bytes)
+                      const uint8_t *rows_up, size_t stride, char *why, size_t why_size)
 {
     char dict[128];
     if (channels > 1)
@@ -70,29 +73,54 @@ static bool write_npy(const char *path, const char *descr, uint32_t h, uint32_t 
     header[padded - 1] = '\n';
     FILE *f = fopen(path, "wb");
     if (!f) {
-        fprintf(stderr, "mvr render: cannot write %s: %s\n", path, strerror(errno));
+        snprintf(why, why_size, "cannot write %s: %s", path, strerror(errno));
         return false;
     }
-    bool ok = fwrite(header, 1, padded, f) == padded && fwrite(data, 1, bytes, f) == bytes;
+    /* rows go out one at a time, last first: a buffer of many rows keeps the writes few
+     * (glibc ignores the size of a buffer it allocates itself) */
+    char iobuf[1 << 16];
+    setvbuf(f, iobuf, _IOFBF, sizeof iobuf);
+    bool ok = fwrite(header, 1, padded, f) == padded;
+    for (uint32_t y = h; ok && y-- > 0;)
+        ok = fwrite(rows_up + (size_t)y * stride, 1, stride, f) == stride;
     ok = fclose(f) == 0 && ok;
     if (!ok)
-        fprintf(stderr, "mvr render: cannot write %s\n", path);
+        snprintf(why, why_size, "cannot write %s", path);
     return ok;
+}
+
+bool render_aovs_write_view(const char *dir, mvr_output output, uint32_t view, int64_t frame, int frame_digits,
+                            uint32_t width, uint32_t height, const void *data, char *why, size_t why_size)
+{
+    char path[4096];
+    int len = frame < 0 ? snprintf(path, sizeof path, "%s/%s_%02u.npy", dir, mvr_output_name(output), view)
+                        : snprintf(path, sizeof path, "%s/%s_%02u_f%0*lld.npy", dir, mvr_output_name(output), view,
+                                   frame_digits, (long long)frame);
+    if (len < 0 || (size_t)len >= sizeof path) {
+        snprintf(why, why_size, "--out is too long");
+        return false;
+    }
+    /* the data in this machine's byte order, which the descr states */
+    uint16_t one = 1;
+    bool little = *(const uint8_t *)&one == 1;
+    const char *descr = output == MVR_OUTPUT_IDS ? (little ? "<u4" : ">u4") : (little ? "<f4" : ">f4");
+    size_t px = mvr_output_pixel_size(output);
+    return write_npy(path, descr, height, width, (uint32_t)(px / 4), data, px * width, why, why_size);
 }
 
 bool render_aovs_write(const char *dir, mvr_renderer *r, mvr_target *t, uint32_t views, uint32_t width,
                        uint32_t height, uint32_t bits, int64_t frame, int frame_digits)
 {
-    size_t row_max = (size_t)width * 16, pixels = (size_t)width * height;
-    uint8_t *buf = malloc(pixels * 16), *row = malloc(row_max);
-    bool ok = buf && row;
+    size_t pixels = (size_t)width * height;
+    uint8_t *buf = malloc(pixels * 16);
+    bool ok = buf != NULL;
     if (!ok)
         fprintf(stderr, "mvr render: --outputs: out of memory\n");
     for (int k = MVR_OUTPUT_DEPTH; ok && k < MVR_OUTPUT_COUNT; ++k) {
         if (!(bits & MVR_OUTPUT_BIT(k)))
             continue;
         mvr_output output = (mvr_output)k;
-        size_t px = mvr_output_pixel_size(output), stride = px * width;
+        size_t px = mvr_output_pixel_size(output);
         for (uint32_t v = 0; ok && v < views; ++v) {
             if (mvr_renderer_read_output(r, t, v, output, buf, pixels * px) != MVR_OK) {
                 fprintf(stderr, "mvr render: reading %s of view %u: %s\n", mvr_output_name(output), v,
@@ -100,31 +128,13 @@ bool render_aovs_write(const char *dir, mvr_renderer *r, mvr_target *t, uint32_t
                 ok = false;
                 break;
             }
-            /* GL rows run bottom to top; images (and arrays) top to bottom */
-            for (uint32_t y = 0; y < height / 2; ++y) {
-                uint8_t *a = buf + (size_t)y * stride, *b = buf + (size_t)(height - 1 - y) * stride;
-                memcpy(row, a, stride);
-                memcpy(a, b, stride);
-                memcpy(b, row, stride);
-            }
-            char path[4096];
-            int len = frame < 0 ? snprintf(path, sizeof path, "%s/%s_%02u.npy", dir, mvr_output_name(output), v)
-                                : snprintf(path, sizeof path, "%s/%s_%02u_f%0*lld.npy", dir, mvr_output_name(output),
-                                           v, frame_digits, (long long)frame);
-            if (len < 0 || (size_t)len >= sizeof path) {
-                fprintf(stderr, "mvr render: --out is too long\n");
-                ok = false;
-                break;
-            }
-            /* the data in this machine's byte order, which the descr states */
-            uint16_t one = 1;
-            bool little = *(const uint8_t *)&one == 1;
-            const char *descr = output == MVR_OUTPUT_IDS ? (little ? "<u4" : ">u4") : (little ? "<f4" : ">f4");
-            ok = write_npy(path, descr, height, width, (uint32_t)(px / 4), buf, pixels * px);
+            char why[4200];
+            ok = render_aovs_write_view(dir, output, v, frame, frame_digits, width, height, buf, why, sizeof why);
+            if (!ok)
+                fprintf(stderr, "mvr render: %s\n", why);
         }
     }
     free(buf);
-    free(row);
     return ok;
 }
 

@@ -11,9 +11,17 @@
 /* "depth,normal,ids" (or "all") -> mvr_target_desc.outputs bits; false with a message on stderr. */
 bool render_aovs_parse(const char *list, uint32_t *out_bits);
 
-/* Writes DIR/<output>_VV.npy (or <output>_VV_fNNNN.npy for frame >= 0) for
- * every output in bits and view of the target: rows top to bottom, the
- * output's own type (float32 H x W, float32 H x W x 3, uint32 H x W x 4). */
+/* One view's output from memory: DIR/<output>_VV.npy (or
+ * <output>_VV_fNNNN.npy for frame >= 0, NNNN frame_digits wide) from data
+ * as the GL reads it (mvr_renderer_read_output's bytes: rows bottom to top),
+ * rows top to bottom in the output's own type (float32 H x W, float32
+ * H x W x 3, uint32 H x W x 4). Prints nothing (any thread may call it):
+ * false with the reason in why. */
+bool render_aovs_write_view(const char *dir, mvr_output output, uint32_t view, int64_t frame, int frame_digits,
+                            uint32_t width, uint32_t height, const void *data, char *why, size_t why_size);
+
+/* render_aovs_write_view for every output in bits and view of the target,
+ * each read with mvr_renderer_read_output (the synchronous path). */
 bool render_aovs_write(const char *dir, mvr_renderer *r, mvr_target *t, uint32_t views, uint32_t width,
                        uint32_t height, uint32_t bits, int64_t frame, int frame_digits);
 

@@ -6,13 +6,17 @@
  *   render thread: [render chunk k into ring target k % R] [begin read k]
  *                  [finish the oldest read into a free chunk buffer, queue
  *                   one job per view]
- *   encoders:      [convert, encode, write one view; put its tile into the
- *                   contact sheet; the chunk buffer's last job frees it]
+ *   encoders:      [convert, encode, write one view (and its extra outputs'
+ *                   .npy files); put its tile into the contact sheet; the
+ *                   chunk buffer's last job frees it]
  * A chunk's read is only waited for when its ring target comes round
  * again (or when the GL already says it is done), so rendering chunk k + 1
  * overlaps reading chunk k, and the encoders write while both go on. The
  * render thread blocks for a free chunk buffer when the encoders fall
- * behind: that is the bound on memory. */
+ * behind: that is the bound on memory. With --outputs each ring slot has
+ * one more readback per output, begun after the colour's, and a chunk
+ * buffer holds the chunk's colour layers and then each output's layers, so
+ * the bound grows with the bytes of a view's outputs, not with the views. */
 #define _POSIX_C_SOURCE 200809L
 #include "render_stream.h"
 
@@ -27,6 +31,7 @@
 #include "cli_progress.h"
 #include "cli_scene.h"
 #include "mvr/mvr_image.h"
+#include "render_aovs.h"
 #include "render_output.h"
 
 #define RING 2                   /* targets (and readbacks) in flight (fewer for fewer chunks) */
@@ -40,7 +45,7 @@
 #define METER_SIZE 128           /* auto-exposure metering: layers at most this on their long side */
 
 typedef struct chunk_buffer {
-    uint8_t *pixels;             /* chunk layers as read back */
+    uint8_t *pixels;             /* chunk layers as read back: the colour's, then each output's */
     uint32_t pending;            /* jobs not yet done */
     struct chunk_buffer *next;   /* in the free list */
 } chunk_buffer;
@@ -48,6 +53,7 @@ typedef struct chunk_buffer {
 typedef struct job {
     chunk_buffer *buffer;
     const uint8_t *pixels;       /* one layer in buffer */
+    uint32_t index;              /* the view's in the chunk (its outputs' layers in buffer) */
     uint32_t view;
     int64_t frame;
     bool sheet;
@@ -56,6 +62,8 @@ typedef struct job {
 typedef struct ring_slot {
     mvr_target *target;
     mvr_readback *readback;
+    mvr_readback *outputs[MVR_OUTPUT_COUNT]; /* --outputs: one per output asked for, by mvr_output */
+    mvr_readback *last;          /* the read begun last: when it is ready, all are (fences signal in order) */
     bool busy;                   /* a read is pending */
     uint64_t serial;             /* order of the reads begun */
     uint32_t base, count;        /* the chunk's views */
@@ -83,6 +91,10 @@ struct render_stream {
     bool float_target;           /* the ring's layers are floats (RGBA16F / RGBA32F) */
     mvr_readback_format read_format;
     size_t layer_bytes;          /* one layer as read back */
+    size_t output_offset[MVR_OUTPUT_COUNT]; /* where an output's layers start in a chunk buffer */
+    size_t output_layer_bytes[MVR_OUTPUT_COUNT]; /* one layer of it (0: not asked for) */
+    size_t buffer_bytes;         /* one chunk buffer */
+    int frame_digits;            /* of the outputs' file names (render_output_frame_digits) */
     ring_slot ring[RING];
     uint32_t ring_count;         /* slots used: RING, or the chunks of the whole run if fewer */
     uint64_t serial;
@@ -233,6 +245,13 @@ static bool encode(encoder *e, const job *j, char *why, size_t why_size)
         snprintf(why, why_size, "%s", err.message);
         return false;
     }
+    /* the extra outputs, as render_aovs_write writes them */
+    for (int k = MVR_OUTPUT_DEPTH; k < MVR_OUTPUT_COUNT; ++k)
+        if (s->output_layer_bytes[k] &&
+            !render_aovs_write_view(o->out_dir, (mvr_output)k, j->view, j->frame, s->frame_digits, s->w, s->h,
+                                    j->buffer->pixels + s->output_offset[k] + s->output_layer_bytes[k] * j->index,
+                                    why, why_size))
+            return false;
     if (j->sheet)
         sheet_put(&s->sheet, j->view, bytes, s->w, s->h);
     return true;
@@ -312,7 +331,12 @@ static bool harvest(render_stream *s, ring_slot *slot)
     if (!b)
         return !worker_failed(s);
     slot->busy = false;
-    if (mvr_renderer_finish_read(s->r, slot->readback, b->pixels, s->layer_bytes * s->chunk) != MVR_OK) {
+    bool read = mvr_renderer_finish_read(s->r, slot->readback, b->pixels, s->layer_bytes * s->chunk) == MVR_OK;
+    for (int k = MVR_OUTPUT_DEPTH; read && k < MVR_OUTPUT_COUNT; ++k)
+        read = !slot->outputs[k] ||
+               mvr_renderer_finish_read(s->r, slot->outputs[k], b->pixels + s->output_offset[k],
+                                        s->output_layer_bytes[k] * s->chunk) == MVR_OK;
+    if (!read) {
         fprintf(stderr, "mvr render: reading views %u .. %u: %s\n", slot->base, slot->base + slot->count - 1,
                 mvr_renderer_last_error(s->r));
         pthread_mutex_lock(&s->lock);
@@ -325,7 +349,7 @@ static bool harvest(render_stream *s, ring_slot *slot)
     b->pending = slot->count;
     for (uint32_t k = 0; k < slot->count; ++k) {
         job *j = &s->queue[(s->queue_head + s->queue_count++) % s->queue_cap];
-        *j = (job){.buffer = b, .pixels = b->pixels + s->layer_bytes * k, .view = slot->base + k,
+        *j = (job){.buffer = b, .pixels = b->pixels + s->layer_bytes * k, .index = k, .view = slot->base + k,
                    .frame = slot->frame, .sheet = slot->sheet};
     }
     pthread_cond_broadcast(&s->work);
@@ -344,7 +368,7 @@ static bool harvest_ready(render_stream *s)
         bool ready = false;
         if (!oldest)
             return true;
-        if (mvr_renderer_read_ready(s->r, oldest->readback, &ready) != MVR_OK) {
+        if (mvr_renderer_read_ready(s->r, oldest->last, &ready) != MVR_OK) {
             fprintf(stderr, "mvr render: %s\n", mvr_renderer_last_error(s->r));
             return false;
         }
@@ -511,13 +535,22 @@ bool render_stream_frame(render_stream *s, mvr_scene *scene, const mvr_view_set 
         for (uint32_t k = 0; k < count; ++k)
             s->culled[base + k] = mvr_renderer_view_culled(s->r, k);
         mvr_read_desc read = {.first_layer = 0, .layer_count = count, .format = s->read_format};
-        if (mvr_renderer_begin_read(s->r, slot->target, &read, slot->readback) != MVR_OK) {
+        bool begun = mvr_renderer_begin_read(s->r, slot->target, &read, slot->readback) == MVR_OK;
+        slot->last = slot->readback;
+        for (int k = MVR_OUTPUT_DEPTH; begun && k < MVR_OUTPUT_COUNT; ++k) {
+            if (!slot->outputs[k])
+                continue;
+            read.output = (mvr_output)k;
+            begun = mvr_renderer_begin_read(s->r, slot->target, &read, slot->outputs[k]) == MVR_OK;
+            slot->last = slot->outputs[k];
+        }
+        if (!begun) {
             fprintf(stderr, "mvr render: reading views %u .. %u: %s\n", base, base + count - 1,
                     mvr_renderer_last_error(s->r));
             return false;
         }
-        *slot = (ring_slot){.target = slot->target, .readback = slot->readback, .busy = true, .serial = s->serial++,
-                            .base = base, .count = count, .frame = frame, .sheet = sheet};
+        slot->busy = true, slot->serial = s->serial++, slot->base = base, slot->count = count;
+        slot->frame = frame, slot->sheet = sheet;
         /* the encoders get whatever the GL has finished already */
         if (!harvest_ready(s) || worker_failed(s))
             return false;
@@ -600,6 +633,8 @@ void render_stream_destroy(render_stream *s)
     stop_encoders(s);
     for (int i = 0; i < RING; ++i) {
         mvr_readback_destroy(s->ring[i].readback);
+        for (int k = 0; k < MVR_OUTPUT_COUNT; ++k)
+            mvr_readback_destroy(s->ring[i].outputs[k]);
         mvr_target_destroy(s->ring[i].target);
     }
     mvr_target_destroy(s->meter);
@@ -638,6 +673,15 @@ bool render_stream_create(const render_options *o, mvr_context *ctx, mvr_rendere
     s->float_target = o->format == MVR_COLOR_FORMAT_RGBA16F || o->format == MVR_COLOR_FORMAT_RGBA32F;
     s->read_format = s->float_target ? MVR_READBACK_RGBA32F : MVR_READBACK_RGBA8;
     s->layer_bytes = (size_t)s->w * s->ss * s->h * s->ss * (s->float_target ? 16 : 4);
+    /* a view's bytes in a chunk buffer: its colour, then its outputs (the
+     * target refuses outputs with supersampling, so these are w x h) */
+    s->frame_digits = render_output_frame_digits(frames);
+    size_t view_bytes = s->layer_bytes;
+    for (int k = MVR_OUTPUT_DEPTH; k < MVR_OUTPUT_COUNT; ++k)
+        if (o->outputs & MVR_OUTPUT_BIT(k)) {
+            s->output_layer_bytes[k] = (size_t)s->w * s->h * mvr_output_pixel_size((mvr_output)k);
+            view_bytes += s->output_layer_bytes[k];
+        }
     /* a chunk: one multiview pass; when the views take more than one, fewer
      * views where its layers would take more than SLOT_BUDGET to read back
      * (supersampled float layers), as the ring holds several */
@@ -647,8 +691,13 @@ bool render_stream_create(const render_options *o, mvr_context *ctx, mvr_rendere
         s->chunk = VIEW_BLOCK;
     if (s->chunk >= views)
         s->chunk = views;
-    while (s->chunk > 1 && s->layer_bytes * s->chunk > SLOT_BUDGET && s->chunk < views)
+    while (s->chunk > 1 && view_bytes * s->chunk > SLOT_BUDGET && s->chunk < views)
         s->chunk--;
+    s->buffer_bytes = s->layer_bytes * s->chunk;
+    for (int k = MVR_OUTPUT_DEPTH; k < MVR_OUTPUT_COUNT; ++k) {
+        s->output_offset[k] = s->buffer_bytes;
+        s->buffer_bytes += s->output_layer_bytes[k] * s->chunk;
+    }
     s->total_images = (uint64_t)views * frames;
     bool ok = (s->culled = calloc(views, sizeof *s->culled)) != NULL;
     /* no more targets and buffers than the run has chunks */
@@ -661,7 +710,7 @@ bool render_stream_create(const render_options *o, mvr_context *ctx, mvr_rendere
     s->queue_cap = s->buffer_count * s->chunk;
     ok = ok && (s->queue = calloc(s->queue_cap, sizeof *s->queue)) != NULL;
     for (uint32_t i = 0; ok && i < s->buffer_count; ++i) {
-        ok = (s->buffers[i].pixels = malloc(s->layer_bytes * s->chunk)) != NULL;
+        ok = (s->buffers[i].pixels = malloc(s->buffer_bytes)) != NULL;
         s->buffers[i].next = s->free_buffers;
         s->free_buffers = &s->buffers[i];
     }
@@ -672,14 +721,19 @@ bool render_stream_create(const render_options *o, mvr_context *ctx, mvr_rendere
         return false;
     }
     mvr_target_desc td = {.width = s->w * s->ss, .height = s->h * s->ss, .layers = s->chunk,
-                          .color_format = o->format, .samples = o->msaa, .anti_aliasing = o->aa};
-    for (uint32_t i = 0; i < s->ring_count; ++i)
-        if (mvr_target_create(r, &td, &s->ring[i].target) != MVR_OK ||
-            mvr_readback_create(r, &s->ring[i].readback) != MVR_OK) {
+                          .color_format = o->format, .samples = o->msaa, .anti_aliasing = o->aa,
+                          .outputs = o->outputs};
+    for (uint32_t i = 0; i < s->ring_count; ++i) {
+        ring_slot *slot = &s->ring[i];
+        ok = mvr_target_create(r, &td, &slot->target) == MVR_OK && mvr_readback_create(r, &slot->readback) == MVR_OK;
+        for (int k = MVR_OUTPUT_DEPTH; ok && k < MVR_OUTPUT_COUNT; ++k)
+            ok = !s->output_layer_bytes[k] || mvr_readback_create(r, &slot->outputs[k]) == MVR_OK;
+        if (!ok) {
             fprintf(stderr, "mvr render: %s\n", mvr_renderer_last_error(r));
             render_stream_destroy(s);
             return false;
         }
+    }
     if (pthread_mutex_init(&s->lock, NULL) != 0) {
         render_stream_destroy(s);
         return false;

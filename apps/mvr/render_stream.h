@@ -2,12 +2,15 @@
  * chunks of GL_MAX_VIEWS_OVR views, each rendered into one target of a
  * small ring while the previous chunk's layers come back through an
  * asynchronous readback (pixel buffer objects and a fence), and encoded
- * into files on worker threads. Memory is bounded by the ring, the few
- * chunk buffers the encoders work from and the contact sheet (at most 4
- * megapixels, 4096 a side), whatever the number of views. The images are the
- * synchronous path's, byte for byte (docs/guide.md says where a render of
- * every view at once may differ: shadow cascades, dithering, per-view auto
- * exposure; a shared auto-exposure is metered over every view first).
+ * into files on worker threads; --outputs (depth, normals, IDs ...) come
+ * back the same way, one more readback per output, and are written as the
+ * synchronous path writes them (render_aovs_write_view). Memory is bounded
+ * by the ring, the few chunk buffers the encoders work from and the contact
+ * sheet (at most 4 megapixels, 4096 a side), whatever the number of views.
+ * The images (and .npy files) are the synchronous path's, byte for byte
+ * (docs/guide.md says where a render of every view at once may differ:
+ * shadow cascades, dithering, per-view auto exposure; a shared
+ * auto-exposure is metered over every view first).
  * Only the calling thread touches GL. Messages are prefixed "mvr render". */
 #ifndef MVR_APP_RENDER_STREAM_H
 #define MVR_APP_RENDER_STREAM_H
@@ -27,7 +30,8 @@ bool render_stream_create(const render_options *o, mvr_context *ctx, mvr_rendere
                           uint32_t frames, render_stream **out);
 
 /* One frame of every view: frame -1 writes view_VV.EXT, frame >= 0
- * view_VV_fFFFF.EXT (render_output's names). sheet: this frame's views go
+ * view_VV_fFFFF.EXT (render_output's names), and each output's
+ * <output>_VV[_fFFFF].npy. sheet: this frame's views go
  * into the contact sheet. Returns before the last chunks are written;
  * false (printed) on the first failure, a worker's included. */
 bool render_stream_frame(render_stream *s, mvr_scene *scene, const mvr_view_set *views, const mvr_render_desc *desc,

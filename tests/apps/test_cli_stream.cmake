@@ -3,7 +3,7 @@
 # (one target of every view, each layer read and written in turn), byte for byte: a real exporter's
 # model (Blender's Suzanne, tests/data/peers/textured.gltf) seen by 14 views on a sphere (3 chunks on
 # llvmpipe's 6 views), with 1, 2 and 3 encoders, as EXR, supersampled, and an animated file's frame
-# sequence; the stats say how it ran; the contact sheet of wide views stays within 4096 pixels; names
+# sequence, and with the extra outputs (--outputs: the same .npy files); the stats say how it ran; the contact sheet of wide views stays within 4096 pixels; names
 # grow past 99 views; a terminal gets a progress line (--no-progress and pipes none).
 # cmake -DMVR=path/to/mvr -DPEERS=tests/data/peers -DOUT=dir -P test_cli_stream.cmake
 include(${CMAKE_CURRENT_LIST_DIR}/cli_expect.cmake)
@@ -77,6 +77,21 @@ expect("stream.json: chunks of 1 .. 14 views (${chunk} ${e2})" chunk GREATER 0 A
 file(READ ${OUT}/sync.json js)
 string(JSON mode ERROR_VARIABLE e1 GET "${js}" readback mode)
 expect("sync.json: readback sync (${mode} ${e1})" mode STREQUAL "sync")
+
+# --outputs all: depth, distance, normal, ids and coverage come back through the stream too (one
+# more asynchronous readback per output per ring slot), written as the same .npy bytes; and over the
+# 2 frames of an animated file (<output>_VV_fFFFF.npy)
+render_into(aov_sync ${SPHERE} --outputs all --readback sync)
+render_into(aov ${SPHERE} --outputs all --stats ${OUT}/aov.json)
+# 14 views x (an image and 5 .npy), the contact sheet, cameras.json, transforms.json, ids.json
+same_files(aov aov_sync 88)
+file(READ ${OUT}/aov.json js)
+string(JSON mode ERROR_VARIABLE e1 GET "${js}" readback mode)
+expect("aov.json: --outputs streams (readback ${mode} ${e1})" mode STREQUAL "stream")
+set(ANIM_AOV ${PEERS}/rigged.gltf --layout orbit --views 7 --size 32x32 --frames 2 --outputs depth,ids)
+render_into(anim_aov_sync ${ANIM_AOV} --readback sync)
+render_into(anim_aov ${ANIM_AOV} --encoders 3)
+same_files(anim_aov anim_aov_sync 46)
 
 # EXR (a float target, linear values; the sheet from the sRGB-encoded floats), supersampling (a
 # float target 2x the size, resolved on the encoder threads), and 7 views of an animated file over
