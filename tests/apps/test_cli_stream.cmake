@@ -92,6 +92,11 @@ set(ANIM_AOV ${PEERS}/rigged.gltf --layout orbit --views 7 --size 32x32 --frames
 render_into(anim_aov_sync ${ANIM_AOV} --readback sync)
 render_into(anim_aov ${ANIM_AOV} --encoders 3)
 same_files(anim_aov anim_aov_sync 46)
+# an .npy that cannot be written (a folder in its place) fails the streamed run, naming it
+file(MAKE_DIRECTORY ${OUT}/aov_bad/depth_03.npy)
+run(rc so se render ${SPHERE} --outputs depth --out ${OUT}/aov_bad --quiet)
+expect("an unwritable depth_03.npy exits 1, naming it (got ${rc}): ${se}"
+       rc EQUAL 1 AND se MATCHES "cannot write [^\n]*depth_03[.]npy")
 
 # EXR (a float target, linear values; the sheet from the sRGB-encoded floats), supersampling (a
 # float target 2x the size, resolved on the encoder threads), and 7 views of an animated file over
