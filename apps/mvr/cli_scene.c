@@ -28,7 +28,10 @@ static int load_scene_file(const char *command, const cli_scene_options *o, mvr_
         return MVR_EXIT_FAILURE;
     }
     mvr_result r;
-    if (o->camera >= 0 || (o->camera == CLI_CAMERA_IF_ANY && mvr_scene_camera_node_count(*scene) > 0)) {
+    if (o->given_views) {
+        mvr_view_set_desc vd = {.view_count = o->given_view_count, .views = o->given_views};
+        r = mvr_view_set_create(&vd, views, &err);
+    } else if (o->camera >= 0 || (o->camera == CLI_CAMERA_IF_ANY && mvr_scene_camera_node_count(*scene) > 0)) {
         /* N eyes ipd apart along the camera's x axis (ipd 0: scaled to the
          * camera's distance to the scene) */
         uint32_t k = o->camera >= 0 ? (uint32_t)o->camera : 0;
@@ -100,6 +103,15 @@ int cli_load_scene(const char *command, const cli_scene_options *o, mvr_scene **
     if (mvr_demo_create(o->demo, &dd, scene, views, &err) != MVR_OK) {
         fprintf(stderr, "%s: %s\n", command, err.message);
         return err.result == MVR_ERROR_INVALID_ARGUMENT ? MVR_EXIT_USAGE : MVR_EXIT_FAILURE;
+    }
+    if (o->given_views) { /* the demo's scene, the file's views */
+        mvr_view_set_destroy(*views);
+        *views = NULL;
+        mvr_view_set_desc vd = {.view_count = o->given_view_count, .views = o->given_views};
+        if (mvr_view_set_create(&vd, views, &err) != MVR_OK) {
+            fprintf(stderr, "%s: %s\n", command, err.message);
+            return MVR_EXIT_USAGE;
+        }
     }
     return MVR_EXIT_OK;
 }

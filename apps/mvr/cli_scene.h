@@ -22,6 +22,9 @@ typedef struct cli_scene_options {
     bool strict;                 /* glTF: a missing or undecodable image fails the load */
     uint64_t memory_budget;      /* glTF: the load's memory budget in bytes; 0 = the loader's default */
     struct mvr_gltf_info *gltf_info; /* optional: what the glTF load reports */
+    const mvr_view_desc *given_views; /* views from a camera file (--cameras): used instead of the
+                                         file's camera, a layout or the demo's own views */
+    uint32_t given_view_count;
 } cli_scene_options;
 
 /* A demo or a glTF file and its views (a file's camera through

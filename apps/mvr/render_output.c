@@ -470,6 +470,46 @@ static void json_matrix_rows(json_writer *jw, const char *key, const double m[16
     json_end_array(jw);
 }
 
+/* The view as it was given (mvr_view_set_get_view), 17 digits: mvr render
+ * --cameras of this file makes the same views bit for bit (camera_file.c). */
+static void json_view_desc(json_writer *jw, const mvr_view_desc *v)
+{
+    json_begin_object(jw, "mvr_view");
+    json_begin_array(jw, "position");
+    for (int i = 0; i < 3; ++i)
+        json_double_exact(jw, NULL, v->position[i]);
+    json_end_array(jw);
+    json_begin_array(jw, "orientation");
+    for (int i = 0; i < 4; ++i)
+        json_double_exact(jw, NULL, v->orientation[i]);
+    json_end_array(jw);
+    const mvr_projection *p = &v->projection;
+    json_begin_object(jw, "projection");
+    static const char *const types[] = {"perspective", "frustum", "orthographic", "matrix"};
+    json_string(jw, "type", (unsigned)p->type <= MVR_PROJECTION_MATRIX ? types[p->type] : "unknown");
+    switch (p->type) {
+    case MVR_PROJECTION_PERSPECTIVE:
+        json_double_exact(jw, "yfov", p->yfov);
+        json_double_exact(jw, "aspect", p->aspect);
+        break;
+    case MVR_PROJECTION_FRUSTUM:
+        json_double_exact(jw, "angle_left", p->angle_left);
+        json_double_exact(jw, "angle_right", p->angle_right);
+        json_double_exact(jw, "angle_down", p->angle_down);
+        json_double_exact(jw, "angle_up", p->angle_up);
+        break;
+    case MVR_PROJECTION_ORTHOGRAPHIC:
+        json_double_exact(jw, "xmag", p->xmag);
+        json_double_exact(jw, "ymag", p->ymag);
+        break;
+    case MVR_PROJECTION_MATRIX: json_matrix_rows(jw, "matrix", p->matrix); break;
+    }
+    json_double_exact(jw, "znear", p->znear);
+    json_double_exact(jw, "zfar", p->zfar);
+    json_end_object(jw);
+    json_end_object(jw);
+}
+
 /* COLMAP's text model (its documentation, "Output Format"): a PINHOLE
  * camera per view (fx fy cx cy, pixel centres at k + 0.5 as mvr's), each
  * image's world-to-camera rotation (Hamilton quaternion, w first) and
@@ -564,6 +604,9 @@ bool render_output_write_cameras(const render_options *o, const mvr_view_set *vi
                                            "Y / Z + cy from its top edge; pixel k covers [k, k + 1) (subtract 0.5 "
                                            "for integer pixel centres)");
             json_string(&jw, "projection", "OpenGL clip from camera space, 4 rows of 4, z in [-1, 1]");
+            json_string(&jw, "mvr_view", "the view as mvr was given it (mvr_view_desc; zeros are defaults): mvr "
+                                         "render --cameras of this file renders it again exactly, unless the "
+                                         "matrices or intrinsics above were changed, which then win");
         } else {
             json_string(&jw, "convention", "NeRF (instant-ngp, nerfstudio): transform_matrix is camera-to-world "
                                            "with the OpenGL camera; world glTF (+Y up)");
@@ -595,6 +638,9 @@ bool render_output_write_cameras(const render_options *o, const mvr_view_set *vi
                 json_matrix_rows(&jw, "projection", cam.projection);
                 json_matrix_rows(&jw, "world_to_camera", cam.world_to_camera);
                 json_matrix_rows(&jw, "camera_to_world", cam.camera_to_world);
+                mvr_view_desc desc;
+                if (mvr_view_set_get_view(views, k, &desc) == MVR_OK)
+                    json_view_desc(&jw, &desc);
             } else {
                 json_matrix_rows(&jw, "transform_matrix", cam.camera_to_world);
             }
