@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <time.h>
 
+#include "camera_file.h"
 #include "cli_env.h"
 #include "cli_scene.h"
 #include "mvr/mvr.h"
@@ -25,7 +26,9 @@ typedef struct bench_options {
     bool env_axes;
     cli_env_options env;
     const char *env_option;              /* the last option only --env-axes takes, if any */
-    bool demo_set, frames_set, warmup_set, matrix_set;
+    bool demo_set, frames_set, warmup_set, matrix_set, size_set;
+    const char *cameras_file;            /* --cameras: its views (scene.given_views) */
+    camera_file cameras;
     uint32_t sizes[8], n_sizes;          /* --specular-sizes */
     uint32_t samples[8], n_samples;      /* --specular-samples */
     uint32_t reference_samples;          /* --reference-samples */

@@ -101,7 +101,7 @@ int cli_next(cli_parser *p, cli_arg *arg)
         return 0;
     const char *a = p->argv[p->i++];
     if (a[0] != '-' || a[1] == '\0') { /* a positional argument ("-" too: stdin is no scene) */
-        if (p->positional) { /* every command takes one SCENE at most */
+        if (p->positional && !p->many_positionals) { /* one SCENE at most, unless the command takes more */
             fprintf(stderr, "%s: one SCENE file at a time (got %s and %s)\n", p->command, p->positional, a);
             return -1;
         }

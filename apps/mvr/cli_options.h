@@ -57,6 +57,8 @@ typedef struct cli_parser {
     unsigned given_count;
     const cli_option *given[CLI_MAX_GIVEN];
     const char *positional;           /* the SCENE argument, once given (a second is refused) */
+    bool many_positionals;            /* set after init: every positional argument is returned
+                                         (mvr render SCENE...), none refused */
 } cli_parser;
 
 void cli_parser_init(cli_parser *p, const char *command, const cli_option *const *tables, int argc, char **argv);

@@ -35,7 +35,7 @@
 
 enum {
     B_DEMO = 1, B_VIEWS, B_SIZE, B_FRAMES, B_WARMUP, B_ROUNDS, B_MATRIX, B_OUT, B_CALLGRIND, B_QUIET, B_VERBOSE,
-    B_ONLY, B_ENV_AXES, B_SPECULAR_SIZES, B_SPECULAR_SAMPLES, B_REFERENCE_SAMPLES
+    B_ONLY, B_ENV_AXES, B_SPECULAR_SIZES, B_SPECULAR_SAMPLES, B_REFERENCE_SAMPLES, B_CAMERAS
 };
 
 #define END {CLI_OPT_END, 0, NULL, NULL, NULL, 0, 0, NULL, NULL, NULL, NULL, NULL}
@@ -49,6 +49,10 @@ static const cli_option bench_table[] = {
      "views (default: the demo's own), 1..64; --demo stereo and city\n"
      "frame at most 39 at 256x256 (fewer on wider layers)", NULL, NULL, NULL},
     {CLI_OPT_STRING, B_SIZE, "--size", NULL, "WxH", 0, 0, NULL, "layer size (default: 256x256)", NULL, NULL, NULL},
+    {CLI_OPT_STRING, B_CAMERAS, "--cameras", NULL, "FILE", 0, 0, NULL,
+     "the views from a camera file, as mvr render --cameras takes\n"
+     "it (cameras.json, transforms.json, CSV; at most 64 views);\n"
+     "its image size unless --size is given", NULL, "--views", "the camera file gives every view"},
     {CLI_OPT_U32, B_FRAMES, "--frames", NULL, "F", 1, 1000, NULL, "measured frames per configuration (default: 10)",
      NULL, NULL, NULL},
     {CLI_OPT_U32, B_WARMUP, "--warmup", NULL, "W", 0, 1000, NULL, "frames before measuring (default: 2)", NULL, NULL,
@@ -146,6 +150,37 @@ static bool parse_list(const char *v, uint32_t lo, uint32_t hi, bool pow2, uint3
     return *n > 0 && v[0] != ',' && v[strlen(v) - 1] != ',' && !strstr(v, ",,");
 }
 
+/* --cameras: the views of every configuration; the file's image size
+ * unless --size was given. */
+static bool load_cameras(bench_options *o)
+{
+    char why[512];
+    if (!camera_file_load(o->cameras_file, o->scene.width, o->scene.height, &o->cameras, why, sizeof why)) {
+        fprintf(stderr, "mvr bench: --cameras %s: %s\n", o->cameras_file, why);
+        return false;
+    }
+    if (o->cameras.count > 64) {
+        fprintf(stderr, "mvr bench: --cameras %s: %u views; mvr bench takes at most 64 (the reference renders each "
+                        "one 4x4 times over)\n", o->cameras_file, o->cameras.count);
+        camera_file_free(&o->cameras);
+        return false;
+    }
+    if (o->cameras.width && !o->size_set &&
+        (o->cameras.width > 4096 || o->cameras.height > 4096)) {
+        fprintf(stderr, "mvr bench: --cameras %s: its images are %ux%u; mvr bench takes at most 4096x4096 (give "
+                        "--size)\n", o->cameras_file, o->cameras.width, o->cameras.height);
+        camera_file_free(&o->cameras);
+        return false;
+    }
+    if (o->cameras.width && !o->size_set) {
+        o->scene.width = o->cameras.width;
+        o->scene.height = o->cameras.height;
+    }
+    o->scene.given_views = o->cameras.views;
+    o->scene.given_view_count = o->cameras.count;
+    return true;
+}
+
 static int parse(int argc, char **argv, bench_options *o)
 {
     memset(o, 0, sizeof *o);
@@ -215,7 +250,14 @@ static int parse(int argc, char **argv, bench_options *o)
             o->matrix_set = true;
             o->full = arg.choice == 1;
             break;
-        case B_SIZE: ok = cli_parse_size(v, 1, 4096, &o->scene.width, &o->scene.height); break;
+        case B_SIZE:
+            ok = cli_parse_size(v, 1, 4096, &o->scene.width, &o->scene.height);
+            o->size_set = true;
+            break;
+        case B_CAMERAS:
+            o->cameras_file = v;
+            ok = v[0] != '\0';
+            break;
         default: ok = false;
         }
         if (!ok) {
@@ -225,7 +267,9 @@ static int parse(int argc, char **argv, bench_options *o)
     }
     if (c < 0)
         return MVR_EXIT_USAGE;
-    if (!o->scene.scene_file && !cli_check_demo_views("mvr bench", o->scene.demo, o->scene.views, o->scene.width,
+    if (o->cameras_file && !load_cameras(o))
+        return MVR_EXIT_USAGE;
+    if (!o->cameras_file && !o->scene.scene_file && !cli_check_demo_views("mvr bench", o->scene.demo, o->scene.views, o->scene.width,
                                                       o->scene.height))
         return MVR_EXIT_USAGE;
     if (!cli_context_check("mvr bench", &o->context))
@@ -694,14 +738,19 @@ int mvr_cmd_bench(int argc, char **argv)
 {
     bench_options o;
     int rc = parse(argc, argv, &o);
-    if (rc != MVR_EXIT_OK)
+    if (rc != MVR_EXIT_OK) {
+        camera_file_free(&o.cameras);
         return rc < 0 ? MVR_EXIT_OK : rc;
-    if (!cli_make_dirs("mvr bench", o.out_dir))
+    }
+    if (!cli_make_dirs("mvr bench", o.out_dir)) {
+        camera_file_free(&o.cameras);
         return MVR_EXIT_FAILURE;
+    }
     mvr_error err;
     /* mvr bench reads the library's MVR_* debugging variables (docs/guide.md) */
     if (mvr_renderer_overrides_from_env(&o.overrides, &err) != MVR_OK) {
         fprintf(stderr, "mvr bench: %s\n", err.message);
+        camera_file_free(&o.cameras);
         return MVR_EXIT_USAGE;
     }
     mvr_context *ctx = NULL;
@@ -893,5 +942,6 @@ done:
     mvr_scene_destroy(scene);
     mvr_environment_destroy(env);
     mvr_context_destroy(ctx);
+    camera_file_free(&o.cameras);
     return rc;
 }

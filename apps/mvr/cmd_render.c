@@ -16,6 +16,8 @@
 #include "cli_scene.h"
 #include "commands.h"
 #include "mvr/mvr_gltf.h"
+#include "camera_file.h"  /* --cameras */
+#include "render_files.h" /* SCENE... and --list */
 #include "render_options.h"
 #include "render_aovs.h"
 #include "render_output.h"
@@ -26,7 +28,8 @@ enum {
     R_TRANSPARENCY, R_SUPERSAMPLE, R_MSAA, R_AA, R_REFERENCE, R_FORMAT, R_TARGET_FORMAT, R_SHADOWS, R_SHADOW_SIZE,
     R_EXPOSURE, R_EXPOSURE_SCALE, R_CAMERA_EXPOSURE, R_EXPOSURE_PER_VIEW, R_DITHER, R_CLEAR, R_TONE_MAP, R_FRAMES,
     R_STATS, R_STRICT, R_MEMORY_BUDGET, R_PROGRAM_CACHE, R_QUIET, R_PLAN, R_ANIMATION, R_TIME, R_LOOP, R_FPS, R_VIDEO,
-    R_SKINNING, R_VARIANT, R_COLMAP, R_OUTPUTS, R_NORMAL_SPACE, R_ALPHA_CUTOFF, R_READBACK, R_NO_PROGRESS, R_ENCODERS
+    R_SKINNING, R_VARIANT, R_COLMAP, R_OUTPUTS, R_NORMAL_SPACE, R_ALPHA_CUTOFF, R_READBACK, R_NO_PROGRESS, R_ENCODERS,
+    R_CAMERAS, R_LIST, R_KEEP_GOING
 };
 
 #define MAX_FRAMES 100000
@@ -55,6 +58,14 @@ static const cli_option render_table[] = {
      "the scene's bounding sphere (default: stereo); sphere: --views\n"
      "spread evenly over a sphere around it (default 50); orbit: a\n"
      "turntable of 3 rings from -15 to 60 degrees (default 24 views)", NULL, NULL, NULL},
+    {CLI_OPT_STRING, R_CAMERAS, "--cameras", NULL, "FILE", 0, 0, NULL,
+     "the views from a camera file: mvr's cameras.json (the same\n"
+     "views again, exactly), NeRF's transforms.json, or CSV with a\n"
+     "header x,y,z,qx,qy,qz,qw,fx,fy,cx,cy[,width,height,znear]\n"
+     "(docs/guide.md); told apart by content; the file's image size\n"
+     "is the layers' unless --size is given (then the same fields of\n"
+     "view at that size)", NULL, "--camera --layout --views --ipd",
+     "the camera file gives every view"},
     {CLI_OPT_STRING, R_IPD, "--ipd", NULL, "M", 0, 0, NULL,
      "distance between stereo eyes in scene units (default: 1/30 of\n"
      "the distance to the scene: 0.064 at 1.9)", NULL, NULL, NULL},
@@ -210,6 +221,17 @@ static const cli_option render_table_tail[] = {
      "time left)", NULL, NULL, NULL},
     {CLI_OPT_FLAG, R_QUIET, "--quiet", NULL, NULL, 0, 0, NULL, "print only errors (no progress line)", NULL, NULL,
      NULL},
+    {CLI_OPT_STRING, R_LIST, "--list", NULL, "FILE", 0, 0, NULL,
+     "also render the SCENE files FILE names: one path a line\n"
+     "(from the current directory), '#' starts a comment; with more\n"
+     "than one SCENE in all, each goes to DIR/<its name>/ (a name\n"
+     "that repeats gets _K, its place in the run), with --stats and\n"
+     "--video there too, in one process: one context, renderer and\n"
+     "program cache; a summary at the end", NULL, "--demo", "--demo renders a built-in scene"},
+    {CLI_OPT_FLAG, R_KEEP_GOING, "--keep-going", NULL, NULL, 0, 0, NULL,
+     "with several SCENE files: report one that fails and go on\n"
+     "(default: stop there); the exit status is the first failure's",
+     NULL, NULL, NULL},
     END,
 };
 
@@ -220,11 +242,12 @@ static const cli_option *const render_tables[] = {render_table,       cli_env_op
 static void render_usage(FILE *out)
 {
     fprintf(out,
-            "usage: mvr render [--demo NAME | SCENE.gltf | SCENE.glb] [options]\n"
+            "usage: mvr render [--demo NAME | SCENE.gltf|.glb ... | --list FILE] [options]\n"
             "\n"
             "Renders a scene into N views headless and writes one image per view\n"
             "(view_00.png, ...) and a contact sheet (PNG) of all views side by side;\n"
             "with --frames N, a numbered sequence per view (view_00_f0000.png, ...).\n"
+            "Several SCENE files render one after another, each into DIR/<its name>/.\n"
             "\n"
             "options:\n");
     cli_print_options(out, render_tables, 20);
@@ -305,6 +328,7 @@ static bool apply(const cli_arg *arg, render_options *o)
             fprintf(stderr, "mvr render: --size takes WxH with 1..16384 each, e.g. 640x480\n");
             return false;
         }
+        o->size_set = true;
         break;
     case R_OUT: o->out_dir = v; break;
     case R_STATS: o->stats_file = v; break;
@@ -324,6 +348,15 @@ static bool apply(const cli_arg *arg, render_options *o)
         o->render.output_alpha_cutoff = (float)a;
         break;
     }
+    case R_CAMERAS:
+        if (!v[0]) {
+            fprintf(stderr, "mvr render: --cameras takes a file (got '')\n");
+            return false;
+        }
+        o->cameras_file = v;
+        break;
+    case R_LIST: o->list_file = v; break;
+    case R_KEEP_GOING: o->keep_going = true; break;
     case R_MEMORY_BUDGET: o->memory_budget = (uint64_t)arg->number << 20; break;
     case R_PROGRAM_CACHE: o->program_cache = v; break;
     case R_VIEW_PATH: o->view_path = (mvr_view_path)(MVR_VIEW_PATH_AUTO + arg->choice); break;
@@ -404,7 +437,36 @@ static bool apply(const cli_arg *arg, render_options *o)
     return true;
 }
 
-static int parse(int argc, char **argv, render_options *o)
+/* The SCENE arguments and --list's, and the --cameras file's views. */
+typedef struct render_inputs {
+    render_file_list files;
+    camera_file cameras;
+} render_inputs;
+
+/* --cameras: read once before any GL, its views shared by every file; the
+ * file's size is the layers' unless --size was given. */
+static int load_cameras(render_options *o, render_inputs *in)
+{
+    char why[512];
+    if (!camera_file_load(o->cameras_file, o->width, o->height, &in->cameras, why, sizeof why)) {
+        fprintf(stderr, "mvr render: --cameras %s: %s\n", o->cameras_file, why);
+        return MVR_EXIT_USAGE;
+    }
+    if (in->cameras.width && !o->size_set) {
+        o->width = in->cameras.width;
+        o->height = in->cameras.height;
+    }
+    if (in->cameras.edited && !o->quiet)
+        fprintf(stderr, "mvr render: --cameras %s: %u view%s (the first: view %u) no longer match%s their mvr_view: "
+                        "their matrices and intrinsics are used\n", o->cameras_file, in->cameras.edited,
+                in->cameras.edited == 1 ? "" : "s", in->cameras.first_edited, in->cameras.edited == 1 ? "es" : "");
+    o->camera_views = in->cameras.views;
+    o->camera_count = in->cameras.count;
+    o->camera_format = in->cameras.format;
+    return MVR_EXIT_OK;
+}
+
+static int parse(int argc, char **argv, render_options *o, render_inputs *in)
 {
     memset(o, 0, sizeof *o);
     cli_logger(&o->context.logger, "render", false);
@@ -417,11 +479,13 @@ static int parse(int argc, char **argv, render_options *o)
     cli_render_desc_defaults(&o->render); /* as mvr-viewer starts */
     cli_parser p;
     cli_parser_init(&p, "mvr render", render_tables, argc, argv);
+    p.many_positionals = true;
     cli_arg arg;
     int c;
     while ((c = cli_next(&p, &arg)) > 0) {
-        if (!arg.opt) { /* the SCENE (the parser refuses a second) */
-            o->scene_file = arg.value;
+        if (!arg.opt) { /* a SCENE */
+            if (!render_files_add(&in->files, arg.value))
+                return MVR_EXIT_USAGE;
             continue;
         }
         if (arg.opt->id == CLI_ID_HELP) {
@@ -438,6 +502,10 @@ static int parse(int argc, char **argv, render_options *o)
     }
     if (c < 0)
         return MVR_EXIT_USAGE;
+    if (o->list_file && !render_files_read_list(o->list_file, &in->files))
+        return MVR_EXIT_USAGE;
+    if (in->files.count)
+        o->scene_file = in->files.paths[0]; /* the options are checked against a file */
     if (!o->scene_file && (o->camera >= 0 || o->gltf_scene)) {
         fprintf(stderr, "mvr render: --camera and --scene are for a SCENE file\n");
         return MVR_EXIT_USAGE;
@@ -449,7 +517,7 @@ static int parse(int argc, char **argv, render_options *o)
     if (!o->demo && !o->scene_file)
         o->demo = "stereo";
     /* a file with a camera is seen from it unless a layout is asked for */
-    if (o->scene_file && o->camera < 0 && !o->layout_set)
+    if (o->scene_file && o->camera < 0 && !o->layout_set && !o->cameras_file)
         o->camera = CLI_CAMERA_IF_ANY;
     if (!cli_context_check("render", &o->context))
         return MVR_EXIT_USAGE;
@@ -486,6 +554,11 @@ static int parse(int argc, char **argv, render_options *o)
     }
     if (!cli_env_check("mvr render", &o->env, o->scene_file != NULL))
         return MVR_EXIT_USAGE;
+    if (o->cameras_file) {
+        int crc = load_cameras(o, in);
+        if (crc != MVR_EXIT_OK)
+            return crc;
+    }
     if (o->exr && !o->format_set)
         o->format = MVR_COLOR_FORMAT_RGBA16F; /* linear HDR values for EXR */
     if (o->reference) {
@@ -505,7 +578,8 @@ static int parse(int argc, char **argv, render_options *o)
             return MVR_EXIT_USAGE;
         }
     }
-    if (!o->scene_file && !cli_check_demo_views("mvr render", o->demo, o->views, o->width, o->height))
+    if (!o->scene_file && !o->cameras_file &&
+        !cli_check_demo_views("mvr render", o->demo, o->views, o->width, o->height))
         return MVR_EXIT_USAGE;
     /* a directory given must be usable, or the run says why instead of
      * silently compiling without it */
@@ -544,37 +618,70 @@ static const char *program_cache_dir(const render_options *o, char *buf, size_t 
     return buf;
 }
 
-int mvr_cmd_render(int argc, char **argv)
+/* What the files of one run share: the context, the renderer (and with it
+ * the program cache and the prefiltered environment) and the environment,
+ * each made when the first file needs it, so one file runs in today's
+ * order; render_one makes and frees everything of its own file. */
+typedef struct render_session {
+    const render_options *base;
+    mvr_context *ctx;
+    mvr_renderer *renderer;
+    mvr_renderer_desc rd;
+    mvr_environment *env;
+    bool env_made;
+    cli_env_used env_used;
+    mvr_render_desc render;      /* the options' render desc with the environment in it */
+    char cache_buf[4096];
+} render_session;
+
+/* DIR/<name of path> for several files: --stats and --video per file. */
+static const char *per_file_path(char *buf, size_t size, const char *dir, const char *path)
 {
-    render_options o;
-    int rc = parse(argc, argv, &o);
-    if (rc != MVR_EXIT_OK)
-        return rc < 0 ? MVR_EXIT_OK : rc;
+    const char *name = strrchr(path, '/') ? strrchr(path, '/') + 1 : path;
+    snprintf(buf, size, "%s/%s", dir, name);
+    return buf;
+}
+
+/* Renders one scene (file: a SCENE, NULL: the options' own) into out_dir
+ * (NULL: --out) with the session's context and renderer; an MVR_EXIT_
+ * code, *fatal set when the session itself could not be made. */
+static int render_one(render_session *s, const char *file, const char *out_dir, bool *fatal)
+{
+    render_options o = *s->base;
+    char stats_buf[4096 + 256], video_buf[4096 + 256];
+    if (file)
+        o.scene_file = file;
+    if (out_dir) {
+        o.out_dir = out_dir;
+        if (o.stats_file)
+            o.stats_file = per_file_path(stats_buf, sizeof stats_buf, out_dir, o.stats_file);
+        if (o.video)
+            o.video = per_file_path(video_buf, sizeof video_buf, out_dir, o.video);
+    }
     if (!cli_make_dirs("mvr render", o.out_dir))
         return MVR_EXIT_FAILURE;
 
     mvr_error err;
-    mvr_context *ctx = NULL;
     mvr_scene *scene = NULL;
     mvr_view_set *views = NULL;
     mvr_renderer *renderer = NULL;
     mvr_target *target = NULL;
-    mvr_environment *env = NULL;
-    cli_env_used env_used;
-    memset(&env_used, 0, sizeof env_used);
     uint8_t **layers = NULL;
     render_stream *stream = NULL; /* --readback stream (the default) */
-    rc = MVR_EXIT_FAILURE;
-    if (mvr_context_create(&o.context, &ctx, &err) != MVR_OK) {
+    int rc = MVR_EXIT_FAILURE;
+    if (!s->ctx && mvr_context_create(&o.context, &s->ctx, &err) != MVR_OK) {
         fprintf(stderr, "mvr render: %s\n", err.message);
+        *fatal = true;
         goto done;
     }
+    mvr_context *ctx = s->ctx;
     mvr_gltf_info gltf_info;
     memset(&gltf_info, 0, sizeof gltf_info);
     cli_scene_options so = {.demo = o.demo, .scene_file = o.scene_file, .camera = o.camera, .layout = o.layout,
                             .ipd = o.ipd, .gltf_scene = o.gltf_scene, .views = o.views, .width = o.width,
                             .height = o.height, .logger = o.context.logger, .strict = o.strict,
-                            .memory_budget = o.memory_budget, .gltf_info = &gltf_info};
+                            .memory_budget = o.memory_budget, .gltf_info = &gltf_info,
+                            .given_views = o.camera_views, .given_view_count = o.camera_count};
     rc = cli_load_scene("mvr render", &so, &scene, &views);
     if (rc != MVR_EXIT_OK)
         goto done;
@@ -584,9 +691,17 @@ int mvr_cmd_render(int argc, char **argv)
         rc = MVR_EXIT_USAGE;
         goto done;
     }
-    rc = cli_env_create("mvr render", &o.env, o.scene_file != NULL, &o.render, &env, &env_used);
-    if (rc != MVR_EXIT_OK)
-        goto done;
+    if (!s->env_made) {
+        s->render = o.render;
+        rc = cli_env_create("mvr render", &o.env, o.scene_file != NULL, &s->render, &s->env, &s->env_used);
+        if (rc != MVR_EXIT_OK) {
+            *fatal = true;
+            goto done;
+        }
+        s->env_made = true;
+    }
+    o.render = s->render;
+    cli_env_used env_used = s->env_used;
     /* the library's choice for the scene and its environment (auto exposure
      * and PBR Neutral for lights in physical units, PBR Neutral under an
      * environment, as mvr-viewer shows it); options given win */
@@ -597,21 +712,26 @@ int mvr_cmd_render(int argc, char **argv)
     if (o.tone_map_set)
         o.render.tone_map = o.tone_map;
     rc = MVR_EXIT_FAILURE;
-    char cache_buf[4096];
-    mvr_renderer_desc rd = {.context = ctx, .view_path = o.view_path, .logger = o.context.logger,
-                            .material_path = o.material_path, .depth_mode = o.depth_mode,
-                            .transparency_order = o.transparency, .skinning_path = o.skinning,
-                            .program_cache_dir = program_cache_dir(&o, cache_buf, sizeof cache_buf)};
-    /* mvr render reads the library's MVR_* debugging variables (docs/guide.md) */
-    if (mvr_renderer_overrides_from_env(&rd.overrides, &err) != MVR_OK) {
-        fprintf(stderr, "mvr render: %s\n", err.message);
-        rc = MVR_EXIT_USAGE;
-        goto done;
+    if (!s->renderer) {
+        s->rd = (mvr_renderer_desc){.context = ctx, .view_path = o.view_path, .logger = o.context.logger,
+                                    .material_path = o.material_path, .depth_mode = o.depth_mode,
+                                    .transparency_order = o.transparency, .skinning_path = o.skinning,
+                                    .program_cache_dir = program_cache_dir(&o, s->cache_buf, sizeof s->cache_buf)};
+        /* mvr render reads the library's MVR_* debugging variables (docs/guide.md) */
+        if (mvr_renderer_overrides_from_env(&s->rd.overrides, &err) != MVR_OK) {
+            fprintf(stderr, "mvr render: %s\n", err.message);
+            rc = MVR_EXIT_USAGE;
+            *fatal = true;
+            goto done;
+        }
+        if (mvr_renderer_create(&s->rd, &s->renderer, &err) != MVR_OK) {
+            fprintf(stderr, "mvr render: %s\n", err.message);
+            *fatal = true;
+            goto done;
+        }
     }
-    if (mvr_renderer_create(&rd, &renderer, &err) != MVR_OK) {
-        fprintf(stderr, "mvr render: %s\n", err.message);
-        goto done;
-    }
+    renderer = s->renderer;
+    const mvr_renderer_desc rd = s->rd;
     uint32_t n = mvr_view_set_count(views);
     uint32_t ss = o.supersample;
     mvr_target_desc td = {.width = o.width * ss, .height = o.height * ss, .layers = n, .color_format = o.format,
@@ -786,6 +906,9 @@ int mvr_cmd_render(int argc, char **argv)
             cli_variant_label(scene, variant, label, sizeof label);
             printf("  variant     %s (of %u)\n", label, mvr_scene_variant_count(scene));
         }
+        if (o.cameras_file)
+            printf("  cameras     %s: %u view%s (%s)\n", o.cameras_file, o.camera_count, o.camera_count == 1 ? "" : "s",
+                   o.camera_format);
         render_output_print_animation(&o, scene, &anim, &st);
         render_output_print_files(&o, n, sheet);
         render_output_print_readback(&readback);
@@ -798,10 +921,34 @@ done:
     free(layers);
     render_stream_destroy(stream);
     mvr_target_destroy(target);
-    mvr_renderer_destroy(renderer);
     mvr_view_set_destroy(views);
     mvr_scene_destroy(scene);
-    mvr_environment_destroy(env);
-    mvr_context_destroy(ctx);
     return rc;
+}
+
+static int render_file_cb(void *user, const char *file, const char *out_dir, bool *fatal)
+{
+    return render_one(user, file, out_dir, fatal);
+}
+
+int mvr_cmd_render(int argc, char **argv)
+{
+    render_options o;
+    render_inputs in;
+    memset(&in, 0, sizeof in);
+    int rc = parse(argc, argv, &o, &in);
+    if (rc == MVR_EXIT_OK) {
+        render_session s = {.base = &o};
+        bool fatal = false;
+        if (in.files.count > 1) /* DIR/<stem>/ each */
+            rc = render_files_run(&in.files, o.out_dir, o.keep_going, o.quiet, render_file_cb, &s);
+        else
+            rc = render_one(&s, NULL, NULL, &fatal);
+        mvr_renderer_destroy(s.renderer);
+        mvr_environment_destroy(s.env);
+        mvr_context_destroy(s.ctx);
+    }
+    render_files_free(&in.files);
+    camera_file_free(&in.cameras);
+    return rc < 0 ? MVR_EXIT_OK : rc;
 }

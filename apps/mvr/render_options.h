@@ -61,6 +61,17 @@ typedef struct render_options {
     render_readback readback;    /* --readback */
     bool no_progress;            /* --no-progress */
     uint32_t encoders;           /* --encoders N: image encoding threads of the stream (0 = 2) */
+    /* --cameras FILE: its views (owned by the command), instead of a camera
+     * or a layout; size_set: --size was given (else the file's size wins) */
+    const char *cameras_file;
+    const mvr_view_desc *camera_views;
+    uint32_t camera_count;
+    const char *camera_format;   /* camera_file.format */
+    bool size_set;
+    /* several SCENE files (arguments and --list FILE): keep_going skips one
+     * that fails instead of stopping there */
+    const char *list_file;
+    bool keep_going;
 } render_options;
 
 /* How the frames were read back and written: the summary and the stats. */

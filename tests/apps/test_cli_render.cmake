@@ -357,8 +357,12 @@ expect("--camera with --layout is refused: ${se}" rc EQUAL 2 AND se MATCHES "--c
 run(rc so se render --demo stereo --exposure-scale 2 --exposure-per-view --out ${OUT}/conflict --quiet)
 expect("--exposure-per-view with --exposure-scale is refused: ${se}"
        rc EQUAL 2 AND se MATCHES "--exposure-scale conflicts with --exposure-per-view")
-run(rc so se render a.gltf b.gltf)
-expect("two SCENE files are refused: ${se}" rc EQUAL 2 AND se MATCHES "one SCENE file at a time")
+# render takes several SCENE files (apps_cli_files); missing ones fail as files, not as usage
+run(rc so se render a.gltf b.gltf --keep-going --out ${OUT}/missing)
+expect("two missing SCENE files fail (got ${rc}): ${se}" rc EQUAL 1 AND se MATCHES "cannot open 'b.gltf'"
+       AND se MATCHES "0 of 2 files rendered, 2 failed: a.gltf b.gltf")
+run(rc so se bench a.gltf b.gltf)
+expect("mvr bench refuses two SCENE files: ${se}" rc EQUAL 2 AND se MATCHES "one SCENE file at a time")
 # the same option twice is no conflict: the last wins
 run(rc so se render --demo stereo --views 2 --size 32x24 --exposure 10 --exposure 12 --out ${OUT}/twice
     --stats ${OUT}/twice/stats.json --quiet)
