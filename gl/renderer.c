@@ -879,6 +879,18 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
     return res;
 }
 
+void mvr_renderer_read_timer(mvr_renderer *r)
+{
+    GLuint64 t0 = 0, t1 = 0;
+    GLint disjoint = 0;
+    r->gl->GetQueryObjectui64v(r->timer.queries[0], GL_QUERY_RESULT, &t0);
+    r->gl->GetQueryObjectui64v(r->timer.queries[1], GL_QUERY_RESULT, &t1);
+    if (r->ctx->caps.api == MVR_GL_API_GLES)
+        r->gl->GetIntegerv(GL_GPU_DISJOINT_EXT, &disjoint);
+    r->stats.gpu_ms = (!disjoint && t1 >= t0) ? (double)(t1 - t0) * 1e-6 : -1.0;
+    r->timer.pending = false;
+}
+
 void mvr_renderer_get_stats(mvr_renderer *r, mvr_frame_stats *out)
 {
     if (!r || !out)
@@ -886,14 +898,7 @@ void mvr_renderer_get_stats(mvr_renderer *r, mvr_frame_stats *out)
     /* the timer result is read only with the renderer's context current (else kept for later) */
     if (r->timer.pending && r->ctx && mvr_context_is_current(r->ctx) &&
         mvr_context_begin(r->ctx, "mvr_renderer_get_stats") == MVR_OK) {
-        GLuint64 t0 = 0, t1 = 0;
-        GLint disjoint = 0;
-        r->gl->GetQueryObjectui64v(r->timer.queries[0], GL_QUERY_RESULT, &t0);
-        r->gl->GetQueryObjectui64v(r->timer.queries[1], GL_QUERY_RESULT, &t1);
-        if (r->ctx->caps.api == MVR_GL_API_GLES)
-            r->gl->GetIntegerv(GL_GPU_DISJOINT_EXT, &disjoint);
-        r->stats.gpu_ms = (!disjoint && t1 >= t0) ? (double)(t1 - t0) * 1e-6 : -1.0;
-        r->timer.pending = false;
+        mvr_renderer_read_timer(r);
         /* a void call: an error of its own is logged, not left for the next call to blame on the application */
         mvr_gl_check(r->ctx, "mvr_renderer_get_stats", true);
     }

@@ -341,6 +341,10 @@ mvr_result mvr_renderer_program(mvr_renderer *r, const mvr_shader_variant *v, mv
 mvr_result mvr_gpu_scene_sync(mvr_renderer *r, const mvr_scene *scene);
 void mvr_gpu_scene_release(mvr_renderer *r);
 
+/* The last frame's timer queries into stats.gpu_ms (waits for them; -1 when
+ * disjoint); the context current and a frame's queries pending. */
+void mvr_renderer_read_timer(mvr_renderer *r);
+
 /* tuning.c: the view path `auto` runs this frame (prior: the caps rule's;
  * the tuner measures around it), and after the frame what to measure. */
 mvr_view_path mvr_tuning_view_path(mvr_renderer *r, const mvr_view_set *views, const mvr_target *t,

@@ -35,17 +35,9 @@ static uint32_t candidate_of(mvr_view_path path)
 /* The GPU time of the last frame (ms), waiting for it; < 0 when there is none. */
 static double last_gpu_ms(mvr_renderer *r)
 {
-    if (!r->timer.pending)
-        return r->stats.gpu_ms; /* read by mvr_renderer_get_stats already (or none) */
-    GLuint64 t0 = 0, t1 = 0;
-    GLint disjoint = 0;
-    r->gl->GetQueryObjectui64v(r->timer.queries[0], GL_QUERY_RESULT, &t0);
-    r->gl->GetQueryObjectui64v(r->timer.queries[1], GL_QUERY_RESULT, &t1);
-    if (r->ctx->caps.api == MVR_GL_API_GLES)
-        r->gl->GetIntegerv(GL_GPU_DISJOINT_EXT, &disjoint);
-    r->timer.pending = false;
-    r->stats.gpu_ms = (!disjoint && t1 >= t0) ? (double)(t1 - t0) * 1e-6 : -1.0;
-    return r->stats.gpu_ms;
+    if (r->timer.pending)
+        mvr_renderer_read_timer(r);
+    return r->stats.gpu_ms; /* read now, or by mvr_renderer_get_stats already (or none) */
 }
 
 static void fill_stats(mvr_renderer *r, mvr_auto_state state, mvr_view_path prior)

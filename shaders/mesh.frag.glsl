@@ -835,6 +835,20 @@ vec3 mvr_surface_normal()
 }
 #endif
 
+// The material's alpha at this fragment: factor x vertex colour x texture
+// (the shadow casters' alpha test, the outputs' cutoff).
+float mvr_material_alpha(mvr_material m)
+{
+    float alpha = m.base_color_factor.a;
+#ifdef MVR_COLOR0
+    alpha *= v_color0.a;
+#endif
+#ifdef MVR_BASE_COLOR_TEX
+    alpha *= MVR_SAMPLE_ROLE(mvr_base_color_tex, MVR_ROLE_BASE_COLOR, m).a;
+#endif
+    return alpha;
+}
+
 #ifdef MVR_OUTPUTS
 // The extra outputs of a fragment: its depth along the view's axis and its
 // distance to the eye (both from the eye-to-point vector, which is
@@ -871,13 +885,7 @@ void main()
     mvr_material m = mvr_material_table[v_material];
     float alpha = 1.0;
 #ifdef MVR_ALPHA_BLEND
-    alpha = m.base_color_factor.a;
-#ifdef MVR_COLOR0
-    alpha *= v_color0.a;
-#endif
-#ifdef MVR_BASE_COLOR_TEX
-    alpha *= MVR_SAMPLE_ROLE(mvr_base_color_tex, MVR_ROLE_BASE_COLOR, m).a;
-#endif
+    alpha = mvr_material_alpha(m);
 #endif
     if (alpha < mvr_output_alpha_cutoff)
         discard;
@@ -891,13 +899,7 @@ void main()
 {
 #ifdef MVR_ALPHA_MASK
     mvr_material m = mvr_material_table[v_material];
-    float alpha = m.base_color_factor.a;
-#ifdef MVR_COLOR0
-    alpha *= v_color0.a;
-#endif
-#ifdef MVR_BASE_COLOR_TEX
-    alpha *= MVR_SAMPLE_ROLE(mvr_base_color_tex, MVR_ROLE_BASE_COLOR, m).a;
-#endif
+    float alpha = mvr_material_alpha(m);
     if (alpha < m.emissive.a)
         discard;
 #endif
