@@ -1,6 +1,11 @@
 /*
- * mvr_image: image files in and out, and image comparison, through
- * OpenImageIO behind a C ABI (so C programs use it without C++ headers).
+ * mvr_image: image files in and out, and image comparison, behind a C ABI.
+ * 8-bit PNG goes through libpng; everything else (EXR, HDR, JPEG, WebP, float
+ * pixels, comparisons) through OpenImageIO in libmvr_image_oiio.so, which is
+ * loaded the first time a call needs it (found next to libmvr_image.so or the
+ * program, or at $MVR_IMAGE_MODULE; a call that needs it and cannot load it
+ * fails with MVR_ERROR_UNSUPPORTED naming the file and the reason). PNG
+ * decodes to the pixels OpenImageIO gives.
  * Used by the glTF loader (texture decoding), the CLI (PNG / EXR output), the
  * tests (golden images) and the benchmark (error against a reference).
  */

@@ -1,5 +1,9 @@
-// mvr_image: OpenImageIO behind the C ABI of mvr_image.h. No exception
-// leaves this file; every failure becomes an mvr_result with a message.
+// libmvr_image_oiio.so: OpenImageIO behind mvr_image.h's functions, as a
+// table the C front (image_io.c) loads with dlopen() the first time a call
+// needs it (image_internal.h says why). No exception leaves this file; every
+// failure becomes an mvr_result with a message. The front has checked the
+// arguments and, for encoded bytes, the signature, MIME type and PNG framing;
+// the checks here stay so that the module answers alone as mvr_image did.
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
@@ -11,7 +15,7 @@
 #include <exception>
 #include <string>
 
-#include "mvr/mvr_image.h"
+#include "image_internal.h"
 
 namespace {
 
@@ -144,14 +148,6 @@ bool to_buf(const mvr_image_view *v, ImageBuf &out, bool as_float)
 
 }  // namespace
 
-extern "C" void mvr_image_free(mvr_image_data *image)
-{
-    if (!image)
-        return;
-    std::free(image->pixels);
-    std::memset(image, 0, sizeof *image);
-}
-
 // Reads an opened ImageInput into RGBA of the given type.
 static mvr_result read_rgba(ImageInput *in, mvr_pixel_type type, uint32_t max_dimension, const std::string &what,
                             mvr_image_data *out, mvr_error *error)
@@ -231,7 +227,7 @@ mvr_result with_encoded(const void *data, size_t size, const char *mime, const c
 
 }  // namespace
 
-extern "C" mvr_result mvr_image_probe(const void *data, size_t size, const char *mime_type, mvr_image_header *out,
+static mvr_result oiio_probe(const void *data, size_t size, const char *mime_type, mvr_image_header *out,
                                       mvr_error *error)
 {
     if (!out || !data || size == 0)
@@ -249,7 +245,7 @@ extern "C" mvr_result mvr_image_probe(const void *data, size_t size, const char 
     });
 }
 
-extern "C" mvr_result mvr_image_decode(const void *data, size_t size, const char *mime_type,
+static mvr_result oiio_decode(const void *data, size_t size, const char *mime_type,
                                        uint32_t max_dimension, mvr_image_data *out, mvr_error *error)
 {
     if (!out || !data || size == 0)
@@ -260,7 +256,7 @@ extern "C" mvr_result mvr_image_decode(const void *data, size_t size, const char
     });
 }
 
-extern "C" mvr_result mvr_image_read(const char *path, mvr_pixel_type type, mvr_image_data *out, mvr_error *error)
+static mvr_result oiio_read(const char *path, mvr_pixel_type type, mvr_image_data *out, mvr_error *error)
 {
     if (!path || !out)
         return fail(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_read: NULL argument");
@@ -282,7 +278,7 @@ static float srgb_decode(float c)
     return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
 }
 
-extern "C" mvr_result mvr_image_write(const char *path, const mvr_image_view *image, mvr_error *error)
+static mvr_result oiio_write(const char *path, const mvr_image_view *image, mvr_error *error)
 {
     if (!path || !image || !image->pixels || image->width == 0 || image->height == 0)
         return fail(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_write: NULL or empty image");
@@ -324,7 +320,7 @@ extern "C" mvr_result mvr_image_write(const char *path, const mvr_image_view *im
     }
 }
 
-extern "C" mvr_result mvr_image_compare(const mvr_image_view *a, const mvr_image_view *b, double threshold,
+static mvr_result oiio_compare(const mvr_image_view *a, const mvr_image_view *b, double threshold,
                                         const char *diff_path, mvr_image_compare_result *out, mvr_error *error)
 {
     if (!a || !b || !out)
@@ -362,4 +358,15 @@ extern "C" mvr_result mvr_image_compare(const mvr_image_view *a, const mvr_image
     } catch (...) {
         return fail(error, MVR_ERROR_INTERNAL, "mvr_image_compare: unknown exception");
     }
+}
+
+// The module's one exported symbol (-fvisibility=hidden and a version script
+// keep everything else, OpenImageIO's templates included, local).
+static const mvr_image_backend oiio_backend = {
+    MVR_IMAGE_MODULE_ABI, sizeof(mvr_image_backend), oiio_probe, oiio_decode, oiio_read, oiio_write, oiio_compare,
+};
+
+extern "C" __attribute__((visibility("default"))) const mvr_image_backend *mvr_image_oiio_backend(uint32_t abi)
+{
+    return abi == MVR_IMAGE_MODULE_ABI ? &oiio_backend : nullptr;
 }

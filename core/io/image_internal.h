@@ -1,0 +1,100 @@
+/*
+ * mvr_image's parts, behind include/mvr/mvr_image.h:
+ *  - image_io.c: the C front every program links. It picks a decoder from the
+ *    bytes' signature and does PNG itself (image_png.c); everything else goes
+ *    to the OpenImageIO module.
+ *  - image_png.c: 8-bit PNG in and out through libpng, giving the pixels
+ *    OpenImageIO 2.4 gives (same libpng transforms, same alpha association,
+ *    same 16-to-8-bit rounding); what it does not reproduce it defers.
+ *  - image_oiio.cpp: libmvr_image_oiio.so, OpenImageIO behind a table of C
+ *    functions, loaded with dlopen() the first time a call needs it (EXR, HDR,
+ *    JPEG, WebP, float pixels, comparisons): linking OpenImageIO costs every
+ *    program ~0.3 s before main() (the static initialisers of its 260 shared
+ *    libraries), which a program that only writes PNG never needs to pay.
+ * Internal: tests/io/test_image_png.c uses these to compare the two decoders.
+ */
+#ifndef MVR_IMAGE_INTERNAL_H
+#define MVR_IMAGE_INTERNAL_H
+
+#include <stdio.h>
+
+#include "mvr/mvr_image.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- the OpenImageIO module (image_oiio.cpp) ---- */
+
+/* Bumped whenever the table or a function's meaning changes: a module of
+ * another build is refused rather than called with the wrong layout. */
+#define MVR_IMAGE_MODULE_ABI 1u
+#define MVR_IMAGE_MODULE_FILE "libmvr_image_oiio.so"
+#define MVR_IMAGE_MODULE_ENTRY "mvr_image_oiio_backend"
+/* A path: the module to load instead of searching for it (tests point it at
+ * a missing file to check the message; users at a module moved elsewhere). */
+#define MVR_IMAGE_MODULE_ENV "MVR_IMAGE_MODULE"
+
+/* Each function is the public one of the same name as OpenImageIO does it;
+ * the front has checked the arguments, the signature and the MIME type. */
+typedef struct mvr_image_backend {
+    uint32_t abi;                /* MVR_IMAGE_MODULE_ABI */
+    uint32_t size;               /* sizeof(mvr_image_backend) */
+    mvr_result (*probe)(const void *data, size_t size, const char *mime_type, mvr_image_header *out,
+                        mvr_error *error);
+    mvr_result (*decode)(const void *data, size_t size, const char *mime_type, uint32_t max_dimension,
+                         mvr_image_data *out, mvr_error *error);
+    mvr_result (*read)(const char *path, mvr_pixel_type type, mvr_image_data *out, mvr_error *error);
+    mvr_result (*write)(const char *path, const mvr_image_view *image, mvr_error *error);
+    mvr_result (*compare)(const mvr_image_view *a, const mvr_image_view *b, double threshold,
+                          const char *diff_path, mvr_image_compare_result *out, mvr_error *error);
+} mvr_image_backend;
+
+/* The module's one exported function: its table, or NULL when abi differs. */
+typedef const mvr_image_backend *(*mvr_image_backend_entry)(uint32_t abi);
+
+/* The loaded module (loaded once per process, thread-safe, never unloaded),
+ * or NULL with an error naming the file and dlerror()'s reason. `who` starts
+ * the message. */
+const mvr_image_backend *mvr_image_module(const char *who, mvr_error *error);
+
+/* ---- PNG through libpng (image_png.c) ---- */
+
+typedef enum mvr_png_status {
+    MVR_PNG_OK = 0,
+    MVR_PNG_DEFER,   /* not reproduced here, or libpng refused it: ask OpenImageIO (msg says why) */
+    MVR_PNG_FAILED   /* a final answer (size over the cap, out of memory, a file not writable) */
+} mvr_png_status;
+
+/* Where PNG bytes come from: memory, or an open file. */
+typedef struct mvr_png_source {
+    const unsigned char *data;
+    size_t size;
+    FILE *file;
+} mvr_png_source;
+
+/* The header as OpenImageIO's probe reports it (channels after expanding
+ * palette, low bit depths and tRNS). */
+mvr_png_status mvr_png_probe(const mvr_png_source *src, mvr_image_header *out, mvr_error *error);
+
+/* RGBA8, rows top first, as OpenImageIO's read_image(UINT8) and mvr's
+ * channel expansion give it. max_dimension 0 = 16384; `what` starts messages. */
+mvr_png_status mvr_png_decode(const mvr_png_source *src, uint32_t max_dimension, const char *what,
+                              mvr_image_data *out, mvr_error *error);
+
+/* An RGBA8 view to an 8-bit RGBA PNG with an sRGB chunk, alpha unassociated
+ * as OpenImageIO's PNG writer does it (the colour of a pixel with alpha a,
+ * 0 < a < 255, becomes min(255, c * 255 / a)). */
+mvr_png_status mvr_png_write(const char *path, const mvr_image_view *image, mvr_error *error);
+
+/* printf into error (NULL: nothing), returns r. */
+mvr_result mvr_image_fail(mvr_error *error, mvr_result r, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+#ifdef __cplusplus
+}
+#endif
+#endif

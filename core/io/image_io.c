@@ -1,0 +1,414 @@
+/*
+ * mvr_image's C front (include/mvr/mvr_image.h): the decoder is picked from
+ * the bytes' signature, never from a name; PNG is done here through libpng
+ * (image_png.c), and everything else by OpenImageIO in libmvr_image_oiio.so,
+ * loaded the first time a call needs it (image_internal.h says why).
+ *
+ * The module is searched, in this order:
+ *  1. $MVR_IMAGE_MODULE (a file: then nowhere else);
+ *  2. next to the object holding this code (libmvr_image.so's folder, or the
+ *     executable's when mvr_image is linked statically), then that folder's
+ *     parent (the build tree's tests/ programs) and ../<libdir> (an installed
+ *     bin/ program);
+ *  3. by name, as dlopen() searches (the caller's RUNPATH, LD_LIBRARY_PATH,
+ *     the system's library folders);
+ *  4. the library folder of the install prefix mvr was configured with.
+ * It is loaded once per process (pthread_once), kept until exit (never
+ * dlclose'd, so leak reports keep its symbols), and a failure to load it is
+ * remembered: every call that needs it gets the same message, naming the
+ * files tried and dlerror()'s reason.
+ */
+#define _GNU_SOURCE   /* dladdr1, RTLD_DL_LINKMAP */
+#include <dlfcn.h>
+#include <errno.h>
+#include <link.h>
+#include <limits.h>
+#include <pthread.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "image_internal.h"
+
+#ifndef MVR_IMAGE_INSTALL_LIBDIR
+#define MVR_IMAGE_INSTALL_LIBDIR ""
+#endif
+#ifndef MVR_IMAGE_LIBDIR_NAME
+#define MVR_IMAGE_LIBDIR_NAME "lib"
+#endif
+
+mvr_result mvr_image_fail(mvr_error *error, mvr_result r, const char *fmt, ...)
+{
+    if (error) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(error->message, sizeof error->message, fmt, ap);
+        va_end(ap);
+        error->result = r;
+    }
+    return r;
+}
+
+/* ---------------------------------------------------------------- the module */
+
+/* The one process-wide state of mvr_image: which module was loaded, or why
+ * none could be. Written once under pthread_once, read-only after. */
+static pthread_once_t module_once = PTHREAD_ONCE_INIT;
+static const mvr_image_backend *module_table;
+static char module_failure[MVR_ERROR_MESSAGE_SIZE];
+
+/* The folder of the object this code is linked into: libmvr_image.so, or the
+ * executable (whose link map has an empty name). */
+static bool own_folder(char *dir, size_t size)
+{
+    Dl_info info;
+    struct link_map *map = NULL;
+    char path[PATH_MAX];
+    path[0] = '\0';
+    if (dladdr1((const void *)&module_once, &info, (void **)&map, RTLD_DL_LINKMAP) && map && map->l_name &&
+        map->l_name[0]) {
+        snprintf(path, sizeof path, "%s", map->l_name);
+    } else {
+        ssize_t n = readlink("/proc/self/exe", path, sizeof path - 1);
+        if (n <= 0)
+            return false;
+        path[n] = '\0';
+    }
+    char *slash = strrchr(path, '/');
+    if (!slash)
+        return false;
+    *slash = '\0';
+    snprintf(dir, size, "%s", path[0] ? path : "/");
+    return true;
+}
+
+/* dlopen()s one candidate: on success its name goes to `opened`, on failure
+ * "dlerror()" is appended to `tried`. */
+static void *try_open(const char *file, char *opened, size_t opened_size, char *tried, size_t size)
+{
+    void *h = dlopen(file, RTLD_NOW | RTLD_LOCAL);
+    if (h) {
+        snprintf(opened, opened_size, "%s", file);
+    } else {
+        const char *why = dlerror();
+        size_t used = strlen(tried);
+        snprintf(tried + used, size - used, "%s%s", used ? "; " : "", why ? why : file);
+    }
+    return h;
+}
+
+static void load_module(void)
+{
+    char tried[MVR_ERROR_MESSAGE_SIZE] = "";
+    char opened[PATH_MAX + 64] = "";
+    char file[PATH_MAX + 64];
+    void *h = NULL;
+    const char *forced = getenv(MVR_IMAGE_MODULE_ENV);
+    if (forced && *forced) {
+        h = try_open(forced, opened, sizeof opened, tried, sizeof tried);
+    } else {
+        char dir[PATH_MAX];
+        if (own_folder(dir, sizeof dir)) {
+            const char *rel[] = {"", "/..", "/../" MVR_IMAGE_LIBDIR_NAME};
+            bool any = false;
+            for (size_t i = 0; !h && i < sizeof rel / sizeof rel[0]; ++i) {
+                snprintf(file, sizeof file, "%s%s/%s", dir, rel[i], MVR_IMAGE_MODULE_FILE);
+                if (access(file, F_OK) == 0) {
+                    any = true;
+                    h = try_open(file, opened, sizeof opened, tried, sizeof tried);
+                }
+            }
+            if (!any)
+                snprintf(tried, sizeof tried, "not in %.300s, its parent or ../%s", dir, MVR_IMAGE_LIBDIR_NAME);
+        }
+        if (!h)
+            h = try_open(MVR_IMAGE_MODULE_FILE, opened, sizeof opened, tried, sizeof tried);
+        if (!h && MVR_IMAGE_INSTALL_LIBDIR[0]) {
+            snprintf(file, sizeof file, "%s/%s", MVR_IMAGE_INSTALL_LIBDIR, MVR_IMAGE_MODULE_FILE);
+            if (access(file, F_OK) == 0)
+                h = try_open(file, opened, sizeof opened, tried, sizeof tried);
+        }
+    }
+    if (!h) {
+        snprintf(module_failure, sizeof module_failure,
+                 "the OpenImageIO module %s could not be loaded (%s; set " MVR_IMAGE_MODULE_ENV " to its path)",
+                 MVR_IMAGE_MODULE_FILE, tried);
+        return;
+    }
+    /* POSIX: a data pointer converts to a function pointer (dlsym) */
+    mvr_image_backend_entry entry;
+    void *sym = dlsym(h, MVR_IMAGE_MODULE_ENTRY);
+    memcpy(&entry, &sym, sizeof entry);
+    const mvr_image_backend *table = entry ? entry(MVR_IMAGE_MODULE_ABI) : NULL;
+    if (!table || table->abi != MVR_IMAGE_MODULE_ABI || table->size != sizeof *table) {
+        snprintf(module_failure, sizeof module_failure,
+                 "the OpenImageIO module %s: %s is not of this mvr (no %s for ABI %u)", MVR_IMAGE_MODULE_FILE, opened,
+                 MVR_IMAGE_MODULE_ENTRY, MVR_IMAGE_MODULE_ABI);
+        /* kept loaded: a library whose initialisers ran is not unloaded */
+        return;
+    }
+    module_table = table;
+}
+
+const mvr_image_backend *mvr_image_module(const char *who, mvr_error *error)
+{
+    if (pthread_once(&module_once, load_module) != 0) {
+        mvr_image_fail(error, MVR_ERROR_INTERNAL, "%s: pthread_once failed", who);
+        return NULL;
+    }
+    if (!module_table)
+        mvr_image_fail(error, MVR_ERROR_UNSUPPORTED, "%s: %s", who, module_failure);
+    return module_table;
+}
+
+/* ------------------------------------------------------------ formats, bytes */
+
+/* Formats mvr decodes, told apart by their signatures (PNG: ISO/IEC 15948,
+ * 5.2; JPEG: ISO/IEC 10918-1 SOI marker FF D8 FF; WebP: RIFF....WEBP). */
+typedef struct image_format {
+    const char *name;            /* mvr_image_header.format */
+    const char *mime;
+} image_format;
+
+static const image_format format_png = {"png", "image/png"};
+static const image_format format_jpeg = {"jpeg", "image/jpeg"};
+static const image_format format_webp = {"webp", "image/webp"};
+
+static const image_format *format_of_bytes(const unsigned char *p, size_t n)
+{
+    static const unsigned char png_sig[8] = {137, 80, 78, 71, 13, 10, 26, 10};
+    if (n >= 8 && memcmp(p, png_sig, 8) == 0)
+        return &format_png;
+    if (n >= 3 && p[0] == 0xFF && p[1] == 0xD8 && p[2] == 0xFF)
+        return &format_jpeg;
+    if (n >= 12 && memcmp(p, "RIFF", 4) == 0 && memcmp(p + 8, "WEBP", 4) == 0)
+        return &format_webp;
+    return NULL;
+}
+
+/* The declared MIME type (glTF 2.0, 5.19: image/jpeg or image/png; WebP by
+ * EXT_texture_webp) must name what the bytes are. */
+static bool mime_agrees(const char *mime, const image_format *f)
+{
+    if (!mime || !*mime)
+        return true;
+    if (strcmp(mime, "image/jpg") == 0)
+        mime = "image/jpeg"; /* a common misspelling, same format */
+    return strcmp(mime, f->mime) == 0;
+}
+
+/* At most 80 characters of a value that came from a file, quoted, for a message. */
+static const char *short_value(const char *v, char *buf, size_t size)
+{
+    char text[88];
+    size_t n = v ? strlen(v) : 0;
+    snprintf(text, sizeof text, "%.80s%s", v ? v : "", n > 80 ? "..." : "");
+    for (char *c = text; *c; ++c)
+        if ((unsigned char)*c < 0x20)
+            *c = '?';
+    snprintf(buf, size, "'%s'", text);
+    return buf;
+}
+
+/* PNG framing (ISO/IEC 15948, 5.3): the signature, then chunks of length +
+ * type + data + CRC, the last one IEND, all inside the bytes. Checked before
+ * either decoder runs: a truncated file is refused with a clear message
+ * (and OpenImageIO 2.4's PNG reader leaks when libpng stops it mid-read). */
+static bool png_framing_ok(const unsigned char *p, size_t n, char *why, size_t why_size)
+{
+    size_t at = 8;
+    while (at + 12 <= n) {
+        uint32_t len = (uint32_t)p[at] << 24 | (uint32_t)p[at + 1] << 16 | (uint32_t)p[at + 2] << 8 | p[at + 3];
+        if (len > 0x7FFFFFFFu || (uint64_t)at + 12 + len > n) {
+            snprintf(why, why_size, "PNG chunk at byte %zu runs past the end of the data (truncated?)", at);
+            return false;
+        }
+        if (memcmp(p + at + 4, "IEND", 4) == 0)
+            return true;
+        at += 12 + (size_t)len;
+    }
+    snprintf(why, why_size, "PNG has no IEND chunk (truncated?)");
+    return false;
+}
+
+/* The checks every encoded-image call makes; the format, or NULL with the error set. */
+static const image_format *check_encoded(const void *data, size_t size, const char *mime, const char *who,
+                                         mvr_error *error)
+{
+    char quoted[96];
+    const unsigned char *bytes = (const unsigned char *)data;
+    const image_format *f = format_of_bytes(bytes, size);
+    if (!f) {
+        mvr_image_fail(error, MVR_ERROR_UNSUPPORTED, "%s: the bytes are not PNG, JPEG or WebP (declared %s)", who,
+                       mime && *mime ? short_value(mime, quoted, sizeof quoted) : "no mimeType");
+        return NULL;
+    }
+    if (!mime_agrees(mime, f)) {
+        mvr_image_fail(error, MVR_ERROR_INVALID_ASSET, "%s: mimeType %s but the bytes are %s", who,
+                       short_value(mime, quoted, sizeof quoted), f->name);
+        return NULL;
+    }
+    char why[128];
+    if (f == &format_png && !png_framing_ok(bytes, size, why, sizeof why)) {
+        mvr_image_fail(error, MVR_ERROR_INVALID_ASSET, "%s: %s", who, why);
+        return NULL;
+    }
+    return f;
+}
+
+/* A deferred PNG goes to OpenImageIO; where the module cannot be loaded, the
+ * libpng front's own reason is the answer (it names the image's problem). */
+static const mvr_image_backend *module_for_deferred(const char *who, mvr_error *error)
+{
+    mvr_error own = *error;
+    const mvr_image_backend *m = mvr_image_module(who, error);
+    if (!m) {
+        char missing[MVR_ERROR_MESSAGE_SIZE];
+        snprintf(missing, sizeof missing, "%s", error->message);
+        mvr_image_fail(error, own.result, "%s (and %s)", own.message, missing);
+    }
+    return m;
+}
+
+/* ------------------------------------------------------------------ the API */
+
+/* Each call works on an mvr_error of its own when the caller passes none, so
+ * results survive; `e` is that or the caller's. */
+#define LOCAL_ERROR(error)                                                                                      \
+    mvr_error local_error_;                                                                                     \
+    mvr_error *e = (error) ? (error) : &local_error_;                                                           \
+    e->result = MVR_OK;                                                                                         \
+    e->message[0] = '\0'
+
+void mvr_image_free(mvr_image_data *image)
+{
+    if (!image)
+        return;
+    free(image->pixels);
+    memset(image, 0, sizeof *image);
+}
+
+/* The front's answer for a PNG, or OpenImageIO's where it defers. */
+#define FRONT_OR_MODULE(st, who, call)                                                                          \
+    do {                                                                                                        \
+        if ((st) == MVR_PNG_OK)                                                                                 \
+            return MVR_OK;                                                                                      \
+        if ((st) == MVR_PNG_FAILED)                                                                             \
+            return e->result;                                                                                   \
+        const mvr_image_backend *m_ = module_for_deferred((who), e);                                            \
+        return m_ ? m_->call : e->result;                                                                       \
+    } while (0)
+
+mvr_result mvr_image_probe(const void *data, size_t size, const char *mime_type, mvr_image_header *out,
+                           mvr_error *error)
+{
+    LOCAL_ERROR(error);
+    if (!out || !data || size == 0)
+        return mvr_image_fail(e, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_probe: no data");
+    memset(out, 0, sizeof *out);
+    const image_format *f = check_encoded(data, size, mime_type, "mvr_image_probe", e);
+    if (!f)
+        return e->result;
+    if (f == &format_png) {
+        mvr_png_source src = {.data = (const unsigned char *)data, .size = size};
+        mvr_png_status st = mvr_png_probe(&src, out, e);
+        FRONT_OR_MODULE(st, "mvr_image_probe", probe(data, size, mime_type, out, e));
+    }
+    const mvr_image_backend *m = mvr_image_module("mvr_image_probe", e);
+    return m ? m->probe(data, size, mime_type, out, e) : e->result;
+}
+
+mvr_result mvr_image_decode(const void *data, size_t size, const char *mime_type, uint32_t max_dimension,
+                            mvr_image_data *out, mvr_error *error)
+{
+    LOCAL_ERROR(error);
+    if (!out || !data || size == 0)
+        return mvr_image_fail(e, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_decode: no data");
+    memset(out, 0, sizeof *out);
+    const image_format *f = check_encoded(data, size, mime_type, "mvr_image_decode", e);
+    if (!f)
+        return e->result;
+    if (f == &format_png) {
+        mvr_png_source src = {.data = (const unsigned char *)data, .size = size};
+        mvr_png_status st = mvr_png_decode(&src, max_dimension, "mvr_image_decode", out, e);
+        FRONT_OR_MODULE(st, "mvr_image_decode", decode(data, size, mime_type, max_dimension, out, e));
+    }
+    const mvr_image_backend *m = mvr_image_module("mvr_image_decode", e);
+    return m ? m->decode(data, size, mime_type, max_dimension, out, e) : e->result;
+}
+
+mvr_result mvr_image_read(const char *path, mvr_pixel_type type, mvr_image_data *out, mvr_error *error)
+{
+    LOCAL_ERROR(error);
+    if (!path || !out)
+        return mvr_image_fail(e, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_read: NULL argument");
+    memset(out, 0, sizeof *out);
+    char who[MVR_ERROR_MESSAGE_SIZE / 2];
+    snprintf(who, sizeof who, "mvr_image_read(%s)", path);
+    if (type == MVR_PIXEL_U8) {
+        /* an 8-bit read of a PNG file is the front's; anything else, OpenImageIO's */
+        FILE *file = fopen(path, "rb");
+        if (!file)
+            return mvr_image_fail(e, MVR_ERROR_IO, "%s: %s", who, strerror(errno));
+        unsigned char sig[8];
+        bool png = fread(sig, 1, sizeof sig, file) == sizeof sig && format_of_bytes(sig, sizeof sig) == &format_png;
+        mvr_png_status st = MVR_PNG_DEFER;
+        if (png) {
+            rewind(file);
+            mvr_png_source src = {.file = file};
+            st = mvr_png_decode(&src, 0, who, out, e);
+        }
+        fclose(file);
+        if (png)
+            FRONT_OR_MODULE(st, who, read(path, type, out, e));
+    }
+    const mvr_image_backend *m = mvr_image_module(who, e);
+    return m ? m->read(path, type, out, e) : e->result;
+}
+
+/* The name's last four characters, lower case: ".png", ".exr", ... */
+static void extension_of(const char *path, char ext[5])
+{
+    size_t n = strlen(path);
+    ext[0] = '\0';
+    if (n <= 4)
+        return;
+    for (int i = 0; i < 4; ++i) {
+        char c = path[n - 4 + (size_t)i];
+        ext[i] = (char)(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
+    }
+    ext[4] = '\0';
+}
+
+mvr_result mvr_image_write(const char *path, const mvr_image_view *image, mvr_error *error)
+{
+    LOCAL_ERROR(error);
+    if (!path || !image || !image->pixels || image->width == 0 || image->height == 0)
+        return mvr_image_fail(e, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_write: NULL or empty image");
+    char ext[5];
+    extension_of(path, ext);
+    bool png = strcmp(ext, ".png") == 0;
+    if (!png && strcmp(ext, ".exr") != 0)
+        return mvr_image_fail(e, MVR_ERROR_INVALID_ARGUMENT,
+                              "mvr_image_write(%s): the name must end in .png or .exr", path);
+    if (png && image->type == MVR_PIXEL_U8)
+        return mvr_png_write(path, image, e) == MVR_PNG_OK ? MVR_OK : e->result;
+    /* EXR, and float pixels into PNG (OpenImageIO's conversion) */
+    const mvr_image_backend *m = mvr_image_module("mvr_image_write", e);
+    return m ? m->write(path, image, e) : e->result;
+}
+
+mvr_result mvr_image_compare(const mvr_image_view *a, const mvr_image_view *b, double threshold,
+                             const char *diff_path, mvr_image_compare_result *out, mvr_error *error)
+{
+    LOCAL_ERROR(error);
+    if (!a || !b || !out)
+        return mvr_image_fail(e, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_compare: NULL argument");
+    if (a->width != b->width || a->height != b->height)
+        return mvr_image_fail(e, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_compare: sizes differ (%ux%u vs %ux%u)",
+                              a->width, a->height, b->width, b->height);
+    const mvr_image_backend *m = mvr_image_module("mvr_image_compare", e);
+    return m ? m->compare(a, b, threshold, diff_path, out, e) : e->result;
+}

@@ -1,0 +1,367 @@
+/*
+ * 8-bit PNG in and out through libpng, with the pixels OpenImageIO 2.4 gives:
+ * mvr's output and its glTF textures stop needing OpenImageIO (and its 0.3 s
+ * of load time). tests/io/test_image_png.c compares both decoders on every
+ * PNG of tests/data and on generated files of every colour type, bit depth,
+ * tRNS, gamma and interlace, pixel for pixel.
+ *
+ * What OpenImageIO's PNG reader does, reproduced here:
+ *  - png_set_expand: palette to RGB, 1/2/4-bit grey to 8-bit, tRNS to alpha;
+ *    16-bit samples kept until the end;
+ *  - alpha associated in the file's own type (8 or 16 bit): the colour times
+ *    alpha over the maximum, in integers, when the image is sRGB (sRGB chunk),
+ *    has no gamma or a gamma that rounds to 1; otherwise the colour times
+ *    (alpha / max) ^ gamma in float, truncated, where gamma is 1 / gAMA
+ *    rounded to hundredths;
+ *  - 16 to 8 bit: (v * 255 + 32767) / 65535;
+ *  - rows read one at a time (png_read_end not called), interlaced images
+ *    whole (png_read_image, then png_read_end).
+ * An image with alpha and an ICC profile is deferred: whether libpng takes an
+ * embedded sRGB profile for an sRGB chunk depends on options OpenImageIO may
+ * set, and that decides the association above.
+ */
+#include <errno.h>
+#include <math.h>
+#include <png.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "image_internal.h"
+
+/* What the libpng callbacks share; reached through png_get_error_ptr /
+ * png_get_io_ptr, never a global. */
+typedef struct png_job {
+    const mvr_png_source *src;
+    size_t at;                   /* read position in src->data */
+    FILE *out;                   /* writing */
+    char message[200];           /* libpng's last error */
+} png_job;
+
+static void on_error(png_structp png, png_const_charp msg)
+{
+    png_job *job = (png_job *)png_get_error_ptr(png);
+    snprintf(job->message, sizeof job->message, "%s", msg ? msg : "libpng error");
+    png_longjmp(png, 1);
+}
+
+static void on_warning(png_structp png, png_const_charp msg)
+{
+    (void)png, (void)msg;   /* the library never prints; warnings change nothing */
+}
+
+static void on_read(png_structp png, png_bytep to, size_t n)
+{
+    png_job *job = (png_job *)png_get_io_ptr(png);
+    const mvr_png_source *src = job->src;
+    if (src->file) {
+        if (fread(to, 1, n, src->file) != n)
+            png_error(png, "the file ends early (truncated?)");
+        return;
+    }
+    if (n > src->size - job->at)
+        png_error(png, "read past the end of the data (truncated?)");
+    memcpy(to, src->data + job->at, n);
+    job->at += n;
+}
+
+static void on_write(png_structp png, png_bytep from, size_t n)
+{
+    png_job *job = (png_job *)png_get_io_ptr(png);
+    if (fwrite(from, 1, n, job->out) != n)
+        png_error(png, strerror(errno));
+}
+
+static void on_flush(png_structp png)
+{
+    (void)png;
+}
+
+/* The header and transforms; returns false where the image is deferred. */
+typedef struct png_layout {
+    uint32_t width, height;
+    int channels;                /* after png_set_expand: 1..4 */
+    int depth;                   /* 8 or 16, after png_set_expand */
+    int alpha;                   /* the alpha channel's index, -1 = none */
+    bool interlaced;
+    float gamma;                 /* OpenImageIO's oiio:Gamma; 1 = integer association */
+} png_layout;
+
+/* Everything up to the first row; longjmps on libpng errors. */
+static bool read_layout(png_structp png, png_infop info, png_layout *l, const char **why)
+{
+    png_read_info(png, info);
+    int srgb_intent = 0;
+    double file_gamma = 0.0;
+    l->gamma = 1.0f;
+    if (!png_get_sRGB(png, info, &srgb_intent) && png_get_gAMA(png, info, &file_gamma) && file_gamma > 0.0) {
+        /* as OpenImageIO rounds it: 2.2, not 2.19998 */
+        float g = (float)(1.0 / file_gamma);
+        l->gamma = roundf(100.0f * g) / 100.0f;
+    }
+    bool icc = png_get_valid(png, info, PNG_INFO_iCCP) != 0;
+    png_set_expand(png);
+    png_read_update_info(png, info);
+    png_uint_32 w = 0, h = 0;
+    int depth = 0, color = 0, interlace = 0;
+    png_get_IHDR(png, info, &w, &h, &depth, &color, &interlace, NULL, NULL);
+    l->width = w;
+    l->height = h;
+    l->depth = depth;
+    l->channels = png_get_channels(png, info);
+    l->alpha = l->channels == 2 ? 1 : l->channels == 4 ? 3 : -1;
+    l->interlaced = interlace != PNG_INTERLACE_NONE;
+    if ((depth != 8 && depth != 16) || l->channels < 1 || l->channels > 4) {
+        *why = "an unexpected layout after expansion";
+        return false;
+    }
+    if (icc && l->alpha >= 0) {
+        *why = "alpha with an ICC profile";
+        return false;
+    }
+    return true;
+}
+
+static png_structp new_reader(png_job *job, png_infop *info)
+{
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, job, on_error, on_warning);
+    if (!png)
+        return NULL;
+    *info = png_create_info_struct(png);
+    if (!*info) {
+        png_destroy_read_struct(&png, NULL, NULL);
+        return NULL;
+    }
+    png_set_read_fn(png, job, on_read);
+    return png;
+}
+
+static mvr_png_status deferred(mvr_error *error, const char *what, const char *why)
+{
+    mvr_image_fail(error, MVR_ERROR_INVALID_ASSET, "%s: %s", what, why);
+    return MVR_PNG_DEFER;
+}
+
+mvr_png_status mvr_png_probe(const mvr_png_source *src, mvr_image_header *out, mvr_error *error)
+{
+    png_job job = {.src = src};
+    png_infop info = NULL;
+    png_structp png = new_reader(&job, &info);
+    if (!png) {
+        mvr_image_fail(error, MVR_ERROR_OUT_OF_MEMORY, "mvr_image_probe: out of memory (libpng)");
+        return MVR_PNG_FAILED;
+    }
+    png_layout l;
+    const char *why = NULL;
+    if (setjmp(png_jmpbuf(png))) {
+        png_destroy_read_struct(&png, &info, NULL);
+        return deferred(error, "mvr_image_probe", job.message);
+    }
+    bool ok = read_layout(png, info, &l, &why);
+    png_destroy_read_struct(&png, &info, NULL);
+    if (!ok)
+        return deferred(error, "mvr_image_probe", why);
+    if (l.width == 0 || l.height == 0) {
+        mvr_image_fail(error, MVR_ERROR_INVALID_ASSET, "mvr_image_probe: the header has no valid size");
+        return MVR_PNG_FAILED;
+    }
+    out->width = l.width;
+    out->height = l.height;
+    out->channels = (uint32_t)l.channels;
+    out->format = "png";
+    return MVR_PNG_OK;
+}
+
+/* A native row (8 or 16 bit, big-endian, l->channels) to RGBA8: alpha
+ * associated in the native type, 16 bits rounded to 8, grey expanded. */
+static void row_to_rgba(const png_layout *l, const unsigned char *in, unsigned char *out)
+{
+    int nc = l->channels;
+    bool wide = l->depth == 16;
+    uint32_t max = wide ? 65535u : 255u;
+    /* OpenImageIO's float path: inv_max a float from a double division */
+    float inv_max = (float)(1.0 / (double)max);
+    for (uint32_t x = 0; x < l->width; ++x) {
+        uint32_t v[4] = {0, 0, 0, 0};
+        for (int c = 0; c < nc; ++c) {
+            const unsigned char *p = in + ((size_t)x * (size_t)nc + (size_t)c) * (wide ? 2u : 1u);
+            v[c] = wide ? (uint32_t)p[0] << 8 | p[1] : p[0];
+        }
+        if (l->alpha >= 0) {
+            uint32_t a = v[l->alpha];
+            if (l->gamma == 1.0f) {
+                for (int c = 0; c < nc; ++c)
+                    if (c != l->alpha)
+                        v[c] = v[c] * a / max;
+            } else {
+                float k = powf((float)a * inv_max, l->gamma);
+                for (int c = 0; c < nc; ++c)
+                    if (c != l->alpha)
+                        v[c] = (uint32_t)((float)v[c] * k);   /* truncated, as a cast to the type */
+            }
+        }
+        if (wide)
+            for (int c = 0; c < nc; ++c)
+                v[c] = (v[c] * 255u + 32767u) / 65535u;
+        unsigned char *o = out + (size_t)x * 4u;
+        switch (nc) {
+        case 1: o[0] = o[1] = o[2] = (unsigned char)v[0]; o[3] = 255; break;
+        case 2: o[0] = o[1] = o[2] = (unsigned char)v[0]; o[3] = (unsigned char)v[1]; break;
+        case 3: o[0] = (unsigned char)v[0]; o[1] = (unsigned char)v[1]; o[2] = (unsigned char)v[2]; o[3] = 255; break;
+        default: for (int c = 0; c < 4; ++c) o[c] = (unsigned char)v[c]; break;
+        }
+    }
+}
+
+/* What decoding holds, freed on every path (a longjmp included). */
+typedef struct png_buffers {
+    unsigned char *rgba;
+    unsigned char *native;       /* one row, or the whole image when interlaced */
+    png_bytep *rows;
+} png_buffers;
+
+static void free_buffers(volatile png_buffers *b)
+{
+    free(b->rgba);
+    free(b->native);
+    free(b->rows);
+    b->rgba = b->native = NULL;
+    b->rows = NULL;
+}
+
+mvr_png_status mvr_png_decode(const mvr_png_source *src, uint32_t max_dimension, const char *what,
+                              mvr_image_data *out, mvr_error *error)
+{
+    png_job job = {.src = src};
+    png_infop info = NULL;
+    png_structp png = new_reader(&job, &info);
+    if (!png) {
+        mvr_image_fail(error, MVR_ERROR_OUT_OF_MEMORY, "%s: out of memory (libpng)", what);
+        return MVR_PNG_FAILED;
+    }
+    /* changed after setjmp and freed after a longjmp: volatile (C11 7.13.2.1) */
+    volatile png_buffers b = {0};
+    png_layout l;
+    const char *why = NULL;
+    if (setjmp(png_jmpbuf(png))) {
+        free_buffers(&b);
+        png_destroy_read_struct(&png, &info, NULL);
+        return deferred(error, what, job.message);
+    }
+    if (!read_layout(png, info, &l, &why)) {
+        png_destroy_read_struct(&png, &info, NULL);
+        return deferred(error, what, why);
+    }
+    uint32_t cap = max_dimension ? max_dimension : 16384;
+    if (l.width == 0 || l.height == 0 || l.width > cap || l.height > cap) {
+        png_destroy_read_struct(&png, &info, NULL);
+        mvr_image_fail(error, MVR_ERROR_INVALID_ASSET, "%s: %ux%u is not within 1..%u", what, l.width, l.height, cap);
+        return MVR_PNG_FAILED;
+    }
+    size_t row_bytes = png_get_rowbytes(png, info);
+    size_t native_rows = l.interlaced ? l.height : 1;
+    b.rgba = malloc((size_t)l.width * l.height * 4u);
+    b.native = malloc(row_bytes * native_rows);
+    if (l.interlaced)
+        b.rows = malloc(sizeof(png_bytep) * l.height);
+    if (!b.rgba || !b.native || (l.interlaced && !b.rows)) {
+        free_buffers(&b);
+        png_destroy_read_struct(&png, &info, NULL);
+        mvr_image_fail(error, MVR_ERROR_OUT_OF_MEMORY, "%s: out of memory (%ux%u)", what, l.width, l.height);
+        return MVR_PNG_FAILED;
+    }
+    if (l.interlaced) {
+        for (uint32_t y = 0; y < l.height; ++y)
+            b.rows[y] = b.native + (size_t)y * row_bytes;
+        png_read_image(png, b.rows);
+        png_read_end(png, NULL);
+        for (uint32_t y = 0; y < l.height; ++y)
+            row_to_rgba(&l, b.rows[y], b.rgba + (size_t)y * l.width * 4u);
+    } else {
+        for (uint32_t y = 0; y < l.height; ++y) {
+            png_read_row(png, b.native, NULL);
+            row_to_rgba(&l, b.native, b.rgba + (size_t)y * l.width * 4u);
+        }
+    }
+    png_destroy_read_struct(&png, &info, NULL);
+    out->width = l.width;
+    out->height = l.height;
+    out->type = MVR_PIXEL_U8;
+    out->pixels = b.rgba;
+    b.rgba = NULL;
+    free_buffers(&b);
+    return MVR_PNG_OK;
+}
+
+/* The writer's state, freed on every path (a longjmp included). */
+typedef struct png_out {
+    png_structp png;
+    png_infop info;
+    unsigned char *row;
+} png_out;
+
+mvr_png_status mvr_png_write(const char *path, const mvr_image_view *image, mvr_error *error)
+{
+    png_job job = {.out = fopen(path, "wb")};
+    if (!job.out) {
+        mvr_image_fail(error, MVR_ERROR_IO, "mvr_image_write(%s): %s", path, strerror(errno));
+        return MVR_PNG_FAILED;
+    }
+    png_out w = {0};   /* set before setjmp, unchanged after it */
+    w.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &job, on_error, on_warning);
+    w.info = w.png ? png_create_info_struct(w.png) : NULL;
+    w.row = malloc((size_t)image->width * 4u);
+    if (!w.png || !w.info || !w.row) {
+        png_destroy_write_struct(&w.png, &w.info);
+        free(w.row);
+        fclose(job.out);
+        remove(path);
+        mvr_image_fail(error, MVR_ERROR_OUT_OF_MEMORY, "mvr_image_write(%s): out of memory", path);
+        return MVR_PNG_FAILED;
+    }
+    if (setjmp(png_jmpbuf(w.png))) {
+        png_destroy_write_struct(&w.png, &w.info);
+        free(w.row);
+        fclose(job.out);
+        remove(path);
+        mvr_image_fail(error, MVR_ERROR_IO, "mvr_image_write(%s): %s", path, job.message);
+        return MVR_PNG_FAILED;
+    }
+    png_set_write_fn(w.png, &job, on_write, on_flush);
+    png_set_IHDR(w.png, w.info, image->width, image->height, 8, PNG_COLOR_TYPE_RGB_ALPHA, PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    /* mvr's 8-bit pixels are sRGB-encoded: the sRGB chunk (with its gAMA
+     * and cHRM fallbacks), as OpenImageIO wrote for oiio:ColorSpace sRGB */
+    png_set_sRGB_gAMA_and_cHRM(w.png, w.info, PNG_sRGB_INTENT_PERCEPTUAL);
+    png_set_compression_level(w.png, 6);
+    png_write_info(w.png, w.info);
+    const unsigned char *pixels = (const unsigned char *)image->pixels;
+    size_t stride = (size_t)image->width * 4u;
+    for (uint32_t y = 0; y < image->height; ++y) {
+        const unsigned char *in = pixels + stride * (image->bottom_up ? image->height - 1u - y : y);
+        for (uint32_t x = 0; x < image->width; ++x) {
+            const unsigned char *p = in + (size_t)x * 4u;
+            unsigned char *o = w.row + (size_t)x * 4u;
+            uint32_t a = p[3];
+            /* PNG's alpha is unassociated: OpenImageIO's writer divides by
+             * alpha (integers, clamped; alpha 0 keeps the colour) */
+            for (int c = 0; c < 3; ++c) {
+                uint32_t v = a ? (uint32_t)p[c] * 255u / a : p[c];
+                o[c] = (unsigned char)(v > 255u ? 255u : v);
+            }
+            o[3] = (unsigned char)a;
+        }
+        png_write_row(w.png, w.row);
+    }
+    png_write_end(w.png, w.info);
+    png_destroy_write_struct(&w.png, &w.info);
+    free(w.row);
+    if (fclose(job.out) != 0) {
+        remove(path);
+        mvr_image_fail(error, MVR_ERROR_IO, "mvr_image_write(%s): %s", path, strerror(errno));
+        return MVR_PNG_FAILED;
+    }
+    return MVR_PNG_OK;
+}
