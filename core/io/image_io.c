@@ -133,7 +133,7 @@ static void load_module(void)
     }
     if (!h) {
         snprintf(module_failure, sizeof module_failure,
-                 "the OpenImageIO module %s could not be loaded (%s; set " MVR_IMAGE_MODULE_ENV " to its path)",
+                 "the OpenImageIO module %s could not be loaded (%.380s; set " MVR_IMAGE_MODULE_ENV " to its path)",
                  MVR_IMAGE_MODULE_FILE, tried);
         return;
     }
@@ -144,7 +144,7 @@ static void load_module(void)
     const mvr_image_backend *table = entry ? entry(MVR_IMAGE_MODULE_ABI) : NULL;
     if (!table || table->abi != MVR_IMAGE_MODULE_ABI || table->size != sizeof *table) {
         snprintf(module_failure, sizeof module_failure,
-                 "the OpenImageIO module %s: %s is not of this mvr (no %s for ABI %u)", MVR_IMAGE_MODULE_FILE, opened,
+                 "the OpenImageIO module %s: %.300s is not of this mvr (no %s for ABI %u)", MVR_IMAGE_MODULE_FILE, opened,
                  MVR_IMAGE_MODULE_ENTRY, MVR_IMAGE_MODULE_ABI);
         /* kept loaded: a library whose initialisers ran is not unloaded */
         return;
