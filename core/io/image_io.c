@@ -18,7 +18,7 @@
  * remembered: every call that needs it gets the same message, naming the
  * files tried and dlerror()'s reason.
  */
-#define _GNU_SOURCE   /* dladdr1, RTLD_DL_LINKMAP */
+#define _GNU_SOURCE   /* dladdr1, RTLD_DL_LINKMAP, secure_getenv */
 #include <dlfcn.h>
 #include <errno.h>
 #include <link.h>
@@ -105,7 +105,8 @@ static void load_module(void)
     char opened[PATH_MAX + 64] = "";
     char file[PATH_MAX + 64];
     void *h = NULL;
-    const char *forced = getenv(MVR_IMAGE_MODULE_ENV);
+    /* not for a set-user-ID program: another user would choose the code it runs */
+    const char *forced = secure_getenv(MVR_IMAGE_MODULE_ENV);
     if (forced && *forced) {
         h = try_open(forced, opened, sizeof opened, tried, sizeof tried);
     } else {
