@@ -41,7 +41,7 @@
                                     chunks never cross one, and neither do the stream's */
 #define SLOT_BUDGET ((size_t)64 << 20) /* bytes of one chunk's readback before the chunk shrinks */
 #define SHEET_MAX 4096           /* contact sheet side, pixels */
-#define SHEET_PIXELS (2048u * 2048u) /* and area: 16 MiB (OpenImageIO copies it once more to write it) */
+#define SHEET_PIXELS (2048u * 2048u) /* and area: 16 MiB */
 #define METER_SIZE 128           /* auto-exposure metering: layers at most this on their long side */
 
 typedef struct chunk_buffer {
