@@ -1,3 +1,5 @@
+/* dl_iterate_phdr and RTLD_NODELETE (cli_pin_loaded_libraries, sanitizer builds) are GNU extensions */
+#define _GNU_SOURCE 1
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -6,6 +8,17 @@
 #include <sys/stat.h>
 #ifdef __GLIBC__
 #include <malloc.h>
+#endif
+#if defined(__SANITIZE_ADDRESS__)
+#define CLI_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define CLI_ASAN 1
+#endif
+#endif
+#ifdef CLI_ASAN
+#include <dlfcn.h>
+#include <link.h>
 #endif
 
 #include "cli_common.h"
@@ -170,5 +183,23 @@ void cli_tune_allocator(void)
      * multiview, 12 frames: 93k-164k minor page faults -> 36k-47k */
     mallopt(M_MMAP_THRESHOLD, 64 << 20);
     mallopt(M_TRIM_THRESHOLD, 256 << 20);
+#endif
+}
+
+#ifdef CLI_ASAN
+static int pin_library(struct dl_phdr_info *info, size_t size, void *data)
+{
+    (void)size;
+    (void)data;
+    if (info->dlpi_name && info->dlpi_name[0])
+        dlopen(info->dlpi_name, RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE); /* a reference never dropped */
+    return 0;
+}
+#endif
+
+void cli_pin_loaded_libraries(void)
+{
+#ifdef CLI_ASAN
+    dl_iterate_phdr(pin_library, NULL);
 #endif
 }

@@ -45,4 +45,11 @@ bool cli_make_dirs(const char *command, const char *path);
  * choice) or MVR_MALLOPT=off; a no-op without glibc. */
 void cli_tune_allocator(void);
 
+/* Sanitizer builds only (a no-op otherwise): keeps every shared library now
+ * loaded in memory until exit (RTLD_NODELETE), so that what a GL driver
+ * leaks in a library it later unloads (Mesa's GLX path dlcloses libgallium
+ * at glfwTerminate) is still named at exit and tests/sanitizers/lsan.supp's
+ * suppressions by library name match it, instead of an "<unknown module>". */
+void cli_pin_loaded_libraries(void);
+
 #endif

@@ -787,6 +787,7 @@ done:
     mvr_scene_destroy(v.scene);
     mvr_environment_destroy(v.env);
     mvr_context_destroy(v.ctx);
+    cli_pin_loaded_libraries(); /* sanitizer builds: the GL driver's libraries stay named at exit */
     glfwDestroyWindow(v.window);
     glfwTerminate();
     return rc;
