@@ -59,30 +59,32 @@ const char *mvr_normal_space_name(mvr_normal_space space)
     return NULL;
 }
 
-/* Where an output lives: its array and the channels it takes (first, count). */
-static void output_place(mvr_output output, uint32_t *array, uint32_t *first, uint32_t *count)
+mvr_output_place mvr_output_place_of(mvr_output output)
 {
+    mvr_output_place p = {.array = MVR_TARGET_OUTPUT_ARRAYS, .gl_format = GL_RGBA, .gl_type = GL_FLOAT};
     switch (output) {
     case MVR_OUTPUT_DEPTH:
-        *array = MVR_TARGET_OUTPUT_GEOMETRY, *first = 0, *count = 1;
-        return;
+        p.array = MVR_TARGET_OUTPUT_GEOMETRY, p.first = 0, p.count = 1;
+        break;
     case MVR_OUTPUT_DISTANCE:
-        *array = MVR_TARGET_OUTPUT_GEOMETRY, *first = 1, *count = 1;
-        return;
+        p.array = MVR_TARGET_OUTPUT_GEOMETRY, p.first = 1, p.count = 1;
+        break;
     case MVR_OUTPUT_COVERAGE:
-        *array = MVR_TARGET_OUTPUT_GEOMETRY, *first = 2, *count = 1;
-        return;
+        p.array = MVR_TARGET_OUTPUT_GEOMETRY, p.first = 2, p.count = 1;
+        break;
     case MVR_OUTPUT_NORMAL:
-        *array = MVR_TARGET_OUTPUT_NORMAL, *first = 0, *count = 3;
-        return;
+        p.array = MVR_TARGET_OUTPUT_NORMAL, p.first = 0, p.count = 3;
+        break;
     case MVR_OUTPUT_IDS:
-        *array = MVR_TARGET_OUTPUT_IDS, *first = 0, *count = 4;
-        return;
+        /* the formats GLES always reads: RGBA / FLOAT for float, RGBA_INTEGER / UNSIGNED_INT for uint */
+        p.array = MVR_TARGET_OUTPUT_IDS, p.first = 0, p.count = 4;
+        p.gl_format = GL_RGBA_INTEGER, p.gl_type = GL_UNSIGNED_INT;
+        break;
     case MVR_OUTPUT_COLOR:
     case MVR_OUTPUT_COUNT:
         break;
     }
-    *array = MVR_TARGET_OUTPUT_ARRAYS, *first = 0, *count = 0;
+    return p;
 }
 
 mvr_result mvr_renderer_read_output(mvr_renderer *r, mvr_target *t, uint32_t layer, mvr_output output, void *dst,
@@ -110,8 +112,7 @@ mvr_result mvr_renderer_read_output(mvr_renderer *r, mvr_target *t, uint32_t lay
     if (size < need)
         return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: %s: buffer of %zu bytes, %zu needed", where,
                                  mvr_output_name(output), size, need);
-    uint32_t array, first, count;
-    output_place(output, &array, &first, &count);
+    mvr_output_place place = mvr_output_place_of(output);
     /* the GL reads RGBA of 32-bit values; the output's channels are kept */
     uint32_t *texels = malloc(pixels * 4 * sizeof *texels);
     if (!texels)
@@ -123,27 +124,22 @@ mvr_result mvr_renderer_read_output(mvr_renderer *r, mvr_target *t, uint32_t lay
     }
     mvr_state_invalidate(&r->state);
     GLuint fbo = 0;
-    res = mvr_target_output_array_framebuffer(t, array, layer, &fbo);
+    res = mvr_target_output_array_framebuffer(t, place.array, layer, &fbo);
     if (res == MVR_OK) {
         const mvr_gl_api_table *gl = r->gl;
         mvr_state_read_framebuffer(&r->state, fbo);
         gl->ReadBuffer(GL_COLOR_ATTACHMENT0);
         gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
-        /* the formats GLES always reads: RGBA / FLOAT for float, RGBA_INTEGER / UNSIGNED_INT for uint */
-        if (array == MVR_TARGET_OUTPUT_IDS)
-            gl->ReadPixels(0, 0, (GLsizei)t->desc.width, (GLsizei)t->desc.height, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
-                           texels);
-        else
-            gl->ReadPixels(0, 0, (GLsizei)t->desc.width, (GLsizei)t->desc.height, GL_RGBA, GL_FLOAT, texels);
+        gl->ReadPixels(0, 0, (GLsizei)t->desc.width, (GLsizei)t->desc.height, place.gl_format, place.gl_type, texels);
         res = mvr_gl_check(r->ctx, where, true);
         if (res != MVR_OK)
             res = mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
     }
     if (res == MVR_OK) {
         uint8_t *out = dst;
-        size_t bytes = count * sizeof *texels;
+        size_t bytes = place.count * sizeof *texels;
         for (size_t i = 0; i < pixels; ++i)
-            memcpy(out + i * bytes, texels + i * 4 + first, bytes);
+            memcpy(out + i * bytes, texels + i * 4 + place.first, bytes);
     }
     free(texels);
     return mvr_renderer_end(r, where, res);

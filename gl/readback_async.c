@@ -58,17 +58,11 @@ static bool read_layout_of(const mvr_target *t, const mvr_read_desc *d, read_lay
                      mvr_output_name(d->output));
             return false;
         }
-        switch (d->output) {
-        case MVR_OUTPUT_DEPTH: l.array = MVR_TARGET_OUTPUT_GEOMETRY, l.first_channel = 0; break;
-        case MVR_OUTPUT_DISTANCE: l.array = MVR_TARGET_OUTPUT_GEOMETRY, l.first_channel = 1; break;
-        case MVR_OUTPUT_COVERAGE: l.array = MVR_TARGET_OUTPUT_GEOMETRY, l.first_channel = 2; break;
-        case MVR_OUTPUT_NORMAL: l.array = MVR_TARGET_OUTPUT_NORMAL; break;
-        case MVR_OUTPUT_IDS:
-        default: l.array = MVR_TARGET_OUTPUT_IDS; break;
-        }
-        bool ids = l.array == MVR_TARGET_OUTPUT_IDS;
-        l.gl_format = ids ? GL_RGBA_INTEGER : GL_RGBA;
-        l.gl_type = ids ? GL_UNSIGNED_INT : GL_FLOAT;
+        mvr_output_place place = mvr_output_place_of(d->output);
+        l.array = place.array;
+        l.first_channel = place.first;
+        l.gl_format = place.gl_format;
+        l.gl_type = place.gl_type;
         l.read_bpp = 16;
         l.out_bpp = (uint32_t)mvr_output_pixel_size(d->output);
         l.convert = l.out_bpp == l.read_bpp ? READ_AS_IS : READ_CHANNELS;

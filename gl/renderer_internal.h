@@ -359,6 +359,15 @@ void mvr_tuning_end_frame(mvr_renderer *r, mvr_view_path ran, bool ok);
 mvr_result mvr_target_framebuffer(mvr_target *t, uint32_t base, uint32_t count, GLuint *out);
 mvr_result mvr_target_output_framebuffer(mvr_target *t, uint32_t base, uint32_t count, GLuint *out);
 enum { MVR_FBO_HDR = 1, MVR_FBO_LUMINANCE = 2, MVR_FBO_LUMINANCE_TOP = 3, MVR_FBO_OUTPUT_ARRAY = 4 /* + k */ };
+/* outputs.c: where an extra output lives: its array (MVR_TARGET_OUTPUT_*,
+ * ARRAYS for colour), its first channel and channel count in the 4 x 32-bit
+ * texels, and the format and type GLES always reads that array with. The
+ * synchronous and the asynchronous readback both read through it. */
+typedef struct mvr_output_place {
+    uint32_t array, first, count;
+    GLenum gl_format, gl_type;
+} mvr_output_place;
+mvr_output_place mvr_output_place_of(mvr_output output);
 /* Extra outputs: one layer of output array k alone (what read_output reads). */
 mvr_result mvr_target_output_array_framebuffer(mvr_target *t, uint32_t k, uint32_t layer, GLuint *out);
 /* Which colour attachments of the bound view framebuffer are drawn: the
