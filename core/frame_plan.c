@@ -71,16 +71,23 @@ static mvr_plan_record *add(mvr_frame_plan *p, mvr_plan_kind kind, mvr_plan_when
     return r;
 }
 
+bool mvr_frame_plan_multiview_drawable(uint32_t samples, bool post, mvr_msaa_multiview_mode mode, bool transmissive)
+{
+    if (samples <= 1)
+        return true;
+    /* transmission reads the opaque views mid-pass: not from storage the GL
+     * resolves only at the pass's end (multisampled render to texture) */
+    return !post && mode != MVR_MSAA_MV_NONE && !(transmissive && mode == MVR_MSAA_MV_RENDER_TO_TEXTURE);
+}
+
 /* The path that runs: multisampling needs multisampled multiview (and no
  * post pass) to stay on the multiview path, else views go one at a time. */
 static void choose_path(mvr_frame_plan *p, const mvr_frame_plan_input *in)
 {
     p->path = in->path;
-    /* transmission reads the opaque views mid-pass: not from storage the GL
-     * resolves only at the pass's end (multisampled render to texture) */
-    p->msaa_multiview = p->msaa && !p->post && in->msaa_multiview != MVR_MSAA_MV_NONE &&
-                        !(in->transmissive && in->msaa_multiview == MVR_MSAA_MV_RENDER_TO_TEXTURE) &&
-                        p->path == MVR_VIEW_PATH_MULTIVIEW;
+    p->msaa_multiview =
+        p->msaa && mvr_frame_plan_multiview_drawable(in->samples, p->post, in->msaa_multiview, in->transmissive != 0) &&
+        p->path == MVR_VIEW_PATH_MULTIVIEW;
     if (p->path == MVR_VIEW_PATH_MULTIVIEW)
         p->path_why = p->msaa_multiview ? "multisampled multiview passes" : "one pass per chunk of views";
     else

@@ -128,6 +128,12 @@ typedef struct mvr_frame_plan {
     uint32_t max_views;          /* views one multiview pass may hold */
 } mvr_frame_plan;
 
+/* Whether multiview passes can draw a frame of `samples` samples per pixel
+ * (the plan's rule; auto's tuner asks before the frame): multisampling needs
+ * multisampled multiview and no post pass, and transmission (which reads the
+ * opaque views mid-pass) storage that is not resolved only at the pass's end. */
+bool mvr_frame_plan_multiview_drawable(uint32_t samples, bool post, mvr_msaa_multiview_mode mode, bool transmissive);
+
 /* Builds the plan (reusing its memory). Fails only when out of memory. */
 mvr_result mvr_frame_plan_build(mvr_frame_plan *plan, const mvr_frame_plan_input *in);
 void mvr_frame_plan_free(mvr_frame_plan *plan);

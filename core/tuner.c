@@ -5,7 +5,7 @@
 
 static bool key_changed(const mvr_tuner_key *a, const mvr_tuner_key *b)
 {
-    if (a->views != b->views || a->width != b->width || a->height != b->height)
+    if (a->views != b->views || a->width != b->width || a->height != b->height || a->given != b->given)
         return true;
     /* the scene: a factor of 2 in its draws (a few objects more is the same
      * workload); 0 is not known yet (the first frame) */
@@ -17,9 +17,9 @@ static bool key_changed(const mvr_tuner_key *a, const mvr_tuner_key *b)
 
 static double median(const double *v, uint32_t n)
 {
-    double s[MVR_TUNER_SAMPLES];
+    double s[MVR_TUNER_MAX_SAMPLES];
     memcpy(s, v, n * sizeof *v);
-    for (uint32_t i = 1; i < n; ++i) /* insertion sort: n is 3 */
+    for (uint32_t i = 1; i < n; ++i) /* insertion sort: n is at most 7 */
         for (uint32_t j = i; j > 0 && s[j] < s[j - 1]; --j) {
             double tmp = s[j];
             s[j] = s[j - 1];
@@ -56,6 +56,7 @@ uint32_t mvr_tuner_next(mvr_tuner *t, mvr_tuner_key key, uint32_t prior, bool *m
         t->phase = MVR_TUNER_TUNING;
         t->key = key;
         t->prior = t->chosen = prior;
+        t->want = MVR_TUNER_SAMPLES;
     }
     if (!t->key.draws)
         t->key.draws = key.draws;
@@ -74,7 +75,7 @@ uint32_t mvr_tuner_next(mvr_tuner *t, mvr_tuner_key key, uint32_t prior, bool *m
     for (uint32_t c = 0; c < MVR_TUNER_CANDIDATES; ++c)
         if (t->issued[c] < t->issued[next])
             next = c;
-    if (t->issued[next] > MVR_TUNER_SAMPLES) {
+    if (t->issued[next] > t->want) {
         /* every sample issued but some not recorded (a cost never came): settle on what there is */
         bool all = true;
         for (uint32_t c = 0; c < MVR_TUNER_CANDIDATES; ++c)
@@ -92,13 +93,24 @@ uint32_t mvr_tuner_next(mvr_tuner *t, mvr_tuner_key key, uint32_t prior, bool *m
 
 void mvr_tuner_record(mvr_tuner *t, uint32_t c, double cost_ms)
 {
-    if (t->phase != MVR_TUNER_TUNING || c >= MVR_TUNER_CANDIDATES || !(cost_ms >= 0.0) ||
-        t->samples[c] >= MVR_TUNER_SAMPLES)
+    if (t->phase != MVR_TUNER_TUNING || c >= MVR_TUNER_CANDIDATES || !(cost_ms >= 0.0) || t->samples[c] >= t->want)
         return;
     t->costs[c][t->samples[c]++] = cost_ms;
     bool done = true;
     for (uint32_t k = 0; k < MVR_TUNER_CANDIDATES; ++k)
-        done = done && t->samples[k] == MVR_TUNER_SAMPLES;
-    if (done)
-        settle(t);
+        done = done && t->samples[k] == t->want;
+    if (!done)
+        return;
+    /* close medians: inside the noise; more samples while there are any left */
+    double lo = median(t->costs[0], t->samples[0]), hi = median(t->costs[1], t->samples[1]);
+    if (lo > hi) {
+        double tmp = lo;
+        lo = hi;
+        hi = tmp;
+    }
+    if (t->want < MVR_TUNER_MAX_SAMPLES && hi > 0.0 && 1.0 - lo / hi < MVR_TUNER_CLOSE) {
+        t->want++;
+        return;
+    }
+    settle(t);
 }

@@ -3,19 +3,26 @@
  * correct paths (today the view path: multiview or loop), it runs the
  * candidates on the real frames, interleaved, and settles on the cheapest.
  * Backend-free: the GL side says which frame ran which candidate at what
- * cost; the tuner says which candidate the next frame runs.
+ * cost; the tuner says which candidate the next frame runs. One mvr_tuner per
+ * decision (the view path, the skinning path).
  *
  * Schedule, from a change of inputs (the key): the prior (the caps rule's
  * first guess) runs first, so the first frame is never slower than the rule;
  * each candidate's first frame is a warm-up (it compiles its programs, ~130 ms
  * per variant on llvmpipe) and is not counted; then the candidates alternate
- * until each has MVR_TUNER_SAMPLES costs, and the one with the lowest median
- * wins unless it beats the prior by less than MVR_TUNER_MARGIN (noise: the
- * prior stays). Tuning costs 2 + 2 x MVR_TUNER_SAMPLES frames, at most half of
- * them on a candidate other than the prior; after that no frame is measured.
- * A key change (view count, target size, or the draw count by more than a
- * factor of 2; a draw count of 0 is "not known yet" and takes the next one)
- * starts again.
+ * until each has MVR_TUNER_SAMPLES costs. Where the medians are then within
+ * MVR_TUNER_CLOSE of each other the ranking is inside the frame-to-frame
+ * noise (identical frames differ by ~4% on a shared 2-core machine), so the
+ * candidates alternate on, up to MVR_TUNER_MAX_SAMPLES each, until they part
+ * or the samples run out. The one with the lowest median wins unless it beats
+ * the prior by less than MVR_TUNER_MARGIN (noise: the prior stays). Tuning
+ * costs 2 + 2 x MVR_TUNER_SAMPLES frames where the candidates differ clearly,
+ * at most 2 + 2 x MVR_TUNER_MAX_SAMPLES where they are close (and a wrong
+ * choice costs little), at most half of them on a candidate other than the
+ * prior; after that no frame is measured. A key change (view count, target
+ * size, the draw count by more than a factor of 2 -- a draw count of 0 is
+ * "not known yet" and takes the next one -- or another decision's choice the
+ * key carries) starts again.
  */
 #ifndef MVR_TUNER_H
 #define MVR_TUNER_H
@@ -25,6 +32,8 @@
 
 #define MVR_TUNER_CANDIDATES 2
 #define MVR_TUNER_SAMPLES 3
+#define MVR_TUNER_MAX_SAMPLES 7
+#define MVR_TUNER_CLOSE 0.10
 #define MVR_TUNER_MARGIN 0.03
 
 typedef enum mvr_tuner_phase {
@@ -35,6 +44,7 @@ typedef enum mvr_tuner_phase {
 
 typedef struct mvr_tuner_key {
     uint32_t views, width, height, draws;
+    uint32_t given;              /* what the other decisions chose (compared exactly) */
 } mvr_tuner_key;
 
 typedef struct mvr_tuner {
@@ -44,7 +54,8 @@ typedef struct mvr_tuner {
     uint32_t chosen;             /* what runs once settled (the prior while tuning) */
     uint32_t issued[MVR_TUNER_CANDIDATES];   /* frames run on each since the key changed */
     uint32_t samples[MVR_TUNER_CANDIDATES];  /* costs recorded (warm-ups not counted) */
-    double costs[MVR_TUNER_CANDIDATES][MVR_TUNER_SAMPLES];
+    uint32_t want;               /* samples each before settling (grows while close) */
+    double costs[MVR_TUNER_CANDIDATES][MVR_TUNER_MAX_SAMPLES];
     double median[MVR_TUNER_CANDIDATES];     /* once settled */
     double margin;               /* settled: 1 - chosen's median / prior's */
     uint32_t retunes;            /* key changes that restarted tuning */

@@ -820,8 +820,11 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
     mvr_result res = mvr_renderer_begin(r, "mvr_renderer_render");
     if (res != MVR_OK)
         return res;
-    if (tune)
-        path = mvr_tuning_view_path(r, views, target, prior, multiview_usable(r) && level_ok);
+    /* tuned only where both paths can draw this frame (MSAA may rule
+     * multiview out; transmission as the last frame had it) */
+    bool drawable = mvr_frame_plan_multiview_drawable(target->desc.samples, mvr_post_needed(&d), target->msaa_multiview,
+                                                      r->frame.transmissive_draws != 0);
+    path = mvr_tuning_choose(r, views, target, path, tune && multiview_usable(r) && level_ok && drawable);
     double cpu_start = thread_cpu_ms();
     /* the application or another renderer may have changed GL state since */
     mvr_state_invalidate(&r->state);

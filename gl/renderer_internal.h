@@ -118,6 +118,7 @@ typedef struct mvr_preskin_buffer {
 typedef struct mvr_skinning {
     mvr_skinning_path requested;  /* the renderer's setting (AUTO allowed) */
     mvr_skinning_path path;       /* this frame's: VERTEX or PRESKIN */
+    mvr_skinning_path tuned;      /* auto's tuner's choice for this frame (AUTO: the rule's) */
     GLuint deltas;                /* RGBA32F, rows of 2^MVR_DEFORM_WIDTH_LOG2 texels */
     uint64_t deltas_geometry;     /* the geometry version they are of (0: none) */
     GLuint data;                  /* RGBA32F, this frame's joints and weights */
@@ -263,8 +264,9 @@ struct mvr_renderer {
      * frame whose cost is still to be recorded */
     bool tuning;
     mvr_tuning_desc tuning_desc;
-    mvr_tuner view_tuner;
-    struct { bool pending; uint32_t candidate; double cpu_ms; } tuning_frame;
+    mvr_tuner view_tuner, skin_tuner;
+    bool view_tuned_frame, skin_tuned_frame; /* this frame's paths are the tuners' */
+    struct { bool pending, skinning; uint32_t candidate; double cpu_ms; } tuning_frame;
     void *blend_order;           /* per-view order of the blend list (scratch) */
     size_t blend_order_cap;
     mvr_visibility vis;          /* per-view visibility of the frame's draws */
@@ -345,10 +347,12 @@ void mvr_gpu_scene_release(mvr_renderer *r);
  * disjoint); the context current and a frame's queries pending. */
 void mvr_renderer_read_timer(mvr_renderer *r);
 
-/* tuning.c: the view path `auto` runs this frame (prior: the caps rule's;
- * the tuner measures around it), and after the frame what to measure. */
-mvr_view_path mvr_tuning_view_path(mvr_renderer *r, const mvr_view_set *views, const mvr_target *t,
-                                   mvr_view_path prior, bool multiview_ok);
+/* tuning.c: the view path this frame runs (prior: the caps rule's choice
+ * for auto, or the path asked for; tune_view: auto, and both paths can draw
+ * this frame) and its skinning path (r->skinning.tuned); after the frame,
+ * what to measure and the stats' auto_choice / auto_skinning. */
+mvr_view_path mvr_tuning_choose(mvr_renderer *r, const mvr_view_set *views, const mvr_target *t,
+                                mvr_view_path prior, bool tune_view);
 void mvr_tuning_end_frame(mvr_renderer *r, mvr_view_path ran, bool ok);
 
 /* targets.c: a framebuffer for layers [base, base + count) (multiview when
@@ -454,6 +458,8 @@ mvr_result mvr_post_run(mvr_renderer *r, mvr_target *t, const mvr_view_set *view
  * a draw of a deform uses (0: the primitive's own). */
 mvr_result mvr_skinning_sync_scene(mvr_renderer *r, const mvr_scene *scene);
 mvr_skinning_path mvr_skinning_choose(const mvr_renderer *r, const mvr_scene *scene, uint32_t views);
+/* auto's rule (the tuner's prior): pre-skinning above one view */
+mvr_skinning_path mvr_skinning_rule(uint32_t views);
 mvr_result mvr_skinning_frame(mvr_renderer *r, bool frame_changed);
 mvr_result mvr_skinning_capture(mvr_renderer *r);
 GLuint mvr_skinning_vao(const mvr_renderer *r, const mvr_draw *d);

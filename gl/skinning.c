@@ -144,16 +144,22 @@ mvr_result mvr_skinning_sync_scene(mvr_renderer *r, const mvr_scene *s)
     return MVR_OK;
 }
 
+mvr_skinning_path mvr_skinning_rule(uint32_t views)
+{
+    /* pre-skinning does the work once for every view and the shadow pass,
+     * the vertex path once per view on drivers that loop views in a
+     * multiview draw; one view without shadows gains nothing from a capture
+     * pass (docs/benchmarks.md) */
+    return views > 1 ? MVR_SKINNING_PATH_PRESKIN : MVR_SKINNING_PATH_VERTEX;
+}
+
 mvr_skinning_path mvr_skinning_choose(const mvr_renderer *r, const mvr_scene *s, uint32_t views)
 {
     (void)s;
     if (r->skinning.requested != MVR_SKINNING_PATH_AUTO)
         return r->skinning.requested;
-    /* the prior until issue 22's tuner measures: pre-skinning does the work
-     * once for every view and the shadow pass, the vertex path once per
-     * view on drivers that loop views in a multiview draw; one view without
-     * shadows gains nothing from a capture pass (docs/benchmarks.md) */
-    return views > 1 ? MVR_SKINNING_PATH_PRESKIN : MVR_SKINNING_PATH_VERTEX;
+    /* auto: what the tuner runs this frame (gl/tuning.c), else the rule */
+    return r->skinning.tuned != MVR_SKINNING_PATH_AUTO ? r->skinning.tuned : mvr_skinning_rule(views);
 }
 
 static mvr_result upload_data(mvr_renderer *r)

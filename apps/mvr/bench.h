@@ -55,6 +55,7 @@ typedef struct bench_config {
     mvr_transparency_order order;
     mvr_skinning_path skinning_path; /* AUTO except on the skinning axis (scenes with skins or morphs) */
     uint32_t disable_features;   /* material extensions drawn as absent (overrides.disable_features) */
+    bool skinning_axis;          /* one of the skinning axis's configurations */
     bool reference;
     /* Configurations of one group must give the same pixels (they differ
      * only in view or material path): the report checks it. */
@@ -100,6 +101,7 @@ typedef struct bench_result {
     /* view path auto: what its tuner measured and chose (measured frames
      * start once it settled), and the frames that took */
     mvr_auto_choice auto_choice;
+    mvr_auto_skinning_choice auto_skinning;
     uint32_t tuning_frames;
 } bench_result;
 
@@ -138,11 +140,23 @@ bool bench_plot(const bench_run *run);
 /* All of the above: the table on stdout and every file into run->out_dir;
  * false when any failed (each says why). */
 bool bench_write_reports(const bench_run *run);
-/* Auto against the best forced view path of its configuration (same name
- * after the view path): *excess the fraction auto's median is above it (0
- * within the noise: auto's q1 at most the best's q3); false when k is not
- * an auto configuration with forced ones beside it. */
-bool bench_auto_excess(const bench_run *run, uint32_t k, uint32_t *best, double *excess);
+/* An auto configuration against the forced paths of the same configuration
+ * (the same material path, anti-aliasing, order and features; on the
+ * skinning axis, auto skinning against both skinning paths): the best of
+ * them, and the one auto settled on (the same work as auto's). A fraction
+ * "above" is 0 within the noise (the slower one's q1 at most the faster's
+ * q3). */
+typedef struct bench_auto_verdict {
+    uint32_t best;               /* the fastest forced configuration */
+    double excess;               /* auto's median above the best's */
+    bool chosen_found;           /* a forced configuration of what auto settled on ran */
+    uint32_t chosen;
+    double choice_excess;        /* the chosen forced configuration above the best: what the choice costs */
+    double same_work;            /* auto's median against the chosen's - 1 (identical work measured
+                                    twice: the noise of this run), signed */
+} bench_auto_verdict;
+/* false when k is not an auto configuration with forced ones beside it */
+bool bench_auto_excess(const bench_run *run, uint32_t k, bench_auto_verdict *v);
 
 
 /* cmd_bench.c, shared with bench_env.c */

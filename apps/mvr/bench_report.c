@@ -58,41 +58,74 @@ static void print_env_table(const bench_run *run, FILE *out)
             run->reference_samples, (unsigned long long)run->compared_pixels);
 }
 
-bool bench_auto_excess(const bench_run *run, uint32_t k, uint32_t *best, double *excess)
+/* Whether forced configuration c is one auto configuration a is compared with. */
+static bool comparable(const bench_config *a, const bench_config *c)
+{
+    if (c->view_path == MVR_VIEW_PATH_AUTO || c->reference || c->material_path != a->material_path ||
+        c->supersample != a->supersample || c->msaa != a->msaa || c->order != a->order ||
+        c->disable_features != a->disable_features || c->skinning_axis != a->skinning_axis)
+        return false;
+    /* auto skinning on the skinning axis: against both forced skinning paths */
+    if (a->skinning_axis && a->skinning_path == MVR_SKINNING_PATH_AUTO)
+        return c->skinning_path != MVR_SKINNING_PATH_AUTO;
+    return c->skinning_path == a->skinning_path;
+}
+
+/* The fraction slower's median is above faster's, 0 within the noise. */
+static double above(const bench_result *slower, const bench_result *faster)
+{
+    return slower->wall_q1 <= faster->wall_q3 ? 0.0 : slower->wall_median / faster->wall_median - 1.0;
+}
+
+bool bench_auto_excess(const bench_run *run, uint32_t k, bench_auto_verdict *v)
 {
     const bench_config *a = &run->configs[k];
     const bench_result *ra = &run->results[k];
-    const char *rest = strchr(a->name, '/');
-    if (a->view_path != MVR_VIEW_PATH_AUTO || !ra->ran || !rest)
+    memset(v, 0, sizeof *v);
+    if (a->view_path != MVR_VIEW_PATH_AUTO || !ra->ran || a->reference)
         return false;
+    /* what auto settled on: its view path (the rule's where not tuned), and
+     * its skinning path where that was auto too */
+    const mvr_auto_choice *ac = &ra->auto_choice;
+    mvr_view_path view = ac->state == MVR_AUTO_SETTLED ? ac->chosen : ac->prior;
+    mvr_skinning_path skin = a->skinning_path;
+    if (a->skinning_axis && skin == MVR_SKINNING_PATH_AUTO)
+        skin = ra->auto_skinning.state == MVR_AUTO_SETTLED ? ra->auto_skinning.chosen : ra->auto_skinning.prior;
     bool found = false;
     for (uint32_t i = 0; i < run->count; ++i) {
         const bench_config *c = &run->configs[i];
-        const char *other = strchr(c->name, '/');
-        if (i == k || c->view_path == MVR_VIEW_PATH_AUTO || !run->results[i].ran || !other || strcmp(other, rest) != 0 ||
-            c->reference)
+        if (i == k || !run->results[i].ran || !comparable(a, c))
             continue;
-        if (!found || run->results[i].wall_median < run->results[*best].wall_median)
-            *best = i;
+        if (!found || run->results[i].wall_median < run->results[v->best].wall_median)
+            v->best = i;
         found = true;
+        if (c->view_path == view && c->skinning_path == skin) {
+            v->chosen_found = true;
+            v->chosen = i;
+        }
     }
     if (!found)
         return false;
-    const bench_result *rb = &run->results[*best];
-    *excess = ra->wall_q1 <= rb->wall_q3 ? 0.0 : ra->wall_median / rb->wall_median - 1.0;
+    const bench_result *rb = &run->results[v->best];
+    v->excess = above(ra, rb);
+    if (v->chosen_found) {
+        const bench_result *rc = &run->results[v->chosen];
+        v->choice_excess = above(rc, rb);
+        v->same_work = ra->wall_median / rc->wall_median - 1.0;
+    }
     return true;
 }
 
-/* Each auto configuration: what its tuner measured, and how far it is from
- * the best forced view path; then the worst over the matrix. */
+/* Each auto configuration: what its tuners measured, and how far it is from
+ * the best forced path; then the worst over the matrix, of auto's own frames
+ * and of its choice (the forced configuration of the path it settled on). */
 static void print_auto_lines(const bench_run *run, FILE *out)
 {
-    double worst = -1.0;
-    uint32_t worst_k = 0;
+    double worst = -1.0, worst_choice = -1.0, noise = 0.0;
+    uint32_t worst_k = 0, worst_choice_k = 0;
     for (uint32_t k = 0; k < run->count; ++k) {
-        uint32_t best = 0;
-        double excess = 0.0;
-        if (!bench_auto_excess(run, k, &best, &excess))
+        bench_auto_verdict v;
+        if (!bench_auto_excess(run, k, &v))
             continue;
         const bench_result *r = &run->results[k];
         const mvr_auto_choice *a = &r->auto_choice;
@@ -103,22 +136,43 @@ static void print_auto_lines(const bench_run *run, FILE *out)
         else
             fprintf(out, "auto %s: %s (%s)", run->configs[k].name, mvr_auto_state_name(a->state),
                     a->state == MVR_AUTO_RULE ? "tuning off: the caps rule" : "one path works here");
+        const mvr_auto_skinning_choice *s = &r->auto_skinning;
+        if (s->state == MVR_AUTO_SETTLED)
+            fprintf(out, "; skinning settled on %s (vertex %.2f, preskin %.2f ms; prior %s)",
+                    mvr_skinning_path_name(s->chosen), s->cost_ms[0], s->cost_ms[1], mvr_skinning_path_name(s->prior));
         char verdict[64];
-        if (excess > 0.0)
-            snprintf(verdict, sizeof verdict, "%.1f%% slower beyond the noise", 100.0 * excess);
+        if (v.excess > 0.0)
+            snprintf(verdict, sizeof verdict, "%.1f%% slower beyond the noise", 100.0 * v.excess);
         else
             snprintf(verdict, sizeof verdict, "within the noise");
-        fprintf(out, "; %.2f ms against %s's %.2f: %s\n", r->wall_median, run->configs[best].name,
-                run->results[best].wall_median, verdict);
-        if (excess > worst) {
-            worst = excess;
+        fprintf(out, "; %.2f ms against %s's %.2f: %s", r->wall_median, run->configs[v.best].name,
+                run->results[v.best].wall_median, verdict);
+        if (v.chosen_found && v.chosen != v.best)
+            fprintf(out, "; its choice %s %.2f ms (%s), auto's run of that %+.1f%%", run->configs[v.chosen].name,
+                    run->results[v.chosen].wall_median,
+                    v.choice_excess > 0.0 ? "slower beyond the noise" : "within the noise", 100.0 * v.same_work);
+        fputc('\n', out);
+        if (v.excess > worst) {
+            worst = v.excess;
             worst_k = k;
         }
+        double choice = v.chosen_found ? v.choice_excess : v.excess;
+        if (choice > worst_choice) {
+            worst_choice = choice;
+            worst_choice_k = k;
+        }
+        if (v.chosen_found && fabs(v.same_work) > noise)
+            noise = fabs(v.same_work);
     }
-    if (worst >= 0.0)
-        fprintf(out, "auto against the best forced view path over the matrix: %s (worst: %s, +%.1f%% beyond the "
-                     "noise; target at most 5%%)\n",
-                worst <= 0.05 ? "within 5%" : "MORE than 5% slower", run->configs[worst_k].name, 100.0 * worst);
+    if (worst < 0.0)
+        return;
+    fprintf(out, "auto against the best forced path over the matrix: %s (worst: %s, +%.1f%% beyond the noise; "
+                 "target at most 5%%)\n",
+            worst <= 0.05 ? "within 5%" : "MORE than 5% slower", run->configs[worst_k].name, 100.0 * worst);
+    fprintf(out, "auto's choice (the forced path it settled on) against the best: %s (worst: %s, +%.1f%%); "
+                 "auto against its own choice forced, the same work: up to %.1f%% apart in this run\n",
+            worst_choice <= 0.05 ? "within 5%" : "MORE than 5% slower", run->configs[worst_choice_k].name,
+            100.0 * worst_choice, 100.0 * noise);
 }
 
 void bench_print_table(const bench_run *run, FILE *out)
@@ -293,9 +347,8 @@ bool bench_write_json(const bench_run *run, const char *path)
             continue;
         }
         json_string(&jw, "view_path_ran", r->view_path_ran);
-        uint32_t best = 0;
-        double excess = 0.0;
-        if (bench_auto_excess(run, k, &best, &excess)) {
+        bench_auto_verdict v;
+        if (bench_auto_excess(run, k, &v)) {
             const mvr_auto_choice *a = &r->auto_choice;
             json_begin_object(&jw, "auto");
             json_string(&jw, "state", mvr_auto_state_name(a->state));
@@ -305,8 +358,21 @@ bool bench_write_json(const bench_run *run, const char *path)
             json_double(&jw, "tuner_loop_ms", a->cost_ms[1]);
             json_double(&jw, "margin", a->margin);
             json_int(&jw, "tuning_frames", r->tuning_frames);
-            json_string(&jw, "best_forced", run->configs[best].name);
-            json_double(&jw, "excess_beyond_noise", excess);
+            const mvr_auto_skinning_choice *sk = &r->auto_skinning;
+            if (sk->state != MVR_AUTO_NONE) {
+                json_string(&jw, "skinning_state", mvr_auto_state_name(sk->state));
+                json_string(&jw, "skinning_prior", mvr_skinning_path_name(sk->prior));
+                json_string(&jw, "skinning_chosen", mvr_skinning_path_name(sk->chosen));
+                json_double(&jw, "tuner_vertex_ms", sk->cost_ms[0]);
+                json_double(&jw, "tuner_preskin_ms", sk->cost_ms[1]);
+            }
+            json_string(&jw, "best_forced", run->configs[v.best].name);
+            json_double(&jw, "excess_beyond_noise", v.excess);
+            if (v.chosen_found) {
+                json_string(&jw, "chosen_forced", run->configs[v.chosen].name);
+                json_double(&jw, "choice_excess_beyond_noise", v.choice_excess);
+                json_double(&jw, "against_chosen_forced", v.same_work);
+            }
             json_end_object(&jw);
         }
         json_double(&jw, "wall_ms_median", r->wall_median);

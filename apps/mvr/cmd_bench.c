@@ -77,7 +77,8 @@ static const cli_option bench_table[] = {
      "\nThe matrix renders under the environment mvr render takes (--env\n"
      "below; neutral for a glTF file, none for a demo). A scene with skins\n"
      "or morph targets adds each view path with --skinning vertex and\n"
-     "preskin; one whose materials use KHR_materials_specular / _ior or\n"
+     "preskin, and auto with both paths auto (against those four); one\n"
+     "whose materials use KHR_materials_specular / _ior or\n"
      "_clearcoat or _sheen adds auto/arrays/noaa with each drawn as absent\n"
      "(no_...).\n"
      "\nenvironment prefilter axes:\n", NULL, NULL, NULL},
@@ -360,12 +361,15 @@ static void add_skinning_axis(bench_config *out, uint32_t *n)
     const mvr_view_path vps[3] = {MVR_VIEW_PATH_MULTIVIEW, MVR_VIEW_PATH_LOOP, MVR_VIEW_PATH_AUTO};
     const mvr_skinning_path sps[2] = {MVR_SKINNING_PATH_VERTEX, MVR_SKINNING_PATH_PRESKIN};
     for (int v = 0; v < 3; ++v)
-        for (int k = 0; k < 2; ++k) {
+        for (int k = 0; k < 3; ++k) {
+            if (k == 2 && vps[v] != MVR_VIEW_PATH_AUTO)
+                continue; /* both paths auto: against the four forced pairs */
             add_config(out, n, vps[v], MVR_MATERIAL_PATH_ARRAYS, 1, MVR_TRANSPARENCY_ORDER_AUTO, false);
             bench_config *c = &out[*n - 1];
-            c->skinning_path = sps[k];
+            c->skinning_path = k < 2 ? sps[k] : MVR_SKINNING_PATH_AUTO;
+            c->skinning_axis = true;
             size_t l = strlen(c->name);
-            snprintf(c->name + l, sizeof c->name - l, "/%s", mvr_skinning_path_name(sps[k]));
+            snprintf(c->name + l, sizeof c->name - l, "/%s", mvr_skinning_path_name(c->skinning_path));
         }
 }
 
@@ -511,8 +515,9 @@ static bool setup_config(const bench_options *o, mvr_context *ctx, mvr_scene *sc
     /* auto is measured after tuning: more warm-up frames until its tuner settled */
     mvr_frame_stats st;
     mvr_renderer_get_stats(cr->r, &st);
-    for (uint32_t f = o->warmup; ok && c->view_path == MVR_VIEW_PATH_AUTO && st.auto_choice.state == MVR_AUTO_TUNING &&
-                                 f < o->warmup + 32;
+    for (uint32_t f = o->warmup;
+         ok && (st.auto_choice.state == MVR_AUTO_TUNING || st.auto_skinning.state == MVR_AUTO_TUNING) &&
+         f < o->warmup + 48;
          ++f) {
         pose(o, scene, f);
         ok = mvr_renderer_render(cr->r, scene, vs, cr->t, &o->render) == MVR_OK;
@@ -520,6 +525,7 @@ static bool setup_config(const bench_options *o, mvr_context *ctx, mvr_scene *sc
         res->tuning_frames = f + 1;
     }
     res->auto_choice = st.auto_choice;
+    res->auto_skinning = st.auto_skinning;
     if (!ok) {
         fprintf(stderr, "mvr bench: %s: %s\n", c->name, mvr_renderer_last_error(cr->r));
         release_run(cr);

@@ -958,9 +958,10 @@ const char *mvr_material_path_name(mvr_material_path path);
 /* Where skinning and morphing run (scenes without skins or morph targets
  * run neither). Both give the same pixels (tests/gl/test_skinning.c). */
 typedef enum mvr_skinning_path {
-    /* pre-skinning for more than one view, the vertex path for one: on
-     * llvmpipe 16 skinned meshes drew 25-35% faster pre-skinned at 6 and 16
-     * views and 20% slower at one (docs/benchmarks.md) */
+    /* measured (mvr_tuning_desc), from the rule: pre-skinning for more than
+     * one view, the vertex path for one (on llvmpipe 16 skinned meshes drew
+     * 25-35% faster pre-skinned at 6 and 16 views and 20% slower at one,
+     * docs/benchmarks.md) */
     MVR_SKINNING_PATH_AUTO = 0,
     /* in the mesh vertex shader of every pass: once per view where the GL
      * loops views inside a multiview draw (llvmpipe), and again in the
@@ -1069,17 +1070,24 @@ typedef enum mvr_skinning_path_override {
     MVR_SKINNING_PATH_OVERRIDE_PRESKIN
 } mvr_skinning_path_override;
 
-/* The online tuner behind `auto` (the view path): the first frames after a
- * change of inputs (view count, target size, the scene's draw count by more
- * than a factor of 2) run the candidates interleaved, each once to warm up
- * (program compiles) and then 3 times, measured (the frame's cost: the larger
- * of its submitting-thread CPU time and its GPU time from timestamp queries,
- * taken outside multiview framebuffers; CPU time alone where the GL has no
- * timer); the path with the lower median is kept unless it beats the caps
- * rule's choice (the prior, which runs first) by less than 3%. 8 frames per
- * change, at most 4 of them on the other path; settled frames are not
- * measured. Every candidate gives the same pixels (tested). stats.auto_choice
- * says what was measured and why the path runs. */
+/* The online tuner behind `auto` (the view path, then the skinning path):
+ * the first frames after a change of inputs (view count, target size, the
+ * scene's draw count by more than a factor of 2) run the candidates
+ * interleaved, each once to warm up (program compiles) and then at least 3
+ * times, measured (the frame's cost: the larger of its submitting-thread CPU
+ * time and its GPU time from timestamp queries, taken outside multiview
+ * framebuffers; CPU time alone where the GL has no timer); where the medians
+ * are then within 10% of each other (inside the noise), up to 7 times each
+ * until they part. The path with the lower median is kept unless it beats
+ * the caps rule's choice (the prior, which runs first) by less than 3%. 8
+ * frames per change where the paths differ clearly, at most 16 where they are
+ * close, at most half of them on the other path; settled frames are not
+ * measured. The skinning path (scenes with skins or morph targets, skinning
+ * path AUTO) is measured the same way once the view path settled, keyed on
+ * it. Where only one path can run (no multiview, or MSAA that multiview
+ * cannot draw) nothing is measured. Every candidate gives the same pixels
+ * (tested). stats.auto_choice and stats.auto_skinning say what was measured
+ * and why the path runs. */
 typedef enum mvr_tuning {
     MVR_TUNING_DEFAULT = 0,      /* on */
     MVR_TUNING_ON,
@@ -1458,6 +1466,19 @@ typedef struct mvr_auto_choice {
     uint32_t retunes;            /* input changes that started the measurement again */
 } mvr_auto_choice;
 
+/* The same for the skinning path (skinning path AUTO, a scene with skins or
+ * morph targets; MVR_AUTO_NONE otherwise). */
+typedef struct mvr_auto_skinning_choice {
+    mvr_auto_state state;
+    mvr_skinning_path prior;     /* the rule's choice */
+    mvr_skinning_path chosen;
+    mvr_skinning_path candidates[2]; /* vertex, preskin */
+    uint32_t samples[2];
+    double cost_ms[2];
+    double margin;
+    uint32_t retunes;
+} mvr_auto_skinning_choice;
+
 struct mvr_frame_stats {
     mvr_view_path view_path;     /* the path that ran */
     uint32_t views;              /* enabled views rendered */
@@ -1556,6 +1577,7 @@ struct mvr_frame_stats {
     uint32_t exposure_measured_views;
     double exposure_log2_luminance;
     mvr_auto_choice auto_choice; /* the view path's `auto` */
+    mvr_auto_skinning_choice auto_skinning; /* the skinning path's `auto` */
 };
 
 /* The supersampling resolve: box-filters linear RGBA float pixels (width x

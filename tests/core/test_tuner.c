@@ -29,7 +29,7 @@ static void prior_first_then_interleaved(mvr_test_state *t)
 {
     mvr_tuner tu;
     memset(&tu, 0, sizeof tu);
-    mvr_tuner_key key = {6, 256, 256, 100};
+    mvr_tuner_key key = {6, 256, 256, 100, 0};
     bool measure = true;
     /* the prior (1) first, unmeasured; the other's warm-up, unmeasured */
     CHECK(t, mvr_tuner_next(&tu, key, 1, &measure) == 1 && !measure);
@@ -52,19 +52,20 @@ static void the_margin_keeps_the_prior(mvr_test_state *t)
 {
     mvr_tuner tu;
     memset(&tu, 0, sizeof tu);
-    mvr_tuner_key key = {4, 128, 128, 10};
+    mvr_tuner_key key = {4, 128, 128, 10, 0};
     uint32_t ran[2];
-    /* 2% cheaper is noise: the prior stays */
+    /* 2% cheaper is noise: measured up to the most samples, and the prior stays */
     const double close[2] = {9.8, 10.0};
     uint32_t frames = run(&tu, key, 1, close, ran);
-    CHECK(t, frames == 2 + 2 * MVR_TUNER_SAMPLES && tu.chosen == 1 && tu.margin == 0.0);
+    CHECK_MSG(t, frames == 2 + 2 * MVR_TUNER_MAX_SAMPLES && tu.chosen == 1 && tu.margin == 0.0, "%u frames", frames);
+    CHECK(t, tu.samples[0] == MVR_TUNER_MAX_SAMPLES && tu.samples[1] == MVR_TUNER_MAX_SAMPLES);
     /* at most half of the tuning frames on the other candidate */
     CHECK(t, ran[0] <= frames / 2);
-    /* 10% cheaper pays */
+    /* 12% cheaper pays, and is clear after the first samples */
     memset(&tu, 0, sizeof tu);
-    const double clear[2] = {9.0, 10.0};
-    run(&tu, key, 1, clear, ran);
-    CHECK(t, tu.chosen == 0 && tu.margin > 0.09 && tu.margin < 0.11);
+    const double clear[2] = {8.8, 10.0};
+    frames = run(&tu, key, 1, clear, ran);
+    CHECK(t, tu.chosen == 0 && tu.margin > 0.11 && tu.margin < 0.13 && frames == 2 + 2 * MVR_TUNER_SAMPLES);
     /* medians: one outlier frame does not decide */
     memset(&tu, 0, sizeof tu);
     bool measure;
@@ -78,11 +79,52 @@ static void the_margin_keeps_the_prior(mvr_test_state *t)
     CHECK(t, tu.phase == MVR_TUNER_SETTLED && tu.median[1] == 12.0 && tu.chosen == 0);
 }
 
+/* Close after the first samples (4.8% apart: inside the noise), the
+ * candidates go on alternating until their medians part. */
+static void close_medians_take_more_samples(mvr_test_state *t)
+{
+    mvr_tuner tu;
+    memset(&tu, 0, sizeof tu);
+    mvr_tuner_key key = {6, 256, 256, 100, 0};
+    const double c0[MVR_TUNER_MAX_SAMPLES] = {10.0, 10.0, 10.0, 8.0, 8.0, 8.0, 8.0};
+    uint32_t n[2] = {0, 0}, frames = 0;
+    bool measure;
+    while (tu.phase != MVR_TUNER_SETTLED && frames < 40) {
+        uint32_t c = mvr_tuner_next(&tu, key, 1, &measure);
+        frames++;
+        if (measure) {
+            mvr_tuner_record(&tu, c, c == 0 ? c0[n[0]] : 10.5);
+            n[c]++;
+        }
+    }
+    /* 3 samples: 10 against 10.5; 4, 5: still 10; 6: 9 against 10.5, 14% apart */
+    CHECK_MSG(t, tu.phase == MVR_TUNER_SETTLED && tu.samples[0] == 6 && tu.samples[1] == 6, "samples %u, %u",
+              tu.samples[0], tu.samples[1]);
+    CHECK(t, frames == 2 + 12 && tu.chosen == 0 && tu.median[0] == 9.0 && tu.median[1] == 10.5);
+    CHECK(t, n[0] == 6 && n[1] == 6);
+}
+
+/* Another decision's choice in the key (the skinning tuner keys on the view
+ * path) measures again when it changes. */
+static void another_decision_in_the_key(mvr_test_state *t)
+{
+    mvr_tuner tu;
+    memset(&tu, 0, sizeof tu);
+    mvr_tuner_key key = {6, 256, 256, 100, 0};
+    uint32_t ran[2];
+    const double cost[2] = {5.0, 10.0};
+    run(&tu, key, 1, cost, ran);
+    bool measure;
+    CHECK(t, tu.phase == MVR_TUNER_SETTLED && mvr_tuner_next(&tu, key, 1, &measure) == 0);
+    key.given = 1;
+    CHECK(t, mvr_tuner_next(&tu, key, 1, &measure) == 1 && tu.phase == MVR_TUNER_TUNING && tu.retunes == 1);
+}
+
 static void a_material_change_measures_again(mvr_test_state *t)
 {
     mvr_tuner tu;
     memset(&tu, 0, sizeof tu);
-    mvr_tuner_key key = {6, 256, 256, 100};
+    mvr_tuner_key key = {6, 256, 256, 100, 0};
     uint32_t ran[2];
     const double cost[2] = {5.0, 10.0};
     run(&tu, key, 1, cost, ran);
@@ -92,7 +134,7 @@ static void a_material_change_measures_again(mvr_test_state *t)
     key.draws = 180;
     CHECK(t, mvr_tuner_next(&tu, key, 1, &measure) == 0 && tu.phase == MVR_TUNER_SETTLED);
     /* the view count, the size, twice the draws, another prior: again, the prior first */
-    mvr_tuner_key changes[3] = {{12, 256, 256, 100}, {6, 512, 256, 100}, {6, 256, 256, 361}};
+    mvr_tuner_key changes[3] = {{12, 256, 256, 100, 0}, {6, 512, 256, 100, 0}, {6, 256, 256, 361, 0}};
     for (int i = 0; i < 3; ++i) {
         memset(&tu, 0, sizeof tu);
         run(&tu, key, 1, cost, ran);
@@ -121,4 +163,5 @@ static void a_material_change_measures_again(mvr_test_state *t)
 }
 
 MVR_TEST_MAIN(TEST(prior_first_then_interleaved), TEST(the_margin_keeps_the_prior),
+              TEST(close_medians_take_more_samples), TEST(another_decision_in_the_key),
               TEST(a_material_change_measures_again))

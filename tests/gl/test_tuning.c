@@ -3,7 +3,9 @@
  * measured frames, reports the candidates and their costs, measures again
  * when the view count changes, never changes a pixel while it switches; off,
  * it is the caps rule; a pinned path is not tuned; with the real timers it
- * settles with positive costs. */
+ * settles with positive costs; a skinned scene's skinning path is measured
+ * after the view path and settles on the cheaper, pixels unchanged; MSAA
+ * that multiview cannot draw is not tuned. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdlib.h>
 #include <string.h>
@@ -11,6 +13,7 @@
 #include "gl_test_util.h"
 #include "mvr/mvr.h"
 #include "mvr_test.h"
+#include "skin_scene.h"
 
 #define W 64
 #define H 48
@@ -166,8 +169,11 @@ static void off_pinned_and_real_timers(mvr_test_state *t)
     /* the real timers: settled after the measured frames, with positive costs */
     mvr_renderer_desc real = {.context = ctx};
     if (mvr_context_caps(ctx)->ext.ovr_multiview2 && rig_make(t, &real, 6, &g) && px) {
-        for (int i = 0; i < 9; ++i)
+        /* 9 frames where the paths differ by 10% or more, up to 17 where closer */
+        int frames = 0;
+        do
             CHECK(t, frame(t, &g, px, &st));
+        while (st.auto_choice.state == MVR_AUTO_TUNING && ++frames < 2 + 2 * 7 + 1);
         const mvr_auto_choice *a = &st.auto_choice;
         CHECK_MSG(t, a->state == MVR_AUTO_SETTLED && a->cost_ms[0] > 0.0 && a->cost_ms[1] > 0.0,
                   "state %s, costs %.3f / %.3f ms", mvr_auto_state_name(a->state), a->cost_ms[0], a->cost_ms[1]);
@@ -189,4 +195,142 @@ static void off_pinned_and_real_timers(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
-MVR_TEST_MAIN(TEST(settles_on_the_cheaper_path_without_changing_a_pixel), TEST(off_pinned_and_real_timers))
+/* The skinning hook: multiview 5 ms, loop 10; pre-skinning 3 ms more than the vertex path. */
+static double skin_hook(void *user, mvr_view_path path, const mvr_frame_stats *stats)
+{
+    costs *c = user;
+    c->calls++;
+    return (path == MVR_VIEW_PATH_MULTIVIEW ? 5.0 : 10.0) + (stats->skinning_path == MVR_SKINNING_PATH_PRESKIN ? 3.0 : 0.0);
+}
+
+static mvr_view_set *strip_views(uint32_t count)
+{
+    mvr_view_desc views[4];
+    memset(views, 0, sizeof views);
+    for (uint32_t i = 0; i < count; ++i) {
+        double eye[3] = {-0.2 + 0.1 * (double)i, 0.8, 6.0}, target[3] = {-0.2, 0.8, 0.0}, up[3] = {0, 1, 0};
+        mvr_view_look_at(&views[i], eye, target, up);
+        views[i].projection.yfov = 0.75;
+    }
+    mvr_view_set_desc vd = {.view_count = count, .views = views};
+    mvr_view_set *vs = NULL;
+    return mvr_view_set_create(&vd, &vs, NULL) == MVR_OK ? vs : NULL;
+}
+
+/* Renders until the skinning path settled (at most `limit` frames), every
+ * frame's bytes against the first's; returns the frames. */
+static uint32_t until_skinning_settles(mvr_test_state *t, rig *g, uint8_t *first, uint8_t *px, uint32_t limit,
+                                       mvr_frame_stats *st)
+{
+    size_t bytes = (size_t)W * H * 4 * mvr_view_set_count(g->views);
+    uint32_t frames = 0;
+    do {
+        CHECK(t, frame(t, g, frames ? px : first, st));
+        if (frames)
+            CHECK_MSG(t, memcmp(px, first, bytes) == 0, "frame %u (%s, %s) differs", frames,
+                      mvr_view_path_name(st->view_path), mvr_skinning_path_name(st->skinning_path));
+        frames++;
+    } while (st->auto_skinning.state != MVR_AUTO_SETTLED && frames < limit);
+    return frames;
+}
+
+static void skinning_path_after_the_view_path(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    bool mv = mvr_context_caps(ctx)->ext.ovr_multiview2;
+    uint8_t *first = malloc((size_t)W * H * 4 * 4), *px = malloc((size_t)W * H * 4 * 4);
+    costs c = {0};
+    skin_scene k;
+    rig g;
+    memset(&g, 0, sizeof g);
+    mvr_target_desc td = {.width = W, .height = H, .layers = 4};
+    mvr_renderer_desc rd = {.context = ctx, .tuning = {.frame_cost = skin_hook, .user = &c}};
+    bool ok = first && px && mvr_scene_create(NULL, &g.scene, NULL) == MVR_OK &&
+              build_skin_scene(g.scene, &k, true, true) == MVR_OK && (g.views = strip_views(4)) != NULL &&
+              mvr_renderer_create(&rd, &g.r, NULL) == MVR_OK && mvr_target_create(g.r, &td, &g.tg) == MVR_OK;
+    CHECK(t, ok);
+    if (ok) {
+        strip_rotate_tip(g.scene, &k, 60.0);
+        mvr_frame_stats st;
+        uint32_t frames = until_skinning_settles(t, &g, first, px, 40, &st);
+        const mvr_auto_skinning_choice *s = &st.auto_skinning;
+        /* the view path first (8 frames, 6 measured), then the skinning path
+         * (8 more); the rule's pre-skinning for 4 views is the prior */
+        CHECK_MSG(t, s->state == MVR_AUTO_SETTLED && frames == (mv ? 17u : 9u), "%u frames, state %s", frames,
+                  mvr_auto_state_name(s->state));
+        CHECK(t, s->prior == MVR_SKINNING_PATH_PRESKIN && s->chosen == MVR_SKINNING_PATH_VERTEX &&
+                 st.skinning_path == MVR_SKINNING_PATH_VERTEX);
+        CHECK(t, s->candidates[0] == MVR_SKINNING_PATH_VERTEX && s->candidates[1] == MVR_SKINNING_PATH_PRESKIN);
+        double view_cost = mv ? 5.0 : 10.0;
+        CHECK_MSG(t, s->samples[0] == 3 && s->samples[1] == 3 && s->cost_ms[0] == view_cost &&
+                     s->cost_ms[1] == view_cost + 3.0,
+                  "samples %u/%u, costs %.1f/%.1f", s->samples[0], s->samples[1], s->cost_ms[0], s->cost_ms[1]);
+        CHECK(t, s->margin > 0.0);
+        if (mv)
+            CHECK(t, st.auto_choice.state == MVR_AUTO_SETTLED && st.view_path == MVR_VIEW_PATH_MULTIVIEW);
+        CHECK(t, c.calls == (mv ? 12u : 6u));
+        /* settled: nothing measured any more */
+        for (int i = 0; i < 3; ++i)
+            CHECK(t, frame(t, &g, px, &st) && st.auto_skinning.state == MVR_AUTO_SETTLED &&
+                         st.skinning_path == MVR_SKINNING_PATH_VERTEX);
+        CHECK(t, c.calls == (mv ? 12u : 6u));
+    }
+    rig_free(&g);
+    /* the view path pinned: the skinning path is measured at once */
+    memset(&g, 0, sizeof g);
+    c.calls = 0;
+    mvr_renderer_desc pinned = {.context = ctx, .view_path = MVR_VIEW_PATH_LOOP,
+                                .tuning = {.frame_cost = skin_hook, .user = &c}};
+    ok = first && px && mvr_scene_create(NULL, &g.scene, NULL) == MVR_OK &&
+         build_skin_scene(g.scene, &k, true, true) == MVR_OK && (g.views = strip_views(4)) != NULL &&
+         mvr_renderer_create(&pinned, &g.r, NULL) == MVR_OK && mvr_target_create(g.r, &td, &g.tg) == MVR_OK;
+    CHECK(t, ok);
+    if (ok) {
+        mvr_frame_stats st;
+        /* the first frame has no drawn deforms yet; then 8 frames */
+        uint32_t frames = until_skinning_settles(t, &g, first, px, 40, &st);
+        CHECK_MSG(t, frames == 10 && st.auto_skinning.chosen == MVR_SKINNING_PATH_VERTEX && c.calls == 6,
+                  "%u frames, %u calls", frames, c.calls);
+        CHECK(t, st.auto_choice.state == MVR_AUTO_NONE && st.view_path == MVR_VIEW_PATH_LOOP);
+    }
+    rig_free(&g);
+    free(first);
+    free(px);
+    mvr_context_destroy(ctx);
+}
+
+/* Multisampling without multisampled multiview draws view by view whatever
+ * auto picks: one path, nothing to measure. */
+static void msaa_without_multiview_is_not_tuned(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    costs c = {.multiview = 1.0, .loop = 100.0};
+    mvr_renderer_desc rd = {.context = ctx,
+                            .overrides = {.msaa_multiview = MVR_OVERRIDE_OFF},
+                            .tuning = {.frame_cost = hook, .user = &c}};
+    mvr_demo_desc dd = {.views = 4, .width = W, .height = H};
+    mvr_target_desc td = {.width = W, .height = H, .layers = 4, .samples = 4};
+    rig g;
+    memset(&g, 0, sizeof g);
+    bool ok = mvr_demo_create("ring", &dd, &g.scene, &g.views, NULL) == MVR_OK &&
+              mvr_renderer_create(&rd, &g.r, NULL) == MVR_OK && mvr_target_create(g.r, &td, &g.tg) == MVR_OK;
+    CHECK(t, ok);
+    mvr_render_desc desc = {.exposure = 1.0f};
+    for (int i = 0; ok && i < 12; ++i) {
+        mvr_frame_stats st;
+        CHECK(t, mvr_renderer_render(g.r, g.scene, g.views, g.tg, &desc) == MVR_OK);
+        mvr_renderer_get_stats(g.r, &st);
+        CHECK_MSG(t, st.auto_choice.state == MVR_AUTO_NONE && st.view_path == MVR_VIEW_PATH_LOOP,
+                  "frame %d: %s on %s", i, mvr_auto_state_name(st.auto_choice.state), mvr_view_path_name(st.view_path));
+    }
+    CHECK(t, c.calls == 0);
+    rig_free(&g);
+    mvr_context_destroy(ctx);
+}
+
+MVR_TEST_MAIN(TEST(settles_on_the_cheaper_path_without_changing_a_pixel), TEST(off_pinned_and_real_timers),
+              TEST(skinning_path_after_the_view_path), TEST(msaa_without_multiview_is_not_tuned))
