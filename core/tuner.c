@@ -114,3 +114,10 @@ void mvr_tuner_record(mvr_tuner *t, uint32_t c, double cost_ms)
     }
     settle(t);
 }
+
+uint32_t mvr_tuner_settled_or(const mvr_tuner *t, mvr_tuner_key key, uint32_t prior)
+{
+    if (t->phase == MVR_TUNER_SETTLED && !key_changed(&t->key, &key) && t->prior == prior)
+        return t->chosen;
+    return prior;
+}

@@ -67,5 +67,8 @@ typedef struct mvr_tuner {
 uint32_t mvr_tuner_next(mvr_tuner *t, mvr_tuner_key key, uint32_t prior, bool *measure);
 /* The cost (ms) of a frame that ran candidate c and was to be measured. */
 void mvr_tuner_record(mvr_tuner *t, uint32_t c, double cost_ms);
+/* The settled choice for these inputs without measuring or restarting
+ * (a decision waiting for another's measurement); else `prior`. */
+uint32_t mvr_tuner_settled_or(const mvr_tuner *t, mvr_tuner_key key, uint32_t prior);
 
 #endif

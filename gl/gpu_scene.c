@@ -698,10 +698,11 @@ static mvr_result upload_geometry(mvr_renderer *r, const mvr_scene *s)
     return MVR_OK;
 }
 
-static mvr_result upload_materials(mvr_renderer *r, const mvr_scene *s)
+/* The material slots of a new material version: bindings (filled by the
+ * per-material representation) and the page layout both representations share. */
+static mvr_result layout_materials(mvr_renderer *r, const mvr_scene *s)
 {
     mvr_gpu_scene *g = &r->gpu;
-    const mvr_gl_api_table *gl = r->gl;
     uint32_t slots = s->material_count + 1; /* + the default material */
     free(g->materials);
     g->materials = calloc(slots, sizeof *g->materials);
@@ -713,6 +714,16 @@ static mvr_result upload_materials(mvr_renderer *r, const mvr_scene *s)
     GLsizeiptr page_bytes = (GLsizeiptr)cap * MVR_MATERIAL_BLOCK_SIZE;
     GLsizeiptr align = (GLsizeiptr)r->ubo_alignment;
     g->material_page_stride = (page_bytes + align - 1) / align * align;
+    return MVR_OK;
+}
+
+/* One representation's material blocks (arrays: with each role's layer in
+ * its group's array; else the per-material textures and samplers too). */
+static mvr_result upload_materials(mvr_renderer *r, const mvr_scene *s, bool arrays)
+{
+    mvr_gpu_scene *g = &r->gpu;
+    const mvr_gl_api_table *gl = r->gl;
+    uint32_t slots = g->material_count, cap = r->material_capacity;
     size_t total = (size_t)g->material_page_stride * g->material_pages;
     uint8_t *data = calloc(1, total);
     if (!data)
@@ -720,9 +731,8 @@ static mvr_result upload_materials(mvr_renderer *r, const mvr_scene *s)
     for (uint32_t i = 0; i < slots; ++i) {
         const mvr_material_desc *m = mvr_scene_material(s, i < s->material_count ? i : MVR_NO_INDEX);
         size_t at = (size_t)(i / cap) * (size_t)g->material_page_stride + (size_t)(i % cap) * MVR_MATERIAL_BLOCK_SIZE;
-        /* the array path: each role's layer in its group's array */
-        mvr_material_pack(m, g->arrays ? g->plan.materials[i].layer : NULL, data + at);
-        if (g->arrays)
+        mvr_material_pack(m, arrays ? g->plan.materials[i].layer : NULL, data + at);
+        if (arrays)
             continue;
         for (uint32_t k = 0; k < MVR_ROLE_COUNT; ++k) {
             if (!mvr_material_samples_role(m, k))
@@ -740,21 +750,40 @@ static mvr_result upload_materials(mvr_renderer *r, const mvr_scene *s)
             }
         }
     }
-    if (!g->material_ubo)
-        gl->GenBuffers(1, &g->material_ubo);
-    gl->BindBuffer(GL_UNIFORM_BUFFER, g->material_ubo);
+    GLuint *ubo = &g->material_ubos[arrays];
+    if (!*ubo)
+        gl->GenBuffers(1, ubo);
+    gl->BindBuffer(GL_UNIFORM_BUFFER, *ubo);
     gl->BufferData(GL_UNIFORM_BUFFER, (GLsizeiptr)total, data, GL_STATIC_DRAW);
     /* BufferData gives the name new storage; a cached range of it is stale */
-    mvr_state_forget_buffer(&r->state, g->material_ubo);
+    mvr_state_forget_buffer(&r->state, *ubo);
     r->upload_bytes += total;
     free(data);
     mvr_result res = mvr_renderer_check_alloc(r, "material buffer (%u materials, %zu bytes)", slots, total);
     if (res != MVR_OK)
-        mvr_renderer_delete(r, MVR_GL_BUFFER, &g->material_ubo);
+        mvr_renderer_delete(r, MVR_GL_BUFFER, ubo);
     return res;
 }
 
-mvr_result mvr_gpu_scene_sync(mvr_renderer *r, const mvr_scene *s)
+/* Releases one representation of the materials (the GL objects; the
+ * downscaled-image flags of the arrays go with them). */
+static void release_representation(mvr_renderer *r, bool arrays)
+{
+    mvr_gpu_scene *g = &r->gpu;
+    if (arrays) {
+        release_arrays(r);
+    } else {
+        for (uint32_t i = 0; i < g->texture_count; ++i)
+            mvr_renderer_delete(r, MVR_GL_TEXTURE, &g->textures[i].texture);
+        g->texture_count = 0;
+        if (g->materials)
+            memset(g->materials, 0, g->material_count * sizeof *g->materials);
+    }
+    mvr_renderer_delete(r, MVR_GL_BUFFER, &g->material_ubos[arrays]);
+    g->resident[arrays] = false;
+}
+
+mvr_result mvr_gpu_scene_sync(mvr_renderer *r, const mvr_scene *s, bool keep_both)
 {
     mvr_gpu_scene *g = &r->gpu;
     bool same_scene = g->scene == s && g->scene_serial == mvr_scene_serial(s);
@@ -775,22 +804,33 @@ mvr_result mvr_gpu_scene_sync(mvr_renderer *r, const mvr_scene *s)
             return res;
         g->geometry_version = s->geometry_version;
     }
-    if (materials)
-        note_formats(r, s);
-    if (materials && arrays) {
-        /* the plan depends on images and materials: rebuilt with either */
-        release_arrays(r);
-        res = upload_arrays(r, s);
-        if (res != MVR_OK)
-            return res;
-    }
-    g->arrays = arrays;
     if (materials) {
-        res = upload_materials(r, s);
+        note_formats(r, s);
+        /* both representations describe the old materials */
+        for (int k = 0; k < 2; ++k)
+            if (g->resident[k])
+                release_representation(r, k == 1);
+        res = layout_materials(r, s);
         if (res != MVR_OK)
             return res;
         g->material_version = s->material_version;
     }
+    if (!g->resident[arrays]) {
+        /* the plan depends on images and materials: built with the arrays */
+        if (arrays) {
+            release_arrays(r);
+            res = upload_arrays(r, s);
+        }
+        if (res == MVR_OK)
+            res = upload_materials(r, s, arrays);
+        if (res != MVR_OK)
+            return res;
+        g->resident[arrays] = true;
+    }
+    if (!keep_both && g->resident[!arrays])
+        release_representation(r, !arrays);
+    g->arrays = arrays;
+    g->material_ubo = g->material_ubos[arrays];
     /* each allocation was checked; the rest (attribute setup) in debug builds */
     res = mvr_gl_check(r->ctx, "scene upload", false);
     return res == MVR_OK ? MVR_OK : mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
@@ -806,7 +846,8 @@ void mvr_gpu_scene_release(mvr_renderer *r)
         mvr_renderer_delete(r, MVR_GL_SAMPLER, &g->samplers[i].sampler);
     free(g->samplers);
     free(g->materials);
-    mvr_renderer_delete(r, MVR_GL_BUFFER, &g->material_ubo);
+    mvr_renderer_delete(r, MVR_GL_BUFFER, &g->material_ubos[0]);
+    mvr_renderer_delete(r, MVR_GL_BUFFER, &g->material_ubos[1]);
     free(g->downscaled);
     free(g->compressed);
     free(g->unsampleable);

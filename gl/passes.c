@@ -662,7 +662,7 @@ static mvr_result prepare_frame(mvr_renderer *r, const mvr_scene *scene, const m
     /* where skinning runs decides the draws' programs: a change rebuilds */
     r->skinning.path = mvr_skinning_choose(r, scene, views->count);
     bool preskin = r->skinning.path == MVR_SKINNING_PATH_PRESKIN;
-    *same = r->frame_key.valid && r->frame.preskin == preskin &&
+    *same = r->frame_key.valid && r->frame.preskin == preskin && r->frame_key.arrays == r->gpu.arrays &&
             r->frame_key.scene_serial == mvr_scene_serial(scene) &&
             r->frame_key.geometry_version == scene->geometry_version &&
             r->frame_key.material_version == scene->material_version &&
@@ -678,6 +678,7 @@ static mvr_result prepare_frame(mvr_renderer *r, const mvr_scene *scene, const m
         if (res != MVR_OK)
             return mvr_renderer_fail(r, res, "frame: %s", why);
         r->frame_key.scene_serial = mvr_scene_serial(scene);
+        r->frame_key.arrays = r->gpu.arrays;
         r->frame_key.geometry_version = scene->geometry_version;
         r->frame_key.material_version = scene->material_version;
         r->frame_key.transform_version = scene->transform_version;

@@ -373,11 +373,12 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
     r->gl = &desc->context->gl;
     r->logger = desc->logger.fn ? desc->logger : desc->context->logger;
     r->requested_path = ov->view_path ? (mvr_view_path)(ov->view_path - 1) : desc->view_path;
-    r->material_path = ov->material_path ? (mvr_material_path)(ov->material_path - 1) : desc->material_path;
+    r->material_requested = ov->material_path ? (mvr_material_path)(ov->material_path - 1) : desc->material_path;
     r->skinning.requested = ov->skinning_path ? (mvr_skinning_path)(ov->skinning_path - 1) : desc->skinning_path;
-    /* 2D texture arrays are core in GLES 3.0 and GL 3.0: auto is always arrays */
-    if (r->material_path == MVR_MATERIAL_PATH_AUTO)
-        r->material_path = MVR_MATERIAL_PATH_ARRAYS;
+    /* 2D texture arrays are core in GLES 3.0 and GL 3.0: auto's first guess
+     * (and its choice without tuning) is arrays; each frame sets its own */
+    r->material_path =
+        r->material_requested == MVR_MATERIAL_PATH_AUTO ? MVR_MATERIAL_PATH_ARRAYS : r->material_requested;
     r->force_inert_features = ov->force_inert_features;
     r->frame.disabled_features = ov->disable_features;
     r->culling = ov->culling ? ov->culling == MVR_OVERRIDE_ON : !desc->disable_culling;
@@ -843,7 +844,7 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
         r->gl->QueryCounter(r->timer.queries[0], GL_TIMESTAMP_EXT);
     }
     uint32_t failures = r->failures;
-    res = mvr_gpu_scene_sync(r, scene);
+    res = mvr_gpu_scene_sync(r, scene, r->material_tuner.phase == MVR_TUNER_TUNING);
     /* the frame plan prefilters a new environment (mvr_environment_sync) first */
     if (res == MVR_OK)
         res = mvr_renderer_draw_frame(r, scene, views, target, &d, path);

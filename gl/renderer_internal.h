@@ -87,12 +87,18 @@ typedef struct mvr_gpu_scene {
     mvr_gpu_sampler *samplers;
     uint32_t sampler_count, sampler_cap;
     mvr_gpu_material *materials; /* scene materials + the default one (per-material paths) */
-    bool arrays;                 /* uploaded for the array path */
+    /* Two representations of the materials: [1] the array path's (texture
+     * arrays, blocks with layer indices), [0] the per-material paths' (2D
+     * textures, blocks without). The frame's is uploaded when first needed;
+     * both stay resident only while auto's tuner measures them. */
+    bool resident[2];
+    GLuint material_ubos[2];
+    bool arrays;                 /* this frame draws with the array path's */
     mvr_batch_plan plan;         /* array path: texture groups and material slots */
     GLuint *group_textures;      /* one GL_TEXTURE_2D_ARRAY per plan group */
     GLuint *group_samplers;
     uint32_t material_count;
-    GLuint material_ubo;
+    GLuint material_ubo;         /* this frame's: material_ubos[arrays] */
     uint32_t material_pages;
     GLsizeiptr material_page_stride; /* bytes between pages (aligned) */
     /* images stored smaller than the scene's (too large for the GL): one
@@ -245,7 +251,8 @@ struct mvr_renderer {
     char last_error[MVR_ERROR_MESSAGE_SIZE];
     uint32_t failures;           /* calls of mvr_renderer_fail (did a step record its message?) */
     mvr_view_path requested_path;
-    mvr_material_path material_path; /* resolved: never AUTO */
+    mvr_material_path material_requested; /* the setting (AUTO: tuned, or arrays without tuning) */
+    mvr_material_path material_path; /* this frame's: never AUTO */
     bool reversed_z;
     uint32_t ubo_alignment;
     uint32_t material_capacity;
@@ -264,9 +271,9 @@ struct mvr_renderer {
      * frame whose cost is still to be recorded */
     bool tuning;
     mvr_tuning_desc tuning_desc;
-    mvr_tuner view_tuner, skin_tuner;
-    bool view_tuned_frame, skin_tuned_frame; /* this frame's paths are the tuners' */
-    struct { bool pending, skinning; uint32_t candidate; double cpu_ms; } tuning_frame;
+    mvr_tuner view_tuner, material_tuner, skin_tuner;
+    bool view_tuned_frame, material_tuned_frame, skin_tuned_frame; /* this frame's paths are the tuners' */
+    struct { bool pending; uint32_t decision, candidate; double cpu_ms; } tuning_frame;
     void *blend_order;           /* per-view order of the blend list (scratch) */
     size_t blend_order_cap;
     mvr_visibility vis;          /* per-view visibility of the frame's draws */
@@ -274,6 +281,7 @@ struct mvr_renderer {
      * rebuilt and re-uploaded only when what it depends on changed. */
     struct {
         bool valid;
+        bool arrays;             /* built for the array path's material slots */
         uint64_t scene_serial, geometry_version, material_version, transform_version;
         mvr_dvec3 origin;
     } frame_key;
@@ -339,8 +347,11 @@ mvr_shader_variant mvr_renderer_mesh_variant(const mvr_renderer *r, uint32_t fea
 /* Program of a variant, compiled on first use. */
 mvr_result mvr_renderer_program(mvr_renderer *r, const mvr_shader_variant *v, mvr_program_entry **out);
 
-/* gpu_scene.c: uploads what changed in the scene (geometry, textures, materials). */
-mvr_result mvr_gpu_scene_sync(mvr_renderer *r, const mvr_scene *scene);
+/* gpu_scene.c: uploads what changed in the scene (geometry, textures,
+ * materials) and the representation of the materials this frame's material
+ * path draws with; keep_both: the other stays resident (auto's tuner is
+ * measuring both), else it is released. */
+mvr_result mvr_gpu_scene_sync(mvr_renderer *r, const mvr_scene *scene, bool keep_both);
 void mvr_gpu_scene_release(mvr_renderer *r);
 
 /* The last frame's timer queries into stats.gpu_ms (waits for them; -1 when

@@ -102,6 +102,7 @@ typedef struct bench_result {
      * start once it settled), and the frames that took */
     mvr_auto_choice auto_choice;
     mvr_auto_skinning_choice auto_skinning;
+    mvr_auto_material_choice auto_material;
     uint32_t tuning_frames;
 } bench_result;
 
@@ -141,8 +142,9 @@ bool bench_plot(const bench_run *run);
  * false when any failed (each says why). */
 bool bench_write_reports(const bench_run *run);
 /* An auto configuration against the forced paths of the same configuration
- * (the same material path, anti-aliasing, order and features; on the
- * skinning axis, auto skinning against both skinning paths): the best of
+ * (the same material path, anti-aliasing, order and features; auto material
+ * against both material paths; on the skinning axis, auto skinning against
+ * both skinning paths): the best of
  * them, and the one auto settled on (the same work as auto's). A fraction
  * "above" is 0 within the noise (the slower one's q1 at most the faster's
  * q3). */

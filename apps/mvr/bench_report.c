@@ -61,7 +61,9 @@ static void print_env_table(const bench_run *run, FILE *out)
 /* Whether forced configuration c is one auto configuration a is compared with. */
 static bool comparable(const bench_config *a, const bench_config *c)
 {
-    if (c->view_path == MVR_VIEW_PATH_AUTO || c->reference || c->material_path != a->material_path ||
+    if (c->view_path == MVR_VIEW_PATH_AUTO || c->reference || c->material_path == MVR_MATERIAL_PATH_AUTO ||
+        c->material_path == MVR_MATERIAL_PATH_PER_DRAW ||
+        (a->material_path != MVR_MATERIAL_PATH_AUTO && c->material_path != a->material_path) ||
         c->supersample != a->supersample || c->msaa != a->msaa || c->order != a->order ||
         c->disable_features != a->disable_features || c->skinning_axis != a->skinning_axis)
         return false;
@@ -91,6 +93,9 @@ bool bench_auto_excess(const bench_run *run, uint32_t k, bench_auto_verdict *v)
     mvr_skinning_path skin = a->skinning_path;
     if (a->skinning_axis && skin == MVR_SKINNING_PATH_AUTO)
         skin = ra->auto_skinning.state == MVR_AUTO_SETTLED ? ra->auto_skinning.chosen : ra->auto_skinning.prior;
+    mvr_material_path material = a->material_path;
+    if (material == MVR_MATERIAL_PATH_AUTO)
+        material = ra->auto_material.state == MVR_AUTO_SETTLED ? ra->auto_material.chosen : ra->auto_material.prior;
     bool found = false;
     for (uint32_t i = 0; i < run->count; ++i) {
         const bench_config *c = &run->configs[i];
@@ -99,7 +104,7 @@ bool bench_auto_excess(const bench_run *run, uint32_t k, bench_auto_verdict *v)
         if (!found || run->results[i].wall_median < run->results[v->best].wall_median)
             v->best = i;
         found = true;
-        if (c->view_path == view && c->skinning_path == skin) {
+        if (c->view_path == view && c->skinning_path == skin && c->material_path == material) {
             v->chosen_found = true;
             v->chosen = i;
         }
@@ -136,6 +141,10 @@ static void print_auto_lines(const bench_run *run, FILE *out)
         else
             fprintf(out, "auto %s: %s (%s)", run->configs[k].name, mvr_auto_state_name(a->state),
                     a->state == MVR_AUTO_RULE ? "tuning off: the caps rule" : "one path works here");
+        const mvr_auto_material_choice *m = &r->auto_material;
+        if (m->state == MVR_AUTO_SETTLED)
+            fprintf(out, "; material settled on %s (per_material %.2f, arrays %.2f ms)",
+                    mvr_material_path_name(m->chosen), m->cost_ms[0], m->cost_ms[1]);
         const mvr_auto_skinning_choice *s = &r->auto_skinning;
         if (s->state == MVR_AUTO_SETTLED)
             fprintf(out, "; skinning settled on %s (vertex %.2f, preskin %.2f ms; prior %s)",
@@ -358,6 +367,13 @@ bool bench_write_json(const bench_run *run, const char *path)
             json_double(&jw, "tuner_loop_ms", a->cost_ms[1]);
             json_double(&jw, "margin", a->margin);
             json_int(&jw, "tuning_frames", r->tuning_frames);
+            const mvr_auto_material_choice *mc = &r->auto_material;
+            if (mc->state != MVR_AUTO_NONE) {
+                json_string(&jw, "material_state", mvr_auto_state_name(mc->state));
+                json_string(&jw, "material_chosen", mvr_material_path_name(mc->chosen));
+                json_double(&jw, "tuner_per_material_ms", mc->cost_ms[0]);
+                json_double(&jw, "tuner_arrays_ms", mc->cost_ms[1]);
+            }
             const mvr_auto_skinning_choice *sk = &r->auto_skinning;
             if (sk->state != MVR_AUTO_NONE) {
                 json_string(&jw, "skinning_state", mvr_auto_state_name(sk->state));

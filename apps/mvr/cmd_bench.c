@@ -386,6 +386,7 @@ static uint32_t make_matrix(bool full, bool deformed, bench_config *out)
             add_config(out, &n, vps[v], mps[0], 1, MVR_TRANSPARENCY_ORDER_AUTO, false);
         for (int v = 0; v < 2; ++v)
             add_config(out, &n, vps[v], mps[1], 1, MVR_TRANSPARENCY_ORDER_AUTO, false);
+        add_config(out, &n, MVR_VIEW_PATH_AUTO, MVR_MATERIAL_PATH_AUTO, 1, MVR_TRANSPARENCY_ORDER_AUTO, false);
         add_config(out, &n, MVR_VIEW_PATH_AUTO, mps[0], 0, MVR_TRANSPARENCY_ORDER_AUTO, false);
         add_config(out, &n, MVR_VIEW_PATH_MULTIVIEW, mps[0], 2, MVR_TRANSPARENCY_ORDER_AUTO, false);
         add_config(out, &n, MVR_VIEW_PATH_AUTO, mps[0], 2, MVR_TRANSPARENCY_ORDER_AUTO, false);
@@ -402,6 +403,10 @@ static uint32_t make_matrix(bool full, bool deformed, bench_config *out)
                 for (int v = 0; v < 3; ++v)
                     if (aas[a] != 0 || vps[v] != MVR_VIEW_PATH_MULTIVIEW)
                         add_config(out, &n, vps[v], mps[m], aas[a], orders[o], false);
+    /* both paths auto: against the four forced pairs */
+    for (int o = 0; o < 3; ++o)
+        for (int a = 0; a < 3; ++a)
+            add_config(out, &n, MVR_VIEW_PATH_AUTO, MVR_MATERIAL_PATH_AUTO, aas[a], orders[o], false);
     return n;
 }
 
@@ -516,8 +521,10 @@ static bool setup_config(const bench_options *o, mvr_context *ctx, mvr_scene *sc
     mvr_frame_stats st;
     mvr_renderer_get_stats(cr->r, &st);
     for (uint32_t f = o->warmup;
-         ok && (st.auto_choice.state == MVR_AUTO_TUNING || st.auto_skinning.state == MVR_AUTO_TUNING) &&
-         f < o->warmup + 48;
+         ok &&
+         (st.auto_choice.state == MVR_AUTO_TUNING || st.auto_material.state == MVR_AUTO_TUNING ||
+          st.auto_skinning.state == MVR_AUTO_TUNING) &&
+         f < o->warmup + 64;
          ++f) {
         pose(o, scene, f);
         ok = mvr_renderer_render(cr->r, scene, vs, cr->t, &o->render) == MVR_OK;
@@ -526,6 +533,7 @@ static bool setup_config(const bench_options *o, mvr_context *ctx, mvr_scene *sc
     }
     res->auto_choice = st.auto_choice;
     res->auto_skinning = st.auto_skinning;
+    res->auto_material = st.auto_material;
     if (!ok) {
         fprintf(stderr, "mvr bench: %s: %s\n", c->name, mvr_renderer_last_error(cr->r));
         release_run(cr);

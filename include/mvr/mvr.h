@@ -948,7 +948,9 @@ typedef enum mvr_view_path {
 const char *mvr_view_path_name(mvr_view_path path);
 
 typedef enum mvr_material_path {
-    MVR_MATERIAL_PATH_AUTO = 0,      /* arrays */
+    /* measured (mvr_tuning_desc), from arrays; arrays without tuning. On
+     * llvmpipe per-material drew the demos 18-30% faster (docs/benchmarks.md) */
+    MVR_MATERIAL_PATH_AUTO = 0,
     MVR_MATERIAL_PATH_ARRAYS,        /* textures grouped into 2D arrays, bound once per group per pass */
     MVR_MATERIAL_PATH_PER_MATERIAL,  /* one 2D texture per image, bound when the material changes */
     MVR_MATERIAL_PATH_PER_DRAW       /* benchmark baseline: texture and material range re-bound every draw */
@@ -1070,24 +1072,28 @@ typedef enum mvr_skinning_path_override {
     MVR_SKINNING_PATH_OVERRIDE_PRESKIN
 } mvr_skinning_path_override;
 
-/* The online tuner behind `auto` (the view path, then the skinning path):
- * the first frames after a change of inputs (view count, target size, the
- * scene's draw count by more than a factor of 2) run the candidates
- * interleaved, each once to warm up (program compiles) and then at least 3
- * times, measured (the frame's cost: the larger of its submitting-thread CPU
- * time and its GPU time from timestamp queries, taken outside multiview
- * framebuffers; CPU time alone where the GL has no timer); where the medians
- * are then within 10% of each other (inside the noise), up to 7 times each
- * until they part. The path with the lower median is kept unless it beats
- * the caps rule's choice (the prior, which runs first) by less than 3%. 8
- * frames per change where the paths differ clearly, at most 16 where they are
- * close, at most half of them on the other path; settled frames are not
- * measured. The skinning path (scenes with skins or morph targets, skinning
- * path AUTO) is measured the same way once the view path settled, keyed on
- * it. Where only one path can run (no multiview, or MSAA that multiview
- * cannot draw) nothing is measured. Every candidate gives the same pixels
- * (tested). stats.auto_choice and stats.auto_skinning say what was measured
- * and why the path runs. */
+/* The online tuner behind `auto` (the material path, then the view path,
+ * then the skinning path): the first frames after a change of inputs (view
+ * count, target size, the scene's draw count by more than a factor of 2) run
+ * the candidates interleaved, each once to warm up (program compiles,
+ * uploads) and then at least 3 times, measured (the frame's cost: the larger
+ * of its submitting-thread CPU time and its GPU time from timestamp queries,
+ * taken outside multiview framebuffers; CPU time alone where the GL has no
+ * timer); where the medians are then within 10% of each other (inside the
+ * noise), up to 7 times each until they part. The path with the lower median
+ * is kept unless it beats the rule's choice (the prior, which runs first) by
+ * less than 3%. 8 frames per decision and change where the paths differ
+ * clearly, at most 16 where they are close, at most half of them on the other
+ * path; settled frames are not measured. One decision is measured at a time,
+ * the later ones keyed on the earlier ones' choices (a new material path
+ * measures the view path again), running their own settled choice or prior
+ * meanwhile. While the material path is measured both representations of the
+ * materials (texture arrays, per-material textures) are resident; the one not
+ * chosen is released when it settles. Where only one path can run (no
+ * multiview, MSAA that multiview cannot draw, no skins or morph targets)
+ * that decision is not measured. Every candidate gives the same pixels
+ * (tested). stats.auto_choice, auto_material and auto_skinning say what was
+ * measured and why each path runs. */
 typedef enum mvr_tuning {
     MVR_TUNING_DEFAULT = 0,      /* on */
     MVR_TUNING_ON,
@@ -1178,7 +1184,7 @@ typedef struct mvr_renderer_desc {
     mvr_oversized_image oversized_images;
     mvr_renderer_overrides overrides; /* 0 = none; win over the fields above */
     mvr_skinning_path skinning_path;
-    mvr_tuning_desc tuning;      /* what `auto` measures (view path AUTO only) */
+    mvr_tuning_desc tuning;      /* what `auto` measures (the paths set to AUTO) */
 } mvr_renderer_desc;
 
 /*
@@ -1466,6 +1472,19 @@ typedef struct mvr_auto_choice {
     uint32_t retunes;            /* input changes that started the measurement again */
 } mvr_auto_choice;
 
+/* The same for the material path (material path AUTO; MVR_AUTO_NONE
+ * otherwise). */
+typedef struct mvr_auto_material_choice {
+    mvr_auto_state state;
+    mvr_material_path prior;     /* arrays */
+    mvr_material_path chosen;
+    mvr_material_path candidates[2]; /* per_material, arrays */
+    uint32_t samples[2];
+    double cost_ms[2];
+    double margin;
+    uint32_t retunes;
+} mvr_auto_material_choice;
+
 /* The same for the skinning path (skinning path AUTO, a scene with skins or
  * morph targets; MVR_AUTO_NONE otherwise). */
 typedef struct mvr_auto_skinning_choice {
@@ -1578,6 +1597,7 @@ struct mvr_frame_stats {
     double exposure_log2_luminance;
     mvr_auto_choice auto_choice; /* the view path's `auto` */
     mvr_auto_skinning_choice auto_skinning; /* the skinning path's `auto` */
+    mvr_auto_material_choice auto_material; /* the material path's `auto` */
 };
 
 /* The supersampling resolve: box-filters linear RGBA float pixels (width x

@@ -279,6 +279,9 @@ mvr_auto_choice = _struct("mvr_auto_choice", [
 mvr_auto_skinning_choice = _struct("mvr_auto_skinning_choice", [
     ("state", c_int), ("prior", c_int), ("chosen", c_int), ("candidates", c_int * 2), ("samples", c_uint32 * 2),
     ("cost_ms", c_double * 2), ("margin", c_double), ("retunes", c_uint32)])
+mvr_auto_material_choice = _struct("mvr_auto_material_choice", [
+    ("state", c_int), ("prior", c_int), ("chosen", c_int), ("candidates", c_int * 2), ("samples", c_uint32 * 2),
+    ("cost_ms", c_double * 2), ("margin", c_double), ("retunes", c_uint32)])
 mvr_frame_stats = _struct("mvr_frame_stats", [
     ("view_path", c_int), ("views", c_uint32), ("passes", c_uint32), ("multiview_passes", c_uint32),
     ("draws", c_uint32), ("draw_calls", c_uint32), ("instanced_draw_calls", c_uint32), ("program_binds", c_uint32),
@@ -298,7 +301,7 @@ mvr_frame_stats = _struct("mvr_frame_stats", [
     ("transmission_bytes", c_uint64), ("images_compressed", c_uint32), ("images_unsampleable", c_uint32),
     ("outputs", c_uint32), ("output_blend_passes", c_uint32), ("exposure_measured_views", c_uint32),
     ("exposure_log2_luminance", c_double), ("auto_choice", mvr_auto_choice),
-    ("auto_skinning", mvr_auto_skinning_choice)])
+    ("auto_skinning", mvr_auto_skinning_choice), ("auto_material", mvr_auto_material_choice)])
 
 # mvr_gltf.h
 mvr_gltf_file_access = _struct("mvr_gltf_file_access", [

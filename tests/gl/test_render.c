@@ -21,7 +21,9 @@ typedef struct rendered {
 static mvr_renderer *make_renderer_with(mvr_test_state *t, mvr_context *ctx, mvr_view_path path,
                                         const mvr_renderer_overrides *overrides)
 {
-    mvr_renderer_desc rd = {.context = ctx, .view_path = path};
+    /* tuning off: these frames check steady-state uploads and binds, which
+     * auto's measured frames (switching paths) would not show */
+    mvr_renderer_desc rd = {.context = ctx, .view_path = path, .tuning = {.mode = MVR_TUNING_OFF}};
     if (overrides)
         rd.overrides = *overrides;
     mvr_renderer *r = NULL;
@@ -524,7 +526,7 @@ static void dirty_tracking_sends_only_changes(mvr_test_state *t)
     mvr_view_set *vs = NULL;
     mvr_demo_desc dd = {2, W, H, {0}};
     CHECK(t, mvr_demo_create("ring", &dd, &scene, &vs, NULL) == MVR_OK);
-    mvr_renderer_desc rd = {.context = ctx};
+    mvr_renderer_desc rd = {.context = ctx, .tuning = {.mode = MVR_TUNING_OFF}}; /* steady-state uploads */
     mvr_renderer *r = NULL;
     mvr_target *target = NULL;
     mvr_target_desc td = {W, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};

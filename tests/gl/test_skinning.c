@@ -188,7 +188,7 @@ static void upload_bytes_do_not_depend_on_views(mvr_test_state *t)
         }
     /* a second frame of the same pose sends nothing; a new pose sends it again */
     mvr_view_set *vs = front_views(t, 4);
-    mvr_renderer_desc rd = {.context = ctx};
+    mvr_renderer_desc rd = {.context = ctx, .tuning = {.mode = MVR_TUNING_OFF}}; /* steady-state uploads */
     mvr_renderer *r = NULL;
     mvr_target *target = NULL;
     mvr_target_desc td = {.width = W, .height = H, .layers = 4};

@@ -81,7 +81,9 @@ static void settles_on_the_cheaper_path_without_changing_a_pixel(mvr_test_state 
         SKIP(t, "no GL_OVR_multiview2: one candidate, nothing to tune");
     }
     costs c = {.multiview = 5.0, .loop = 10.0};
-    mvr_renderer_desc rd = {.context = ctx, .tuning = {.frame_cost = hook, .user = &c}};
+    /* the material path pinned: this is the view path's decision alone */
+    mvr_renderer_desc rd = {.context = ctx, .material_path = MVR_MATERIAL_PATH_ARRAYS,
+                            .tuning = {.frame_cost = hook, .user = &c}};
     rig g;
     size_t bytes = (size_t)W * H * 4 * 6;
     uint8_t *first = malloc(bytes), *px = malloc(bytes);
@@ -158,6 +160,7 @@ static void off_pinned_and_real_timers(mvr_test_state *t)
     rig_free(&g);
     /* pinned: no tuning, no auto */
     mvr_renderer_desc pinned = {.context = ctx, .view_path = MVR_VIEW_PATH_LOOP,
+                                .material_path = MVR_MATERIAL_PATH_ARRAYS,
                                 .tuning = {.frame_cost = hook, .user = &c}};
     if (rig_make(t, &pinned, 6, &g) && px)
         for (int i = 0; i < 10; ++i) {
@@ -169,11 +172,19 @@ static void off_pinned_and_real_timers(mvr_test_state *t)
     /* the real timers: settled after the measured frames, with positive costs */
     mvr_renderer_desc real = {.context = ctx};
     if (mvr_context_caps(ctx)->ext.ovr_multiview2 && rig_make(t, &real, 6, &g) && px) {
-        /* 9 frames where the paths differ by 10% or more, up to 17 where closer */
+        /* the material path, then the view path: 8 frames each where the
+         * paths differ by 10% or more, up to 16 where closer */
         int frames = 0;
         do
             CHECK(t, frame(t, &g, px, &st));
-        while (st.auto_choice.state == MVR_AUTO_TUNING && ++frames < 2 + 2 * 7 + 1);
+        while ((st.auto_choice.state == MVR_AUTO_TUNING || st.auto_material.state == MVR_AUTO_TUNING) &&
+               ++frames < 2 * (2 + 2 * 7) + 1);
+        CHECK_MSG(t, st.auto_material.state == MVR_AUTO_SETTLED && st.auto_material.cost_ms[0] > 0.0 &&
+                     st.auto_material.cost_ms[1] > 0.0,
+                  "material: %s, %.3f / %.3f ms", mvr_auto_state_name(st.auto_material.state),
+                  st.auto_material.cost_ms[0], st.auto_material.cost_ms[1]);
+        printf("  measured: per_material %.2f ms, arrays %.2f ms: %s\n", st.auto_material.cost_ms[0],
+               st.auto_material.cost_ms[1], mvr_material_path_name(st.auto_material.chosen));
         const mvr_auto_choice *a = &st.auto_choice;
         CHECK_MSG(t, a->state == MVR_AUTO_SETTLED && a->cost_ms[0] > 0.0 && a->cost_ms[1] > 0.0,
                   "state %s, costs %.3f / %.3f ms", mvr_auto_state_name(a->state), a->cost_ms[0], a->cost_ms[1]);
@@ -246,7 +257,8 @@ static void skinning_path_after_the_view_path(mvr_test_state *t)
     rig g;
     memset(&g, 0, sizeof g);
     mvr_target_desc td = {.width = W, .height = H, .layers = 4};
-    mvr_renderer_desc rd = {.context = ctx, .tuning = {.frame_cost = skin_hook, .user = &c}};
+    mvr_renderer_desc rd = {.context = ctx, .material_path = MVR_MATERIAL_PATH_ARRAYS,
+                            .tuning = {.frame_cost = skin_hook, .user = &c}};
     bool ok = first && px && mvr_scene_create(NULL, &g.scene, NULL) == MVR_OK &&
               build_skin_scene(g.scene, &k, true, true) == MVR_OK && (g.views = strip_views(4)) != NULL &&
               mvr_renderer_create(&rd, &g.r, NULL) == MVR_OK && mvr_target_create(g.r, &td, &g.tg) == MVR_OK;
@@ -282,6 +294,7 @@ static void skinning_path_after_the_view_path(mvr_test_state *t)
     memset(&g, 0, sizeof g);
     c.calls = 0;
     mvr_renderer_desc pinned = {.context = ctx, .view_path = MVR_VIEW_PATH_LOOP,
+                                .material_path = MVR_MATERIAL_PATH_ARRAYS,
                                 .tuning = {.frame_cost = skin_hook, .user = &c}};
     ok = first && px && mvr_scene_create(NULL, &g.scene, NULL) == MVR_OK &&
          build_skin_scene(g.scene, &k, true, true) == MVR_OK && (g.views = strip_views(4)) != NULL &&
@@ -310,6 +323,7 @@ static void msaa_without_multiview_is_not_tuned(mvr_test_state *t)
         return;
     costs c = {.multiview = 1.0, .loop = 100.0};
     mvr_renderer_desc rd = {.context = ctx,
+                            .material_path = MVR_MATERIAL_PATH_ARRAYS,
                             .overrides = {.msaa_multiview = MVR_OVERRIDE_OFF},
                             .tuning = {.frame_cost = hook, .user = &c}};
     mvr_demo_desc dd = {.views = 4, .width = W, .height = H};
@@ -332,5 +346,85 @@ static void msaa_without_multiview_is_not_tuned(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
+/* The material hook: per-material 4 ms, arrays 8; the loop 1 ms more than multiview. */
+static double material_hook(void *user, mvr_view_path path, const mvr_frame_stats *stats)
+{
+    costs *c = user;
+    c->calls++;
+    return (stats->material_path == MVR_MATERIAL_PATH_PER_MATERIAL ? 4.0 : 8.0) +
+           (path == MVR_VIEW_PATH_LOOP ? 1.0 : 0.0);
+}
+
+static void material_path_first_then_the_view_path(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    bool mv = mvr_context_caps(ctx)->ext.ovr_multiview2;
+    costs c = {0};
+    mvr_renderer_desc rd = {.context = ctx, .tuning = {.frame_cost = material_hook, .user = &c}};
+    rig g;
+    size_t bytes = (size_t)W * H * 4 * 6;
+    uint8_t *first = malloc(bytes), *px = malloc(bytes);
+    if (rig_make(t, &rd, 6, &g) && first && px) {
+        mvr_frame_stats st;
+        CHECK(t, frame(t, &g, first, &st));
+        /* the first frame: arrays (the rule), the view path waits */
+        CHECK(t, st.material_path == MVR_MATERIAL_PATH_ARRAYS && st.auto_material.state == MVR_AUTO_TUNING &&
+                 st.auto_material.prior == MVR_MATERIAL_PATH_ARRAYS);
+        CHECK(t, !mv || st.auto_choice.state == MVR_AUTO_TUNING);
+        uint32_t frames = 1, material_settled_at = 0, switches = 0;
+        mvr_material_path last = st.material_path;
+        while ((st.auto_material.state != MVR_AUTO_SETTLED || (mv && st.auto_choice.state != MVR_AUTO_SETTLED)) &&
+               frames < 40) {
+            CHECK(t, frame(t, &g, px, &st));
+            CHECK_MSG(t, memcmp(px, first, bytes) == 0, "frame %u (%s, %s) differs", frames,
+                      mvr_material_path_name(st.material_path), mvr_view_path_name(st.view_path));
+            switches += st.material_path != last;
+            last = st.material_path;
+            frames++;
+            if (!material_settled_at && st.auto_material.state == MVR_AUTO_SETTLED)
+                material_settled_at = frames;
+        }
+        const mvr_auto_material_choice *m = &st.auto_material;
+        CHECK_MSG(t, material_settled_at == 9 && frames == (mv ? 17u : 9u), "material settled at %u, all at %u",
+                  material_settled_at, frames);
+        CHECK(t, switches >= 2 && m->chosen == MVR_MATERIAL_PATH_PER_MATERIAL);
+        CHECK(t, m->candidates[0] == MVR_MATERIAL_PATH_PER_MATERIAL && m->candidates[1] == MVR_MATERIAL_PATH_ARRAYS);
+        CHECK(t, m->samples[0] == 3 && m->samples[1] == 3);
+        /* measured under the view prior; the view path measured on per-material */
+        double loop_extra = st.auto_choice.prior == MVR_VIEW_PATH_LOOP ? 1.0 : 0.0;
+        CHECK_MSG(t, m->cost_ms[0] == 4.0 + loop_extra && m->cost_ms[1] == 8.0 + loop_extra, "costs %.1f / %.1f",
+                  m->cost_ms[0], m->cost_ms[1]);
+        CHECK(t, m->margin == 1.0 - (4.0 + loop_extra) / (8.0 + loop_extra));
+        if (mv)
+            CHECK(t, st.auto_choice.chosen == MVR_VIEW_PATH_MULTIVIEW && st.auto_choice.cost_ms[0] == 4.0 &&
+                         st.auto_choice.cost_ms[1] == 5.0);
+        CHECK(t, c.calls == (mv ? 12u : 6u));
+        /* settled: per-material, the arrays released, nothing sent or measured */
+        for (int i = 0; i < 3; ++i) {
+            CHECK(t, frame(t, &g, px, &st) && memcmp(px, first, bytes) == 0);
+            CHECK(t, st.material_path == MVR_MATERIAL_PATH_PER_MATERIAL && st.texture_groups == 0 &&
+                     st.upload_bytes == 0);
+        }
+        CHECK(t, c.calls == (mv ? 12u : 6u));
+        /* another view count: the material path first again */
+        mvr_view_set_destroy(g.views);
+        mvr_scene_destroy(g.scene);
+        g.views = NULL;
+        g.scene = NULL;
+        mvr_demo_desc dd = {.views = 4, .width = W, .height = H};
+        CHECK(t, mvr_demo_create("ring", &dd, &g.scene, &g.views, NULL) == MVR_OK);
+        CHECK(t, frame(t, &g, px, &st));
+        CHECK(t, st.material_path == MVR_MATERIAL_PATH_ARRAYS && st.auto_material.state == MVR_AUTO_TUNING &&
+                 st.auto_material.retunes == 1);
+    }
+    free(first);
+    free(px);
+    rig_free(&g);
+    mvr_context_destroy(ctx);
+}
+
 MVR_TEST_MAIN(TEST(settles_on_the_cheaper_path_without_changing_a_pixel), TEST(off_pinned_and_real_timers),
+              TEST(material_path_first_then_the_view_path),
               TEST(skinning_path_after_the_view_path), TEST(msaa_without_multiview_is_not_tuned))

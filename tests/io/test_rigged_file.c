@@ -356,7 +356,9 @@ static void one_renderer_plays_the_clip(mvr_test_state *t)
         for (int sp = 0; sp < 2; ++sp) {
             mvr_view_path vpath = vp ? MVR_VIEW_PATH_MULTIVIEW : MVR_VIEW_PATH_LOOP;
             mvr_skinning_path spath = sp ? MVR_SKINNING_PATH_PRESKIN : MVR_SKINNING_PATH_VERTEX;
-            mvr_renderer_desc rd = {.context = ctx, .view_path = vpath, .skinning_path = spath};
+            /* tuning off: per-frame uploads of a steady material path */
+            mvr_renderer_desc rd = {.context = ctx, .view_path = vpath, .skinning_path = spath,
+                                    .tuning = {.mode = MVR_TUNING_OFF}};
             mvr_renderer *r = NULL;
             mvr_target *target = NULL;
             mvr_target_desc td = {.width = W, .height = H, .layers = VIEWS};

@@ -157,6 +157,10 @@ static void layout_structs(void)
     S(mvr_auto_choice); F(mvr_auto_choice, state); F(mvr_auto_choice, prior); F(mvr_auto_choice, chosen);
     F(mvr_auto_choice, candidates); F(mvr_auto_choice, samples); F(mvr_auto_choice, cost_ms);
     F(mvr_auto_choice, margin); F(mvr_auto_choice, retunes);
+    S(mvr_auto_material_choice); F(mvr_auto_material_choice, state); F(mvr_auto_material_choice, prior);
+    F(mvr_auto_material_choice, chosen); F(mvr_auto_material_choice, candidates);
+    F(mvr_auto_material_choice, samples); F(mvr_auto_material_choice, cost_ms);
+    F(mvr_auto_material_choice, margin); F(mvr_auto_material_choice, retunes);
     S(mvr_auto_skinning_choice); F(mvr_auto_skinning_choice, state); F(mvr_auto_skinning_choice, prior);
     F(mvr_auto_skinning_choice, chosen); F(mvr_auto_skinning_choice, candidates);
     F(mvr_auto_skinning_choice, samples); F(mvr_auto_skinning_choice, cost_ms);
@@ -203,6 +207,7 @@ static void layout_structs(void)
     F(mvr_frame_stats, output_blend_passes); F(mvr_frame_stats, exposure_measured_views);
     F(mvr_frame_stats, exposure_log2_luminance); F(mvr_frame_stats, auto_choice);
     F(mvr_frame_stats, auto_skinning);
+    F(mvr_frame_stats, auto_material);
     S(mvr_gltf_file_access); F(mvr_gltf_file_access, allowed_root); F(mvr_gltf_file_access, read);
     F(mvr_gltf_file_access, release); F(mvr_gltf_file_access, user_data);
     S(mvr_gltf_options); F(mvr_gltf_options, scene); F(mvr_gltf_options, base_dir); F(mvr_gltf_options, max_file_bytes);
