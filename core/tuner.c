@@ -3,16 +3,22 @@
 
 #include <string.h>
 
+/* a and b differ by more than a factor of 2; 0 is not known yet */
+static bool factor_2(uint32_t a, uint32_t b)
+{
+    if (!a || !b)
+        return false;
+    uint64_t x = a, y = b;
+    return x > 2 * y || y > 2 * x;
+}
+
 static bool key_changed(const mvr_tuner_key *a, const mvr_tuner_key *b)
 {
     if (a->views != b->views || a->width != b->width || a->height != b->height || a->given != b->given)
         return true;
-    /* the scene: a factor of 2 in its draws (a few objects more is the same
-     * workload); 0 is not known yet (the first frame) */
-    if (!a->draws || !b->draws)
-        return false;
-    uint64_t x = a->draws ? a->draws : 1, y = b->draws ? b->draws : 1;
-    return x > 2 * y || y > 2 * x;
+    /* the scene and what the views see of it: a factor of 2 (a few objects
+     * more is the same workload) */
+    return factor_2(a->draws, b->draws) || factor_2(a->visible, b->visible);
 }
 
 static double median(const double *v, uint32_t n)
@@ -60,6 +66,8 @@ uint32_t mvr_tuner_next(mvr_tuner *t, mvr_tuner_key key, uint32_t prior, bool *m
     }
     if (!t->key.draws)
         t->key.draws = key.draws;
+    if (!t->key.visible)
+        t->key.visible = key.visible;
     if (t->phase == MVR_TUNER_SETTLED)
         return t->chosen;
     /* warm-ups: the prior first, then each other candidate once */

@@ -20,9 +20,9 @@
  * at most 2 + 2 x MVR_TUNER_MAX_SAMPLES where they are close (and a wrong
  * choice costs little), at most half of them on a candidate other than the
  * prior; after that no frame is measured. A key change (view count, target
- * size, the draw count by more than a factor of 2 -- a draw count of 0 is
- * "not known yet" and takes the next one -- or another decision's choice the
- * key carries) starts again.
+ * size, the draw count or the draws visible after culling by more than a
+ * factor of 2 -- a count of 0 is "not known yet" and takes the next one -- or
+ * another decision's choice the key carries) starts again.
  */
 #ifndef MVR_TUNER_H
 #define MVR_TUNER_H
@@ -45,6 +45,10 @@ typedef enum mvr_tuner_phase {
 typedef struct mvr_tuner_key {
     uint32_t views, width, height, draws;
     uint32_t given;              /* what the other decisions chose (compared exactly) */
+    /* draws drawn over all views after culling (the last frame's; 0 = not
+     * known): a camera that moves from a sparse to a dense part of a scene
+     * changes the work as much as new draws do (factor 2, as draws) */
+    uint32_t visible;
 } mvr_tuner_key;
 
 typedef struct mvr_tuner {

@@ -96,7 +96,11 @@ mvr_view_path mvr_tuning_choose(mvr_renderer *r, const mvr_view_set *views, cons
                                 mvr_view_path prior, bool tune_view)
 {
     record_last_frame(r);
-    mvr_tuner_key key = {views->count, t->desc.width, t->desc.height, r->frame.draw_count, 0};
+    /* what the last frame's views saw (culling is the same on every path) */
+    uint64_t seen = (uint64_t)r->frame.draw_count * r->stats.views;
+    seen = seen > r->stats.culled ? seen - r->stats.culled : 0;
+    mvr_tuner_key key = {views->count, t->desc.width, t->desc.height, r->frame.draw_count, 0,
+                         seen > UINT32_MAX ? UINT32_MAX : (uint32_t)seen};
     bool busy = false;
 
     /* the material path (arrays is the rule) */

@@ -1074,7 +1074,8 @@ typedef enum mvr_skinning_path_override {
 
 /* The online tuner behind `auto` (the material path, then the view path,
  * then the skinning path): the first frames after a change of inputs (view
- * count, target size, the scene's draw count by more than a factor of 2) run
+ * count, target size, the scene's draw count or the draws the views see
+ * after culling by more than a factor of 2) run
  * the candidates interleaved, each once to warm up (program compiles,
  * uploads) and then at least 3 times, measured (the frame's cost: the larger
  * of its submitting-thread CPU time and its GPU time from timestamp queries,

@@ -29,7 +29,7 @@ static void prior_first_then_interleaved(mvr_test_state *t)
 {
     mvr_tuner tu;
     memset(&tu, 0, sizeof tu);
-    mvr_tuner_key key = {6, 256, 256, 100, 0};
+    mvr_tuner_key key = {6, 256, 256, 100, 0, 0};
     bool measure = true;
     /* the prior (1) first, unmeasured; the other's warm-up, unmeasured */
     CHECK(t, mvr_tuner_next(&tu, key, 1, &measure) == 1 && !measure);
@@ -52,7 +52,7 @@ static void the_margin_keeps_the_prior(mvr_test_state *t)
 {
     mvr_tuner tu;
     memset(&tu, 0, sizeof tu);
-    mvr_tuner_key key = {4, 128, 128, 10, 0};
+    mvr_tuner_key key = {4, 128, 128, 10, 0, 0};
     uint32_t ran[2];
     /* 2% cheaper is noise: measured up to the most samples, and the prior stays */
     const double close[2] = {9.8, 10.0};
@@ -85,7 +85,7 @@ static void close_medians_take_more_samples(mvr_test_state *t)
 {
     mvr_tuner tu;
     memset(&tu, 0, sizeof tu);
-    mvr_tuner_key key = {6, 256, 256, 100, 0};
+    mvr_tuner_key key = {6, 256, 256, 100, 0, 0};
     const double c0[MVR_TUNER_MAX_SAMPLES] = {10.0, 10.0, 10.0, 8.0, 8.0, 8.0, 8.0};
     uint32_t n[2] = {0, 0}, frames = 0;
     bool measure;
@@ -110,7 +110,7 @@ static void another_decision_in_the_key(mvr_test_state *t)
 {
     mvr_tuner tu;
     memset(&tu, 0, sizeof tu);
-    mvr_tuner_key key = {6, 256, 256, 100, 0};
+    mvr_tuner_key key = {6, 256, 256, 100, 0, 0};
     uint32_t ran[2];
     const double cost[2] = {5.0, 10.0};
     run(&tu, key, 1, cost, ran);
@@ -124,7 +124,7 @@ static void a_material_change_measures_again(mvr_test_state *t)
 {
     mvr_tuner tu;
     memset(&tu, 0, sizeof tu);
-    mvr_tuner_key key = {6, 256, 256, 100, 0};
+    mvr_tuner_key key = {6, 256, 256, 100, 0, 0};
     uint32_t ran[2];
     const double cost[2] = {5.0, 10.0};
     run(&tu, key, 1, cost, ran);
@@ -133,8 +133,23 @@ static void a_material_change_measures_again(mvr_test_state *t)
     /* a few more draws (less than x2): the same workload */
     key.draws = 180;
     CHECK(t, mvr_tuner_next(&tu, key, 1, &measure) == 0 && tu.phase == MVR_TUNER_SETTLED);
+    /* what the views see: half as much again is the same workload, more than twice is not */
+    memset(&tu, 0, sizeof tu);
+    mvr_tuner_key seen = {6, 256, 256, 100, 0, 400};
+    run(&tu, seen, 1, cost, ran);
+    seen.visible = 600;
+    CHECK(t, mvr_tuner_next(&tu, seen, 1, &measure) == 0 && tu.phase == MVR_TUNER_SETTLED);
+    seen.visible = 900;
+    CHECK(t, mvr_tuner_next(&tu, seen, 1, &measure) == 1 && tu.phase == MVR_TUNER_TUNING && tu.retunes == 1);
+    /* not known yet (0) takes the next count */
+    memset(&tu, 0, sizeof tu);
+    seen.visible = 0;
+    mvr_tuner_next(&tu, seen, 1, &measure);
+    seen.visible = 50;
+    mvr_tuner_next(&tu, seen, 1, &measure);
+    CHECK(t, tu.key.visible == 50 && tu.retunes == 0);
     /* the view count, the size, twice the draws, another prior: again, the prior first */
-    mvr_tuner_key changes[3] = {{12, 256, 256, 100, 0}, {6, 512, 256, 100, 0}, {6, 256, 256, 361, 0}};
+    mvr_tuner_key changes[3] = {{12, 256, 256, 100, 0, 0}, {6, 512, 256, 100, 0, 0}, {6, 256, 256, 361, 0, 0}};
     for (int i = 0; i < 3; ++i) {
         memset(&tu, 0, sizeof tu);
         run(&tu, key, 1, cost, ran);
