@@ -70,20 +70,19 @@ uint32_t mvr_tuner_next(mvr_tuner *t, mvr_tuner_key key, uint32_t prior, bool *m
         t->key.visible = key.visible;
     if (t->phase == MVR_TUNER_SETTLED)
         return t->chosen;
-    /* warm-ups: the prior first, then each other candidate once */
-    for (uint32_t k = 0; k < MVR_TUNER_CANDIDATES; ++k) {
-        uint32_t c = (prior + k) % MVR_TUNER_CANDIDATES;
-        if (t->issued[c] == 0) {
-            t->issued[c]++;
-            return c;
-        }
+    if (t->in_turn) {
+        /* the second frame of a turn: measured */
+        t->in_turn = false;
+        t->issued[t->current]++;
+        *measure = true;
+        return t->current;
     }
-    /* then alternate: the candidate with the fewest frames run, the prior on a tie */
+    /* a new turn: the candidate with the fewest measured frames, the prior on a tie */
     uint32_t next = prior;
     for (uint32_t c = 0; c < MVR_TUNER_CANDIDATES; ++c)
         if (t->issued[c] < t->issued[next])
             next = c;
-    if (t->issued[next] > t->want) {
+    if (t->issued[next] >= t->want) {
         /* every sample issued but some not recorded (a cost never came): settle on what there is */
         bool all = true;
         for (uint32_t c = 0; c < MVR_TUNER_CANDIDATES; ++c)
@@ -94,8 +93,8 @@ uint32_t mvr_tuner_next(mvr_tuner *t, mvr_tuner_key key, uint32_t prior, bool *m
             t->phase = MVR_TUNER_SETTLED; /* nothing measurable: the prior */
         return t->chosen;
     }
-    t->issued[next]++;
-    *measure = true;
+    t->current = next;
+    t->in_turn = true;
     return next;
 }
 

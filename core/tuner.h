@@ -1,28 +1,33 @@
 /*
  * The online tuner behind `auto` (issue 22): for a decision with several
- * correct paths (today the view path: multiview or loop), it runs the
+ * correct paths (the material path, the view path, the skinning path), it runs the
  * candidates on the real frames, interleaved, and settles on the cheapest.
  * Backend-free: the GL side says which frame ran which candidate at what
  * cost; the tuner says which candidate the next frame runs. One mvr_tuner per
- * decision (the view path, the skinning path).
+ * decision.
  *
- * Schedule, from a change of inputs (the key): the prior (the caps rule's
- * first guess) runs first, so the first frame is never slower than the rule;
- * each candidate's first frame is a warm-up (it compiles its programs, ~130 ms
- * per variant on llvmpipe) and is not counted; then the candidates alternate
- * until each has MVR_TUNER_SAMPLES costs. Where the medians are then within
- * MVR_TUNER_CLOSE of each other the ranking is inside the frame-to-frame
- * noise (identical frames differ by ~4% on a shared 2-core machine), so the
- * candidates alternate on, up to MVR_TUNER_MAX_SAMPLES each, until they part
- * or the samples run out. The one with the lowest median wins unless it beats
- * the prior by less than MVR_TUNER_MARGIN (noise: the prior stays). Tuning
- * costs 2 + 2 x MVR_TUNER_SAMPLES frames where the candidates differ clearly,
- * at most 2 + 2 x MVR_TUNER_MAX_SAMPLES where they are close (and a wrong
- * choice costs little), at most half of them on a candidate other than the
- * prior; after that no frame is measured. A key change (view count, target
- * size, the draw count or the draws visible after culling by more than a
- * factor of 2 -- a count of 0 is "not known yet" and takes the next one -- or
- * another decision's choice the key carries) starts again.
+ * Schedule, from a change of inputs (the key): the candidates take turns of
+ * two frames, the prior (the rule's first guess) first, so the first frame
+ * is never slower than the rule. The first frame of a turn is not measured: it
+ * follows a switch of path (and, in a candidate's first turn, compiles its
+ * programs, ~130 ms per variant on llvmpipe, or uploads what it needs).
+ * Measured here (city, 6 views, llvmpipe): frames that alternate path every
+ * frame made the loop look 10-15% slower against multiview than runs of
+ * either path did, and the second frame of each run of two measured what runs
+ * do. The turns alternate until each candidate has MVR_TUNER_SAMPLES costs.
+ * Where the medians are then within MVR_TUNER_CLOSE of each other the ranking
+ * is inside the frame-to-frame noise (identical frames differ by 4-13% on a
+ * shared 2-core machine), so the turns go on, up to MVR_TUNER_MAX_SAMPLES each,
+ * until the medians part or the samples run out. The one with the lowest
+ * median wins unless it beats the prior by less than MVR_TUNER_MARGIN (noise:
+ * the prior stays). Tuning costs 4 x MVR_TUNER_SAMPLES frames (12) where the
+ * candidates differ clearly, at most 4 x MVR_TUNER_MAX_SAMPLES (28) where
+ * they are close (and a wrong choice costs little), half of them on a
+ * candidate other than the prior; after that no frame is measured. A key
+ * change (view count, target size, the draw count or the draws visible after
+ * culling by more than a factor of 2 -- a count of 0 is "not known yet" and
+ * takes the next one -- or another decision's choice the key carries) starts
+ * again.
  */
 #ifndef MVR_TUNER_H
 #define MVR_TUNER_H
@@ -56,7 +61,9 @@ typedef struct mvr_tuner {
     mvr_tuner_key key;
     uint32_t prior;              /* the caps rule's candidate */
     uint32_t chosen;             /* what runs once settled (the prior while tuning) */
-    uint32_t issued[MVR_TUNER_CANDIDATES];   /* frames run on each since the key changed */
+    uint32_t issued[MVR_TUNER_CANDIDATES];   /* measured frames run on each since the key changed */
+    uint32_t current;            /* the candidate of the turn under way */
+    bool in_turn;                /* its first (unmeasured) frame ran; the next is measured */
     uint32_t samples[MVR_TUNER_CANDIDATES];  /* costs recorded (warm-ups not counted) */
     uint32_t want;               /* samples each before settling (grows while close) */
     double costs[MVR_TUNER_CANDIDATES][MVR_TUNER_MAX_SAMPLES];

@@ -524,7 +524,7 @@ static bool setup_config(const bench_options *o, mvr_context *ctx, mvr_scene *sc
          ok &&
          (st.auto_choice.state == MVR_AUTO_TUNING || st.auto_material.state == MVR_AUTO_TUNING ||
           st.auto_skinning.state == MVR_AUTO_TUNING) &&
-         f < o->warmup + 64;
+         f < o->warmup + 100; /* three decisions of at most 28 frames each */
          ++f) {
         pose(o, scene, f);
         ok = mvr_renderer_render(cr->r, scene, vs, cr->t, &o->render) == MVR_OK;

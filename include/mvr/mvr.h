@@ -1075,17 +1075,18 @@ typedef enum mvr_skinning_path_override {
 /* The online tuner behind `auto` (the material path, then the view path,
  * then the skinning path): the first frames after a change of inputs (view
  * count, target size, the scene's draw count or the draws the views see
- * after culling by more than a factor of 2) run
- * the candidates interleaved, each once to warm up (program compiles,
- * uploads) and then at least 3 times, measured (the frame's cost: the larger
- * of its submitting-thread CPU time and its GPU time from timestamp queries,
- * taken outside multiview framebuffers; CPU time alone where the GL has no
- * timer); where the medians are then within 10% of each other (inside the
- * noise), up to 7 times each until they part. The path with the lower median
- * is kept unless it beats the rule's choice (the prior, which runs first) by
- * less than 3%. 8 frames per decision and change where the paths differ
- * clearly, at most 16 where they are close, at most half of them on the other
- * path; settled frames are not measured. One decision is measured at a time,
+ * after culling by more than a factor of 2) run the candidates in turns of
+ * two frames, the rule's choice (the prior) first: the first frame of a turn
+ * follows a switch (and warms a candidate up: program compiles, uploads) and
+ * is not measured, the second is (the frame's cost: the larger of its
+ * submitting-thread CPU time and its GPU time from timestamp queries, taken
+ * outside multiview framebuffers; CPU time alone where the GL has no timer).
+ * At least 3 measured frames each; where the medians are then within 10% of
+ * each other (inside the noise), up to 7 each until they part. The path with
+ * the lower median is kept unless it beats the prior by less than 3%. 12
+ * frames per decision and change where the paths differ clearly, at most 28
+ * where they are close, half of them on the other path; settled frames are
+ * not measured. One decision is measured at a time,
  * the later ones keyed on the earlier ones' choices (a new material path
  * measures the view path again), running their own settled choice or prior
  * meanwhile. While the material path is measured both representations of the

@@ -1,5 +1,5 @@
 /* core: the online tuner behind auto (core/tuner.h), without GL: its
- * schedule (the prior first, warm-ups not counted, interleaved samples), the
+ * schedule (turns of two frames, the prior first, the first of each turn not measured), the
  * choice (the cheaper median, the prior within the 3% margin), and when it
  * measures again. */
 #include <string.h>
@@ -30,21 +30,23 @@ static void prior_first_then_interleaved(mvr_test_state *t)
     mvr_tuner tu;
     memset(&tu, 0, sizeof tu);
     mvr_tuner_key key = {6, 256, 256, 100, 0, 0};
-    bool measure = true;
-    /* the prior (1) first, unmeasured; the other's warm-up, unmeasured */
-    CHECK(t, mvr_tuner_next(&tu, key, 1, &measure) == 1 && !measure);
-    CHECK(t, mvr_tuner_next(&tu, key, 1, &measure) == 0 && !measure);
-    /* then alternating, measured, the prior on a tie */
-    uint32_t seq[6];
-    for (int i = 0; i < 6; ++i) {
-        seq[i] = mvr_tuner_next(&tu, key, 1, &measure);
-        CHECK(t, measure);
-        mvr_tuner_record(&tu, seq[i], seq[i] == 0 ? 5.0 : 10.0);
+    /* turns of two frames, the prior (1) first; the first frame of each turn
+     * (a switch, or a candidate's warm-up) is not measured */
+    uint32_t seq[12];
+    bool measured[12];
+    for (int i = 0; i < 12; ++i) {
+        seq[i] = mvr_tuner_next(&tu, key, 1, &measured[i]);
+        if (measured[i])
+            mvr_tuner_record(&tu, seq[i], seq[i] == 0 ? 5.0 : 10.0);
     }
-    CHECK(t, seq[0] == 1 && seq[1] == 0 && seq[2] == 1 && seq[3] == 0 && seq[4] == 1 && seq[5] == 0);
+    const uint32_t expect[12] = {1, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0};
+    for (int i = 0; i < 12; ++i)
+        CHECK_MSG(t, seq[i] == expect[i] && measured[i] == (i % 2 == 1), "frame %d: candidate %u, measured %d", i,
+                  seq[i], (int)measured[i]);
     CHECK(t, tu.phase == MVR_TUNER_SETTLED && tu.chosen == 0);
     CHECK(t, tu.median[0] == 5.0 && tu.median[1] == 10.0 && tu.margin == 0.5);
     /* settled: the choice, unmeasured */
+    bool measure = true;
     CHECK(t, mvr_tuner_next(&tu, key, 1, &measure) == 0 && !measure);
 }
 
@@ -57,7 +59,7 @@ static void the_margin_keeps_the_prior(mvr_test_state *t)
     /* 2% cheaper is noise: measured up to the most samples, and the prior stays */
     const double close[2] = {9.8, 10.0};
     uint32_t frames = run(&tu, key, 1, close, ran);
-    CHECK_MSG(t, frames == 2 + 2 * MVR_TUNER_MAX_SAMPLES && tu.chosen == 1 && tu.margin == 0.0, "%u frames", frames);
+    CHECK_MSG(t, frames == 4 * MVR_TUNER_MAX_SAMPLES && tu.chosen == 1 && tu.margin == 0.0, "%u frames", frames);
     CHECK(t, tu.samples[0] == MVR_TUNER_MAX_SAMPLES && tu.samples[1] == MVR_TUNER_MAX_SAMPLES);
     /* at most half of the tuning frames on the other candidate */
     CHECK(t, ran[0] <= frames / 2);
@@ -65,16 +67,15 @@ static void the_margin_keeps_the_prior(mvr_test_state *t)
     memset(&tu, 0, sizeof tu);
     const double clear[2] = {8.8, 10.0};
     frames = run(&tu, key, 1, clear, ran);
-    CHECK(t, tu.chosen == 0 && tu.margin > 0.11 && tu.margin < 0.13 && frames == 2 + 2 * MVR_TUNER_SAMPLES);
+    CHECK(t, tu.chosen == 0 && tu.margin > 0.11 && tu.margin < 0.13 && frames == 4 * MVR_TUNER_SAMPLES);
     /* medians: one outlier frame does not decide */
     memset(&tu, 0, sizeof tu);
     bool measure;
-    mvr_tuner_next(&tu, key, 0, &measure);
-    mvr_tuner_next(&tu, key, 0, &measure);
     const double costs[6] = {10.0, 12.0, 10.0, 50.0, 10.0, 12.0}; /* c0, c1, c0, c1, c0, c1 */
-    for (int i = 0; i < 6; ++i) {
+    for (int i = 0, k = 0; i < 12; ++i) {
         uint32_t c = mvr_tuner_next(&tu, key, 0, &measure);
-        mvr_tuner_record(&tu, c, costs[i]);
+        if (measure)
+            mvr_tuner_record(&tu, c, costs[k++]);
     }
     CHECK(t, tu.phase == MVR_TUNER_SETTLED && tu.median[1] == 12.0 && tu.chosen == 0);
 }
@@ -100,7 +101,7 @@ static void close_medians_take_more_samples(mvr_test_state *t)
     /* 3 samples: 10 against 10.5; 4, 5: still 10; 6: 9 against 10.5, 14% apart */
     CHECK_MSG(t, tu.phase == MVR_TUNER_SETTLED && tu.samples[0] == 6 && tu.samples[1] == 6, "samples %u, %u",
               tu.samples[0], tu.samples[1]);
-    CHECK(t, frames == 2 + 12 && tu.chosen == 0 && tu.median[0] == 9.0 && tu.median[1] == 10.5);
+    CHECK(t, frames == 4 * 6 && tu.chosen == 0 && tu.median[0] == 9.0 && tu.median[1] == 10.5);
     CHECK(t, n[0] == 6 && n[1] == 6);
 }
 
@@ -166,7 +167,7 @@ static void a_material_change_measures_again(mvr_test_state *t)
         mvr_tuner_next(&tu, key, 1, &measure);
         frames++;
     }
-    CHECK(t, tu.phase == MVR_TUNER_SETTLED && tu.chosen == 1 && frames <= 2 + 2 * MVR_TUNER_SAMPLES + 1);
+    CHECK(t, tu.phase == MVR_TUNER_SETTLED && tu.chosen == 1 && frames <= 4 * MVR_TUNER_SAMPLES + 1);
     /* a negative or NaN cost is not a sample */
     memset(&tu, 0, sizeof tu);
     mvr_tuner_next(&tu, key, 1, &measure);
