@@ -949,7 +949,7 @@ const char *mvr_view_path_name(mvr_view_path path);
 
 typedef enum mvr_material_path {
     /* measured (mvr_tuning_desc), from arrays; arrays without tuning. On
-     * llvmpipe per-material drew the demos 18-30% faster (docs/benchmarks.md) */
+     * llvmpipe per-material drew most demo configurations faster, up to 29% (docs/benchmarks.md) */
     MVR_MATERIAL_PATH_AUTO = 0,
     MVR_MATERIAL_PATH_ARRAYS,        /* textures grouped into 2D arrays, bound once per group per pass */
     MVR_MATERIAL_PATH_PER_MATERIAL,  /* one 2D texture per image, bound when the material changes */
