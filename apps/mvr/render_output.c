@@ -71,6 +71,50 @@ void render_output_print_animation(const render_options *o, const mvr_scene *sce
                (unsigned long long)s->animation_upload_bytes, s->preskin_passes, s->preskin_passes == 1 ? "" : "es");
 }
 
+/* One of auto's decisions: state, the rule's choice, what runs once
+ * settled, and what each candidate measured (ms; null before a sample). */
+static void write_decision(json_writer *jw, const char *key, mvr_auto_state state, const char *prior,
+                           const char *chosen, const char *const names[2], const double cost_ms[2])
+{
+    json_begin_object(jw, key);
+    json_string(jw, "state", mvr_auto_state_name(state));
+    json_string(jw, "prior", prior);
+    json_string(jw, "chosen", chosen);
+    json_begin_object(jw, "cost_ms");
+    for (int c = 0; c < 2; ++c)
+        if (cost_ms[c] >= 0.0)
+            json_double(jw, names[c], cost_ms[c]);
+        else
+            json_null(jw, names[c]);
+    json_end_object(jw);
+    json_end_object(jw);
+}
+
+/* What auto's tuner measured and chose for each path left to it. */
+static void write_auto(json_writer *jw, const mvr_frame_stats *s)
+{
+    json_begin_object(jw, "auto");
+    const mvr_auto_material_choice *m = &s->auto_material;
+    if (m->state != MVR_AUTO_NONE) {
+        const char *names[2] = {mvr_material_path_name(m->candidates[0]), mvr_material_path_name(m->candidates[1])};
+        write_decision(jw, "material_path", m->state, mvr_material_path_name(m->prior), mvr_material_path_name(m->chosen),
+                       names, m->cost_ms);
+    }
+    const mvr_auto_choice *v = &s->auto_choice;
+    if (v->state != MVR_AUTO_NONE) {
+        const char *names[2] = {mvr_view_path_name(v->candidates[0]), mvr_view_path_name(v->candidates[1])};
+        write_decision(jw, "view_path", v->state, mvr_view_path_name(v->prior), mvr_view_path_name(v->chosen), names,
+                       v->cost_ms);
+    }
+    const mvr_auto_skinning_choice *k = &s->auto_skinning;
+    if (k->state != MVR_AUTO_NONE) {
+        const char *names[2] = {mvr_skinning_path_name(k->candidates[0]), mvr_skinning_path_name(k->candidates[1])};
+        write_decision(jw, "skinning_path", k->state, mvr_skinning_path_name(k->prior),
+                       mvr_skinning_path_name(k->chosen), names, k->cost_ms);
+    }
+    json_end_object(jw);
+}
+
 void render_output_write_stats_json(FILE *f, const mvr_renderer *r, const mvr_frame_stats *s, const char *demo,
                                     uint32_t w, uint32_t h, uint32_t supersample, const mvr_gltf_info *load,
                                     const cli_env_used *env, const mvr_render_desc *rd, const render_options *o,
@@ -103,6 +147,7 @@ void render_output_write_stats_json(FILE *f, const mvr_renderer *r, const mvr_fr
     json_int(&jw, "multiview_passes", s->multiview_passes);
     json_string(&jw, "material_path", mvr_material_path_name(s->material_path));
     json_int(&jw, "texture_groups", s->texture_groups);
+    write_auto(&jw, s);
     json_int(&jw, "culled", s->culled);
     json_begin_array(&jw, "culled_per_view");
     for (uint32_t v = 0; v < s->views; ++v)
