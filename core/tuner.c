@@ -43,10 +43,8 @@ static void settle(mvr_tuner *t)
         if (t->median[c] < t->median[best])
             best = c;
     double prior = t->median[t->prior];
-    double margin = prior > 0.0 ? 1.0 - t->median[best] / prior : 0.0;
-    /* within the noise the prior stays: switching must pay */
-    t->chosen = margin >= MVR_TUNER_MARGIN ? best : t->prior;
-    t->margin = t->chosen == t->prior ? 0.0 : margin;
+    t->chosen = best; /* the prior on a tie */
+    t->margin = best != t->prior && prior > 0.0 ? 1.0 - t->median[best] / prior : 0.0;
     t->phase = MVR_TUNER_SETTLED;
 }
 

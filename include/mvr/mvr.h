@@ -1083,7 +1083,7 @@ typedef enum mvr_skinning_path_override {
  * outside multiview framebuffers; CPU time alone where the GL has no timer).
  * At least 3 measured frames each; where the medians are then within 10% of
  * each other (inside the noise), up to 7 each until they part. The path with
- * the lower median is kept unless it beats the prior by less than 3%. 12
+ * the lower median is kept (the prior on a tie). 12
  * frames per decision and change where the paths differ clearly, at most 28
  * where they are close, half of them on the other path; settled frames are
  * not measured. One decision is measured at a time,
