@@ -552,7 +552,8 @@ static void release_arrays(mvr_renderer *r)
     free(g->group_samplers);
     g->group_textures = g->group_samplers = NULL;
     mvr_batch_plan_free(&g->plan);
-    forget_downscaled(g);
+    /* the downscaled flags stay: the per-material textures may hold the
+     * same images downscaled (forgotten with the geometry, where both go) */
 }
 
 static void release_geometry(mvr_renderer *r)
@@ -806,10 +807,13 @@ mvr_result mvr_gpu_scene_sync(mvr_renderer *r, const mvr_scene *s, bool keep_bot
     }
     if (materials) {
         note_formats(r, s);
-        /* both representations describe the old materials */
-        for (int k = 0; k < 2; ++k)
-            if (g->resident[k])
-                release_representation(r, k == 1);
+        /* both representations describe the old materials: the arrays
+         * (their plan depends on the materials) are rebuilt; the
+         * per-material textures are not (texture_for finds them again by
+         * image), only their bindings and blocks */
+        if (g->resident[1])
+            release_representation(r, true);
+        g->resident[0] = false;
         res = layout_materials(r, s);
         if (res != MVR_OK)
             return res;
@@ -827,7 +831,9 @@ mvr_result mvr_gpu_scene_sync(mvr_renderer *r, const mvr_scene *s, bool keep_bot
             return res;
         g->resident[arrays] = true;
     }
-    if (!keep_both && g->resident[!arrays])
+    /* the other representation, unless auto's tuner is measuring both
+     * (per-material textures may be held while not resident: see above) */
+    if (!keep_both && (g->resident[!arrays] || (arrays && g->texture_count)))
         release_representation(r, !arrays);
     g->arrays = arrays;
     g->material_ubo = g->material_ubos[arrays];

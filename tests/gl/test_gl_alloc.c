@@ -270,6 +270,52 @@ static void run_image_case(mvr_test_state *t, mvr_context *ctx, mvr_scene *s, co
 
 static const mvr_material_path paths[2] = {MVR_MATERIAL_PATH_ARRAYS, MVR_MATERIAL_PATH_PER_MATERIAL};
 
+/* auto's material tuner told that `cheap` costs less: it settles there. */
+static double material_cost(void *user, mvr_view_path path, const mvr_frame_stats *stats)
+{
+    (void)path;
+    return stats->material_path == *(const mvr_material_path *)user ? 1.0 : 2.0;
+}
+
+/* The material path tuned (both representations resident while measured,
+ * the other released once settled): the downscaled image is still counted,
+ * and still drawn in its colours. */
+static void tuned_keeps_the_downscaled_count(mvr_test_state *t, mvr_context *ctx, mvr_scene *s)
+{
+    for (int p = 0; p < 2; ++p) {
+        mvr_material_path cheap = paths[p];
+        mvr_renderer_desc rd = {.context = ctx, .tuning = {.frame_cost = material_cost, .user = &cheap}};
+        mvr_renderer *r = NULL;
+        mvr_target *target = NULL;
+        mvr_target_desc td = {.width = W, .height = H, .layers = 1};
+        CHECK(t, mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK);
+        mvr_view_set *vs = stress_front_view_set(t);
+        mvr_frame_stats st;
+        memset(&st, 0, sizeof st);
+        mvr_render_desc desc = {.clear_color = {0, 0, 0, 1}};
+        for (int f = 0; target && vs && f < 40 && st.auto_material.state != MVR_AUTO_SETTLED; ++f) {
+            CHECK(t, mvr_renderer_render(r, s, vs, target, &desc) == MVR_OK);
+            mvr_renderer_get_stats(r, &st);
+            CHECK_MSG(t, st.images_downscaled == 1, "frame %d (%s): %u images downscaled", f,
+                      mvr_material_path_name(st.material_path), st.images_downscaled);
+        }
+        CHECK(t, st.auto_material.state == MVR_AUTO_SETTLED && st.auto_material.chosen == cheap);
+        /* settled: the other representation released, the count unchanged */
+        if (target && vs && mvr_renderer_render(r, s, vs, target, &desc) == MVR_OK) {
+            mvr_renderer_get_stats(r, &st);
+            CHECK_MSG(t, st.material_path == cheap && st.images_downscaled == 1, "settled on %s: %u downscaled",
+                      mvr_material_path_name(st.material_path), st.images_downscaled);
+            uint8_t px[W * H * 4];
+            CHECK(t, mvr_renderer_read_layer(r, target, 0, MVR_READBACK_RGBA8, px, sizeof px) == MVR_OK);
+            const uint8_t *left = px + ((H / 2) * W + W / 4) * 4, *right = px + ((H / 2) * W + 3 * W / 4) * 4;
+            CHECK(t, near_colour(left, orange) && near_colour(right, blue));
+        }
+        mvr_view_set_destroy(vs);
+        mvr_target_destroy(target);
+        mvr_renderer_destroy(r);
+    }
+}
+
 /* Over GL_MAX_TEXTURE_SIZE: the context's limit lowered to 64 (the GL's own
  * limit is the scene's maximum, 16384, here), a 256x256 image. */
 static void image_over_max_texture_size(mvr_test_state *t)
@@ -285,6 +331,8 @@ static void image_over_max_texture_size(mvr_test_state *t)
         image_case refuse = {"refuse", paths[p], MVR_OVERSIZED_IMAGE_REFUSE, MVR_ERROR_UNSUPPORTED, "image 1 'huge'"};
         run_image_case(t, ctx, s, &refuse, 0);
     }
+    if (s)
+        tuned_keeps_the_downscaled_count(t, ctx, s);
     /* within the limit: nothing downscaled */
     ctx->caps.limits.max_texture_size = 256;
     image_case fits = {"fits", MVR_MATERIAL_PATH_ARRAYS, MVR_OVERSIZED_IMAGE_REFUSE, MVR_OK, NULL};
