@@ -134,6 +134,60 @@ static void material_paths_agree(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
+/* A material change re-sends the material blocks: the array path rebuilds
+ * its arrays (the plan depends on the materials), the per-material path
+ * keeps its textures (found again by image). */
+static void a_material_change_keeps_per_material_textures(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    const mvr_material_path mps[2] = {MVR_MATERIAL_PATH_PER_MATERIAL, MVR_MATERIAL_PATH_ARRAYS};
+    uint64_t first[2] = {0}, changed[2] = {0};
+    for (int m = 0; m < 2; ++m) {
+        mvr_scene *scene = NULL;
+        mvr_view_set *views = NULL;
+        mvr_demo_desc dd = {VIEWS, W, H, {0}};
+        mvr_renderer_desc rd = {.context = ctx, .material_path = mps[m]};
+        mvr_renderer *r = NULL;
+        mvr_target *target = NULL;
+        mvr_target_desc td = {.width = W, .height = H, .layers = VIEWS};
+        bool ok = mvr_demo_create("city", &dd, &scene, &views, NULL) == MVR_OK &&
+                  mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK;
+        CHECK(t, ok);
+        mvr_frame_stats st;
+        for (int f = 0; ok && f < 3; ++f) {
+            if (f == 2) { /* a new material: material_version moves */
+                mvr_material_desc md;
+                memset(&md, 0, sizeof md);
+                mvr_material_id id;
+                CHECK(t, mvr_scene_add_material(scene, &md, &id) == MVR_OK);
+            }
+            CHECK(t, mvr_renderer_render(r, scene, views, target, NULL) == MVR_OK);
+            mvr_renderer_get_stats(r, &st);
+            if (f == 0)
+                first[m] = st.upload_bytes;
+            if (f == 1)
+                CHECK_EQ_INT(t, st.upload_bytes, 0);
+            if (f == 2)
+                changed[m] = st.upload_bytes;
+        }
+        printf("  %s: first frame %llu bytes, after a material change %llu\n", mvr_material_path_name(mps[m]),
+               (unsigned long long)first[m], (unsigned long long)changed[m]);
+        mvr_target_destroy(target);
+        mvr_renderer_destroy(r);
+        mvr_view_set_destroy(views);
+        mvr_scene_destroy(scene);
+    }
+    /* per-material: blocks only (city's textures are most of the first frame) */
+    CHECK_MSG(t, changed[0] > 0 && changed[0] * 4 < first[0], "per-material: %llu of %llu",
+              (unsigned long long)changed[0], (unsigned long long)first[0]);
+    /* arrays: rebuilt, textures with them */
+    CHECK_MSG(t, changed[1] * 2 > first[1], "arrays: %llu of %llu", (unsigned long long)changed[1],
+              (unsigned long long)first[1]);
+    mvr_context_destroy(ctx);
+}
+
 /* overrides.material_path wins over the descriptor's material_path; the
  * environment (MVR_MATERIAL_PATH) is read only by
  * mvr_renderer_overrides_from_env, which refuses a bad value naming the
@@ -170,4 +224,5 @@ static void material_path_override(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
-MVR_TEST_MAIN(TEST(material_paths_agree), TEST(material_path_override))
+MVR_TEST_MAIN(TEST(material_paths_agree), TEST(material_path_override),
+              TEST(a_material_change_keeps_per_material_textures))
