@@ -17,7 +17,7 @@ const char *viewer_display_name(display_mode display)
 
 enum {
     V_DEMO = 1, V_VIEWS, V_DISPLAY, V_SINGLE, V_SIZE, V_API, V_VIEW_PATH, V_FRAMES, V_SCREENSHOT, V_ANIMATION, V_TIME,
-    V_PAUSED
+    V_PAUSED, V_CLEAR
 };
 
 /* name, value and range, help; the order is --help's */
@@ -50,6 +50,10 @@ static const cli_option viewer_table[] = {
      "frame k shows --time + k/30", NULL, NULL, NULL},
     {CLI_OPT_STRING, V_SCREENSHOT, "--screenshot", NULL, "FILE", 0, 0, NULL,
      "the window's contents after the last frame (PNG)", NULL, NULL, NULL},
+    /* the shared --background help names it: color is the clear colour */
+    {CLI_OPT_STRING, V_CLEAR, "--clear", NULL, "R,G,B[,A]", 0, 0, NULL,
+     "linear clear color, as mvr render takes it (default: a dark\n"
+     "opaque sky)", NULL, NULL, NULL},
     {CLI_OPT_END, 0, NULL, NULL, NULL, 0, 0, NULL, NULL, NULL, NULL, NULL},
 };
 
@@ -118,6 +122,14 @@ int viewer_options_parse(int argc, char **argv, viewer_options *o)
             }
             break;
         case V_PAUSED: o->paused = true; break;
+        case V_CLEAR:
+            o->clear[3] = 1.0f;
+            if (sscanf(arg.value, "%f,%f,%f,%f", &o->clear[0], &o->clear[1], &o->clear[2], &o->clear[3]) < 3) {
+                fprintf(stderr, "mvr-viewer: --clear takes R,G,B[,A] (linear, 0..1)\n");
+                return 2;
+            }
+            o->clear_set = true;
+            break;
         case V_API: o->gles = arg.choice == 0; break;
         case V_VIEW_PATH: o->view_path = (mvr_view_path)(MVR_VIEW_PATH_AUTO + arg.choice); break;
         case V_DISPLAY: o->display = (display_mode)arg.choice; break;

@@ -32,6 +32,8 @@ typedef struct viewer_options {
     const char *animation;       /* --animation; NULL: 0 when there is one */
     double time;                 /* --time; < 0: the clip's start */
     bool paused;                 /* --paused */
+    bool clear_set;              /* --clear given */
+    float clear[4];              /* --clear: linear RGBA (the --background color) */
 } viewer_options;
 
 /* Parses and checks the command line into o. 0: open the window; -1:
