@@ -79,7 +79,7 @@ typedef struct viewer {
     mvr_view_set *views;
     mvr_render_desc render;      /* as mvr render's defaults give it for the scene */
     cli_env_options env_options;
-    float clear[4]; bool clear_set; /* --clear (else mvr render's default clear colour) */
+    viewer_clear clear;          /* --clear */
     mvr_environment *env;
     GLuint program, vao;
     GLint loc_layers, loc_origin, loc_mode;
@@ -362,8 +362,8 @@ static bool open_scene(viewer *v, const char *file, const char *demo)
     }
     mvr_render_desc render;
     cli_render_desc_defaults(&render);
-    if (v->clear_set)
-        memcpy(render.clear_color, v->clear, sizeof v->clear);
+    if (v->clear.set)
+        memcpy(render.clear_color, v->clear.rgba, sizeof v->clear.rgba);
     mvr_environment *env = NULL;
     if (cli_env_create("mvr-viewer", &v->env_options, file != NULL, &render, &env, NULL) != MVR_EXIT_OK) {
         mvr_view_set_destroy(views);
@@ -692,8 +692,7 @@ int main(int argc, char **argv)
     v.single = o.single;
     v.view_path = o.view_path;
     v.env_options = o.env;
-    v.clear_set = o.clear_set;
-    memcpy(v.clear, o.clear, sizeof v.clear);
+    v.clear = o.clear;
     v.start_animation = o.animation;
     v.start_time = o.time;
     v.start_paused = o.paused;

@@ -123,12 +123,13 @@ int viewer_options_parse(int argc, char **argv, viewer_options *o)
             break;
         case V_PAUSED: o->paused = true; break;
         case V_CLEAR:
-            o->clear[3] = 1.0f;
-            if (sscanf(arg.value, "%f,%f,%f,%f", &o->clear[0], &o->clear[1], &o->clear[2], &o->clear[3]) < 3) {
+            o->clear.rgba[3] = 1.0f;
+            if (sscanf(arg.value, "%f,%f,%f,%f", &o->clear.rgba[0], &o->clear.rgba[1], &o->clear.rgba[2],
+                       &o->clear.rgba[3]) < 3) {
                 fprintf(stderr, "mvr-viewer: --clear takes R,G,B[,A] (linear, 0..1)\n");
                 return 2;
             }
-            o->clear_set = true;
+            o->clear.set = true;
             break;
         case V_API: o->gles = arg.choice == 0; break;
         case V_VIEW_PATH: o->view_path = (mvr_view_path)(MVR_VIEW_PATH_AUTO + arg.choice); break;

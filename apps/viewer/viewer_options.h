@@ -17,6 +17,12 @@ typedef enum display_mode {
 /* "stereo", "grid", "anaglyph", "single" (--display and the title). */
 const char *viewer_display_name(display_mode display);
 
+/* --clear R,G,B[,A]: the linear clear colour (--background color) */
+typedef struct viewer_clear {
+    bool set;                    /* given; else mvr render's default */
+    float rgba[4];
+} viewer_clear;
+
 typedef struct viewer_options {
     const char *file;            /* SCENE; NULL: demo */
     const char *demo;            /* --demo (default: stereo) */
@@ -32,8 +38,7 @@ typedef struct viewer_options {
     const char *animation;       /* --animation; NULL: 0 when there is one */
     double time;                 /* --time; < 0: the clip's start */
     bool paused;                 /* --paused */
-    bool clear_set;              /* --clear given */
-    float clear[4];              /* --clear: linear RGBA (the --background color) */
+    viewer_clear clear;          /* --clear */
 } viewer_options;
 
 /* Parses and checks the command line into o. 0: open the window; -1:
