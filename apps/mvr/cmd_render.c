@@ -22,7 +22,6 @@
 #include "render_stats.h"
 #include "render_stream.h"
 
-
 /* The program binary cache directory: --program-cache, else the XDG cache
  * directory; created if missing. NULL (with a warning when the directory
  * cannot be made) means no cache: the run compiles as usual. */
@@ -75,7 +74,6 @@ static const char *per_file_path(char *buf, size_t size, const char *dir, const 
     snprintf(buf, size, "%s/%s", dir, name);
     return buf;
 }
-
 
 /* One scene's run: its options (the session's, with its file and
  * directory), what it makes and frees, and what the summary and the stats
