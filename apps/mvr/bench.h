@@ -3,6 +3,7 @@
 #define MVR_APP_BENCH_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <time.h>
@@ -43,6 +44,14 @@ typedef struct bench_options {
      * take (--env, default neutral for a glTF file, none for a demo) */
     mvr_render_desc render;
 } bench_options;
+
+/* bench_options.c: argv (after "bench") into o, checked: MVR_EXIT_OK, -1
+ * after --help (printed: nothing to run), or a usage error's exit code
+ * (printed); o->cameras is freed by the caller either way. */
+int bench_options_parse(int argc, char **argv, bench_options *o);
+
+/* "mvr bench ..." as given, for the reports. */
+void bench_command_line(int argc, char **argv, char *buf, size_t size);
 
 #define BENCH_MAX_CONFIGS 80
 

@@ -238,6 +238,146 @@ static void env_fronts(bench_result *results, uint32_t count)
     }
 }
 
+/* Auto exposure (a file with physical lights) would follow each
+ * configuration's own pixels: one frame with the default maps fixes the
+ * EV100 for every configuration and the reference. */
+static bool fix_exposure(const bench_options *o, mvr_context *ctx, mvr_scene *scene, mvr_view_set *vs,
+                         mvr_render_desc *base, const mvr_environment *lib_env)
+{
+    if (base->exposure_mode != MVR_EXPOSURE_AUTO)
+        return true;
+    bench_result probe;
+    memset(&probe, 0, sizeof probe);
+    double ev100 = 0.0;
+    bool probed = run_env_config(o, ctx, scene, vs, base, NULL, lib_env, false, 0, 1, "exposure", &probe, &ev100);
+    free(probe.display);
+    if (!probed)
+        return false;
+    base->exposure_mode = MVR_EXPOSURE_EV100;
+    base->ev100 = ev100;
+    return true;
+}
+
+/* The environment's source as each configuration makes it again (an
+ * image file read into image, freed by the caller). */
+static bool source_desc(const bench_options *o, const cli_env_used *used, mvr_environment_desc *ed,
+                        mvr_image_data *image)
+{
+    memset(ed, 0, sizeof *ed);
+    ed->source = used->source;
+    memcpy(ed->color, used->color, sizeof ed->color);
+    ed->intensity = used->intensity;
+    ed->rotation = used->rotation;
+    ed->logger = o->context.logger;
+    if (used->source == MVR_ENVIRONMENT_PIXELS) {
+        mvr_error err;
+        if (mvr_image_read(used->file, MVR_PIXEL_F32, image, &err) != MVR_OK) {
+            fprintf(stderr, "mvr bench: --env %s: %s\n", used->file, err.message);
+            return false;
+        }
+        ed->pixels = image->pixels;
+        ed->width = image->width;
+        ed->height = image->height;
+    }
+    return true;
+}
+
+/* The reference, the converged maps, then every size x samples; returns
+ * the count. */
+static uint32_t make_env_configs(const bench_options *o, bench_config *configs)
+{
+    uint32_t count = 0;
+    /* the reference reads the source cube, which follows the specular size
+     * (at least a face of a quarter of the image's width): the largest
+     * size gives it the finest source any configuration has */
+    uint32_t max_size = 0, max_samples = 0;
+    for (uint32_t i = 0; i < o->n_sizes; ++i)
+        max_size = o->sizes[i] > max_size ? o->sizes[i] : max_size;
+    for (uint32_t j = 0; j < o->n_samples; ++j)
+        max_samples = o->samples[j] > max_samples ? o->samples[j] : max_samples;
+    env_config(&configs[count++], max_size, max_samples, true, false);
+    env_config(&configs[count++], max_size, BENCH_CONVERGED_SAMPLES, false, true);
+    for (uint32_t i = 0; i < o->n_sizes; ++i)
+        for (uint32_t j = 0; j < o->n_samples; ++j)
+            env_config(&configs[count++], o->sizes[i], o->samples[j], false, false);
+    return count;
+}
+
+/* What the configurations run on and what they give. */
+typedef struct env_run {
+    mvr_context *ctx;
+    mvr_scene *scene;
+    mvr_view_set *vs;
+    const mvr_render_desc *base;
+    const mvr_environment_desc *ed;
+    const bench_config *configs;
+    bench_result *results;
+    uint32_t count;
+    size_t pixels;
+    uint64_t compared;           /* pixels the scene covers */
+} env_run;
+
+/* Each configuration's prefilter timed and its pixels compared with the
+ * reference's and with the converged maps'. */
+static bool run_env_configs(const bench_options *o, env_run *e)
+{
+    bench_result *results = e->results;
+    for (uint32_t k = 0; k < e->count; ++k) {
+        const bench_config *c = &e->configs[k];
+        bench_result *res = &results[k];
+        res->group_diff = -1;
+        bench_progress(o, k, e->count + 1, c->name);
+        mvr_environment_desc d = *e->ed;
+        d.specular_size = c->specular_size;
+        d.specular_samples = c->specular_samples;
+        /* the reference and the converged maps: one frame each (they are
+         * slow), their programs compiled in it */
+        bool once = c->reference || c->converged;
+        if (!run_env_config(o, e->ctx, e->scene, e->vs, e->base, &d, NULL, c->reference, once ? 0 : o->warmup,
+                            once ? 1 : o->frames, c->name, res, NULL))
+            return false;
+        e->compared = bench_compare(results[0].display, res->display, e->pixels, true, res);
+    }
+    for (uint32_t k = 0; k < e->count; ++k) {
+        bench_result maps;
+        bench_compare(results[1].display, results[k].display, e->pixels, true, &maps);
+        results[k].maps_rmse = maps.rmse;
+        results[k].maps_psnr_db = maps.psnr_db;
+        results[k].maps_max_abs = maps.max_abs;
+    }
+    return true;
+}
+
+/* the library's default prefilter: which configuration has its pixels */
+static bool mark_library_default(const bench_options *o, env_run *e, const mvr_environment *lib_env,
+                                 bench_result *lib_default)
+{
+    bench_progress(o, e->count, e->count + 1, "library default");
+    if (!run_env_config(o, e->ctx, e->scene, e->vs, e->base, NULL, lib_env, false, 0, 1, "library default",
+                        lib_default, NULL))
+        return false;
+    /* the same pixels and the same passes (one per level: the same size;
+     * under a uniform environment every prefilter gives the same pixels) */
+    for (uint32_t k = 2; k < e->count; ++k)
+        e->results[k].library_default = e->results[k].prefilter_passes == lib_default->prefilter_passes &&
+                                        memcmp(e->results[k].display, lib_default->display, e->pixels * 4) == 0;
+    return true;
+}
+
+static int write_env_reports(int argc, char **argv, const bench_options *o, const env_run *e,
+                             const cli_env_used *used, bench_config *configs)
+{
+    char cmdline[1024];
+    bench_command_line(argc, argv, cmdline, sizeof cmdline);
+    const char *scene_name = o->scene.scene_file ? o->scene.scene_file : o->demo_set ? o->scene.demo : "spheres";
+    const char *env_name = used->source == MVR_ENVIRONMENT_PIXELS ? used->file
+                                                                   : mvr_environment_source_name(used->source);
+    bench_run run = {scene_name, o->out_dir, cmdline, mvr_context_caps(e->ctx)->renderer, mvr_view_set_count(e->vs),
+                     o->scene.width, o->scene.height, o->frames, e->count, configs, e->results, 0, "", true, env_name,
+                     o->reference_samples, e->compared, 0};
+    return bench_write_reports(&run) ? MVR_EXIT_OK : MVR_EXIT_FAILURE;
+}
+
 int bench_run_env_axes(int argc, char **argv, const bench_options *o, mvr_context *ctx)
 {
     mvr_scene *scene = NULL;
@@ -275,100 +415,17 @@ int bench_run_env_axes(int argc, char **argv, const bench_options *o, mvr_contex
         goto done;
     }
     rc = MVR_EXIT_FAILURE;
-    /* auto exposure (a file with physical lights) would follow each
-     * configuration's own pixels: one frame with the default maps fixes
-     * the EV100 for every configuration and the reference */
-    if (base.exposure_mode == MVR_EXPOSURE_AUTO) {
-        bench_result probe;
-        memset(&probe, 0, sizeof probe);
-        double ev100 = 0.0;
-        bool probed = run_env_config(o, ctx, scene, vs, &base, NULL, lib_env, false, 0, 1, "exposure", &probe, &ev100);
-        free(probe.display);
-        if (!probed)
-            goto done;
-        base.exposure_mode = MVR_EXPOSURE_EV100;
-        base.ev100 = ev100;
-    }
     mvr_environment_desc ed;
-    memset(&ed, 0, sizeof ed);
-    ed.source = used.source;
-    memcpy(ed.color, used.color, sizeof ed.color);
-    ed.intensity = used.intensity;
-    ed.rotation = used.rotation;
-    ed.logger = o->context.logger;
-    if (used.source == MVR_ENVIRONMENT_PIXELS) {
-        mvr_error err;
-        if (mvr_image_read(used.file, MVR_PIXEL_F32, &image, &err) != MVR_OK) {
-            fprintf(stderr, "mvr bench: --env %s: %s\n", used.file, err.message);
-            goto done;
-        }
-        ed.pixels = image.pixels;
-        ed.width = image.width;
-        ed.height = image.height;
-    }
-    /* the reference reads the source cube, which follows the specular size
-     * (at least a face of a quarter of the image's width): the largest
-     * size gives it the finest source any configuration has */
-    uint32_t max_size = 0, max_samples = 0;
-    for (uint32_t i = 0; i < o->n_sizes; ++i)
-        max_size = o->sizes[i] > max_size ? o->sizes[i] : max_size;
-    for (uint32_t j = 0; j < o->n_samples; ++j)
-        max_samples = o->samples[j] > max_samples ? o->samples[j] : max_samples;
-    env_config(&configs[count++], max_size, max_samples, true, false);
-    env_config(&configs[count++], max_size, BENCH_CONVERGED_SAMPLES, false, true);
-    for (uint32_t i = 0; i < o->n_sizes; ++i)
-        for (uint32_t j = 0; j < o->n_samples; ++j)
-            env_config(&configs[count++], o->sizes[i], o->samples[j], false, false);
-    uint32_t n_views = mvr_view_set_count(vs);
-    size_t pixels = (size_t)n_views * o->scene.width * o->scene.height;
-    uint64_t compared = 0;
-    for (uint32_t k = 0; k < count; ++k) {
-        const bench_config *c = &configs[k];
-        bench_result *res = &results[k];
-        res->group_diff = -1;
-        bench_progress(o, k, count + 1, c->name);
-        mvr_environment_desc d = ed;
-        d.specular_size = c->specular_size;
-        d.specular_samples = c->specular_samples;
-        /* the reference and the converged maps: one frame each (they are
-         * slow), their programs compiled in it */
-        bool once = c->reference || c->converged;
-        if (!run_env_config(o, ctx, scene, vs, &base, &d, NULL, c->reference, once ? 0 : o->warmup,
-                            once ? 1 : o->frames, c->name, res, NULL))
-            goto done;
-        compared = bench_compare(results[0].display, res->display, pixels, true, res);
-    }
-    for (uint32_t k = 0; k < count; ++k) {
-        bench_result maps;
-        bench_compare(results[1].display, results[k].display, pixels, true, &maps);
-        results[k].maps_rmse = maps.rmse;
-        results[k].maps_psnr_db = maps.psnr_db;
-        results[k].maps_max_abs = maps.max_abs;
-    }
-    /* the library's default prefilter: which configuration has its pixels */
-    bench_progress(o, count, count + 1, "library default");
-    if (!run_env_config(o, ctx, scene, vs, &base, NULL, lib_env, false, 0, 1, "library default", &lib_default,
-                        NULL))
+    if (!fix_exposure(o, ctx, scene, vs, &base, lib_env) || !source_desc(o, &used, &ed, &image))
         goto done;
-    /* the same pixels and the same passes (one per level: the same size;
-     * under a uniform environment every prefilter gives the same pixels) */
-    for (uint32_t k = 2; k < count; ++k)
-        results[k].library_default = results[k].prefilter_passes == lib_default.prefilter_passes &&
-                                     memcmp(results[k].display, lib_default.display, pixels * 4) == 0;
+    count = make_env_configs(o, configs);
+    env_run e = {ctx, scene, vs, &base, &ed, configs, results, count,
+                 (size_t)mvr_view_set_count(vs) * o->scene.width * o->scene.height, 0};
+    if (!run_env_configs(o, &e) || !mark_library_default(o, &e, lib_env, &lib_default))
+        goto done;
     bench_progress(o, count + 1, count + 1, "done");
     env_fronts(results, count);
-    char cmdline[1024] = "mvr";
-    for (int i = 0; i < argc; ++i) {
-        size_t l = strlen(cmdline);
-        snprintf(cmdline + l, sizeof cmdline - l, " %s", argv[i]);
-    }
-    const char *scene_name = o->scene.scene_file ? o->scene.scene_file : o->demo_set ? o->scene.demo : "spheres";
-    const char *env_name = used.source == MVR_ENVIRONMENT_PIXELS ? used.file
-                                                                  : mvr_environment_source_name(used.source);
-    bench_run run = {scene_name, o->out_dir, cmdline, mvr_context_caps(ctx)->renderer, n_views, o->scene.width,
-                     o->scene.height, o->frames, count, configs, results, 0, "", true, env_name,
-                     o->reference_samples, compared, 0};
-    rc = bench_write_reports(&run) ? MVR_EXIT_OK : MVR_EXIT_FAILURE;
+    rc = write_env_reports(argc, argv, o, &e, &used, configs);
 done:
     for (uint32_t k = 0; k < count; ++k)
         free(results[k].display);
@@ -379,4 +436,3 @@ done:
     mvr_scene_destroy(scene);
     return rc;
 }
-

@@ -307,6 +307,145 @@ bool bench_write_csv(const bench_run *run, const char *path)
     return ok;
 }
 
+/* The run: what was measured, where, and how. */
+static void write_run_json(json_writer *jw, const bench_run *run)
+{
+    json_string(jw, "scene", run->scene_name);
+    json_string(jw, "command", run->command_line);
+    json_string(jw, "renderer", run->renderer);
+    json_int(jw, "views", run->views);
+    json_int(jw, "width", run->width);
+    json_int(jw, "height", run->height);
+    json_int(jw, "frames", run->frames);
+    json_string(jw, "omitted", run->omitted);
+    json_string(jw, "axis", run->env_axes ? "environment" : "frame");
+    if (run->env_axes) {
+        /* errors over the covered pixels; times: the prefilter's */
+        json_string(jw, "environment", run->environment);
+        json_int(jw, "reference_env_samples", run->reference_samples);
+        json_int(jw, "prefilter_repeats", run->frames);
+        json_int(jw, "compared_pixels", (long long)run->compared_pixels);
+    }
+}
+
+/* auto's decisions for configuration k and its verdict against the forced paths. */
+static void write_auto_json(json_writer *jw, const bench_run *run, uint32_t k, const bench_auto_verdict *v)
+{
+    const bench_result *r = &run->results[k];
+    const mvr_auto_choice *a = &r->auto_choice;
+    json_begin_object(jw, "auto");
+    json_string(jw, "state", mvr_auto_state_name(a->state));
+    json_string(jw, "prior", mvr_view_path_name(a->prior));
+    json_string(jw, "chosen", mvr_view_path_name(a->chosen));
+    json_double(jw, "tuner_multiview_ms", a->cost_ms[0]);
+    json_double(jw, "tuner_loop_ms", a->cost_ms[1]);
+    json_double(jw, "margin", a->margin);
+    json_int(jw, "tuning_frames", r->tuning_frames);
+    const mvr_auto_material_choice *mc = &r->auto_material;
+    if (mc->state != MVR_AUTO_NONE) {
+        json_string(jw, "material_state", mvr_auto_state_name(mc->state));
+        json_string(jw, "material_chosen", mvr_material_path_name(mc->chosen));
+        json_double(jw, "tuner_per_material_ms", mc->cost_ms[0]);
+        json_double(jw, "tuner_arrays_ms", mc->cost_ms[1]);
+    }
+    const mvr_auto_skinning_choice *sk = &r->auto_skinning;
+    if (sk->state != MVR_AUTO_NONE) {
+        json_string(jw, "skinning_state", mvr_auto_state_name(sk->state));
+        json_string(jw, "skinning_prior", mvr_skinning_path_name(sk->prior));
+        json_string(jw, "skinning_chosen", mvr_skinning_path_name(sk->chosen));
+        json_double(jw, "tuner_vertex_ms", sk->cost_ms[0]);
+        json_double(jw, "tuner_preskin_ms", sk->cost_ms[1]);
+    }
+    json_string(jw, "best_forced", run->configs[v->best].name);
+    json_double(jw, "excess_beyond_noise", v->excess);
+    if (v->chosen_found) {
+        json_string(jw, "chosen_forced", run->configs[v->chosen].name);
+        json_double(jw, "choice_excess_beyond_noise", v->choice_excess);
+        json_double(jw, "against_chosen_forced", v->same_work);
+    }
+    json_end_object(jw);
+}
+
+/* --env-axes: the prefilter's time and the error against the converged maps. */
+static void write_env_result_json(json_writer *jw, const bench_config *c, const bench_result *r)
+{
+    json_double(jw, "prefilter_ms_median", r->prefilter_median);
+    json_double(jw, "prefilter_ms_min", r->prefilter_min);
+    json_double(jw, "prefilter_ms_max", r->prefilter_max);
+    json_int(jw, "prefilter_passes", r->prefilter_passes);
+    json_bool(jw, "library_default", r->library_default);
+    json_bool(jw, "converged", c->converged);
+    json_double(jw, "maps_rmse", r->maps_rmse);
+    if (isinf(r->maps_psnr_db))
+        json_null(jw, "maps_psnr_db");
+    else
+        json_double(jw, "maps_psnr_db", r->maps_psnr_db);
+    json_double(jw, "maps_max_abs_255", r->maps_max_abs);
+    json_bool(jw, "maps_pareto", r->maps_pareto);
+}
+
+/* One configuration and its result. */
+static void write_config_json(json_writer *jw, const bench_run *run, uint32_t k)
+{
+    const bench_config *c = &run->configs[k];
+    const bench_result *r = &run->results[k];
+    json_begin_object(jw, NULL);
+    json_string(jw, "config", c->name);
+    json_string(jw, "view_path", mvr_view_path_name(c->view_path));
+    json_string(jw, "material_path", mvr_material_path_name(c->material_path));
+    json_int(jw, "supersample", c->supersample);
+    json_int(jw, "msaa", c->msaa);
+    json_string(jw, "transparency_order", mvr_transparency_order_name(c->order));
+    json_bool(jw, "reference", c->reference);
+    json_string(jw, "group", c->group);
+    if (run->env_axes) {
+        json_int(jw, "specular_size", c->specular_size);
+        json_int(jw, "specular_samples", c->specular_samples);
+    }
+    json_bool(jw, "ran", r->ran);
+    if (!r->ran) {
+        json_string(jw, "skipped", r->skipped);
+        json_end_object(jw);
+        return;
+    }
+    json_string(jw, "view_path_ran", r->view_path_ran);
+    bench_auto_verdict v;
+    if (bench_auto_excess(run, k, &v))
+        write_auto_json(jw, run, k, &v);
+    json_double(jw, "wall_ms_median", r->wall_median);
+    json_double(jw, "wall_ms_min", r->wall_min);
+    json_double(jw, "wall_ms_max", r->wall_max);
+    json_double(jw, "wall_ms_q1", r->wall_q1);
+    json_double(jw, "wall_ms_q3", r->wall_q3);
+    json_double(jw, "cpu_ms_median", r->cpu_median);
+    if (r->gpu_median >= 0)
+        json_double(jw, "gpu_ms_median", r->gpu_median);
+    else
+        json_null(jw, "gpu_ms_median");
+    if (r->instructions)
+        json_int(jw, "instructions_per_frame", (long long)r->instructions);
+    else
+        json_null(jw, "instructions_per_frame");
+    json_double(jw, "rmse", r->rmse);
+    if (isinf(r->psnr_db)) /* identical to the reference */
+        json_null(jw, "psnr_db");
+    else
+        json_double(jw, "psnr_db", r->psnr_db);
+    json_double(jw, "max_abs_255", r->max_abs);
+    json_double(jw, "pct_over_2_255", r->over_2);
+    json_int(jw, "same_as_group_max_diff", r->group_diff);
+    json_int(jw, "draws", r->draws);
+    json_int(jw, "draw_calls", r->draw_calls);
+    json_int(jw, "passes", r->passes);
+    json_int(jw, "program_binds", r->program_binds);
+    json_int(jw, "texture_binds", r->texture_binds);
+    json_int(jw, "ubo_range_binds", r->ubo_range_binds);
+    json_bool(jw, "pareto", r->pareto);
+    if (run->env_axes)
+        write_env_result_json(jw, c, r);
+    json_end_object(jw);
+}
+
 bool bench_write_json(const bench_run *run, const char *path)
 {
     FILE *f = fopen(path, "w");
@@ -316,127 +455,10 @@ bool bench_write_json(const bench_run *run, const char *path)
     }
     json_writer jw = {f, 0, {false}, {0}};
     json_begin_object(&jw, NULL);
-    json_string(&jw, "scene", run->scene_name);
-    json_string(&jw, "command", run->command_line);
-    json_string(&jw, "renderer", run->renderer);
-    json_int(&jw, "views", run->views);
-    json_int(&jw, "width", run->width);
-    json_int(&jw, "height", run->height);
-    json_int(&jw, "frames", run->frames);
-    json_string(&jw, "omitted", run->omitted);
-    json_string(&jw, "axis", run->env_axes ? "environment" : "frame");
-    if (run->env_axes) {
-        /* errors over the covered pixels; times: the prefilter's */
-        json_string(&jw, "environment", run->environment);
-        json_int(&jw, "reference_env_samples", run->reference_samples);
-        json_int(&jw, "prefilter_repeats", run->frames);
-        json_int(&jw, "compared_pixels", (long long)run->compared_pixels);
-    }
+    write_run_json(&jw, run);
     json_begin_array(&jw, "configurations");
-    for (uint32_t k = 0; k < run->count; ++k) {
-        const bench_config *c = &run->configs[k];
-        const bench_result *r = &run->results[k];
-        json_begin_object(&jw, NULL);
-        json_string(&jw, "config", c->name);
-        json_string(&jw, "view_path", mvr_view_path_name(c->view_path));
-        json_string(&jw, "material_path", mvr_material_path_name(c->material_path));
-        json_int(&jw, "supersample", c->supersample);
-        json_int(&jw, "msaa", c->msaa);
-        json_string(&jw, "transparency_order", mvr_transparency_order_name(c->order));
-        json_bool(&jw, "reference", c->reference);
-        json_string(&jw, "group", c->group);
-        if (run->env_axes) {
-            json_int(&jw, "specular_size", c->specular_size);
-            json_int(&jw, "specular_samples", c->specular_samples);
-        }
-        json_bool(&jw, "ran", r->ran);
-        if (!r->ran) {
-            json_string(&jw, "skipped", r->skipped);
-            json_end_object(&jw);
-            continue;
-        }
-        json_string(&jw, "view_path_ran", r->view_path_ran);
-        bench_auto_verdict v;
-        if (bench_auto_excess(run, k, &v)) {
-            const mvr_auto_choice *a = &r->auto_choice;
-            json_begin_object(&jw, "auto");
-            json_string(&jw, "state", mvr_auto_state_name(a->state));
-            json_string(&jw, "prior", mvr_view_path_name(a->prior));
-            json_string(&jw, "chosen", mvr_view_path_name(a->chosen));
-            json_double(&jw, "tuner_multiview_ms", a->cost_ms[0]);
-            json_double(&jw, "tuner_loop_ms", a->cost_ms[1]);
-            json_double(&jw, "margin", a->margin);
-            json_int(&jw, "tuning_frames", r->tuning_frames);
-            const mvr_auto_material_choice *mc = &r->auto_material;
-            if (mc->state != MVR_AUTO_NONE) {
-                json_string(&jw, "material_state", mvr_auto_state_name(mc->state));
-                json_string(&jw, "material_chosen", mvr_material_path_name(mc->chosen));
-                json_double(&jw, "tuner_per_material_ms", mc->cost_ms[0]);
-                json_double(&jw, "tuner_arrays_ms", mc->cost_ms[1]);
-            }
-            const mvr_auto_skinning_choice *sk = &r->auto_skinning;
-            if (sk->state != MVR_AUTO_NONE) {
-                json_string(&jw, "skinning_state", mvr_auto_state_name(sk->state));
-                json_string(&jw, "skinning_prior", mvr_skinning_path_name(sk->prior));
-                json_string(&jw, "skinning_chosen", mvr_skinning_path_name(sk->chosen));
-                json_double(&jw, "tuner_vertex_ms", sk->cost_ms[0]);
-                json_double(&jw, "tuner_preskin_ms", sk->cost_ms[1]);
-            }
-            json_string(&jw, "best_forced", run->configs[v.best].name);
-            json_double(&jw, "excess_beyond_noise", v.excess);
-            if (v.chosen_found) {
-                json_string(&jw, "chosen_forced", run->configs[v.chosen].name);
-                json_double(&jw, "choice_excess_beyond_noise", v.choice_excess);
-                json_double(&jw, "against_chosen_forced", v.same_work);
-            }
-            json_end_object(&jw);
-        }
-        json_double(&jw, "wall_ms_median", r->wall_median);
-        json_double(&jw, "wall_ms_min", r->wall_min);
-        json_double(&jw, "wall_ms_max", r->wall_max);
-        json_double(&jw, "wall_ms_q1", r->wall_q1);
-        json_double(&jw, "wall_ms_q3", r->wall_q3);
-        json_double(&jw, "cpu_ms_median", r->cpu_median);
-        if (r->gpu_median >= 0)
-            json_double(&jw, "gpu_ms_median", r->gpu_median);
-        else
-            json_null(&jw, "gpu_ms_median");
-        if (r->instructions)
-            json_int(&jw, "instructions_per_frame", (long long)r->instructions);
-        else
-            json_null(&jw, "instructions_per_frame");
-        json_double(&jw, "rmse", r->rmse);
-        if (isinf(r->psnr_db)) /* identical to the reference */
-            json_null(&jw, "psnr_db");
-        else
-            json_double(&jw, "psnr_db", r->psnr_db);
-        json_double(&jw, "max_abs_255", r->max_abs);
-        json_double(&jw, "pct_over_2_255", r->over_2);
-        json_int(&jw, "same_as_group_max_diff", r->group_diff);
-        json_int(&jw, "draws", r->draws);
-        json_int(&jw, "draw_calls", r->draw_calls);
-        json_int(&jw, "passes", r->passes);
-        json_int(&jw, "program_binds", r->program_binds);
-        json_int(&jw, "texture_binds", r->texture_binds);
-        json_int(&jw, "ubo_range_binds", r->ubo_range_binds);
-        json_bool(&jw, "pareto", r->pareto);
-        if (run->env_axes) {
-            json_double(&jw, "prefilter_ms_median", r->prefilter_median);
-            json_double(&jw, "prefilter_ms_min", r->prefilter_min);
-            json_double(&jw, "prefilter_ms_max", r->prefilter_max);
-            json_int(&jw, "prefilter_passes", r->prefilter_passes);
-            json_bool(&jw, "library_default", r->library_default);
-            json_bool(&jw, "converged", c->converged);
-            json_double(&jw, "maps_rmse", r->maps_rmse);
-            if (isinf(r->maps_psnr_db))
-                json_null(&jw, "maps_psnr_db");
-            else
-                json_double(&jw, "maps_psnr_db", r->maps_psnr_db);
-            json_double(&jw, "maps_max_abs_255", r->maps_max_abs);
-            json_bool(&jw, "maps_pareto", r->maps_pareto);
-        }
-        json_end_object(&jw);
-    }
+    for (uint32_t k = 0; k < run->count; ++k)
+        write_config_json(&jw, run, k);
     json_end_array(&jw);
     json_end_object(&jw);
     fputc('\n', f);

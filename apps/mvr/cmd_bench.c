@@ -33,280 +33,6 @@
 #endif
 
 
-enum {
-    B_DEMO = 1, B_VIEWS, B_SIZE, B_FRAMES, B_WARMUP, B_ROUNDS, B_MATRIX, B_OUT, B_CALLGRIND, B_QUIET, B_VERBOSE,
-    B_ONLY, B_ENV_AXES, B_SPECULAR_SIZES, B_SPECULAR_SAMPLES, B_REFERENCE_SAMPLES, B_CAMERAS
-};
-
-#define END {CLI_OPT_END, 0, NULL, NULL, NULL, 0, 0, NULL, NULL, NULL, NULL, NULL}
-#define ENV_AXES_WHY "--env-axes times the prefilter, not frames"
-
-/* name, value and range, help, conflicts; the order is --help's */
-static const cli_option bench_table[] = {
-    {CLI_OPT_STRING, B_DEMO, "--demo", NULL, "NAME", 0, 0, NULL, "stereo | cube | city | ring (default: city)", NULL,
-     NULL, NULL},
-    {CLI_OPT_U32, B_VIEWS, "--views", NULL, "N", 1, 64, NULL,
-     "views (default: the demo's own), 1..64; --demo stereo and city\n"
-     "frame at most 39 at 256x256 (fewer on wider layers)", NULL, NULL, NULL},
-    {CLI_OPT_STRING, B_SIZE, "--size", NULL, "WxH", 0, 0, NULL, "layer size (default: 256x256)", NULL, NULL, NULL},
-    {CLI_OPT_STRING, B_CAMERAS, "--cameras", NULL, "FILE", 0, 0, NULL,
-     "the views from a camera file, as mvr render --cameras takes\n"
-     "it (cameras.json, transforms.json, CSV; at most 64 views);\n"
-     "its image size unless --size is given", NULL, "--views", "the camera file gives every view"},
-    {CLI_OPT_U32, B_FRAMES, "--frames", NULL, "F", 1, 1000, NULL, "measured frames per configuration (default: 10)",
-     NULL, NULL, NULL},
-    {CLI_OPT_U32, B_WARMUP, "--warmup", NULL, "W", 0, 1000, NULL, "frames before measuring (default: 2)", NULL, NULL,
-     NULL},
-    {CLI_OPT_U32, B_ROUNDS, "--rounds", NULL, "R", 1, 100, NULL,
-     "take the frames in R rounds over all configurations\n"
-     "(default: 5, at most F)", NULL, NULL, NULL},
-    {CLI_OPT_CHOICE, B_MATRIX, "--matrix", NULL, "M", 0, 0, "quick|full", "quick | full (default: quick)", NULL, NULL,
-     NULL},
-    {CLI_OPT_STRING, B_OUT, "--out", NULL, "DIR", 0, 0, NULL, "output directory (default: bench-out)", NULL, NULL,
-     NULL},
-    {CLI_OPT_FLAG, B_CALLGRIND, "--callgrind", NULL, NULL, 0, 0, NULL,
-     "also count the submitting thread's instructions per frame\n"
-     "under valgrind --tool=callgrind (repeatable to < 1% on a\n"
-     "shared machine, unlike wall time; slow)", NULL, NULL, NULL},
-    {CLI_OPT_FLAG, B_QUIET, "--quiet", NULL, NULL, 0, 0, NULL, "no progress bar", NULL, NULL, NULL},
-    {CLI_OPT_FLAG, B_VERBOSE, "--verbose", NULL, NULL, 0, 0, NULL, "log what the library does to stderr", NULL, NULL,
-     NULL},
-    /* internal: --callgrind runs each configuration alone in a child */
-    {CLI_OPT_U32, B_ONLY, "--only", NULL, "K", 0, 1000, NULL, NULL, NULL, NULL, NULL},
-    {CLI_OPT_TEXT, 0, NULL, NULL, NULL, 0, 0, NULL,
-     "\nThe matrix renders under the environment mvr render takes (--env\n"
-     "below; neutral for a glTF file, none for a demo). A scene with skins\n"
-     "or morph targets adds each view path with --skinning vertex and\n"
-     "preskin, and auto with both paths auto (against those four); one\n"
-     "whose materials use KHR_materials_specular / _ior or\n"
-     "_clearcoat or _sheen adds auto/arrays/noaa with each drawn as absent\n"
-     "(no_...).\n"
-     "\nenvironment prefilter axes:\n", NULL, NULL, NULL},
-    {CLI_OPT_FLAG, B_ENV_AXES, "--env-axes", NULL, NULL, 0, 0, NULL,
-     "instead of the matrix above: the image-based lighting's\n"
-     "prefilter, specular map size x GGX samples per texel\n"
-     "(mvr_environment_desc.specular_size, .specular_samples),\n"
-     "on a grid of spheres of 8 roughnesses, dielectric and\n"
-     "metal, under --env (default: neutral); or SCENE.gltf, or\n"
-     "--demo NAME with --env. Each is timed by its prefilter\n"
-     "(env_prefilter_ms of the first frame with a fresh\n"
-     "environment: median of --frames runs, default 5, after\n"
-     "--warmup untimed ones, default 1) and compared, over the\n"
-     "pixels the scene covers, neither side anti-aliased, with\n"
-     "the reference (the environment integrated per pixel, loop\n"
-     "path) and with the converged maps (the largest size, 4096\n"
-     "samples: the prefilter's own error). Marks the one with the\n"
-     "library default's pixels. Writes results.csv, results.json,\n"
-     "plot_env.png, plot_env.svg, reference.png,\n"
-     "worst_diff_x8_<configuration>.png", NULL, "--matrix --callgrind", ENV_AXES_WHY},
-    {CLI_OPT_STRING, B_SPECULAR_SIZES, "--specular-sizes", NULL, "L", 0, 0, NULL,
-     "face sizes, powers of two 16..1024 (default: 32,64,128,256)", NULL, NULL, NULL},
-    {CLI_OPT_STRING, B_SPECULAR_SAMPLES, "--specular-samples", NULL, "L", 0, 0, NULL,
-     "samples per texel, 1..4096 (default: 16,64,256)", NULL, NULL, NULL},
-    {CLI_OPT_U32, B_REFERENCE_SAMPLES, "--reference-samples", NULL, "N", 1, 65536, NULL,
-     "samples per lobe of the reference (default: 1024)", NULL, NULL, NULL},
-    END,
-};
-
-static const cli_option *const bench_tables[] = {bench_table, cli_env_option_table, cli_context_options,
-                                                 cli_help_option, NULL};
-
-static void bench_usage(FILE *out)
-{
-    fprintf(out,
-            "usage: mvr bench [--demo NAME | SCENE.gltf | SCENE.glb] [options]\n"
-            "\n"
-            "Renders the scene under a matrix of configurations and reports, for each,\n"
-            "frame time (wall: median and interquartile range, over frames taken in rounds\n"
-            "that visit every configuration in turn), CPU time of the submitting thread, GPU\n"
-            "time where timer queries exist, and the error against the reference render\n"
-            "(loop path, per-view transparency order, 4x4 supersampling): RMSE, PSNR, max\n"
-            "abs, %% of pixels over 2/255. Writes results.csv, results.json, plot.png and\n"
-            "plot.svg (time against error, every point labelled with its q1..q3 bar; the\n"
-            "Pareto front counts only differences beyond that noise), reference.png and\n"
-            "worst_diff_x8_<configuration>.png (|image - reference| x 8) into --out.\n"
-            "\n"
-            "options:\n");
-    cli_print_options(out, bench_tables, 20);
-}
-
-/* "32,64,128": up to 8 distinct values in lo..hi (powers of two if pow2),
- * kept in the order given. */
-static bool parse_list(const char *v, uint32_t lo, uint32_t hi, bool pow2, uint32_t *out, uint32_t *n)
-{
-    char buf[256];
-    if (strlen(v) >= sizeof buf)
-        return false;
-    strcpy(buf, v);
-    *n = 0;
-    for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
-        uint32_t x = 0;
-        if (*n == 8 || !cli_parse_u32(tok, lo, hi, &x) || (pow2 && (x & (x - 1u)) != 0))
-            return false;
-        for (uint32_t k = 0; k < *n; ++k)
-            if (out[k] == x)
-                return false;
-        out[(*n)++] = x;
-    }
-    return *n > 0 && v[0] != ',' && v[strlen(v) - 1] != ',' && !strstr(v, ",,");
-}
-
-/* --cameras: the views of every configuration; the file's image size
- * unless --size was given. */
-static bool load_cameras(bench_options *o)
-{
-    char why[512];
-    if (!camera_file_load(o->cameras_file, o->scene.width, o->scene.height, &o->cameras, why, sizeof why)) {
-        fprintf(stderr, "mvr bench: --cameras %s: %s\n", o->cameras_file, why);
-        return false;
-    }
-    if (o->cameras.count > 64) {
-        fprintf(stderr, "mvr bench: --cameras %s: %u views; mvr bench takes at most 64 (the reference renders each "
-                        "one 4x4 times over)\n", o->cameras_file, o->cameras.count);
-        camera_file_free(&o->cameras);
-        return false;
-    }
-    if (o->cameras.width && !o->size_set &&
-        (o->cameras.width > 4096 || o->cameras.height > 4096)) {
-        fprintf(stderr, "mvr bench: --cameras %s: its images are %ux%u; mvr bench takes at most 4096x4096 (give "
-                        "--size)\n", o->cameras_file, o->cameras.width, o->cameras.height);
-        camera_file_free(&o->cameras);
-        return false;
-    }
-    if (o->cameras.width && !o->size_set) {
-        o->scene.width = o->cameras.width;
-        o->scene.height = o->cameras.height;
-    }
-    o->scene.given_views = o->cameras.views;
-    o->scene.given_view_count = o->cameras.count;
-    return true;
-}
-
-static int parse(int argc, char **argv, bench_options *o)
-{
-    memset(o, 0, sizeof *o);
-    o->scene.demo = "city";
-    o->scene.camera = -1;
-    o->scene.width = o->scene.height = 256;
-    o->frames = 10;
-    o->warmup = 2;
-    o->rounds = 5;
-    o->out_dir = "bench-out";
-    o->only = -1;
-    o->reference_samples = 1024;
-    bool verbose = false;
-    cli_parser p;
-    cli_parser_init(&p, "mvr bench", bench_tables, argc, argv);
-    cli_arg arg;
-    int c;
-    while ((c = cli_next(&p, &arg)) > 0) {
-        if (!arg.opt) { /* the SCENE (the parser refuses a second) */
-            o->scene.scene_file = arg.value;
-            continue;
-        }
-        const char *a = arg.opt->name, *v = arg.value;
-        int done = cli_context_apply("mvr bench", &arg, &o->context);
-        if (done == 0 && (done = cli_env_apply("mvr bench", &arg, &o->env)) > 0)
-            o->env_option = a;
-        if (done < 0)
-            return MVR_EXIT_USAGE;
-        if (done > 0)
-            continue;
-        bool ok = true;
-        switch (arg.opt->id) {
-        case CLI_ID_HELP: bench_usage(stdout); return -1;
-        case B_ENV_AXES: o->env_axes = true; break;
-        case B_QUIET: o->quiet = true; break;
-        case B_VERBOSE: verbose = true; break;
-        case B_CALLGRIND: o->callgrind = true; break;
-        case B_DEMO:
-            o->scene.demo = v;
-            o->demo_set = true;
-            break;
-        case B_VIEWS: o->scene.views = arg.number; break;
-        case B_FRAMES:
-            o->frames = arg.number;
-            o->frames_set = true;
-            break;
-        case B_WARMUP:
-            o->warmup = arg.number;
-            o->warmup_set = true;
-            break;
-        case B_ROUNDS: o->rounds = arg.number; break;
-        case B_SPECULAR_SIZES:
-            ok = parse_list(v, 16, 1024, true, o->sizes, &o->n_sizes);
-            o->env_option = a;
-            break;
-        case B_SPECULAR_SAMPLES:
-            ok = parse_list(v, 1, 4096, false, o->samples, &o->n_samples);
-            o->env_option = a;
-            break;
-        case B_REFERENCE_SAMPLES:
-            o->reference_samples = arg.number;
-            o->env_option = a;
-            break;
-        case B_OUT: o->out_dir = v; break;
-        case B_ONLY: o->only = (int)arg.number; break;
-        case B_MATRIX:
-            o->matrix_set = true;
-            o->full = arg.choice == 1;
-            break;
-        case B_SIZE:
-            ok = cli_parse_size(v, 1, 4096, &o->scene.width, &o->scene.height);
-            o->size_set = true;
-            break;
-        case B_CAMERAS:
-            o->cameras_file = v;
-            ok = v[0] != '\0';
-            break;
-        default: ok = false;
-        }
-        if (!ok) {
-            fprintf(stderr, "mvr bench: bad value '%s' for %s\n", v, a);
-            return MVR_EXIT_USAGE;
-        }
-    }
-    if (c < 0)
-        return MVR_EXIT_USAGE;
-    if (o->cameras_file && !load_cameras(o))
-        return MVR_EXIT_USAGE;
-    if (!o->cameras_file && !o->scene.scene_file && !cli_check_demo_views("mvr bench", o->scene.demo, o->scene.views, o->scene.width,
-                                                      o->scene.height))
-        return MVR_EXIT_USAGE;
-    if (!cli_context_check("mvr bench", &o->context))
-        return MVR_EXIT_USAGE;
-    if (!o->env_axes) {
-        /* the frame matrix renders under the environment mvr render takes */
-        if (!cli_env_check("mvr bench", &o->env, !o->demo_set))
-            return MVR_EXIT_USAGE;
-    } else {
-        if (!cli_env_check("mvr bench", &o->env, !o->demo_set))
-            return MVR_EXIT_USAGE;
-        if (o->env.env ? strcmp(o->env.env, "none") == 0 : o->demo_set && !o->scene.scene_file) {
-            fprintf(stderr, "mvr bench: --env-axes needs an environment (--env FILE|neutral|uniform; %s)\n",
-                    o->env.env ? "not none" : "the demos have none of their own");
-            return MVR_EXIT_USAGE;
-        }
-        if (!o->n_sizes) {
-            const uint32_t sizes[4] = {32, 64, 128, 256};
-            memcpy(o->sizes, sizes, sizeof sizes);
-            o->n_sizes = 4;
-        }
-        if (!o->n_samples) {
-            const uint32_t samples[3] = {16, 64, 256};
-            memcpy(o->samples, samples, sizeof samples);
-            o->n_samples = 3;
-        }
-        if (!o->frames_set)
-            o->frames = 5;
-        if (!o->warmup_set)
-            o->warmup = 1;
-    }
-    cli_logger(&o->context.logger, "mvr bench", verbose);
-    o->scene.logger = o->context.logger;
-    return MVR_EXIT_OK;
-}
-
 /* ss: supersampling per side; ss 0 = 4x MSAA instead */
 static void add_config(bench_config *list, uint32_t *n, mvr_view_path vp, mvr_material_path mp, uint32_t ss,
                        mvr_transparency_order order, bool reference)
@@ -748,10 +474,219 @@ void bench_progress(const bench_options *o, uint32_t done, uint32_t total, const
     }
 }
 
+/* The frame matrix's scene: loaded, under the environment mvr render takes,
+ * the configurations for it, and the poses of an animated one. */
+static int load_matrix_scene(bench_options *o, mvr_scene **scene, mvr_view_set **vs, mvr_environment **env,
+                             bench_config *configs, uint32_t *count)
+{
+    int rc = cli_load_scene("mvr bench", &o->scene, scene, vs);
+    if (rc != MVR_EXIT_OK)
+        return rc;
+    memset(&o->render, 0, sizeof o->render);
+    o->render.exposure = 1.0f;
+    rc = cli_env_create("mvr bench", &o->env, o->scene.scene_file != NULL, &o->render, env, NULL);
+    if (rc != MVR_EXIT_OK)
+        return rc;
+    mvr_scene_info info;
+    mvr_scene_get_info(*scene, &info);
+    *count = make_matrix(o->full, info.skins || info.morph_targets, configs);
+    /* an animated scene is posed anew every frame: at the start and the
+     * middle of its animations, alternately */
+    double start = INFINITY, end = -INFINITY;
+    for (uint32_t i = 0; i < info.animations; ++i) {
+        mvr_animation_info ai;
+        if (mvr_scene_get_animation_info(*scene, i, &ai) == MVR_OK) {
+            start = fmin(start, ai.start);
+            end = fmax(end, ai.end);
+        }
+    }
+    o->animate = info.animations > 0 && end > start;
+    o->pose_times[0] = o->animate ? start : 0.0;
+    o->pose_times[1] = o->animate ? 0.5 * (start + end) : 0.0;
+    return MVR_EXIT_OK;
+}
+
+/* Does the scene draw anything blended? (a small frame's sub-passes
+ * tell). Without, the per-view transparency order changes nothing: those
+ * configurations are left out rather than listed without results. Adds a
+ * configuration for each material extension the scene's programs use. */
+static bool probe_scene(const bench_options *o, mvr_context *ctx, mvr_scene *scene, mvr_view_set *vs,
+                        bench_config *configs, uint32_t *count)
+{
+    mvr_renderer_desc rd = {.context = ctx, .overrides = o->overrides};
+    mvr_renderer *r = NULL;
+    mvr_target *t = NULL;
+    mvr_target_desc td = {16, 16, mvr_view_set_count(vs), MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0,
+                          MVR_ANTI_ALIASING_DEFAULT, 0};
+    mvr_frame_stats st;
+    memset(&st, 0, sizeof st);
+    if (mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &t) == MVR_OK &&
+        mvr_renderer_render(r, scene, vs, t, &o->render) == MVR_OK)
+        mvr_renderer_get_stats(r, &st);
+    bool has_blend = st.sub_passes[2] > 0; /* [2]: blended sub-passes */
+    /* the material extensions the scene's programs use: each gets a
+     * configuration with it drawn as absent (what it costs, what it
+     * changes) */
+    uint32_t extensions = 0, extension_bits = extension_features();
+    for (uint32_t i = 0; r && i < mvr_renderer_program_count(r); ++i) {
+        mvr_program_info info;
+        if (mvr_renderer_get_program_info(r, i, &info) && info.mesh)
+            extensions |= info.features & extension_bits;
+    }
+    for (uint32_t bit = 1; bit && *count < BENCH_MAX_CONFIGS; bit <<= 1) {
+        if (!(extensions & bit))
+            continue;
+        add_config(configs, count, MVR_VIEW_PATH_AUTO, MVR_MATERIAL_PATH_ARRAYS, 1, MVR_TRANSPARENCY_ORDER_AUTO,
+                   false);
+        bench_config *c = &configs[*count - 1];
+        c->disable_features = bit;
+        size_t l = strlen(c->name);
+        snprintf(c->name + l, sizeof c->name - l, "/no_%s", mvr_program_feature_name(bit));
+        snprintf(c->group, sizeof c->group, "no_%s", mvr_program_feature_name(bit));
+    }
+    mvr_target_destroy(t);
+    mvr_renderer_destroy(r);
+    return has_blend;
+}
+
+/* Leaves out what cannot run or changes nothing here (4x MSAA without 4
+ * samples, other transparency orders without blending), said in omitted. */
+static void leave_out_configs(mvr_context *ctx, bool has_blend, bench_config *configs, uint32_t *count,
+                              char *omitted, size_t size)
+{
+    int max_samples = mvr_context_caps(ctx)->limits.max_samples;
+    if (max_samples < 4) {
+        uint32_t kept = 0;
+        for (uint32_t k = 0; k < *count; ++k)
+            if (configs[k].msaa == 0)
+                configs[kept++] = configs[k];
+        snprintf(omitted, size, "4x MSAA left out: GL_MAX_SAMPLES is %d; ", max_samples);
+        *count = kept;
+    }
+    if (!has_blend) {
+        uint32_t kept = 0;
+        for (uint32_t k = 0; k < *count; ++k)
+            if (configs[k].reference || configs[k].order == MVR_TRANSPARENCY_ORDER_AUTO)
+                configs[kept++] = configs[k];
+        size_t l = strlen(omitted);
+        if (kept < *count)
+            snprintf(omitted + l, size - l,
+                     "%u configurations with another transparency order left out: the scene draws nothing blended",
+                     *count - kept);
+        *count = kept;
+    }
+}
+
+/* What the matrix runs on: the scene, its views, and the configurations. */
+typedef struct bench_matrix {
+    mvr_context *ctx;
+    mvr_scene *scene;
+    mvr_view_set *vs;
+    bench_config *configs;
+    bench_result *results;
+    uint32_t count;
+    size_t pixels;               /* of all views */
+} bench_matrix;
+
+/* every configuration set up and warmed, then its frames taken in
+ * rounds that visit all of them in turn (starting one further each
+ * round), so a change of load on the machine falls on all alike */
+static bool measure_rounds(const bench_options *o, const bench_matrix *m, config_run *runs, uint32_t rounds)
+{
+    bool all_ok = true;
+    uint32_t count = m->count;
+    for (uint32_t k = 0; k < count && all_ok; ++k) {
+        m->results[k].group_diff = -1;
+        bench_progress(o, k, count * 2, m->configs[k].name);
+        all_ok = setup_config(o, m->ctx, m->scene, m->vs, &m->configs[k], &m->results[k], &runs[k]);
+    }
+    for (uint32_t round = 0; round < rounds && all_ok; ++round) {
+        /* frames of this round: the F frames spread as evenly as they go */
+        uint32_t per = o->frames * (round + 1) / rounds - o->frames * round / rounds;
+        for (uint32_t i = 0; i < count && all_ok; ++i) {
+            uint32_t k = (i + round) % count;
+            if (runs[k].r)
+                all_ok = measure_config(o, m->scene, m->vs, &m->configs[k], &runs[k], per);
+        }
+        bench_progress(o, count + (round + 1) * count / rounds, count * 2, "rounds");
+    }
+    return all_ok;
+}
+
+/* Each configuration's statistics and read-back, compared with the
+ * reference and with the first of its group; with --callgrind, its
+ * instructions counted in a child. */
+static bool finish_all(int argc, char **argv, const bench_options *o, const bench_matrix *m, config_run *runs)
+{
+    bool all_ok = true;
+    bench_result *results = m->results;
+    for (uint32_t k = 0; k < m->count && all_ok; ++k) {
+        const bench_config *c = &m->configs[k];
+        bench_result *res = &results[k];
+        if (runs[k].r)
+            all_ok = finish_config(o, m->vs, c, &runs[k], res);
+        if (all_ok && res->ran) {
+            bench_compare(results[0].display, res->display, m->pixels, false, res);
+            for (uint32_t j = 0; j < k; ++j)
+                if (results[j].ran && strcmp(m->configs[j].group, c->group) == 0) {
+                    res->group_diff = max_byte_diff(results[j].display, res->display, m->pixels * 4);
+                    break;
+                }
+        }
+        if (all_ok && o->callgrind && res->ran && !count_instructions(argc, argv, o, k, &res->instructions))
+            all_ok = false;
+    }
+    return all_ok;
+}
+
+/* Pareto front over (frame time, RMSE), the noise counted: k is
+ * dominated by a j at least as close to the reference that is faster by
+ * more than the noise (j's q3 below k's q1: the interquartile ranges
+ * apart), or by a j closer to it and not slower beyond the noise (j's
+ * median at most k's q3) */
+static void mark_pareto(bench_result *results, uint32_t count)
+{
+    for (uint32_t k = 0; k < count; ++k) {
+        if (!results[k].ran)
+            continue;
+        const bench_result *rk = &results[k];
+        bool dominated = false;
+        for (uint32_t j = 0; j < count && !dominated; ++j) {
+            const bench_result *rj = &results[j];
+            if (j == k || !rj->ran || rj->rmse > rk->rmse)
+                continue;
+            dominated = rj->wall_q3 < rk->wall_q1 || (rj->rmse < rk->rmse && rj->wall_median <= rk->wall_q3);
+        }
+        results[k].pareto = !dominated;
+    }
+}
+
+/* The frame matrix on a loaded scene: measured, compared, reported. */
+static int run_matrix(int argc, char **argv, const bench_options *o, const bench_matrix *m, const char *omitted)
+{
+    /* every configuration's renderer and target live across the rounds */
+    config_run runs[BENCH_MAX_CONFIGS];
+    memset(runs, 0, sizeof runs);
+    uint32_t rounds = o->rounds < o->frames ? o->rounds : o->frames;
+    bool all_ok = measure_rounds(o, m, runs, rounds) && finish_all(argc, argv, o, m, runs);
+    for (uint32_t k = 0; k < m->count; ++k)
+        release_run(&runs[k]);
+    if (!all_ok)
+        return MVR_EXIT_FAILURE;
+    bench_progress(o, m->count, m->count, "done");
+    mark_pareto(m->results, m->count);
+    char cmdline[1024];
+    bench_command_line(argc, argv, cmdline, sizeof cmdline);
+    bench_run run = {o->scene.scene_file ? o->scene.scene_file : o->scene.demo, o->out_dir, cmdline,
+                     mvr_context_caps(m->ctx)->renderer, mvr_view_set_count(m->vs), o->scene.width, o->scene.height,
+                     o->frames, m->count, m->configs, m->results, 0, omitted, false, NULL, 0, m->pixels, rounds};
+    return bench_write_reports(&run) ? MVR_EXIT_OK : MVR_EXIT_FAILURE;
+}
+
 int mvr_cmd_bench(int argc, char **argv)
 {
     bench_options o;
-    int rc = parse(argc, argv, &o);
+    int rc = bench_options_parse(argc, argv, &o);
     if (rc != MVR_EXIT_OK) {
         camera_file_free(&o.cameras);
         return rc < 0 ? MVR_EXIT_OK : rc;
@@ -767,195 +702,42 @@ int mvr_cmd_bench(int argc, char **argv)
         camera_file_free(&o.cameras);
         return MVR_EXIT_USAGE;
     }
-    mvr_context *ctx = NULL;
-    mvr_scene *scene = NULL;
-    mvr_view_set *vs = NULL;
     mvr_environment *env = NULL;
     bench_config configs[BENCH_MAX_CONFIGS];
     bench_result results[BENCH_MAX_CONFIGS];
     memset(results, 0, sizeof results);
-    uint32_t count = 0;
+    bench_matrix m = {.configs = configs, .results = results};
     rc = MVR_EXIT_FAILURE;
-    if (mvr_context_create(&o.context, &ctx, &err) != MVR_OK) {
+    if (mvr_context_create(&o.context, &m.ctx, &err) != MVR_OK) {
         fprintf(stderr, "mvr bench: %s\n", err.message);
         goto done;
     }
     if (o.env_axes) {
-        rc = bench_run_env_axes(argc, argv, &o, ctx);
+        rc = bench_run_env_axes(argc, argv, &o, m.ctx);
         goto done;
     }
-    rc = cli_load_scene("mvr bench", &o.scene, &scene, &vs);
+    rc = load_matrix_scene(&o, &m.scene, &m.vs, &env, configs, &m.count);
     if (rc != MVR_EXIT_OK)
         goto done;
-    memset(&o.render, 0, sizeof o.render);
-    o.render.exposure = 1.0f;
-    rc = cli_env_create("mvr bench", &o.env, o.scene.scene_file != NULL, &o.render, &env, NULL);
-    if (rc != MVR_EXIT_OK)
-        goto done;
-    {
-        mvr_scene_info info;
-        mvr_scene_get_info(scene, &info);
-        count = make_matrix(o.full, info.skins || info.morph_targets, configs);
-        /* an animated scene is posed anew every frame: at the start and the
-         * middle of its animations, alternately */
-        double start = INFINITY, end = -INFINITY;
-        for (uint32_t i = 0; i < info.animations; ++i) {
-            mvr_animation_info ai;
-            if (mvr_scene_get_animation_info(scene, i, &ai) == MVR_OK) {
-                start = fmin(start, ai.start);
-                end = fmax(end, ai.end);
-            }
-        }
-        o.animate = info.animations > 0 && end > start;
-        o.pose_times[0] = o.animate ? start : 0.0;
-        o.pose_times[1] = o.animate ? 0.5 * (start + end) : 0.0;
-    }
     rc = MVR_EXIT_FAILURE;
-    uint32_t n_views = mvr_view_set_count(vs);
-    size_t pixels = (size_t)n_views * o.scene.width * o.scene.height;
-    /* Does the scene draw anything blended? (a small frame's sub-passes
-     * tell). Without, the per-view transparency order changes nothing: those
-     * configurations are left out rather than listed without results. */
-    bool has_blend = false;
-    {
-        mvr_renderer_desc rd = {.context = ctx, .overrides = o.overrides};
-        mvr_renderer *r = NULL;
-        mvr_target *t = NULL;
-        mvr_target_desc td = {16, 16, n_views, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
-        mvr_frame_stats st;
-        memset(&st, 0, sizeof st);
-        if (mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &t) == MVR_OK &&
-            mvr_renderer_render(r, scene, vs, t, &o.render) == MVR_OK)
-            mvr_renderer_get_stats(r, &st);
-        has_blend = st.sub_passes[2] > 0; /* [2]: blended sub-passes */
-        /* the material extensions the scene's programs use: each gets a
-         * configuration with it drawn as absent (what it costs, what it
-         * changes) */
-        uint32_t extensions = 0, extension_bits = extension_features();
-        for (uint32_t i = 0; r && i < mvr_renderer_program_count(r); ++i) {
-            mvr_program_info info;
-            if (mvr_renderer_get_program_info(r, i, &info) && info.mesh)
-                extensions |= info.features & extension_bits;
-        }
-        for (uint32_t bit = 1; bit && count < BENCH_MAX_CONFIGS; bit <<= 1) {
-            if (!(extensions & bit))
-                continue;
-            add_config(configs, &count, MVR_VIEW_PATH_AUTO, MVR_MATERIAL_PATH_ARRAYS, 1, MVR_TRANSPARENCY_ORDER_AUTO,
-                       false);
-            bench_config *c = &configs[count - 1];
-            c->disable_features = bit;
-            size_t l = strlen(c->name);
-            snprintf(c->name + l, sizeof c->name - l, "/no_%s", mvr_program_feature_name(bit));
-            snprintf(c->group, sizeof c->group, "no_%s", mvr_program_feature_name(bit));
-        }
-        mvr_target_destroy(t);
-        mvr_renderer_destroy(r);
-    }
+    m.pixels = (size_t)mvr_view_set_count(m.vs) * o.scene.width * o.scene.height;
+    bool has_blend = probe_scene(&o, m.ctx, m.scene, m.vs, configs, &m.count);
     char omitted[256] = "";
-    int max_samples = mvr_context_caps(ctx)->limits.max_samples;
-    if (max_samples < 4) {
-        uint32_t kept = 0;
-        for (uint32_t k = 0; k < count; ++k)
-            if (configs[k].msaa == 0)
-                configs[kept++] = configs[k];
-        snprintf(omitted, sizeof omitted, "4x MSAA left out: GL_MAX_SAMPLES is %d; ", max_samples);
-        count = kept;
-    }
-    if (!has_blend) {
-        uint32_t kept = 0;
-        for (uint32_t k = 0; k < count; ++k)
-            if (configs[k].reference || configs[k].order == MVR_TRANSPARENCY_ORDER_AUTO)
-                configs[kept++] = configs[k];
-        size_t l = strlen(omitted);
-        if (kept < count)
-            snprintf(omitted + l, sizeof omitted - l,
-                     "%u configurations with another transparency order left out: the scene draws nothing blended",
-                     count - kept);
-        count = kept;
-    }
+    leave_out_configs(m.ctx, has_blend, configs, &m.count, omitted, sizeof omitted);
     if (o.only >= 0) { /* the callgrind child: one configuration's frames (of the same, filtered list) */
-        if ((uint32_t)o.only >= count)
-            goto done;
-        rc = run_config(&o, ctx, scene, vs, &configs[o.only], &results[0]) ? MVR_EXIT_OK : MVR_EXIT_FAILURE;
+        if ((uint32_t)o.only < m.count)
+            rc = run_config(&o, m.ctx, m.scene, m.vs, &configs[o.only], &results[0]) ? MVR_EXIT_OK
+                                                                                     : MVR_EXIT_FAILURE;
         goto done;
     }
-    /* every configuration set up and warmed, then its frames taken in
-     * rounds that visit all of them in turn (starting one further each
-     * round), so a change of load on the machine falls on all alike */
-    config_run runs[BENCH_MAX_CONFIGS];
-    memset(runs, 0, sizeof runs);
-    bool all_ok = true;
-    for (uint32_t k = 0; k < count && all_ok; ++k) {
-        results[k].group_diff = -1;
-        bench_progress(&o, k, count * 2, configs[k].name);
-        all_ok = setup_config(&o, ctx, scene, vs, &configs[k], &results[k], &runs[k]);
-    }
-    uint32_t rounds = o.rounds < o.frames ? o.rounds : o.frames;
-    for (uint32_t round = 0; round < rounds && all_ok; ++round) {
-        /* frames of this round: the F frames spread as evenly as they go */
-        uint32_t per = o.frames * (round + 1) / rounds - o.frames * round / rounds;
-        for (uint32_t i = 0; i < count && all_ok; ++i) {
-            uint32_t k = (i + round) % count;
-            if (runs[k].r)
-                all_ok = measure_config(&o, scene, vs, &configs[k], &runs[k], per);
-        }
-        bench_progress(&o, count + (round + 1) * count / rounds, count * 2, "rounds");
-    }
-    for (uint32_t k = 0; k < count && all_ok; ++k) {
-        const bench_config *c = &configs[k];
-        bench_result *res = &results[k];
-        if (runs[k].r)
-            all_ok = finish_config(&o, vs, c, &runs[k], res);
-        if (all_ok && res->ran) {
-            bench_compare(results[0].display, res->display, pixels, false, res);
-            for (uint32_t j = 0; j < k; ++j)
-                if (results[j].ran && strcmp(configs[j].group, c->group) == 0) {
-                    res->group_diff = max_byte_diff(results[j].display, res->display, pixels * 4);
-                    break;
-                }
-        }
-        if (all_ok && o.callgrind && res->ran && !count_instructions(argc, argv, &o, k, &res->instructions))
-            all_ok = false;
-    }
-    for (uint32_t k = 0; k < count; ++k)
-        release_run(&runs[k]);
-    if (!all_ok)
-        goto done;
-    bench_progress(&o, count, count, "done");
-    /* Pareto front over (frame time, RMSE), the noise counted: k is
-     * dominated by a j at least as close to the reference that is faster by
-     * more than the noise (j's q3 below k's q1: the interquartile ranges
-     * apart), or by a j closer to it and not slower beyond the noise (j's
-     * median at most k's q3) */
-    for (uint32_t k = 0; k < count; ++k) {
-        if (!results[k].ran)
-            continue;
-        const bench_result *rk = &results[k];
-        bool dominated = false;
-        for (uint32_t j = 0; j < count && !dominated; ++j) {
-            const bench_result *rj = &results[j];
-            if (j == k || !rj->ran || rj->rmse > rk->rmse)
-                continue;
-            dominated = rj->wall_q3 < rk->wall_q1 || (rj->rmse < rk->rmse && rj->wall_median <= rk->wall_q3);
-        }
-        results[k].pareto = !dominated;
-    }
-    char cmdline[1024] = "mvr";
-    for (int i = 0; i < argc; ++i) {
-        size_t l = strlen(cmdline);
-        snprintf(cmdline + l, sizeof cmdline - l, " %s", argv[i]);
-    }
-    bench_run run = {o.scene.scene_file ? o.scene.scene_file : o.scene.demo, o.out_dir, cmdline,
-                     mvr_context_caps(ctx)->renderer, n_views, o.scene.width, o.scene.height, o.frames, count,
-                     configs, results, 0, omitted, false, NULL, 0, pixels, rounds};
-    rc = bench_write_reports(&run) ? MVR_EXIT_OK : MVR_EXIT_FAILURE;
+    rc = run_matrix(argc, argv, &o, &m, omitted);
 done:
-    for (uint32_t k = 0; k < count; ++k)
+    for (uint32_t k = 0; k < m.count; ++k)
         free(results[k].display);
-    mvr_view_set_destroy(vs);
-    mvr_scene_destroy(scene);
+    mvr_view_set_destroy(m.vs);
+    mvr_scene_destroy(m.scene);
     mvr_environment_destroy(env);
-    mvr_context_destroy(ctx);
+    mvr_context_destroy(m.ctx);
     camera_file_free(&o.cameras);
     return rc;
 }

@@ -1,593 +1,26 @@
 /* mvr render: a demo scene (or, with the glTF loader, a file) into N views,
- * one PNG per view plus a contact sheet, and the frame's stats: its options
- * and the frame loop; what it writes is render_output.c's. */
+ * one PNG per view plus a contact sheet, and the frame's stats: running it,
+ * in steps (load, set up, each frame posed and rendered, write); its
+ * options are render_options.c's, what it writes render_output.c's. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
 #include "cli_common.h"
-#include "cli_progress.h"
-#include "cli_options.h"
+#include "cli_progress.h" /* cli_now */
 #include "cli_env.h"
 #include "cli_scene.h"
 #include "commands.h"
 #include "mvr/mvr_gltf.h"
-#include "camera_file.h"  /* --cameras */
 #include "render_files.h" /* SCENE... and --list */
 #include "render_options.h"
 #include "render_aovs.h"
 #include "render_output.h"
+#include "render_stats.h"
 #include "render_stream.h"
-
-enum {
-    R_DEMO = 1, R_VIEWS, R_CAMERA, R_LAYOUT, R_IPD, R_SCENE, R_SIZE, R_OUT, R_VIEW_PATH, R_MATERIAL_PATH, R_DEPTH,
-    R_TRANSPARENCY, R_SUPERSAMPLE, R_MSAA, R_AA, R_REFERENCE, R_FORMAT, R_TARGET_FORMAT, R_SHADOWS, R_SHADOW_SIZE,
-    R_EXPOSURE, R_EXPOSURE_SCALE, R_CAMERA_EXPOSURE, R_EXPOSURE_PER_VIEW, R_DITHER, R_CLEAR, R_TONE_MAP, R_FRAMES,
-    R_STATS, R_STRICT, R_MEMORY_BUDGET, R_PROGRAM_CACHE, R_QUIET, R_PLAN, R_ANIMATION, R_TIME, R_LOOP, R_FPS, R_VIDEO,
-    R_SKINNING, R_VARIANT, R_COLMAP, R_OUTPUTS, R_NORMAL_SPACE, R_ALPHA_CUTOFF, R_READBACK, R_NO_PROGRESS, R_ENCODERS,
-    R_CAMERAS, R_LIST, R_KEEP_GOING
-};
-
-#define MAX_FRAMES 100000
-
-#define EXPOSURE_GROUP "the exposure"
-#define AA_GROUP "the anti-aliasing"
-#define REFERENCE_WHY "--reference sets the loop path, per-view transparency and 4x4 supersampling itself"
-#define END {CLI_OPT_END, 0, NULL, NULL, NULL, 0, 0, NULL, NULL, NULL, NULL, NULL}
-
-/* name, value and range, help, conflicts; the order is --help's */
-static const cli_option render_table[] = {
-    {CLI_OPT_STRING, R_DEMO, "--demo", NULL, "NAME", 0, 0, NULL, "stereo | cube | city | ring (default: stereo)",
-     NULL, NULL, NULL},
-    {CLI_OPT_U32, R_VIEWS, "--views", NULL, "N", 1, 1024, NULL,
-     "number of views (default: the demo's or layout's own), 1..1024;\n"
-     "--demo stereo and city frame at most 35 at 640x480 (their\n"
-     "outer frusta turn toward the centre; fewer on wider layers,\n"
-     "the error says how many); cube repeats its six faces", NULL, NULL, NULL},
-    {CLI_OPT_U32, R_CAMERA, "--camera", NULL, "K", 0, 1u << 20, NULL,
-     "SCENE: view from the file's K-th camera node (0-based);\n"
-     "N views are eyes --ipd apart along its right axis\n"
-     "(default: the first camera when the file has one)", NULL, "--layout",
-     "--layout frames the scene without a camera"},
-    {CLI_OPT_CHOICE, R_LAYOUT, "--layout", NULL, "L", 0, 0, "stereo|cube|ring|grid|sphere|orbit",
-     "SCENE without --camera: stereo | cube | ring | grid around\n"
-     "the scene's bounding sphere (default: stereo); sphere: --views\n"
-     "spread evenly over a sphere around it (default 50); orbit: a\n"
-     "turntable of 3 rings from -15 to 60 degrees (default 24 views)", NULL, NULL, NULL},
-    {CLI_OPT_STRING, R_CAMERAS, "--cameras", NULL, "FILE", 0, 0, NULL,
-     "the views from a camera file: mvr's cameras.json (the same\n"
-     "views again, exactly), NeRF's transforms.json, or CSV with a\n"
-     "header x,y,z,qx,qy,qz,qw,fx,fy,cx,cy[,width,height,znear]\n"
-     "(docs/guide.md); told apart by content; the file's image size\n"
-     "is the layers' unless --size is given (then the same fields of\n"
-     "view at that size)", NULL, "--camera --layout --views --ipd",
-     "the camera file gives every view"},
-    {CLI_OPT_STRING, R_IPD, "--ipd", NULL, "M", 0, 0, NULL,
-     "distance between stereo eyes in scene units (default: 1/30 of\n"
-     "the distance to the scene: 0.064 at 1.9)", NULL, NULL, NULL},
-    {CLI_OPT_U32, R_SCENE, "--scene", NULL, "K", 0, 1u << 20, NULL,
-     "SCENE: the file's K-th scene (0-based; default: its default)", NULL, NULL, NULL},
-    {CLI_OPT_STRING, R_VARIANT, "--variant", NULL, "V", 0, 0, NULL,
-     "SCENE: draw material variant V (KHR_materials_variants): its\n"
-     "name, or its index (0-based) when no variant has that name;\n"
-     "mvr info FILE lists them (default: the file's own materials)", NULL, NULL, NULL},
-    {CLI_OPT_STRING, R_SIZE, "--size", NULL, "WxH", 0, 0, NULL, "layer size in pixels (default: 640x480)", NULL,
-     NULL, NULL},
-    {CLI_OPT_STRING, R_OUT, "--out", NULL, "DIR", 0, 0, NULL,
-     "output directory (default: out), created if missing; besides\n"
-     "the images: cameras.json (each view's intrinsics, extrinsics and\n"
-     "projection, conventions stated) and transforms.json (NeRF's\n"
-     "layout), of the first frame's views",
-     NULL, NULL, NULL},
-    {CLI_OPT_CHOICE, R_VIEW_PATH, "--view-path", NULL, "P", 0, 0, "auto|multiview|loop",
-     "auto | multiview | loop (default: auto; MVR_VIEW_PATH wins)", NULL, NULL, NULL},
-    {CLI_OPT_CHOICE, R_MATERIAL_PATH, "--material-path", NULL, "P", 0, 0, "auto|arrays|per_material|per_draw",
-     "auto | arrays | per_material | per_draw (default: auto = arrays;\n"
-     "MVR_MATERIAL_PATH wins)", NULL, NULL, NULL},
-    {CLI_OPT_CHOICE, R_DEPTH, "--depth", NULL, "D", 0, 0, "auto|reversed_z|standard",
-     "auto | reversed_z | standard (default: auto = reversed_z\n"
-     "where GL_EXT_clip_control exists; MVR_DEPTH wins)", NULL, NULL, NULL},
-    {CLI_OPT_CHOICE, R_TRANSPARENCY, "--transparency", NULL, "T", 0, 0, "auto|centroid|per_view",
-     "auto | centroid | per_view: blended draws in one order for\n"
-     "all views of a multiview pass (from their centroid), or each\n"
-     "view's own (its blend pass apart); auto: own order only where\n"
-     "the views disagree (default: auto)", NULL, NULL, NULL},
-    {CLI_OPT_U32, R_SUPERSAMPLE, "--supersample", NULL, "N", 1, 4, NULL,
-     "render N x N samples per pixel into a float target and\n"
-     "average them (1..4; default: 1)", AA_GROUP, NULL, NULL},
-    {CLI_OPT_U32, R_MSAA, "--msaa", NULL, "N", 0, 64, NULL,
-     "N samples per pixel (multisampling; resolves view by view,\n"
-     "so it takes the loop path) (default: none)", AA_GROUP, NULL, NULL},
-    {CLI_OPT_CHOICE, R_AA, "--aa", NULL, "A", 0, 0, "none|msaa|supersample|auto",
-     "none | msaa | supersample | auto: the library's anti-aliasing\n"
-     "(msaa 4x, supersample 2x2 on the GPU; auto: 4x MSAA, in the\n"
-     "multiview passes where the GL has multisampled multiview)", AA_GROUP, NULL, NULL},
-    {CLI_OPT_FLAG, R_REFERENCE, "--reference", NULL, NULL, 0, 0, NULL,
-     "ground truth, slow: --view-path loop --transparency per_view\n"
-     "--supersample 4, and the environment integrated per pixel\n"
-     "(1024 samples per lobe) instead of its prefiltered maps", NULL,
-     "--view-path --transparency --supersample --msaa --aa", REFERENCE_WHY},
-    {CLI_OPT_CHOICE, R_FORMAT, "--format", NULL, "F", 0, 0, "png|exr",
-     "png (8-bit sRGB) | exr (half float, linear) (default: png)", NULL, NULL, NULL},
-    {CLI_OPT_CHOICE, R_TARGET_FORMAT, "--target-format", NULL, "F", 0, 0, "srgb8|rgba8|rgba16f",
-     "srgb8 | rgba8 | rgba16f (default: srgb8; rgba16f for exr)", NULL, NULL, NULL},
-    {CLI_OPT_CHOICE, R_SHADOWS, "--shadows", NULL, "S", 0, 0, "default|all|off",
-     "default | all | off: shadow maps for the lights that ask\n"
-     "(glTF has no such flag, so none), for every directional\n"
-     "and spot light, or none (default: default)", NULL, NULL, NULL},
-    {CLI_OPT_U32, R_SHADOW_SIZE, "--shadow-size", NULL, "N", 16, 16384, NULL,
-     "shadow map texels per side (default: 1024)", NULL, NULL, NULL},
-    {CLI_OPT_STRING, R_EXPOSURE, "--exposure", NULL, "E", 0, 0, NULL,
-     "auto | an EV100 (physical camera exposure; default: auto\n"
-     "when the lights are in physical units, e.g. a sun of\n"
-     "thousands of lux, else a linear 1)", EXPOSURE_GROUP, NULL, NULL},
-    {CLI_OPT_STRING, R_EXPOSURE_SCALE, "--exposure-scale", NULL, "X", 0, 0, NULL,
-     "linear exposure multiplier instead (default: 1)", EXPOSURE_GROUP, NULL, NULL},
-    {CLI_OPT_STRING, R_CAMERA_EXPOSURE, "--camera-exposure", NULL, "N,T,ISO", 0, 0, NULL,
-     "physical exposure of a camera: f-number,\n"
-     "shutter seconds, ISO (e.g. 16,0.008,100)", EXPOSURE_GROUP, NULL, NULL},
-    {CLI_OPT_FLAG, R_EXPOSURE_PER_VIEW, "--exposure-per-view", NULL, NULL, 0, 0, NULL,
-     "auto-exposure per view (default: one for all views)", NULL, "--exposure-scale --camera-exposure",
-     "--exposure-per-view is for auto exposure"},
-    {CLI_OPT_FLAG, R_DITHER, "--dither", NULL, NULL, 0, 0, NULL, "+-1 step of noise before 8-bit storage (default: off)",
-     NULL, NULL, NULL},
-    {CLI_OPT_STRING, R_CLEAR, "--clear", NULL, "R,G,B[,A]", 0, 0, NULL, "linear clear color (default: a dark opaque sky)",
-     NULL, NULL, NULL},
-    {CLI_OPT_CHOICE, R_TONE_MAP, "--tone-map", NULL, "T", 0, 0, "none|aces|pbr-neutral",
-     "none | aces | pbr-neutral (default: pbr-neutral with auto\n"
-     "exposure, none otherwise)", NULL, NULL, NULL},
-    END,
-};
-
-/* animation, skins and morph targets */
-static const cli_option render_table_animation[] = {
-    {CLI_OPT_STRING, R_ANIMATION, "--animation", NULL, "A", 0, 0, NULL,
-     "SCENE: pose the file with animation A: its name, its index K\n"
-     "(0-based; mvr info FILE lists them) or all (every animation\n"
-     "at once) (default: none, the file's rest pose; but --time,\n"
-     "--loop and --frames play animation 0 when the file has one)", NULL, NULL, NULL},
-    {CLI_OPT_STRING, R_TIME, "--time", NULL, "T", 0, 0, NULL,
-     "seconds on the file's animation clock, >= 0 (default: 0);\n"
-     "before the clip's first key or after its last, the nearest\n"
-     "key's pose", NULL, NULL, NULL},
-    {CLI_OPT_FLAG, R_LOOP, "--loop", NULL, NULL, 0, 0, NULL,
-     "wrap --time into the clip [start, end) instead of holding\n"
-     "its last pose after the end", NULL, NULL, NULL},
-    {CLI_OPT_U32, R_FRAMES, "--frames", NULL, "N", 1, MAX_FRAMES, NULL,
-     "render N frames at --time T, T + 1/F, T + 2/F, ... and write\n"
-     "each: DIR/view_VV_fFFFF.png (view VV, frame FFFF from 0,\n"
-     "at least 4 digits); contact_sheet.png shows the first frame\n"
-     "(1..100000; default: one frame, view_VV.png)", NULL, NULL, NULL},
-    {CLI_OPT_STRING, R_FPS, "--fps", NULL, "F", 0, 0, NULL, "frames per second of --frames and --video, > 0 (default: 30)",
-     NULL, NULL, NULL},
-    {CLI_OPT_STRING, R_VIDEO, "--video", NULL, "FILE.mp4", 0, 0, NULL,
-     "with --frames: also encode each view's sequence at --fps\n"
-     "with ffmpeg (on PATH) into FILE.mp4 (one view) or\n"
-     "FILE_view_VV.mp4 (several)", NULL, NULL, NULL},
-    {CLI_OPT_CHOICE, R_SKINNING, "--skinning", NULL, "S", 0, 0, "auto|vertex|preskin",
-     "auto | vertex | preskin: where skinning and morphing run (in\n"
-     "each pass's vertex shader, or once per frame by transform\n"
-     "feedback; same pixels) (default: auto; MVR_SKINNING_PATH wins)", NULL, NULL, NULL},
-    END,
-};
-
-static const cli_option render_table_tail[] = {
-    {CLI_OPT_STRING, R_STATS, "--stats", NULL, "FILE.json", 0, 0, NULL, "write the last frame's stats as JSON", NULL,
-     NULL, NULL},
-    {CLI_OPT_STRING, R_OUTPUTS, "--outputs", NULL, "LIST", 0, 0, NULL,
-     "also write each view's depth, distance, normal, ids, coverage\n"
-     "(a comma list, or all) as NumPy files DIR/depth_VV.npy ...:\n"
-     "float32 H x W (depth along the camera's -Z, ray distance,\n"
-     "coverage), float32 H x W x 3 (normal), uint32 H x W x 4 (node,\n"
-     "mesh, material, primitive ids); 0 where nothing is; rows top\n"
-     "to bottom, as the images", NULL, "--msaa --supersample --aa --reference",
-     "extra outputs are not averaged: they need a target without anti-aliasing"},
-    {CLI_OPT_CHOICE, R_NORMAL_SPACE, "--normal-space", NULL, "S", 0, 0, "world|camera",
-     "world | camera: the space of --outputs normal (default: world;\n"
-     "camera: OpenGL's, x right, y up, +Z towards the viewer)", NULL, NULL, NULL},
-    {CLI_OPT_STRING, R_ALPHA_CUTOFF, "--alpha-cutoff", NULL, "A", 0, 0, NULL,
-     "--outputs: a blended surface is recorded where its alpha is at\n"
-     "least A, in (0, 1] (default: 0.5; below: seen through)", NULL, NULL, NULL},
-    {CLI_OPT_FLAG, R_COLMAP, "--colmap", NULL, NULL, 0, 0, NULL,
-     "also write COLMAP's text model of the views into DIR/colmap:\n"
-     "cameras.txt (PINHOLE), images.txt (world-to-camera poses),\n"
-     "an empty points3D.txt", NULL, NULL, NULL},
-    {CLI_OPT_FLAG, R_PLAN, "--plan", NULL, NULL, 0, 0, NULL,
-     "print the last frame's plan: its passes in order, each with\n"
-     "its views and why it runs", NULL, NULL, NULL},
-    {CLI_OPT_FLAG, R_STRICT, "--strict", NULL, NULL, 0, 0, NULL,
-     "a glTF image that is missing or cannot be decoded fails the\n"
-     "load (default: its textures take their defaults, warned)", NULL, NULL, NULL},
-    {CLI_OPT_U32, R_MEMORY_BUDGET, "--memory-budget", NULL, "MIB", 1, 1u << 20, NULL,
-     "most memory a glTF load may hold (default: 2048)", NULL, NULL, NULL},
-    {CLI_OPT_STRING, R_PROGRAM_CACHE, "--program-cache", NULL, "D", 0, 0, NULL,
-     "program binaries in D, so a later run compiles no shader;\n"
-     "off disables it (default: $XDG_CACHE_HOME/mvr/programs or\n"
-     "~/.cache/mvr/programs); D is created if missing and must be\n"
-     "a directory you can write to", NULL, NULL, NULL},
-    {CLI_OPT_CHOICE, R_READBACK, "--readback", NULL, "R", 0, 0, "stream|sync",
-     "stream: chunks of GL_MAX_VIEWS_OVR views through a ring of\n"
-     "targets, read back asynchronously, encoded on threads (memory\n"
-     "bounded whatever the view count); sync: one target of every\n"
-     "view, each read and written in turn (default: stream)", NULL, NULL, NULL},
-    {CLI_OPT_U32, R_ENCODERS, "--encoders", NULL, "N", 1, 64, NULL,
-     "image encoding threads of --readback stream (default: 2)", NULL, NULL, NULL},
-    {CLI_OPT_FLAG, R_NO_PROGRESS, "--no-progress", NULL, NULL, 0, 0, NULL,
-     "no progress line (shown on a terminal: views done, views/s,\n"
-     "time left)", NULL, NULL, NULL},
-    {CLI_OPT_FLAG, R_QUIET, "--quiet", NULL, NULL, 0, 0, NULL, "print only errors (no progress line)", NULL, NULL,
-     NULL},
-    {CLI_OPT_STRING, R_LIST, "--list", NULL, "FILE", 0, 0, NULL,
-     "also render the SCENE files FILE names: one path a line\n"
-     "(from the current directory), '#' starts a comment; with more\n"
-     "than one SCENE in all, each goes to DIR/<its name>/ (a name\n"
-     "that repeats gets _K, its place in the run), with --stats and\n"
-     "--video there too, in one process: one context, renderer and\n"
-     "program cache; a summary at the end", NULL, "--demo", "--demo renders a built-in scene"},
-    {CLI_OPT_FLAG, R_KEEP_GOING, "--keep-going", NULL, NULL, 0, 0, NULL,
-     "with several SCENE files: report one that fails and go on\n"
-     "(default: stop there); the exit status is the first failure's",
-     NULL, NULL, NULL},
-    END,
-};
-
-static const cli_option *const render_tables[] = {render_table,       cli_env_option_table, render_table_animation,
-                                                  render_table_tail,  cli_context_options,  cli_help_option,
-                                                  NULL};
-
-static void render_usage(FILE *out)
-{
-    fprintf(out,
-            "usage: mvr render [--demo NAME | SCENE.gltf|.glb ... | --list FILE] [options]\n"
-            "\n"
-            "Renders a scene into N views headless and writes one image per view\n"
-            "(view_00.png, ...) and a contact sheet (PNG) of all views side by side;\n"
-            "with --frames N, a numbered sequence per view (view_00_f0000.png, ...).\n"
-            "Several SCENE files render one after another, each into DIR/<its name>/.\n"
-            "\n"
-            "options:\n");
-    cli_print_options(out, render_tables, 20);
-}
-
-/* A finite number, the whole string. */
-static bool parse_double(const char *v, double *out)
-{
-    return cli_parse_double(v, out);
-}
-
-/* One option's value into the options (the parser checked kinds and ranges). */
-static bool apply(const cli_arg *arg, render_options *o)
-{
-    const char *v = arg->value;
-    switch (arg->opt->id) {
-    case R_QUIET: o->quiet = true; break;
-    case R_READBACK: o->readback = arg->choice == 1 ? RENDER_READBACK_SYNC : RENDER_READBACK_STREAM; break;
-    case R_NO_PROGRESS: o->no_progress = true; break;
-    case R_ENCODERS: o->encoders = arg->number; break;
-    case R_STRICT: o->strict = true; break;
-    case R_DEMO: o->demo = v; break;
-    case R_VIEWS: o->views = arg->number; break;
-    case R_CAMERA: o->camera = (int)arg->number; break;
-    case R_SCENE: o->gltf_scene = arg->number + 1; break;
-    case R_LAYOUT:
-        o->layout = (mvr_view_layout)(MVR_LAYOUT_STEREO + arg->choice);
-        o->layout_set = true;
-        break;
-    case R_IPD:
-        if (!parse_double(v, &o->ipd) || !(o->ipd > 0.0)) {
-            fprintf(stderr, "mvr render: --ipd takes a distance > 0\n");
-            return false;
-        }
-        break;
-    case R_FRAMES:
-        o->frames = arg->number;
-        o->frames_set = true;
-        break;
-    case R_ANIMATION:
-        if (!v[0]) {
-            fprintf(stderr, "mvr render: --animation takes a name, an index or all (got '')\n");
-            return false;
-        }
-        o->animation = v;
-        break;
-    case R_VARIANT:
-        if (!v[0]) {
-            fprintf(stderr, "mvr render: --variant takes a name or an index (got '')\n");
-            return false;
-        }
-        o->variant = v;
-        break;
-    case R_TIME:
-        if (!parse_double(v, &o->time) || o->time < 0.0) {
-            fprintf(stderr, "mvr render: --time takes seconds >= 0 (got '%s')\n", v);
-            return false;
-        }
-        o->time_set = true;
-        break;
-    case R_LOOP: o->loop = true; break;
-    case R_FPS:
-        if (!parse_double(v, &o->fps) || !(o->fps > 0.0)) {
-            fprintf(stderr, "mvr render: --fps takes frames per second > 0 (got '%s')\n", v);
-            return false;
-        }
-        break;
-    case R_VIDEO:
-        if (!v[0]) {
-            fprintf(stderr, "mvr render: --video takes a file name, e.g. out.mp4 (got '')\n");
-            return false;
-        }
-        o->video = v;
-        break;
-    case R_SKINNING: o->skinning = (mvr_skinning_path)(MVR_SKINNING_PATH_AUTO + arg->choice); break;
-    case R_SIZE:
-        if (!cli_parse_size(v, 1, 16384, &o->width, &o->height)) {
-            fprintf(stderr, "mvr render: --size takes WxH with 1..16384 each, e.g. 640x480\n");
-            return false;
-        }
-        o->size_set = true;
-        break;
-    case R_OUT: o->out_dir = v; break;
-    case R_STATS: o->stats_file = v; break;
-    case R_PLAN: o->plan = true; break;
-    case R_COLMAP: o->colmap = true; break;
-    case R_OUTPUTS:
-        if (!render_aovs_parse(v, &o->outputs))
-            return false;
-        break;
-    case R_NORMAL_SPACE: o->render.normal_space = (mvr_normal_space)arg->choice; break;
-    case R_ALPHA_CUTOFF: {
-        double a = 0;
-        if (!parse_double(v, &a) || !(a > 0.0 && a <= 1.0)) {
-            fprintf(stderr, "mvr render: --alpha-cutoff takes a number in (0, 1]\n");
-            return false;
-        }
-        o->render.output_alpha_cutoff = (float)a;
-        break;
-    }
-    case R_CAMERAS:
-        if (!v[0]) {
-            fprintf(stderr, "mvr render: --cameras takes a file (got '')\n");
-            return false;
-        }
-        o->cameras_file = v;
-        break;
-    case R_LIST: o->list_file = v; break;
-    case R_KEEP_GOING: o->keep_going = true; break;
-    case R_MEMORY_BUDGET: o->memory_budget = (uint64_t)arg->number << 20; break;
-    case R_PROGRAM_CACHE: o->program_cache = v; break;
-    case R_VIEW_PATH: o->view_path = (mvr_view_path)(MVR_VIEW_PATH_AUTO + arg->choice); break;
-    case R_MATERIAL_PATH: o->material_path = (mvr_material_path)(MVR_MATERIAL_PATH_AUTO + arg->choice); break;
-    case R_DEPTH: o->depth_mode = (mvr_depth_mode)(MVR_DEPTH_MODE_AUTO + arg->choice); break;
-    case R_TRANSPARENCY:
-        o->transparency = (mvr_transparency_order)(MVR_TRANSPARENCY_ORDER_AUTO + arg->choice);
-        break;
-    case R_REFERENCE: o->reference = true; break;
-    case R_MSAA: o->msaa = arg->number; break;
-    case R_AA: o->aa = (mvr_anti_aliasing)(MVR_ANTI_ALIASING_NONE + arg->choice); break;
-    case R_SUPERSAMPLE: o->supersample = arg->number; break;
-    case R_SHADOWS: o->render.shadows.mode = (mvr_shadow_mode)(MVR_SHADOWS_DEFAULT + arg->choice); break;
-    case R_SHADOW_SIZE: o->render.shadows.map_size = arg->number; break;
-    case R_FORMAT: o->exr = arg->choice == 1; break;
-    case R_TARGET_FORMAT: {
-        static const mvr_color_format formats[] = {MVR_COLOR_FORMAT_DEFAULT, MVR_COLOR_FORMAT_RGBA8,
-                                                   MVR_COLOR_FORMAT_RGBA16F};
-        o->format = formats[arg->choice];
-        o->format_set = true;
-        break;
-    }
-    case R_CLEAR: {
-        float rgba[4] = {0, 0, 0, 1};
-        if (sscanf(v, "%f,%f,%f,%f", &rgba[0], &rgba[1], &rgba[2], &rgba[3]) < 3) {
-            fprintf(stderr, "mvr render: --clear takes R,G,B[,A] (linear, 0..1)\n");
-            return false;
-        }
-        memcpy(o->render.clear_color, rgba, sizeof rgba);
-        break;
-    }
-    case R_EXPOSURE:
-        o->exposure_set = true;
-        if (strcmp(v, "auto") == 0) {
-            o->render.exposure_mode = MVR_EXPOSURE_AUTO;
-        } else {
-            o->render.exposure_mode = MVR_EXPOSURE_EV100;
-            if (!parse_double(v, &o->render.ev100)) {
-                fprintf(stderr, "mvr render: --exposure takes auto or an EV100 (e.g. 15 for sunlight)\n");
-                return false;
-            }
-        }
-        break;
-    case R_EXPOSURE_SCALE: {
-        double x = 0.0;
-        o->exposure_set = true;
-        o->render.exposure_mode = MVR_EXPOSURE_LINEAR;
-        if (!parse_double(v, &x) || !(x > 0.0) || !isfinite((float)x)) {
-            fprintf(stderr, "mvr render: --exposure-scale takes a number > 0\n");
-            return false;
-        }
-        o->render.exposure = (float)x;
-        break;
-    }
-    case R_CAMERA_EXPOSURE: {
-        double n = 0, sh = 0, iso = 0;
-        o->exposure_set = true;
-        if (sscanf(v, "%lf,%lf,%lf", &n, &sh, &iso) != 3 || !(n > 0) || !(sh > 0) || !(iso > 0)) {
-            fprintf(stderr, "mvr render: --camera-exposure takes f-number,shutter-seconds,ISO (e.g. 16,0.008,100)\n");
-            return false;
-        }
-        o->render.exposure_mode = MVR_EXPOSURE_CAMERA;
-        o->render.aperture = n;
-        o->render.shutter = sh;
-        o->render.iso = iso;
-        break;
-    }
-    case R_EXPOSURE_PER_VIEW: o->render.exposure_per_view = true; break;
-    case R_DITHER: o->render.dither = true; break;
-    case R_TONE_MAP: {
-        static const mvr_tone_map maps[] = {MVR_TONE_MAP_NONE, MVR_TONE_MAP_ACES, MVR_TONE_MAP_KHR_PBR_NEUTRAL};
-        o->tone_map = maps[arg->choice];
-        o->tone_map_set = true;
-        break;
-    }
-    default: return false;
-    }
-    return true;
-}
-
-/* The SCENE arguments and --list's, and the --cameras file's views. */
-typedef struct render_inputs {
-    render_file_list files;
-    camera_file cameras;
-} render_inputs;
-
-/* --cameras: read once before any GL, its views shared by every file; the
- * file's size is the layers' unless --size was given. */
-static int load_cameras(render_options *o, render_inputs *in)
-{
-    char why[512];
-    if (!camera_file_load(o->cameras_file, o->width, o->height, &in->cameras, why, sizeof why)) {
-        fprintf(stderr, "mvr render: --cameras %s: %s\n", o->cameras_file, why);
-        return MVR_EXIT_USAGE;
-    }
-    if (in->cameras.width && !o->size_set) {
-        o->width = in->cameras.width;
-        o->height = in->cameras.height;
-    }
-    if (in->cameras.edited && !o->quiet)
-        fprintf(stderr, "mvr render: --cameras %s: %u view%s (the first: view %u) no longer match%s their mvr_view: "
-                        "their matrices and intrinsics are used\n", o->cameras_file, in->cameras.edited,
-                in->cameras.edited == 1 ? "" : "s", in->cameras.first_edited, in->cameras.edited == 1 ? "es" : "");
-    o->camera_views = in->cameras.views;
-    o->camera_count = in->cameras.count;
-    o->camera_format = in->cameras.format;
-    return MVR_EXIT_OK;
-}
-
-static int parse(int argc, char **argv, render_options *o, render_inputs *in)
-{
-    memset(o, 0, sizeof *o);
-    cli_logger(&o->context.logger, "render", false);
-    o->width = 640;
-    o->height = 480;
-    o->frames = 1;
-    o->fps = 30.0;
-    o->out_dir = "out";
-    o->camera = -1;
-    cli_render_desc_defaults(&o->render); /* as mvr-viewer starts */
-    cli_parser p;
-    cli_parser_init(&p, "mvr render", render_tables, argc, argv);
-    p.many_positionals = true;
-    cli_arg arg;
-    int c;
-    while ((c = cli_next(&p, &arg)) > 0) {
-        if (!arg.opt) { /* a SCENE */
-            if (!render_files_add(&in->files, arg.value))
-                return MVR_EXIT_USAGE;
-            continue;
-        }
-        if (arg.opt->id == CLI_ID_HELP) {
-            render_usage(stdout);
-            return -1;
-        }
-        int done = cli_context_apply("mvr render", &arg, &o->context);
-        if (done == 0)
-            done = cli_env_apply("mvr render", &arg, &o->env);
-        if (done == 0)
-            done = apply(&arg, o) ? 1 : -1;
-        if (done < 0)
-            return MVR_EXIT_USAGE;
-    }
-    if (c < 0)
-        return MVR_EXIT_USAGE;
-    if (o->list_file && !render_files_read_list(o->list_file, &in->files))
-        return MVR_EXIT_USAGE;
-    if (in->files.count)
-        o->scene_file = in->files.paths[0]; /* the options are checked against a file */
-    if (!o->scene_file && (o->camera >= 0 || o->gltf_scene)) {
-        fprintf(stderr, "mvr render: --camera and --scene are for a SCENE file\n");
-        return MVR_EXIT_USAGE;
-    }
-    if (o->demo && o->scene_file) {
-        fprintf(stderr, "mvr render: give --demo NAME or a SCENE file, not both\n");
-        return MVR_EXIT_USAGE;
-    }
-    if (!o->demo && !o->scene_file)
-        o->demo = "stereo";
-    /* a file with a camera is seen from it unless a layout is asked for */
-    if (o->scene_file && o->camera < 0 && !o->layout_set && !o->cameras_file)
-        o->camera = CLI_CAMERA_IF_ANY;
-    if (!cli_context_check("render", &o->context))
-        return MVR_EXIT_USAGE;
-    if (!o->scene_file && o->animation) {
-        fprintf(stderr, "mvr render: --animation is for a SCENE file (the demos have no animations)\n");
-        return MVR_EXIT_USAGE;
-    }
-    if (!o->scene_file && o->variant) {
-        fprintf(stderr, "mvr render: --variant is for a SCENE file (the demos have no material variants)\n");
-        return MVR_EXIT_USAGE;
-    }
-    if (cli_given(&p, "--fps") && !o->frames_set) {
-        fprintf(stderr, "mvr render: --fps is for --frames N (the time between frames)\n");
-        return MVR_EXIT_USAGE;
-    }
-    if (o->video && !o->frames_set) {
-        fprintf(stderr, "mvr render: --video needs --frames N (it encodes each view's sequence)\n");
-        return MVR_EXIT_USAGE;
-    }
-    if (o->video && o->exr) {
-        fprintf(stderr, "mvr render: --video encodes the PNG sequence: leave out --format exr\n");
-        return MVR_EXIT_USAGE;
-    }
-    if (o->frames_set && !isfinite(o->time + (double)(o->frames - 1) / o->fps)) {
-        fprintf(stderr, "mvr render: --frames %u at --fps %g from --time %g runs past any finite time\n", o->frames,
-                o->fps, o->time);
-        return MVR_EXIT_USAGE;
-    }
-    /* ffmpeg is looked for before anything is rendered */
-    if (o->video && !render_output_find_on_path("ffmpeg", o->ffmpeg, sizeof o->ffmpeg)) {
-        fprintf(stderr, "mvr render: --video %s: ffmpeg was not found on PATH (install it, or leave out --video: "
-                        "the PNG sequence is written either way)\n", o->video);
-        return MVR_EXIT_MISSING;
-    }
-    if (!cli_env_check("mvr render", &o->env, o->scene_file != NULL))
-        return MVR_EXIT_USAGE;
-    if (o->cameras_file) {
-        int crc = load_cameras(o, in);
-        if (crc != MVR_EXIT_OK)
-            return crc;
-    }
-    if (o->exr && !o->format_set)
-        o->format = MVR_COLOR_FORMAT_RGBA16F; /* linear HDR values for EXR */
-    if (o->reference) {
-        o->view_path = MVR_VIEW_PATH_LOOP;
-        o->transparency = MVR_TRANSPARENCY_ORDER_PER_VIEW;
-        o->supersample = 4;
-        o->render.environment_samples = 1024;
-    }
-    if (o->supersample == 0)
-        o->supersample = 1;
-    if (o->supersample > 1) {
-        /* samples are averaged in linear float before any encoding */
-        o->format = MVR_COLOR_FORMAT_RGBA32F;
-        if ((uint64_t)o->width * o->supersample > 16384 || (uint64_t)o->height * o->supersample > 16384) {
-            fprintf(stderr, "mvr render: --supersample %u makes a %ux%u target; the limit here is 16384\n",
-                    o->supersample, o->width * o->supersample, o->height * o->supersample);
-            return MVR_EXIT_USAGE;
-        }
-    }
-    if (!o->scene_file && !o->cameras_file &&
-        !cli_check_demo_views("mvr render", o->demo, o->views, o->width, o->height))
-        return MVR_EXIT_USAGE;
-    /* a directory given must be usable, or the run says why instead of
-     * silently compiling without it */
-    if (o->program_cache && strcmp(o->program_cache, "off") != 0 &&
-        !cli_check_writable_dir("mvr render", "--program-cache", o->program_cache))
-        return MVR_EXIT_USAGE;
-    return MVR_EXIT_OK;
-}
 
 /* The program binary cache directory: --program-cache, else the XDG cache
  * directory; created if missing. NULL (with a warning when the directory
@@ -642,289 +75,377 @@ static const char *per_file_path(char *buf, size_t size, const char *dir, const 
     return buf;
 }
 
-/* Renders one scene (file: a SCENE, NULL: the options' own) into out_dir
- * (NULL: --out) with the session's context and renderer; an MVR_EXIT_
- * code, *fatal set when the session itself could not be made. */
-static int render_one(render_session *s, const char *file, const char *out_dir, bool *fatal)
-{
-    render_options o = *s->base;
+/* One scene's run: its options (the session's, with its file and
+ * directory), what it makes and frees, and what the summary and the stats
+ * report of it. */
+typedef struct render_job {
+    render_options o;
     char stats_buf[4096 + 256], video_buf[4096 + 256];
-    if (file)
-        o.scene_file = file;
-    if (out_dir) {
-        o.out_dir = out_dir;
-        if (o.stats_file)
-            o.stats_file = per_file_path(stats_buf, sizeof stats_buf, out_dir, o.stats_file);
-        if (o.video)
-            o.video = per_file_path(video_buf, sizeof video_buf, out_dir, o.video);
-    }
-    if (!cli_make_dirs("mvr render", o.out_dir))
-        return MVR_EXIT_FAILURE;
+    mvr_scene *scene;
+    mvr_view_set *views;
+    mvr_renderer *renderer;      /* the session's */
+    mvr_target *target;
+    uint8_t **layers;            /* the synchronous path: every view's bytes */
+    float *floats;               /* the synchronous path with EXR: one view's floats */
+    render_stream *stream;       /* --readback stream (the default) */
+    uint32_t n;                  /* views */
+    mvr_gltf_info gltf_info;
+    uint32_t variant;
+    cli_env_used env_used;
+    render_animation anim;
+    mvr_node_id camera_node;     /* a file's camera an animation moves, or 0 */
+    char sheet[4096];
+    double started;
+} render_job;
 
+/* The job's options: the session's, with file and out_dir (several files:
+ * --stats and --video go into out_dir too); the directory created. */
+static bool job_options(render_job *j, const render_options *base, const char *file, const char *out_dir)
+{
+    render_options *o = &j->o;
+    *o = *base;
+    if (file)
+        o->scene_file = file;
+    if (out_dir) {
+        o->out_dir = out_dir;
+        if (o->stats_file)
+            o->stats_file = per_file_path(j->stats_buf, sizeof j->stats_buf, out_dir, o->stats_file);
+        if (o->video)
+            o->video = per_file_path(j->video_buf, sizeof j->video_buf, out_dir, o->video);
+    }
+    return cli_make_dirs("mvr render", o->out_dir);
+}
+
+/* Load: the session's context (made by the first file), the scene and its
+ * views, the material variant, the session's environment, and the
+ * exposure the scene asks for. */
+static int step_load(render_session *s, render_job *j, bool *fatal)
+{
+    render_options *o = &j->o;
     mvr_error err;
-    mvr_scene *scene = NULL;
-    mvr_view_set *views = NULL;
-    mvr_renderer *renderer = NULL;
-    mvr_target *target = NULL;
-    uint8_t **layers = NULL;
-    render_stream *stream = NULL; /* --readback stream (the default) */
-    int rc = MVR_EXIT_FAILURE;
-    if (!s->ctx && mvr_context_create(&o.context, &s->ctx, &err) != MVR_OK) {
+    if (!s->ctx && mvr_context_create(&o->context, &s->ctx, &err) != MVR_OK) {
         fprintf(stderr, "mvr render: %s\n", err.message);
         *fatal = true;
-        goto done;
+        return MVR_EXIT_FAILURE;
     }
-    mvr_context *ctx = s->ctx;
-    mvr_gltf_info gltf_info;
-    memset(&gltf_info, 0, sizeof gltf_info);
-    cli_scene_options so = {.demo = o.demo, .scene_file = o.scene_file, .camera = o.camera, .layout = o.layout,
-                            .ipd = o.ipd, .gltf_scene = o.gltf_scene, .views = o.views, .width = o.width,
-                            .height = o.height, .logger = o.context.logger, .strict = o.strict,
-                            .memory_budget = o.memory_budget, .gltf_info = &gltf_info,
-                            .given_views = o.camera_views, .given_view_count = o.camera_count};
-    rc = cli_load_scene("mvr render", &so, &scene, &views);
+    cli_scene_options so = {.demo = o->demo, .scene_file = o->scene_file, .camera = o->camera, .layout = o->layout,
+                            .ipd = o->ipd, .gltf_scene = o->gltf_scene, .views = o->views, .width = o->width,
+                            .height = o->height, .logger = o->context.logger, .strict = o->strict,
+                            .memory_budget = o->memory_budget, .gltf_info = &j->gltf_info,
+                            .given_views = o->camera_views, .given_view_count = o->camera_count};
+    int rc = cli_load_scene("mvr render", &so, &j->scene, &j->views);
     if (rc != MVR_EXIT_OK)
-        goto done;
-    uint32_t variant = MVR_VARIANT_DEFAULT;
-    if (o.variant && (!cli_find_variant("mvr render", o.scene_file, scene, o.variant, &variant) ||
-                      mvr_scene_select_variant(scene, variant) != MVR_OK)) {
-        rc = MVR_EXIT_USAGE;
-        goto done;
-    }
+        return rc;
+    j->variant = MVR_VARIANT_DEFAULT;
+    if (o->variant && (!cli_find_variant("mvr render", o->scene_file, j->scene, o->variant, &j->variant) ||
+                       mvr_scene_select_variant(j->scene, j->variant) != MVR_OK))
+        return MVR_EXIT_USAGE;
     if (!s->env_made) {
-        s->render = o.render;
-        rc = cli_env_create("mvr render", &o.env, o.scene_file != NULL, &s->render, &s->env, &s->env_used);
+        s->render = o->render;
+        rc = cli_env_create("mvr render", &o->env, o->scene_file != NULL, &s->render, &s->env, &s->env_used);
         if (rc != MVR_EXIT_OK) {
             *fatal = true;
-            goto done;
+            return rc;
         }
         s->env_made = true;
     }
-    o.render = s->render;
-    cli_env_used env_used = s->env_used;
+    o->render = s->render;
+    j->env_used = s->env_used;
     /* the library's choice for the scene and its environment (auto exposure
      * and PBR Neutral for lights in physical units, PBR Neutral under an
      * environment, as mvr-viewer shows it); options given win */
-    if (!o.exposure_set)
-        mvr_render_desc_choose_exposure(scene, &o.render);
-    else if (o.render.exposure_mode == MVR_EXPOSURE_AUTO)
-        o.render.tone_map = MVR_TONE_MAP_KHR_PBR_NEUTRAL;
-    if (o.tone_map_set)
-        o.render.tone_map = o.tone_map;
-    rc = MVR_EXIT_FAILURE;
+    if (!o->exposure_set)
+        mvr_render_desc_choose_exposure(j->scene, &o->render);
+    else if (o->render.exposure_mode == MVR_EXPOSURE_AUTO)
+        o->render.tone_map = MVR_TONE_MAP_KHR_PBR_NEUTRAL;
+    if (o->tone_map_set)
+        o->render.tone_map = o->tone_map;
+    return MVR_EXIT_OK;
+}
+
+/* The session's renderer, made by the first file. */
+static int step_renderer(render_session *s, render_job *j, bool *fatal)
+{
+    const render_options *o = &j->o;
+    mvr_error err;
     if (!s->renderer) {
-        s->rd = (mvr_renderer_desc){.context = ctx, .view_path = o.view_path, .logger = o.context.logger,
-                                    .material_path = o.material_path, .depth_mode = o.depth_mode,
-                                    .transparency_order = o.transparency, .skinning_path = o.skinning,
-                                    .program_cache_dir = program_cache_dir(&o, s->cache_buf, sizeof s->cache_buf)};
+        s->rd = (mvr_renderer_desc){.context = s->ctx, .view_path = o->view_path, .logger = o->context.logger,
+                                    .material_path = o->material_path, .depth_mode = o->depth_mode,
+                                    .transparency_order = o->transparency, .skinning_path = o->skinning,
+                                    .program_cache_dir = program_cache_dir(o, s->cache_buf, sizeof s->cache_buf)};
         /* mvr render reads the library's MVR_* debugging variables (docs/guide.md) */
         if (mvr_renderer_overrides_from_env(&s->rd.overrides, &err) != MVR_OK) {
             fprintf(stderr, "mvr render: %s\n", err.message);
-            rc = MVR_EXIT_USAGE;
             *fatal = true;
-            goto done;
+            return MVR_EXIT_USAGE;
         }
         if (mvr_renderer_create(&s->rd, &s->renderer, &err) != MVR_OK) {
             fprintf(stderr, "mvr render: %s\n", err.message);
             *fatal = true;
-            goto done;
+            return MVR_EXIT_FAILURE;
         }
     }
-    renderer = s->renderer;
-    const mvr_renderer_desc rd = s->rd;
-    uint32_t n = mvr_view_set_count(views);
-    uint32_t ss = o.supersample;
-    mvr_target_desc td = {.width = o.width * ss, .height = o.height * ss, .layers = n, .color_format = o.format,
-                          .samples = o.msaa, .anti_aliasing = o.aa, .outputs = o.outputs};
-    if (o.readback == RENDER_READBACK_STREAM) {
-        if (!render_stream_create(&o, ctx, renderer, n, o.frames, &stream))
-            goto done;
-    } else if (mvr_target_create(renderer, &td, &target) != MVR_OK) {
-        fprintf(stderr, "mvr render: %s\n", mvr_renderer_last_error(renderer));
-        goto done;
+    j->renderer = s->renderer;
+    return MVR_EXIT_OK;
+}
+
+/* What the frames render into and are read back through: the target (or
+ * the stream's ring), the animation that poses them, the synchronous
+ * path's buffers, and the file's camera an animation moves. */
+static int step_setup(render_session *s, render_job *j)
+{
+    render_options *o = &j->o;
+    j->n = mvr_view_set_count(j->views);
+    uint32_t ss = o->supersample;
+    mvr_target_desc td = {.width = o->width * ss, .height = o->height * ss, .layers = j->n, .color_format = o->format,
+                          .samples = o->msaa, .anti_aliasing = o->aa, .outputs = o->outputs};
+    if (o->readback == RENDER_READBACK_STREAM) {
+        if (!render_stream_create(o, s->ctx, j->renderer, j->n, o->frames, &j->stream))
+            return MVR_EXIT_FAILURE;
+    } else if (mvr_target_create(j->renderer, &td, &j->target) != MVR_OK) {
+        fprintf(stderr, "mvr render: %s\n", mvr_renderer_last_error(j->renderer));
+        return MVR_EXIT_FAILURE;
     }
-    render_animation anim;
-    if (!render_output_choose_animation(&o, scene, &anim)) {
-        rc = MVR_EXIT_USAGE;
-        goto done;
-    }
+    if (!render_output_choose_animation(o, j->scene, &j->anim))
+        return MVR_EXIT_USAGE;
     /* the synchronous path holds every view's bytes (the stream its own few buffers) */
-    layers = stream ? NULL : calloc(n, sizeof *layers);
-    if (!stream && !layers)
-        goto done;
-    size_t pixels = (size_t)o.width * o.height;
-    for (uint32_t k = 0; layers && k < n; ++k)
-        if (!(layers[k] = malloc(pixels * 4)))
-            goto done;
-    float *floats = o.exr && !stream ? malloc(pixels * 4 * sizeof *floats) : NULL;
-    if (o.exr && !stream && !floats)
-        goto done;
-    double started = cli_now();
-    /* frame f at --time + f / --fps; without --frames one frame, written as
-     * view_VV.png */
-    char sheet[4096];
-    snprintf(sheet, sizeof sheet, "%s/contact_sheet.png", o.out_dir);
-    bool frames_ok = true;
+    j->layers = j->stream ? NULL : calloc(j->n, sizeof *j->layers);
+    if (!j->stream && !j->layers)
+        return MVR_EXIT_FAILURE;
+    size_t pixels = (size_t)o->width * o->height;
+    for (uint32_t k = 0; j->layers && k < j->n; ++k)
+        if (!(j->layers[k] = malloc(pixels * 4)))
+            return MVR_EXIT_FAILURE;
+    j->floats = o->exr && !j->stream ? malloc(pixels * 4 * sizeof *j->floats) : NULL;
+    if (o->exr && !j->stream && !j->floats)
+        return MVR_EXIT_FAILURE;
+    j->started = cli_now();
+    snprintf(j->sheet, sizeof j->sheet, "%s/contact_sheet.png", o->out_dir);
     /* views from a file's camera follow it when an animation moves it (or
      * its parents): made again from the posed camera every frame */
-    mvr_node_id camera_node = {0};
-    if (anim.applied && o.scene_file &&
-        (o.camera >= 0 || (o.camera == CLI_CAMERA_IF_ANY && mvr_scene_camera_node_count(scene) > 0)))
-        camera_node = mvr_scene_camera_node(scene, o.camera >= 0 ? (uint32_t)o.camera : 0);
-    for (uint32_t f = 0; f < o.frames && frames_ok; ++f) {
-        double t = o.time + (double)f / o.fps;
-        if (anim.applied &&
-            mvr_scene_apply_animation(scene, anim.index, t, o.loop ? MVR_ANIMATION_LOOP : MVR_ANIMATION_CLAMP) !=
-                MVR_OK) {
-            fprintf(stderr, "mvr render: animation %s at %g s: %s\n", anim.label, t, mvr_scene_last_error(scene));
-            frames_ok = false;
-            break;
-        }
-        if (camera_node.id) {
-            mvr_view_set *posed = NULL;
-            if (mvr_view_set_from_camera(scene, camera_node, n, o.ipd, &posed, &err) != MVR_OK) {
-                fprintf(stderr, "mvr render: the camera at %g s: %s\n", t, err.message);
-                frames_ok = false;
-                break;
-            }
-            mvr_view_set_destroy(views);
-            views = posed;
-        }
-        anim.last_time = t;
-        if (stream) {
-            frames_ok = render_stream_frame(stream, scene, views, &o.render, o.frames_set ? (int64_t)f : -1, f == 0);
-        } else if (mvr_renderer_render(renderer, scene, views, target, &o.render) != MVR_OK) {
-            fprintf(stderr, "mvr render: %s\n", mvr_renderer_last_error(renderer));
-            frames_ok = false;
-            break;
-        } else {
-            frames_ok = render_output_write_views(&o, renderer, target, n, layers, floats,
-                                                  o.frames_set ? (int64_t)f : -1);
-            if (frames_ok && o.outputs)
-                frames_ok = render_aovs_write(o.out_dir, renderer, target, n, o.width, o.height, o.outputs,
-                                              o.frames_set ? (int64_t)f : -1, render_output_frame_digits(o.frames));
-        }
-        /* the contact sheet: the first frame (the one --time alone gives) */
-        if (!stream && frames_ok && f == 0 && !render_output_write_contact_sheet(sheet, layers, n, o.width, o.height)) {
-            fprintf(stderr, "mvr render: cannot write %s\n", sheet);
-            frames_ok = false;
-        }
-        /* the camera metadata of the first frame's views (and what the IDs name) */
-        if (frames_ok && f == 0)
-            frames_ok = render_output_write_cameras(&o, views, n);
-        if (frames_ok && f == 0 && (o.outputs & MVR_OUTPUT_BIT(MVR_OUTPUT_IDS)))
-            frames_ok = render_aovs_write_ids(o.out_dir, scene);
+    if (j->anim.applied && o->scene_file &&
+        (o->camera >= 0 || (o->camera == CLI_CAMERA_IF_ANY && mvr_scene_camera_node_count(j->scene) > 0)))
+        j->camera_node = mvr_scene_camera_node(j->scene, o->camera >= 0 ? (uint32_t)o->camera : 0);
+    return MVR_EXIT_OK;
+}
+
+/* Frame: the scene posed at time t, and the views of a camera it moved. */
+static bool step_frame(render_job *j, double t)
+{
+    const render_options *o = &j->o;
+    if (j->anim.applied &&
+        mvr_scene_apply_animation(j->scene, j->anim.index, t, o->loop ? MVR_ANIMATION_LOOP : MVR_ANIMATION_CLAMP) !=
+            MVR_OK) {
+        fprintf(stderr, "mvr render: animation %s at %g s: %s\n", j->anim.label, t, mvr_scene_last_error(j->scene));
+        return false;
     }
-    free(floats);
-    if (frames_ok && stream)
-        frames_ok = render_stream_finish(stream, sheet);
-    if (!frames_ok)
-        goto done;
-    render_readback_info readback = {.mode = RENDER_READBACK_SYNC, .images = (uint64_t)n * o.frames,
-                                     .seconds = cli_now() - started};
-    if (stream)
-        render_stream_get_info(stream, &readback);
-    if (o.video && !render_output_encode_videos(&o, n))
-        goto done;
-    mvr_frame_stats st;
-    if (stream)
-        render_stream_get_stats(stream, &st); /* the last frame's chunks, summed */
+    if (j->camera_node.id) {
+        mvr_view_set *posed = NULL;
+        mvr_error err;
+        if (mvr_view_set_from_camera(j->scene, j->camera_node, j->n, o->ipd, &posed, &err) != MVR_OK) {
+            fprintf(stderr, "mvr render: the camera at %g s: %s\n", t, err.message);
+            return false;
+        }
+        mvr_view_set_destroy(j->views);
+        j->views = posed;
+    }
+    j->anim.last_time = t;
+    return true;
+}
+
+/* Render: frame f into the views' files (the stream writes its own), and
+ * with the first frame the contact sheet and the camera metadata. */
+static bool step_render(render_job *j, uint32_t f)
+{
+    render_options *o = &j->o;
+    int64_t frame = o->frames_set ? (int64_t)f : -1;
+    bool ok;
+    if (j->stream) {
+        ok = render_stream_frame(j->stream, j->scene, j->views, &o->render, frame, f == 0);
+    } else if (mvr_renderer_render(j->renderer, j->scene, j->views, j->target, &o->render) != MVR_OK) {
+        fprintf(stderr, "mvr render: %s\n", mvr_renderer_last_error(j->renderer));
+        return false;
+    } else {
+        ok = render_output_write_views(o, j->renderer, j->target, j->n, j->layers, j->floats, frame);
+        if (ok && o->outputs)
+            ok = render_aovs_write(o->out_dir, j->renderer, j->target, j->n, o->width, o->height, o->outputs, frame,
+                                   render_output_frame_digits(o->frames));
+    }
+    if (!ok || f != 0)
+        return ok;
+    /* the contact sheet: the first frame (the one --time alone gives) */
+    if (!j->stream && !render_output_write_contact_sheet(j->sheet, j->layers, j->n, o->width, o->height)) {
+        fprintf(stderr, "mvr render: cannot write %s\n", j->sheet);
+        return false;
+    }
+    /* the camera metadata of the first frame's views (and what the IDs name) */
+    if (!render_output_write_cameras(o, j->views, j->n))
+        return false;
+    if (o->outputs & MVR_OUTPUT_BIT(MVR_OUTPUT_IDS))
+        return render_aovs_write_ids(o->out_dir, j->scene);
+    return true;
+}
+
+/* Every frame: frame f at --time + f / --fps; without --frames one frame,
+ * written as view_VV.png. */
+static bool render_frames(render_job *j)
+{
+    bool frames_ok = true;
+    for (uint32_t f = 0; f < j->o.frames && frames_ok; ++f)
+        frames_ok = step_frame(j, j->o.time + (double)f / j->o.fps) && step_render(j, f);
+    free(j->floats);
+    j->floats = NULL;
+    if (frames_ok && j->stream)
+        frames_ok = render_stream_finish(j->stream, j->sheet);
+    return frames_ok;
+}
+
+/* The summary on stdout: what ran, how, and what was written. */
+static void print_summary(const render_session *s, const render_job *j, const mvr_frame_stats *st,
+                          const render_readback_info *readback)
+{
+    const render_options *o = &j->o;
+    const mvr_caps *c = mvr_context_caps(s->ctx);
+    const mvr_gltf_info *gi = &j->gltf_info;
+    const cli_env_used *env_used = &j->env_used;
+    printf("mvr render: %s, %u views of %ux%u on %s (%s)\n", o->scene_file ? o->scene_file : o->demo, j->n, o->width,
+           o->height, c->renderer, mvr_context_provider_name(mvr_context_get_provider(s->ctx)));
+    printf("  view path   %s: %u pass%s for %u view%s (GL_MAX_VIEWS_OVR %d)\n",
+           mvr_view_path_name(st->view_path), st->passes, st->passes == 1 ? "" : "es", st->views,
+           st->views == 1 ? "" : "s", c->limits.max_views_ovr);
+    if (o->scene_file)
+        printf("  load        %u image%s decoded, %u missing (their textures take defaults), %u buffer%s read; "
+               "peak %.1f of %.0f MiB budget\n",
+               gi->images_decoded, gi->images_decoded == 1 ? "" : "s", gi->images_missing,
+               gi->buffers_read, gi->buffers_read == 1 ? "" : "s",
+               (double)gi->memory_peak / 1048576.0, (double)gi->memory_budget / 1048576.0);
+    printf("  depth       %s\n", st->depth_mode == MVR_DEPTH_MODE_REVERSED_Z ? "reversed-Z (clip control, float depth)" : "standard");
+    if (st->post_passes)
+        printf("  exposure    %s: EV100 %.2f, tone map %s, %u post pass%s, %u luminance pass%s\n",
+               mvr_exposure_mode_name(st->exposure_mode), st->exposure_ev100, mvr_tone_map_name(st->tone_mapper),
+               st->post_passes, st->post_passes == 1 ? "" : "es", st->luminance_passes,
+               st->luminance_passes == 1 ? "" : "es");
+    if (env_used->present && env_used->file)
+        printf("  environment %s (%ux%u), intensity %g, rotation %g, background %s\n", env_used->file,
+               env_used->width, env_used->height, env_used->intensity, env_used->rotation,
+               mvr_background_name(o->render.background));
+    else if (env_used->present)
+        printf("  environment %s, intensity %g, rotation %g, background %s\n",
+               mvr_environment_source_name(env_used->source), env_used->intensity, env_used->rotation,
+               mvr_background_name(o->render.background));
     else
-        mvr_renderer_get_stats(renderer, &st);
-    if (o.plan) {
-        size_t need = mvr_renderer_format_plan(renderer, NULL, 0) + 1;
+        printf("  environment none\n");
+    if (st->env_prefilter_passes)
+        printf("  prefilter   %u pass%s, %.2f ms (once per environment)\n", st->env_prefilter_passes,
+               st->env_prefilter_passes == 1 ? "" : "es", st->env_prefilter_ms);
+    if (st->shadow_layers)
+        printf("  shadows     %u layer%s in %u pass%s, %u caster draws\n", st->shadow_layers,
+               st->shadow_layers == 1 ? "" : "s", st->shadow_passes, st->shadow_passes == 1 ? "" : "es",
+               st->shadow_draws);
+    printf("  materials   %s: %u texture arrays\n", mvr_material_path_name(st->material_path), st->texture_groups);
+    uint32_t loaded = 0, count = mvr_renderer_program_count(j->renderer);
+    mvr_program_info pi;
+    for (uint32_t i = 0; mvr_renderer_get_program_info(j->renderer, i, &pi); ++i)
+        loaded += pi.from_binary_cache;
+    printf("  programs    %u variant%s: %u compiled, %u from the binary cache%s%s\n", count,
+           count == 1 ? "" : "s", count - loaded, loaded, s->rd.program_cache_dir ? " in " : " (off)",
+           s->rd.program_cache_dir ? s->rd.program_cache_dir : "");
+    printf("  draws %u in %u draw calls (%u instanced); binds: program %u, texture %u, uniform range %u\n",
+           st->draws, st->draw_calls, st->instanced_draw_calls, st->program_binds, st->texture_binds,
+           st->ubo_range_binds);
+    if (st->gpu_ms >= 0)
+        printf("  time        cpu %.2f ms, gpu %.2f ms (last frame)\n", st->cpu_ms, st->gpu_ms);
+    else
+        printf("  time        cpu %.2f ms, gpu n/a (last frame)\n", st->cpu_ms);
+    if (o->variant) {
+        char label[128];
+        cli_variant_label(j->scene, j->variant, label, sizeof label);
+        printf("  variant     %s (of %u)\n", label, mvr_scene_variant_count(j->scene));
+    }
+    if (o->cameras_file)
+        printf("  cameras     %s: %u view%s (%s)\n", o->cameras_file, o->camera_count, o->camera_count == 1 ? "" : "s",
+               o->camera_format);
+    render_output_print_animation(o, j->scene, &j->anim, st);
+    render_output_print_files(o, j->n, j->sheet);
+    render_output_print_readback(readback);
+}
+
+/* Write: the videos, the plan, the stats file and the summary, once every
+ * frame's images are written. */
+static int step_write(const render_session *s, render_job *j)
+{
+    const render_options *o = &j->o;
+    render_readback_info readback = {.mode = RENDER_READBACK_SYNC, .images = (uint64_t)j->n * o->frames,
+                                     .seconds = cli_now() - j->started};
+    if (j->stream)
+        render_stream_get_info(j->stream, &readback);
+    if (o->video && !render_output_encode_videos(o, j->n))
+        return MVR_EXIT_FAILURE;
+    mvr_frame_stats st;
+    if (j->stream)
+        render_stream_get_stats(j->stream, &st); /* the last frame's chunks, summed */
+    else
+        mvr_renderer_get_stats(j->renderer, &st);
+    if (o->plan) {
+        size_t need = mvr_renderer_format_plan(j->renderer, NULL, 0) + 1;
         char *text = malloc(need);
         if (text) {
-            mvr_renderer_format_plan(renderer, text, need);
+            mvr_renderer_format_plan(j->renderer, text, need);
             fputs(text, stdout);
             free(text);
         }
     }
-    if (o.stats_file) {
-        FILE *f = fopen(o.stats_file, "w");
+    if (o->stats_file) {
+        FILE *f = fopen(o->stats_file, "w");
         if (!f) {
-            fprintf(stderr, "mvr render: cannot write %s: %s\n", o.stats_file, strerror(errno));
-            goto done;
+            fprintf(stderr, "mvr render: cannot write %s: %s\n", o->stats_file, strerror(errno));
+            return MVR_EXIT_FAILURE;
         }
-        render_output_write_stats_json(f, renderer, &st, o.scene_file ? o.scene_file : o.demo, o.width, o.height, ss,
-                                       o.scene_file ? &gltf_info : NULL, &env_used, &o.render, &o, &anim, &readback);
+        render_stats_write_json(f, j->renderer, &st, o->scene_file ? o->scene_file : o->demo, o->width, o->height,
+                                o->supersample, o->scene_file ? &j->gltf_info : NULL, &j->env_used, &o->render, o,
+                                &j->anim, &readback);
         fclose(f);
     }
-    if (!o.quiet) {
-        const mvr_caps *c = mvr_context_caps(ctx);
-        printf("mvr render: %s, %u views of %ux%u on %s (%s)\n", o.scene_file ? o.scene_file : o.demo, n, o.width, o.height, c->renderer,
-               mvr_context_provider_name(mvr_context_get_provider(ctx)));
-        printf("  view path   %s: %u pass%s for %u view%s (GL_MAX_VIEWS_OVR %d)\n",
-               mvr_view_path_name(st.view_path), st.passes, st.passes == 1 ? "" : "es", st.views,
-               st.views == 1 ? "" : "s", c->limits.max_views_ovr);
-        if (o.scene_file)
-            printf("  load        %u image%s decoded, %u missing (their textures take defaults), %u buffer%s read; "
-                   "peak %.1f of %.0f MiB budget\n",
-                   gltf_info.images_decoded, gltf_info.images_decoded == 1 ? "" : "s", gltf_info.images_missing,
-                   gltf_info.buffers_read, gltf_info.buffers_read == 1 ? "" : "s",
-                   (double)gltf_info.memory_peak / 1048576.0, (double)gltf_info.memory_budget / 1048576.0);
-        printf("  depth       %s\n", st.depth_mode == MVR_DEPTH_MODE_REVERSED_Z ? "reversed-Z (clip control, float depth)" : "standard");
-        if (st.post_passes)
-            printf("  exposure    %s: EV100 %.2f, tone map %s, %u post pass%s, %u luminance pass%s\n",
-                   mvr_exposure_mode_name(st.exposure_mode), st.exposure_ev100, mvr_tone_map_name(st.tone_mapper),
-                   st.post_passes, st.post_passes == 1 ? "" : "es", st.luminance_passes,
-                   st.luminance_passes == 1 ? "" : "es");
-        if (env_used.present && env_used.file)
-            printf("  environment %s (%ux%u), intensity %g, rotation %g, background %s\n", env_used.file,
-                   env_used.width, env_used.height, env_used.intensity, env_used.rotation,
-                   mvr_background_name(o.render.background));
-        else if (env_used.present)
-            printf("  environment %s, intensity %g, rotation %g, background %s\n",
-                   mvr_environment_source_name(env_used.source), env_used.intensity, env_used.rotation,
-                   mvr_background_name(o.render.background));
-        else
-            printf("  environment none\n");
-        if (st.env_prefilter_passes)
-            printf("  prefilter   %u pass%s, %.2f ms (once per environment)\n", st.env_prefilter_passes,
-                   st.env_prefilter_passes == 1 ? "" : "es", st.env_prefilter_ms);
-        if (st.shadow_layers)
-            printf("  shadows     %u layer%s in %u pass%s, %u caster draws\n", st.shadow_layers,
-                   st.shadow_layers == 1 ? "" : "s", st.shadow_passes, st.shadow_passes == 1 ? "" : "es",
-                   st.shadow_draws);
-        printf("  materials   %s: %u texture arrays\n", mvr_material_path_name(st.material_path), st.texture_groups);
-        uint32_t loaded = 0, count = mvr_renderer_program_count(renderer);
-        mvr_program_info pi;
-        for (uint32_t i = 0; mvr_renderer_get_program_info(renderer, i, &pi); ++i)
-            loaded += pi.from_binary_cache;
-        printf("  programs    %u variant%s: %u compiled, %u from the binary cache%s%s\n", count,
-               count == 1 ? "" : "s", count - loaded, loaded, rd.program_cache_dir ? " in " : " (off)",
-               rd.program_cache_dir ? rd.program_cache_dir : "");
-        printf("  draws %u in %u draw calls (%u instanced); binds: program %u, texture %u, uniform range %u\n",
-               st.draws, st.draw_calls, st.instanced_draw_calls, st.program_binds, st.texture_binds,
-               st.ubo_range_binds);
-        if (st.gpu_ms >= 0)
-            printf("  time        cpu %.2f ms, gpu %.2f ms (last frame)\n", st.cpu_ms, st.gpu_ms);
-        else
-            printf("  time        cpu %.2f ms, gpu n/a (last frame)\n", st.cpu_ms);
-        if (o.variant) {
-            char label[128];
-            cli_variant_label(scene, variant, label, sizeof label);
-            printf("  variant     %s (of %u)\n", label, mvr_scene_variant_count(scene));
-        }
-        if (o.cameras_file)
-            printf("  cameras     %s: %u view%s (%s)\n", o.cameras_file, o.camera_count, o.camera_count == 1 ? "" : "s",
-                   o.camera_format);
-        render_output_print_animation(&o, scene, &anim, &st);
-        render_output_print_files(&o, n, sheet);
-        render_output_print_readback(&readback);
-    }
-    rc = MVR_EXIT_OK;
-done:
-    if (layers)
-        for (uint32_t k = 0; k < mvr_view_set_count(views); ++k)
-            free(layers[k]);
-    free(layers);
-    render_stream_destroy(stream);
-    mvr_target_destroy(target);
-    mvr_view_set_destroy(views);
-    mvr_scene_destroy(scene);
+    if (!o->quiet)
+        print_summary(s, j, &st, &readback);
+    return MVR_EXIT_OK;
+}
+
+/* What the job made (the renderer is the session's). */
+static void job_release(render_job *j)
+{
+    if (j->layers)
+        for (uint32_t k = 0; k < mvr_view_set_count(j->views); ++k)
+            free(j->layers[k]);
+    free(j->layers);
+    free(j->floats);
+    render_stream_destroy(j->stream);
+    mvr_target_destroy(j->target);
+    mvr_view_set_destroy(j->views);
+    mvr_scene_destroy(j->scene);
+}
+
+/* Renders one scene (file: a SCENE, NULL: the options' own) into out_dir
+ * (NULL: --out) with the session's context and renderer: load, set up,
+ * each frame posed and rendered, then written; an MVR_EXIT_ code, *fatal
+ * set when the session itself could not be made. */
+static int render_one(render_session *s, const char *file, const char *out_dir, bool *fatal)
+{
+    render_job j;
+    memset(&j, 0, sizeof j);
+    if (!job_options(&j, s->base, file, out_dir))
+        return MVR_EXIT_FAILURE;
+    int rc = step_load(s, &j, fatal);
+    if (rc == MVR_EXIT_OK)
+        rc = step_renderer(s, &j, fatal);
+    if (rc == MVR_EXIT_OK)
+        rc = step_setup(s, &j);
+    if (rc == MVR_EXIT_OK)
+        rc = render_frames(&j) ? step_write(s, &j) : MVR_EXIT_FAILURE;
+    job_release(&j);
     return rc;
 }
+
 
 static int render_file_cb(void *user, const char *file, const char *out_dir, bool *fatal)
 {
@@ -936,7 +457,7 @@ int mvr_cmd_render(int argc, char **argv)
     render_options o;
     render_inputs in;
     memset(&in, 0, sizeof in);
-    int rc = parse(argc, argv, &o, &in);
+    int rc = render_options_parse(argc, argv, &o, &in);
     if (rc == MVR_EXIT_OK) {
         render_session s = {.base = &o};
         bool fatal = false;

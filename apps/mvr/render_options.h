@@ -1,12 +1,15 @@
-/* mvr render's options as parsed (cmd_render.c) and what posed its frames:
- * shared by the command and what it writes (render_output.c). */
+/* mvr render's options as parsed (render_options.c) and what posed its
+ * frames: shared by the command (cmd_render.c) and what it writes
+ * (render_output.c). */
 #ifndef MVR_APP_RENDER_OPTIONS_H
 #define MVR_APP_RENDER_OPTIONS_H
 
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "camera_file.h"
 #include "cli_env.h"
+#include "render_files.h"
 #include "mvr/mvr.h"
 
 /* --readback: how the views come back from the GL and go to files. */
@@ -73,6 +76,17 @@ typedef struct render_options {
     const char *list_file;
     bool keep_going;
 } render_options;
+
+/* The SCENE arguments and --list's, and the --cameras file's views. */
+typedef struct render_inputs {
+    render_file_list files;
+    camera_file cameras;
+} render_inputs;
+
+/* argv (after "render") into o and in, checked: MVR_EXIT_OK, -1 after
+ * --help (printed: nothing to run), or the exit code of a usage error
+ * (printed). in is zeroed by the caller and freed by it either way. */
+int render_options_parse(int argc, char **argv, render_options *o, render_inputs *in);
 
 /* How the frames were read back and written: the summary and the stats. */
 typedef struct render_readback_info {

@@ -1,6 +1,7 @@
 /* What mvr render writes (render_output.c): the frame sequence's animation,
- * each view's image per frame, the contact sheet, the videos, the stats
- * JSON and the summary lines about them. Messages are prefixed "mvr render". */
+ * each view's image per frame, the contact sheet, the videos and the
+ * summary lines about them (the stats JSON: render_stats.h). Messages are
+ * prefixed "mvr render". */
 #ifndef MVR_APP_RENDER_OUTPUT_H
 #define MVR_APP_RENDER_OUTPUT_H
 
@@ -42,16 +43,6 @@ bool render_output_encode_videos(const render_options *o, uint32_t n);
 /* The first executable name in the directories of $PATH, into buf (size
  * bytes); false (buf "") when there is none. */
 bool render_output_find_on_path(const char *name, char *buf, size_t size);
-
-/* The last frame's stats as JSON into f: the scene (demo: its name or
- * file), the glTF load (load NULL: none), the environment used, the
- * programs and passes, the animation that posed the frames, and how the
- * images came back (readback; its culled_per_view, when set, replaces the
- * renderer's). */
-void render_output_write_stats_json(FILE *f, const mvr_renderer *r, const mvr_frame_stats *s, const char *demo,
-                                    uint32_t w, uint32_t h, uint32_t supersample, const mvr_gltf_info *load,
-                                    const cli_env_used *env, const mvr_render_desc *rd, const render_options *o,
-                                    const render_animation *anim, const render_readback_info *readback);
 
 /* The summary's line on how the images came back: the path, and images
  * written per second from the first render to the last file. */
