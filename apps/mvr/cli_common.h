@@ -37,7 +37,7 @@ bool cli_parse_double(const char *s, double *out);
 /* Creates path and its parents (mkdir -p); prints what failed. */
 bool cli_make_dirs(const char *command, const char *path);
 
-/* The allocator choice of mvr, mvr bench and mvr-viewer (issue 22): glibc's
+/* The allocator choice of mvr, mvr bench and mvr-viewer: glibc's
  * mmap and trim thresholds raised to 64 and 256 MiB, so the scene bins a GL
  * driver allocates and frees every frame (llvmpipe: megabytes per multiview
  * pass) stay in the heap instead of being mapped, unmapped and faulted in

@@ -177,7 +177,7 @@ static void depth_ordering(mvr_test_state *t)
     for (int i = 0; i < 6; ++i) {
         double d = distances[i];
         if (reversed) {
-            /* threshold: relative gap 1e-5 (the figure) at every distance */
+            /* threshold: relative gap 1e-5 (the precision mvr promises) at every distance */
             CHECK_MSG(t, quads_ordered(t, ctx, MVR_DEPTH_MODE_REVERSED_Z, d, 1e-5),
                       "reversed-Z: quads at %g and %g are not ordered", d, d * (1 + 1e-5));
             double smallest = 1e-5;
@@ -200,7 +200,7 @@ static void depth_ordering(mvr_test_state *t)
     if (reversed)
         stress_record("depth ordering, reversed-Z (float depth, infinite far): smallest relative gap ordered, by distance",
                       "<= 1e-5 at 1 .. 1e5", rev_line,
-                      "the issue's figure; float depth keeps about 24 bits of relative precision at any distance");
+                      "the precision mvr promises; float depth keeps about 24 bits of relative precision at any distance");
     stress_record("depth ordering, standard depth (near 0.1, far 1e6): smallest relative gap ordered, by distance",
                   "(for the record)", std_line, "what conventional Z resolves where clip control is missing");
     mvr_context_destroy(ctx);
