@@ -25,7 +25,7 @@ typedef struct mvr_gpu_environment {
 } mvr_gpu_environment;
 
 
-/* environment.c: prefilters a new environment (nothing when it is the one
+/* Prefilters a new environment (nothing when it is the one
  * already prefiltered, or NULL); binds its maps for the mesh programs; sets
  * a program's environment uniforms; draws the background of one pass (its
  * views: num_views multiview, 0 = one view at view_base) after the opaque

@@ -4,7 +4,7 @@
 
 #include "context_internal.h"
 
-/* outputs.c: where an extra output lives: its array (MVR_TARGET_OUTPUT_*,
+/* Where an extra output lives: its array (MVR_TARGET_OUTPUT_*,
  * ARRAYS for colour), its first channel and channel count in the 4 x 32-bit
  * texels, and the format and type GLES always reads that array with. The
  * synchronous and the asynchronous readback both read through it. */

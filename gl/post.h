@@ -9,7 +9,7 @@
 /* A pass's views: mvr_view_chunk of core/frame_plan.h (the frame plan
  * splits the view set into these; a loop-path chunk is one view). */
 
-/* post.c: full-screen composite passes reading `source` (bound to the
+/* Full-screen composite passes reading `source` (bound to the
  * composite unit, with the state such passes need): per chunk one
  * multiview pass over its layers (multiview) or one pass per view, into the
  * target's output layers, or (luminance) level 0 of its log-luminance

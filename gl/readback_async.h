@@ -4,7 +4,7 @@
 
 #include "mvr/mvr.h"
 
-/* readback_async.c: releases every readback's GL objects and detaches it. */
+/* Releases every readback's GL objects and detaches it. */
 void mvr_readbacks_release(mvr_renderer *r);
 
 #endif

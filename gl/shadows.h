@@ -1,4 +1,4 @@
-/* Shadow maps (gl/shadows.c). */
+/* Shadow maps on the GPU (gl/shadows.c); core/shadow_plan.h plans their layers. */
 #ifndef MVR_SHADOWS_H
 #define MVR_SHADOWS_H
 
@@ -21,7 +21,7 @@ typedef struct mvr_shadow_maps {
     mvr_shadow_plan plan;        /* this frame's */
 } mvr_shadow_maps;
 
-/* shadows.c: plans this frame's shadow layers (r->shadows.plan) */
+/* Plans this frame's shadow layers (r->shadows.plan) */
 void mvr_shadows_plan(mvr_renderer *r, const mvr_view_set *views, const mvr_target *t, const mvr_render_desc *desc);
 /* Draws the planned layers: caster matrices in a view block at views_at,
  * per-draw blocks from draws_at (the ring's static region). */

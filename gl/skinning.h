@@ -1,4 +1,4 @@
-/* Skins and morph targets on the GPU (gl/skinning.c). */
+/* Skinning and morphing (gl/skinning.c): the vertex or pre-skinning path. */
 #ifndef MVR_SKINNING_H
 #define MVR_SKINNING_H
 
@@ -32,7 +32,7 @@ typedef struct mvr_skinning {
     GLuint capture_fbo, capture_color;
 } mvr_skinning;
 
-/* skinning.c: the morph deltas of a scene's geometry (after its upload);
+/* The morph deltas of a scene's geometry (after its upload);
  * this frame's path, deformation texels and, on the pre-skinning path, the
  * capture pass (frame_changed: the frame was rebuilt, so joints or weights
  * may have moved; nothing is sent or captured otherwise); the vertex array

@@ -53,7 +53,7 @@ struct mvr_target {
     uint32_t shader_outputs;     /* MVR_SHADER_OUT_GEOMETRY / _NORMAL / _IDS they give */
 };
 
-/* targets.c: a framebuffer for layers [base, base + count) (multiview when
+/* A framebuffer for layers [base, base + count) (multiview when
  * count > 0) or one layer (count = 0), created on first use: the one views
  * are drawn into (color and depth; a supersampled target's own arrays), or
  * with output the color array alone (what is read back, and what a

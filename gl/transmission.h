@@ -15,7 +15,7 @@ typedef struct mvr_transmission {
     uint64_t serial;             /* one per copy */
 } mvr_transmission;
 
-/* transmission.c: the chunk of rec's opaque views into the transmission
+/* The chunk of rec's opaque views into the transmission
  * array (its mips generated), the draw framebuffer resume_fbo bound again
  * after; loop_msaa_fbo: the multisampled renderbuffers a one-view MSAA
  * chunk draws into. block_base: the first view of the chunk's view block. */

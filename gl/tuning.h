@@ -5,7 +5,7 @@
 #include "context_internal.h"
 #include "view_set.h"
 
-/* tuning.c: the view path this frame runs (prior: the caps rule's choice
+/* The view path this frame runs (prior: the caps rule's choice
  * for auto, or the path asked for; tune_view: auto, and both paths can draw
  * this frame) and its skinning path (r->skinning.tuned); after the frame,
  * what to measure and the stats' auto_choice / auto_skinning. */
