@@ -5,6 +5,7 @@
 #include <EGL/egl.h>
 
 #include "context_internal.h"
+#include "renderer.h"
 
 static const char *const provider_names[MVR_CONTEXT_PROVIDER_COUNT_] = {
     [MVR_CONTEXT_PROVIDER_DEFAULT] = "default",

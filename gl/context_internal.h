@@ -87,11 +87,6 @@ mvr_result mvr_context_begin(mvr_context *ctx, const char *where);
 void mvr_context_delete(mvr_context *ctx, mvr_gl_object kind, GLuint name);
 void mvr_context_delete_sync(mvr_context *ctx, GLsync sync);
 
-/* gl/renderer.c: the renderer's context is being destroyed: its GL objects
- * and its targets' are released (now, or with the context), and it unlinks
- * itself from ctx->renderers; later calls on it fail. */
-void mvr_renderer_context_destroyed(struct mvr_renderer *r);
-
 /* Checks the bound framebuffer on target; fails ctx naming `where` if incomplete. */
 mvr_result mvr_gl_check_framebuffer(mvr_context *ctx, GLenum target, const char *where);
 

@@ -31,7 +31,11 @@
 #include <time.h>
 
 #include "environment.h"
-#include "renderer_internal.h"
+#include "environment_gl.h"
+#include "errors.h"
+#include "post.h"
+#include "program_cache.h"
+#include "renderer.h"
 
 #define ENV_LOWEST_FACE 16u      /* roughness 1's level */
 #define ENV_MAX_SOURCE 512u      /* source cube face size, at most */
@@ -65,10 +69,10 @@ static uint32_t pow2_floor(uint32_t v)
 static void release_maps(mvr_renderer *r)
 {
     mvr_gpu_environment *g = &r->env;
-    mvr_renderer_delete(r, MVR_GL_TEXTURE, &g->source);
-    mvr_renderer_delete(r, MVR_GL_TEXTURE, &g->specular);
-    mvr_renderer_delete(r, MVR_GL_TEXTURE, &g->charlie);
-    mvr_renderer_delete(r, MVR_GL_SAMPLER, &g->cube_sampler);
+    mvr_gl_delete(r, MVR_GL_TEXTURE, &g->source);
+    mvr_gl_delete(r, MVR_GL_TEXTURE, &g->specular);
+    mvr_gl_delete(r, MVR_GL_TEXTURE, &g->charlie);
+    mvr_gl_delete(r, MVR_GL_SAMPLER, &g->cube_sampler);
     g->serial = 0;
     g->charlie_serial = 0;
 }
@@ -76,9 +80,9 @@ static void release_maps(mvr_renderer *r)
 void mvr_environment_release(mvr_renderer *r)
 {
     release_maps(r);
-    mvr_renderer_delete(r, MVR_GL_TEXTURE, &r->env.dfg);
-    mvr_renderer_delete(r, MVR_GL_SAMPLER, &r->env.dfg_sampler);
-    mvr_renderer_delete(r, MVR_GL_TEXTURE, &r->env.sheen_lut);
+    mvr_gl_delete(r, MVR_GL_TEXTURE, &r->env.dfg);
+    mvr_gl_delete(r, MVR_GL_SAMPLER, &r->env.dfg_sampler);
+    mvr_gl_delete(r, MVR_GL_TEXTURE, &r->env.sheen_lut);
 }
 
 static mvr_result check_fbo(mvr_renderer *r, const char *where)
@@ -86,7 +90,7 @@ static mvr_result check_fbo(mvr_renderer *r, const char *where)
     mvr_result res = mvr_gl_check(r->ctx, where, true);
     if (res == MVR_OK)
         res = mvr_gl_check_framebuffer(r->ctx, GL_DRAW_FRAMEBUFFER, where);
-    return res == MVR_OK ? MVR_OK : mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
+    return res == MVR_OK ? MVR_OK : mvr_gl_fail(r, res, "%s", mvr_context_last_error(r->ctx));
 }
 
 typedef struct level_job {
@@ -150,7 +154,7 @@ static mvr_result make_texture(mvr_renderer *r, GLenum target, GLuint *tex, uint
     else
         gl->TexStorage2D(target, (GLsizei)levels, format, (GLsizei)w, (GLsizei)h);
     gl->TexParameteri(target, GL_TEXTURE_MAX_LEVEL, (GLint)levels - 1);
-    return mvr_renderer_check_alloc(r, "%s (%ux%u, %u levels)", what, w, h, levels);
+    return mvr_gl_check_alloc(r, "%s (%ux%u, %u levels)", what, w, h, levels);
 }
 
 static mvr_result environment_program(mvr_renderer *r, uint32_t features, bool multiview, mvr_program_entry **e)
@@ -160,7 +164,7 @@ static mvr_result environment_program(mvr_renderer *r, uint32_t features, bool m
     v.program = MVR_PROGRAM_ENVIRONMENT;
     v.features = features;
     v.num_views = multiview ? 6u : 0u;
-    mvr_result res = mvr_renderer_program(r, &v, e);
+    mvr_result res = mvr_program_cache_get(r, &v, e);
     if (res == MVR_OK)
         mvr_state_program(&r->state, (*e)->program);
     return res;
@@ -182,7 +186,7 @@ static mvr_result make_dfg(mvr_renderer *r)
     float *table = malloc((size_t)ENV_DFG_SIZE * ENV_DFG_SIZE * 2 * sizeof *table);
     if (!table || !mvr_ibl_dfg_lut(ENV_DFG_SIZE, ENV_DFG_SAMPLES, table)) {
         free(table);
-        return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "environment: DFG table: out of memory");
+        return mvr_gl_fail(r, MVR_ERROR_OUT_OF_MEMORY, "environment: DFG table: out of memory");
     }
     const mvr_gl_api_table *gl = r->gl;
     mvr_result res = make_texture(r, GL_TEXTURE_2D, &g->dfg, 1, GL_RG16F, ENV_DFG_SIZE, ENV_DFG_SIZE, 1,
@@ -216,7 +220,7 @@ static mvr_result make_cube_sampler(mvr_renderer *r)
     gl->SamplerParameteri(*sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     gl->SamplerParameteri(*sampler, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
     mvr_result res = mvr_gl_check(r->ctx, "environment prefilter", true);
-    return res == MVR_OK ? MVR_OK : mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
+    return res == MVR_OK ? MVR_OK : mvr_gl_fail(r, res, "%s", mvr_context_last_error(r->ctx));
 }
 
 /* What a prefilter run draws through: framebuffers, and on the multiview
@@ -250,11 +254,11 @@ static mvr_result scratch_create(mvr_renderer *r, prefilter_scratch *sc, bool mu
 
 static void scratch_release(mvr_renderer *r, prefilter_scratch *sc)
 {
-    mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &sc->fbo);
-    mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &sc->read_fbo);
-    mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &sc->copy_fbo);
+    mvr_gl_delete(r, MVR_GL_FRAMEBUFFER, &sc->fbo);
+    mvr_gl_delete(r, MVR_GL_FRAMEBUFFER, &sc->read_fbo);
+    mvr_gl_delete(r, MVR_GL_FRAMEBUFFER, &sc->copy_fbo);
     for (uint32_t k = 0; k < 12u; ++k)
-        mvr_renderer_delete(r, MVR_GL_TEXTURE, &sc->faces[k]);
+        mvr_gl_delete(r, MVR_GL_TEXTURE, &sc->faces[k]);
 }
 
 /* Steps 1 and 2 for a new environment. */
@@ -264,9 +268,9 @@ static mvr_result prefilter(mvr_renderer *r, const mvr_environment *env)
     const mvr_gl_api_table *gl = r->gl;
     const mvr_caps *caps = &r->ctx->caps;
     if (!caps->ext.ext_color_buffer_half_float)
-        return mvr_renderer_fail(r, MVR_ERROR_UNSUPPORTED,
-                                 "environment: prefiltering needs renderable half floats "
-                                 "(GL_EXT_color_buffer_half_float), which this GL lacks");
+        return mvr_gl_fail(r, MVR_ERROR_UNSUPPORTED,
+                           "environment: prefiltering needs renderable half floats "
+                           "(GL_EXT_color_buffer_half_float), which this GL lacks");
     uint32_t max_cube = (uint32_t)caps->limits.max_texture_size;
     uint32_t spec_size = env->specular_size;
     /* the source: a face of a quarter of the image's width (its texels about
@@ -277,8 +281,8 @@ static mvr_result prefilter(mvr_renderer *r, const mvr_environment *env)
     if (source_size < spec_size)
         source_size = spec_size;
     if (spec_size > max_cube || source_size > max_cube)
-        return mvr_renderer_fail(r, MVR_ERROR_UNSUPPORTED, "environment: cube faces of %u texels exceed the GL's %u",
-                                 source_size, max_cube);
+        return mvr_gl_fail(r, MVR_ERROR_UNSUPPORTED, "environment: cube faces of %u texels exceed the GL's %u",
+                           source_size, max_cube);
     uint32_t source_levels = log2_floor(source_size) + 1u;
     uint32_t spec_levels = log2_floor(spec_size / ENV_LOWEST_FACE) + 1u;
     bool multiview = prefilter_multiview(r);
@@ -346,7 +350,7 @@ static mvr_result prefilter(mvr_renderer *r, const mvr_environment *env)
     if (res == MVR_OK)
         res = make_cube_sampler(r);
     scratch_release(r, &sc);
-    mvr_renderer_delete(r, MVR_GL_TEXTURE, &equirect);
+    mvr_gl_delete(r, MVR_GL_TEXTURE, &equirect);
     if (res != MVR_OK) {
         release_maps(r);
         return res;
@@ -369,7 +373,7 @@ static mvr_result charlie_prefilter(mvr_renderer *r, const mvr_environment *env)
     const mvr_gl_api_table *gl = r->gl;
     bool multiview = prefilter_multiview(r);
     uint32_t levels = g->specular_levels, size0 = g->specular_size;
-    mvr_renderer_delete(r, MVR_GL_TEXTURE, &g->charlie);
+    mvr_gl_delete(r, MVR_GL_TEXTURE, &g->charlie);
     g->charlie_serial = 0;
     mvr_result res = make_texture(r, GL_TEXTURE_CUBE_MAP, &g->charlie, levels, GL_RGBA16F, size0, size0, 1,
                                   "environment sheen (Charlie) cube map (rgba16f)");
@@ -397,11 +401,11 @@ static mvr_result charlie_prefilter(mvr_renderer *r, const mvr_environment *env)
     if (res == MVR_OK) {
         res = mvr_gl_check(r->ctx, "environment sheen prefilter", true);
         if (res != MVR_OK)
-            res = mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
+            res = mvr_gl_fail(r, res, "%s", mvr_context_last_error(r->ctx));
     }
     scratch_release(r, &sc);
     if (res != MVR_OK) {
-        mvr_renderer_delete(r, MVR_GL_TEXTURE, &g->charlie);
+        mvr_gl_delete(r, MVR_GL_TEXTURE, &g->charlie);
         return res;
     }
     g->charlie_serial = env->serial;
@@ -416,7 +420,7 @@ mvr_result mvr_sheen_lut_sync(mvr_renderer *r)
     float *table = malloc((size_t)SHEEN_LUT_SIZE * SHEEN_LUT_SIZE * 2 * sizeof *table);
     if (!table || !mvr_sheen_lut(SHEEN_LUT_SIZE, table)) {
         free(table);
-        return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "sheen albedo table: out of memory");
+        return mvr_gl_fail(r, MVR_ERROR_OUT_OF_MEMORY, "sheen albedo table: out of memory");
     }
     const mvr_gl_api_table *gl = r->gl;
     mvr_result res = make_texture(r, GL_TEXTURE_2D, &g->sheen_lut, 1, GL_RG16F, SHEEN_LUT_SIZE, SHEEN_LUT_SIZE, 1,
@@ -525,7 +529,7 @@ mvr_result mvr_environment_draw_background(mvr_renderer *r, const mvr_render_des
     v.features = srgb_output ? MVR_FEATURE_BACKGROUND_SRGB_OUTPUT : 0u;
     v.num_views = num_views;
     mvr_program_entry *e = NULL;
-    mvr_result res = mvr_renderer_program(r, &v, &e);
+    mvr_result res = mvr_program_cache_get(r, &v, &e);
     if (res != MVR_OK)
         return res;
     if (!r->empty_vao)

@@ -5,8 +5,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "renderer_internal.h"
-
+#include "errors.h"
+#include "gpu_scene.h"
+#include "renderer.h"
+#include "skinning.h"
 
 static GLenum gl_filter(mvr_filter f, bool min)
 {
@@ -31,16 +33,6 @@ static GLenum gl_wrap(mvr_wrap w)
     case MVR_WRAP_MIRRORED_REPEAT: return GL_MIRRORED_REPEAT;
     }
     return GL_REPEAT;
-}
-
-static GLenum gl_mode(mvr_primitive_mode m)
-{
-    switch (m) {
-    case MVR_PRIMITIVE_TRIANGLES: return GL_TRIANGLES;
-    case MVR_PRIMITIVE_LINES: return GL_LINES;
-    case MVR_PRIMITIVE_POINTS: return GL_POINTS;
-    }
-    return GL_TRIANGLES;
 }
 
 static bool same_sampler(const mvr_sampler_desc *a, const mvr_sampler_desc *b)
@@ -360,7 +352,7 @@ static bool try_texture(mvr_renderer *r, const mvr_scene *s, const texture_job *
             pixels = s->images[image].rgba;
         }
         if (!pixels) {
-            *res = mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "%s: out of memory (%ux%u pixels)", job->what, w, h);
+            *res = mvr_gl_fail(r, MVR_ERROR_OUT_OF_MEMORY, "%s: out of memory (%ux%u pixels)", job->what, w, h);
             break;
         }
         /* rows as stored, top first: glTF's uv (0, 0) is the image's top-left */
@@ -413,7 +405,7 @@ static mvr_result make_texture(mvr_renderer *r, const mvr_scene *s, const textur
         } else if (try_texture(r, s, job, base, w, h, out, why, sizeof why, &oom, &res)) {
             break;
         } else {
-            mvr_renderer_delete(r, MVR_GL_TEXTURE, out);
+            mvr_gl_delete(r, MVR_GL_TEXTURE, out);
             if (res != MVR_OK) /* out of host memory: recorded */
                 return res;
             res = oom ? MVR_ERROR_OUT_OF_MEMORY : MVR_ERROR_GL;
@@ -424,13 +416,13 @@ static mvr_result make_texture(mvr_renderer *r, const mvr_scene *s, const textur
         bool smaller = blocks ? base + 1 < job->levels : (w > 1 || h > 1);
         bool halve = res != MVR_ERROR_GL && r->oversized_images == MVR_OVERSIZED_IMAGE_DOWNSCALE && smaller;
         if (!halve)
-            return mvr_renderer_fail(r, res, "%s (%ux%u %s, %u mips): %s%s", job->what, w, h, fmt,
-                                     blocks ? job->levels - base : job->mips ? mvr_mip_levels(w, h) : 1u, why,
-                                     res == MVR_ERROR_GL ? ""
-                                     : r->oversized_images == MVR_OVERSIZED_IMAGE_REFUSE
-                                         ? " (the renderer's oversized_images is refuse)"
-                                     : blocks ? " (block-compressed: no smaller mip level to start from)"
-                                              : " (even at 1x1)");
+            return mvr_gl_fail(r, res, "%s (%ux%u %s, %u mips): %s%s", job->what, w, h, fmt,
+                               blocks ? job->levels - base : job->mips ? mvr_mip_levels(w, h) : 1u, why,
+                               res == MVR_ERROR_GL ? ""
+                               : r->oversized_images == MVR_OVERSIZED_IMAGE_REFUSE
+                                   ? " (the renderer's oversized_images is refuse)"
+                               : blocks ? " (block-compressed: no smaller mip level to start from)"
+                                        : " (even at 1x1)");
         if (blocks) {
             base++;
             w = job->width >> base ? job->width >> base : 1;
@@ -476,7 +468,7 @@ static mvr_result texture_for(mvr_renderer *r, const mvr_scene *s, uint32_t imag
         uint32_t cap = g->texture_cap ? g->texture_cap * 2 : 16;
         mvr_gpu_texture *p = realloc(g->textures, cap * sizeof *p);
         if (!p)
-            return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "textures: out of memory");
+            return mvr_gl_fail(r, MVR_ERROR_OUT_OF_MEMORY, "textures: out of memory");
         g->textures = p;
         g->texture_cap = cap;
     }
@@ -514,14 +506,14 @@ static mvr_result upload_arrays(mvr_renderer *r, const mvr_scene *s)
     mvr_result res = mvr_batch_plan_build_for(&g->plan, s, (uint32_t)r->ctx->caps.limits.max_array_texture_layers,
                                               r->sampleable_formats);
     if (res != MVR_OK)
-        return mvr_renderer_fail(r, res, "batch plan: out of memory");
+        return mvr_gl_fail(r, res, "batch plan: out of memory");
     for (uint32_t n = 0; n < g->plan.note_count; ++n)
         mvr_log(&r->logger, MVR_LOG_DEBUG, MVR_LOG_ID_GENERAL, "mvr: batch plan: %s", g->plan.notes[n]);
     uint32_t count = g->plan.group_count;
     g->group_textures = calloc(count ? count : 1, sizeof *g->group_textures);
     g->group_samplers = calloc(count ? count : 1, sizeof *g->group_samplers);
     if (!g->group_textures || !g->group_samplers)
-        return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "texture arrays: out of memory");
+        return mvr_gl_fail(r, MVR_ERROR_OUT_OF_MEMORY, "texture arrays: out of memory");
     for (uint32_t k = 0; k < count; ++k) {
         const mvr_texture_group *grp = &g->plan.groups[k];
         bool blocks = grp->format != MVR_IMAGE_FORMAT_RGBA8;
@@ -538,7 +530,7 @@ static mvr_result upload_arrays(mvr_renderer *r, const mvr_scene *s)
             return res;
         g->group_samplers[k] = sampler_for(r, &grp->sampler);
         if (!g->group_samplers[k])
-            return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "samplers: out of memory");
+            return mvr_gl_fail(r, MVR_ERROR_OUT_OF_MEMORY, "samplers: out of memory");
     }
     return MVR_OK;
 }
@@ -547,7 +539,7 @@ static void release_arrays(mvr_renderer *r)
 {
     mvr_gpu_scene *g = &r->gpu;
     for (uint32_t k = 0; g->group_textures && k < g->plan.group_count; ++k)
-        mvr_renderer_delete(r, MVR_GL_TEXTURE, &g->group_textures[k]);
+        mvr_gl_delete(r, MVR_GL_TEXTURE, &g->group_textures[k]);
     free(g->group_textures);
     free(g->group_samplers);
     g->group_textures = g->group_samplers = NULL;
@@ -559,144 +551,19 @@ static void release_arrays(mvr_renderer *r)
 static void release_geometry(mvr_renderer *r)
 {
     mvr_gpu_scene *g = &r->gpu;
-    for (uint32_t i = 0; i < g->primitive_count; ++i) {
-        mvr_gpu_primitive *p = &g->primitives[i];
-        mvr_renderer_delete(r, MVR_GL_VERTEX_ARRAY, &p->vao);
-        mvr_renderer_delete(r, MVR_GL_BUFFER, &p->vbo);
-        mvr_renderer_delete(r, MVR_GL_BUFFER, &p->ibo);
-    }
-    free(g->primitives);
-    g->primitives = NULL;
-    g->primitive_count = 0;
+    mvr_gpu_primitives_release(r);
     release_arrays(r);
     for (uint32_t i = 0; i < g->texture_count; ++i)
-        mvr_renderer_delete(r, MVR_GL_TEXTURE, &g->textures[i].texture);
+        mvr_gl_delete(r, MVR_GL_TEXTURE, &g->textures[i].texture);
     g->texture_count = 0;
     forget_downscaled(g);
 }
 
+
 static mvr_result upload_geometry(mvr_renderer *r, const mvr_scene *s)
 {
-    mvr_gpu_scene *g = &r->gpu;
-    const mvr_gl_api_table *gl = r->gl;
     release_geometry(r);
-    if (s->primitive_count == 0)
-        return MVR_OK;
-    g->primitives = calloc(s->primitive_count, sizeof *g->primitives);
-    if (!g->primitives)
-        return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "upload: out of memory");
-    g->primitive_count = s->primitive_count;
-    for (uint32_t i = 0; i < s->primitive_count; ++i) {
-        const scene_primitive *sp = &s->primitives[i];
-        mvr_gpu_primitive *p = &g->primitives[i];
-        /* attribute arrays back to back in one buffer, at the locations of mesh.vert.glsl */
-        const struct { const float *data; GLint size; GLuint location; } attrs[] = {
-            {sp->positions, 3, 0}, {sp->normals, 3, 1}, {sp->tangents, 4, 2},
-            {sp->uv0, 2, 3}, {sp->uv1, 2, 4}, {sp->colors, 4, 5}};
-        /* skinning (deform.glsl): joints as integers, weights as floats */
-        const struct { const void *data; size_t bytes; GLuint location; bool joints; } skin[] = {
-            {sp->joints[0], sizeof(uint16_t), 6, true}, {sp->weights[0], sizeof(float), 7, false},
-            {sp->joints[1], sizeof(uint16_t), 8, true}, {sp->weights[1], sizeof(float), 9, false}};
-        size_t total = 0;
-        for (size_t a = 0; a < MVR_ARRAY_COUNT(attrs); ++a)
-            if (attrs[a].data)
-                total += (size_t)sp->vertex_count * (size_t)attrs[a].size * sizeof(float);
-        for (size_t a = 0; a < MVR_ARRAY_COUNT(skin); ++a)
-            if (skin[a].data)
-                total += (size_t)sp->vertex_count * 4 * skin[a].bytes;
-        /* staged and uploaded in one call: sub-data updates of a STATIC_DRAW
-         * buffer are a slow path drivers warn about */
-        uint8_t *staging = malloc(total ? total : 1);
-        if (!staging)
-            return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "upload: out of memory");
-        size_t at = 0;
-        for (size_t a = 0; a < MVR_ARRAY_COUNT(attrs); ++a) {
-            if (!attrs[a].data)
-                continue;
-            size_t bytes = (size_t)sp->vertex_count * (size_t)attrs[a].size * sizeof(float);
-            memcpy(staging + at, attrs[a].data, bytes);
-            at += bytes;
-        }
-        for (size_t a = 0; a < MVR_ARRAY_COUNT(skin); ++a) {
-            if (!skin[a].data)
-                continue;
-            size_t bytes = (size_t)sp->vertex_count * 4 * skin[a].bytes;
-            memcpy(staging + at, skin[a].data, bytes);
-            at += bytes;
-        }
-        gl->GenVertexArrays(1, &p->vao);
-        mvr_state_vao(&r->state, p->vao);
-        gl->GenBuffers(1, &p->vbo);
-        mvr_state_array_buffer(&r->state, p->vbo);
-        gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)total, staging, GL_STATIC_DRAW);
-        free(staging);
-        mvr_result res = mvr_renderer_check_alloc(r, "vertex buffer of primitive %u (%u vertices, %zu bytes)", i,
-                                                  sp->vertex_count, total);
-        if (res != MVR_OK) {
-            mvr_state_vao(&r->state, 0);
-            return res;
-        }
-        size_t offset = 0;
-        for (size_t a = 0; a < MVR_ARRAY_COUNT(attrs); ++a) {
-            if (!attrs[a].data)
-                continue;
-            size_t bytes = (size_t)sp->vertex_count * (size_t)attrs[a].size * sizeof(float);
-            gl->EnableVertexAttribArray(attrs[a].location);
-            gl->VertexAttribPointer(attrs[a].location, attrs[a].size, GL_FLOAT, GL_FALSE, 0,
-                                    (const void *)(uintptr_t)offset);
-            p->attributes |= 1u << attrs[a].location;
-            p->attribute_offset[attrs[a].location] = (GLintptr)offset;
-            offset += bytes;
-        }
-        for (size_t a = 0; a < MVR_ARRAY_COUNT(skin); ++a) {
-            if (!skin[a].data)
-                continue;
-            gl->EnableVertexAttribArray(skin[a].location);
-            if (skin[a].joints)
-                gl->VertexAttribIPointer(skin[a].location, 4, GL_UNSIGNED_SHORT, 0, (const void *)(uintptr_t)offset);
-            else
-                gl->VertexAttribPointer(skin[a].location, 4, GL_FLOAT, GL_FALSE, 0, (const void *)(uintptr_t)offset);
-            p->attributes |= 1u << skin[a].location;
-            p->attribute_offset[skin[a].location] = (GLintptr)offset;
-            offset += (size_t)sp->vertex_count * 4 * skin[a].bytes;
-        }
-        r->upload_bytes += total;
-        p->mode = gl_mode(sp->mode);
-        if (sp->indices) {
-            gl->GenBuffers(1, &p->ibo);
-            gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, p->ibo); /* VAO state */
-            if (sp->small_indices) {
-                uint16_t *idx = malloc((size_t)sp->index_count * sizeof *idx);
-                if (!idx) {
-                    mvr_state_vao(&r->state, 0);
-                    return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "upload: out of memory");
-                }
-                for (uint32_t k = 0; k < sp->index_count; ++k)
-                    idx[k] = (uint16_t)sp->indices[k];
-                gl->BufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(sp->index_count * sizeof *idx), idx,
-                               GL_STATIC_DRAW);
-                free(idx);
-                p->index_type = GL_UNSIGNED_SHORT;
-                r->upload_bytes += sp->index_count * 2u;
-            } else {
-                gl->BufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(sp->index_count * sizeof(uint32_t)),
-                               sp->indices, GL_STATIC_DRAW);
-                p->index_type = GL_UNSIGNED_INT;
-                r->upload_bytes += sp->index_count * 4u;
-            }
-            p->count = (GLsizei)sp->index_count;
-            mvr_result ires = mvr_renderer_check_alloc(r, "index buffer of primitive %u (%u indices)", i,
-                                                       sp->index_count);
-            if (ires != MVR_OK) {
-                mvr_state_vao(&r->state, 0);
-                return ires;
-            }
-        } else {
-            p->count = (GLsizei)sp->vertex_count;
-        }
-    }
-    mvr_state_vao(&r->state, 0);
-    return MVR_OK;
+    return mvr_gpu_primitives_upload(r, s);
 }
 
 /* The material slots of a new material version: bindings (filled by the
@@ -708,7 +575,7 @@ static mvr_result layout_materials(mvr_renderer *r, const mvr_scene *s)
     free(g->materials);
     g->materials = calloc(slots, sizeof *g->materials);
     if (!g->materials)
-        return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "materials: out of memory");
+        return mvr_gl_fail(r, MVR_ERROR_OUT_OF_MEMORY, "materials: out of memory");
     g->material_count = slots;
     uint32_t cap = r->material_capacity;
     g->material_pages = (slots + cap - 1) / cap;
@@ -728,7 +595,7 @@ static mvr_result upload_materials(mvr_renderer *r, const mvr_scene *s, bool arr
     size_t total = (size_t)g->material_page_stride * g->material_pages;
     uint8_t *data = calloc(1, total);
     if (!data)
-        return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "materials: out of memory");
+        return mvr_gl_fail(r, MVR_ERROR_OUT_OF_MEMORY, "materials: out of memory");
     for (uint32_t i = 0; i < slots; ++i) {
         const mvr_material_desc *m = mvr_scene_material(s, i < s->material_count ? i : MVR_NO_INDEX);
         size_t at = (size_t)(i / cap) * (size_t)g->material_page_stride + (size_t)(i % cap) * MVR_MATERIAL_BLOCK_SIZE;
@@ -747,7 +614,7 @@ static mvr_result upload_materials(mvr_renderer *r, const mvr_scene *s, bool arr
             g->materials[i].samplers[k] = sampler_for(r, &t->sampler);
             if (!g->materials[i].samplers[k]) {
                 free(data);
-                return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "samplers: out of memory");
+                return mvr_gl_fail(r, MVR_ERROR_OUT_OF_MEMORY, "samplers: out of memory");
             }
         }
     }
@@ -760,9 +627,9 @@ static mvr_result upload_materials(mvr_renderer *r, const mvr_scene *s, bool arr
     mvr_state_forget_buffer(&r->state, *ubo);
     r->upload_bytes += total;
     free(data);
-    mvr_result res = mvr_renderer_check_alloc(r, "material buffer (%u materials, %zu bytes)", slots, total);
+    mvr_result res = mvr_gl_check_alloc(r, "material buffer (%u materials, %zu bytes)", slots, total);
     if (res != MVR_OK)
-        mvr_renderer_delete(r, MVR_GL_BUFFER, ubo);
+        mvr_gl_delete(r, MVR_GL_BUFFER, ubo);
     return res;
 }
 
@@ -775,12 +642,12 @@ static void release_representation(mvr_renderer *r, bool arrays)
         release_arrays(r);
     } else {
         for (uint32_t i = 0; i < g->texture_count; ++i)
-            mvr_renderer_delete(r, MVR_GL_TEXTURE, &g->textures[i].texture);
+            mvr_gl_delete(r, MVR_GL_TEXTURE, &g->textures[i].texture);
         g->texture_count = 0;
         if (g->materials)
             memset(g->materials, 0, g->material_count * sizeof *g->materials);
     }
-    mvr_renderer_delete(r, MVR_GL_BUFFER, &g->material_ubos[arrays]);
+    mvr_gl_delete(r, MVR_GL_BUFFER, &g->material_ubos[arrays]);
     g->resident[arrays] = false;
 }
 
@@ -839,7 +706,7 @@ mvr_result mvr_gpu_scene_sync(mvr_renderer *r, const mvr_scene *s, bool keep_bot
     g->material_ubo = g->material_ubos[arrays];
     /* each allocation was checked; the rest (attribute setup) in debug builds */
     res = mvr_gl_check(r->ctx, "scene upload", false);
-    return res == MVR_OK ? MVR_OK : mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
+    return res == MVR_OK ? MVR_OK : mvr_gl_fail(r, res, "%s", mvr_context_last_error(r->ctx));
 }
 
 void mvr_gpu_scene_release(mvr_renderer *r)
@@ -849,11 +716,11 @@ void mvr_gpu_scene_release(mvr_renderer *r)
     release_geometry(r);
     free(g->textures);
     for (uint32_t i = 0; i < g->sampler_count; ++i)
-        mvr_renderer_delete(r, MVR_GL_SAMPLER, &g->samplers[i].sampler);
+        mvr_gl_delete(r, MVR_GL_SAMPLER, &g->samplers[i].sampler);
     free(g->samplers);
     free(g->materials);
-    mvr_renderer_delete(r, MVR_GL_BUFFER, &g->material_ubos[0]);
-    mvr_renderer_delete(r, MVR_GL_BUFFER, &g->material_ubos[1]);
+    mvr_gl_delete(r, MVR_GL_BUFFER, &g->material_ubos[0]);
+    mvr_gl_delete(r, MVR_GL_BUFFER, &g->material_ubos[1]);
     free(g->downscaled);
     free(g->compressed);
     free(g->unsampleable);

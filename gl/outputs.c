@@ -1,12 +1,14 @@
 /*
  * Extra outputs per view (depth, distance, normals, IDs, coverage): their
- * names, sizes and readback. The arrays are the target's (gl/targets.c), drawn
+ * names, sizes and where each lives (read back by gl/readback.c and
+ * gl/readback_async.c). The arrays are the target's (gl/targets.c), drawn
  * by the view passes (gl/passes.c) through core/shader_gen.h's MVR_SHADER_OUT_*.
  */
 #include <stdlib.h>
 #include <string.h>
 
-#include "renderer_internal.h"
+#include "outputs.h"
+#include "targets.h"
 
 const char *mvr_output_name(mvr_output output)
 {
@@ -85,62 +87,4 @@ mvr_output_place mvr_output_place_of(mvr_output output)
         break;
     }
     return p;
-}
-
-mvr_result mvr_renderer_read_output(mvr_renderer *r, mvr_target *t, uint32_t layer, mvr_output output, void *dst,
-                                    size_t size)
-{
-    static const char where[] = "mvr_renderer_read_output";
-    if (!r)
-        return MVR_ERROR_INVALID_ARGUMENT;
-    if (!mvr_output_name(output))
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: unknown output %d", where, (int)output);
-    if (output == MVR_OUTPUT_COLOR)
-        return mvr_renderer_read_layer(r, t, layer, MVR_READBACK_RGBA8, dst, size);
-    if (!t || !dst || t->renderer != r)
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: %s", where,
-                                 t && dst && !t->renderer ? "the target was released with its renderer or context"
-                                                          : "bad target or buffer");
-    if (!(t->desc.outputs & MVR_OUTPUT_BIT(output)))
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT,
-                                 "%s: the target was not created with the %s output (mvr_target_desc.outputs)", where,
-                                 mvr_output_name(output));
-    if (layer >= t->desc.layers)
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: layer %u of %u", where, layer, t->desc.layers);
-    size_t pixels = (size_t)t->desc.width * t->desc.height;
-    size_t need = pixels * mvr_output_pixel_size(output);
-    if (size < need)
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: %s: buffer of %zu bytes, %zu needed", where,
-                                 mvr_output_name(output), size, need);
-    mvr_output_place place = mvr_output_place_of(output);
-    /* the GL reads RGBA of 32-bit values; the output's channels are kept */
-    uint32_t *texels = malloc(pixels * 4 * sizeof *texels);
-    if (!texels)
-        return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "%s: %s: out of memory", where, mvr_output_name(output));
-    mvr_result res = mvr_renderer_begin(r, where);
-    if (res != MVR_OK) {
-        free(texels);
-        return res;
-    }
-    mvr_state_invalidate(&r->state);
-    GLuint fbo = 0;
-    res = mvr_target_output_array_framebuffer(t, place.array, layer, &fbo);
-    if (res == MVR_OK) {
-        const mvr_gl_api_table *gl = r->gl;
-        mvr_state_read_framebuffer(&r->state, fbo);
-        gl->ReadBuffer(GL_COLOR_ATTACHMENT0);
-        gl->PixelStorei(GL_PACK_ALIGNMENT, 4);
-        gl->ReadPixels(0, 0, (GLsizei)t->desc.width, (GLsizei)t->desc.height, place.gl_format, place.gl_type, texels);
-        res = mvr_gl_check(r->ctx, where, true);
-        if (res != MVR_OK)
-            res = mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
-    }
-    if (res == MVR_OK) {
-        uint8_t *out = dst;
-        size_t bytes = place.count * sizeof *texels;
-        for (size_t i = 0; i < pixels; ++i)
-            memcpy(out + i * bytes, texels + i * 4 + place.first, bytes);
-    }
-    free(texels);
-    return mvr_renderer_end(r, where, res);
 }

@@ -14,7 +14,12 @@
 #include <string.h>
 
 #include "environment.h"
-#include "renderer_internal.h"
+#include "environment_gl.h"
+#include "errors.h"
+#include "post.h"
+#include "program_cache.h"
+#include "renderer.h"
+#include "targets.h"
 
 #define POST_VIEWS 32 /* MVR_POST_VIEWS of composite.frag.glsl */
 
@@ -135,7 +140,7 @@ mvr_result mvr_full_screen_passes(mvr_renderer *r, mvr_target *t, GLuint source,
             v.features = features;
             v.num_views = count;
             mvr_program_entry *e = NULL;
-            res = mvr_renderer_program(r, &v, &e);
+            res = mvr_program_cache_get(r, &v, &e);
             if (res != MVR_OK)
                 return res;
             mvr_state_program(st, e->program);
@@ -198,7 +203,7 @@ static mvr_result measure(mvr_renderer *r, mvr_target *t, const mvr_view_chunk *
             mean_log2[layer] = measured[layer] ? px[0] / px[1] : 0.0;
         }
     res = mvr_gl_check(r->ctx, "auto-exposure reduction", true);
-    return res == MVR_OK ? MVR_OK : mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
+    return res == MVR_OK ? MVR_OK : mvr_gl_fail(r, res, "%s", mvr_context_last_error(r->ctx));
 }
 
 mvr_result mvr_post_run(mvr_renderer *r, mvr_target *t, const mvr_view_set *views, const mvr_render_desc *d,
@@ -210,7 +215,7 @@ mvr_result mvr_post_run(mvr_renderer *r, mvr_target *t, const mvr_view_set *view
     double mean_log2[256];
     bool measured[256];
     if (n > 256)
-        return mvr_renderer_fail(r, MVR_ERROR_UNSUPPORTED, "post pass: more than 256 views");
+        return mvr_gl_fail(r, MVR_ERROR_UNSUPPORTED, "post pass: more than 256 views");
     GLuint source = t->ss_color ? t->ss_color : t->hdr_color;
     double manual = manual_ev100(d);
     for (uint32_t v = 0; v < n; ++v)
@@ -255,8 +260,8 @@ mvr_result mvr_post_run(mvr_renderer *r, mvr_target *t, const mvr_view_set *view
     for (uint32_t c = 0; c < chunk_count; ++c)
         max_chunk = chunks[c].count > max_chunk ? chunks[c].count : max_chunk;
     if (multiview && max_chunk > POST_VIEWS)
-        return mvr_renderer_fail(r, MVR_ERROR_INTERNAL, "post pass: a chunk of %u views (at most %d)", max_chunk,
-                                 POST_VIEWS);
+        return mvr_gl_fail(r, MVR_ERROR_INTERNAL, "post pass: a chunk of %u views (at most %d)", max_chunk,
+                           POST_VIEWS);
     r->stats.exposure_ev100 = ev[0];
     mvr_result res = mvr_full_screen_passes(r, t, source, chunks, chunk_count, multiview, post_features(t, d), post_mul, false,
                                         &r->stats.post_passes);

@@ -11,7 +11,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "renderer_internal.h"
+#include "errors.h"
+#include "outputs.h"
+#include "readback_async.h"
+#include "renderer.h"
+#include "targets.h"
 
 /* How the bytes GL reads become the bytes the caller gets. */
 typedef enum read_convert {
@@ -82,7 +86,7 @@ static bool read_layout_of(const mvr_target *t, const mvr_read_desc *d, read_lay
     return true;
 }
 
-/* Deletes the GL objects (now, later or never: mvr_renderer_delete) and
+/* Deletes the GL objects (now, later or never: mvr_gl_delete) and
  * forgets the pending read. */
 static void release(mvr_readback *rb)
 {
@@ -91,7 +95,7 @@ static void release(mvr_readback *rb)
         mvr_context_delete_sync(r->ctx, rb->fence);
     rb->fence = 0;
     if (r)
-        mvr_renderer_delete(r, MVR_GL_BUFFER, &rb->buffer);
+        mvr_gl_delete(r, MVR_GL_BUFFER, &rb->buffer);
     rb->buffer = 0;
     rb->capacity = 0;
     rb->layers = 0;
@@ -113,13 +117,13 @@ mvr_result mvr_readback_create(mvr_renderer *r, mvr_readback **out)
     if (!r)
         return MVR_ERROR_INVALID_ARGUMENT;
     if (!out)
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "mvr_readback_create: out is NULL");
+        return mvr_gl_fail(r, MVR_ERROR_INVALID_ARGUMENT, "mvr_readback_create: out is NULL");
     *out = NULL;
     if (!r->ctx)
-        return mvr_renderer_fail(r, MVR_ERROR_CONTEXT, "mvr_readback_create: the renderer's context was destroyed");
+        return mvr_gl_fail(r, MVR_ERROR_CONTEXT, "mvr_readback_create: the renderer's context was destroyed");
     mvr_readback *rb = calloc(1, sizeof *rb);
     if (!rb)
-        return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "mvr_readback_create: out of memory");
+        return mvr_gl_fail(r, MVR_ERROR_OUT_OF_MEMORY, "mvr_readback_create: out of memory");
     /* GL objects are made by the first read, with the context current */
     rb->renderer = r;
     rb->next = r->readbacks;
@@ -147,13 +151,13 @@ void mvr_readback_destroy(mvr_readback *rb)
 static mvr_result check_readback(mvr_renderer *r, const mvr_readback *rb, const char *where)
 {
     if (!rb)
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: readback is NULL", where);
+        return mvr_gl_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: readback is NULL", where);
     if (!rb->renderer)
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT,
-                                 "%s: the readback was released with its renderer or context", where);
+        return mvr_gl_fail(r, MVR_ERROR_INVALID_ARGUMENT,
+                           "%s: the readback was released with its renderer or context", where);
     if (rb->renderer != r)
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: the readback belongs to another renderer",
-                                 where);
+        return mvr_gl_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: the readback belongs to another renderer",
+                           where);
     return MVR_OK;
 }
 
@@ -167,7 +171,7 @@ static mvr_result grow_buffer(mvr_renderer *r, mvr_readback *rb, size_t bytes)
         return MVR_OK;
     /* STREAM_READ: written by the GL once, read by the application once */
     gl->BufferData(GL_PIXEL_PACK_BUFFER, (GLsizeiptr)bytes, NULL, GL_STREAM_READ);
-    mvr_result res = mvr_renderer_check_alloc(r, "mvr_renderer_begin_read: a pixel buffer of %zu bytes", bytes);
+    mvr_result res = mvr_gl_check_alloc(r, "mvr_renderer_begin_read: a pixel buffer of %zu bytes", bytes);
     rb->capacity = res == MVR_OK ? bytes : 0;
     return res;
 }
@@ -181,31 +185,31 @@ mvr_result mvr_renderer_begin_read(mvr_renderer *r, mvr_target *t, const mvr_rea
     if (res != MVR_OK)
         return res;
     if (!t || !desc || t->renderer != r)
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: %s", where,
-                                 t && desc && !t->renderer ? "the target was released with its renderer or context"
-                                 : t && desc && t->renderer != r ? "the target belongs to another renderer"
-                                                                 : "target or desc is NULL");
+        return mvr_gl_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: %s", where,
+                           t && desc && !t->renderer ? "the target was released with its renderer or context"
+                           : t && desc && t->renderer != r ? "the target belongs to another renderer"
+                                                           : "target or desc is NULL");
     if (rb->fence)
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT,
-                                 "%s: the readback holds a read not finished (mvr_renderer_finish_read first)", where);
+        return mvr_gl_fail(r, MVR_ERROR_INVALID_ARGUMENT,
+                           "%s: the readback holds a read not finished (mvr_renderer_finish_read first)", where);
     uint32_t layers = t->desc.layers;
     if (desc->first_layer >= layers)
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: first layer %u of a target of %u", where,
-                                 desc->first_layer, layers);
+        return mvr_gl_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: first layer %u of a target of %u", where,
+                           desc->first_layer, layers);
     uint32_t count = desc->layer_count ? desc->layer_count : layers - desc->first_layer;
     if (count > layers - desc->first_layer)
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: layers %u .. %u of a target of %u", where,
-                                 desc->first_layer, desc->first_layer + count - 1, layers);
+        return mvr_gl_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: layers %u .. %u of a target of %u", where,
+                           desc->first_layer, desc->first_layer + count - 1, layers);
     read_layout lay;
     char why[160];
     if (!read_layout_of(t, desc, &lay, why, sizeof why))
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: %s", where, why);
+        return mvr_gl_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: %s", where, why);
     size_t layer_bytes = 0, bytes = 0;
     if (!mvr_size_mul((size_t)t->desc.width * t->desc.height, lay.read_bpp, &layer_bytes) ||
         !mvr_size_mul(layer_bytes, count, &bytes) || bytes > (size_t)PTRDIFF_MAX)
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: %u layers of %ux%u are too large to read", where,
-                                 count, t->desc.width, t->desc.height);
-    res = mvr_renderer_begin(r, where);
+        return mvr_gl_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: %u layers of %ux%u are too large to read", where,
+                           count, t->desc.width, t->desc.height);
+    res = mvr_gl_call_begin(r, where);
     if (res != MVR_OK)
         return res;
     mvr_state_invalidate(&r->state);
@@ -233,9 +237,9 @@ mvr_result mvr_renderer_begin_read(mvr_renderer *r, mvr_target *t, const mvr_rea
         /* submitted now, so the fence signals without anyone waiting on it */
         gl->Flush();
         if (!rb->fence)
-            res = mvr_renderer_fail(r, MVR_ERROR_GL, "%s: glFenceSync failed", where);
+            res = mvr_gl_fail(r, MVR_ERROR_GL, "%s: glFenceSync failed", where);
     }
-    res = mvr_renderer_end(r, where, res);
+    res = mvr_gl_call_end(r, where, res);
     if (res != MVR_OK) {
         /* nothing pending after a failure: the next read starts clean */
         if (rb->fence)
@@ -259,18 +263,18 @@ mvr_result mvr_renderer_read_ready(mvr_renderer *r, mvr_readback *rb, bool *read
     if (res != MVR_OK)
         return res;
     if (!ready)
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: ready is NULL", where);
+        return mvr_gl_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: ready is NULL", where);
     *ready = false;
     if (!rb->fence)
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: no read is pending", where);
-    res = mvr_renderer_begin(r, where);
+        return mvr_gl_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: no read is pending", where);
+    res = mvr_gl_call_begin(r, where);
     if (res != MVR_OK)
         return res;
     GLenum s = r->gl->ClientWaitSync(rb->fence, 0, 0);
     if (s == GL_WAIT_FAILED)
-        res = mvr_renderer_fail(r, MVR_ERROR_GL, "%s: glClientWaitSync failed", where);
+        res = mvr_gl_fail(r, MVR_ERROR_GL, "%s: glClientWaitSync failed", where);
     *ready = s == GL_ALREADY_SIGNALED || s == GL_CONDITION_SATISFIED;
-    res = mvr_renderer_end(r, where, res);
+    res = mvr_gl_call_end(r, where, res);
     if (res != MVR_OK)
         *ready = false;
     return res;
@@ -286,9 +290,9 @@ static mvr_result wait_fence(mvr_renderer *r, GLsync fence, const char *where)
         if (s == GL_ALREADY_SIGNALED || s == GL_CONDITION_SATISFIED)
             return MVR_OK;
         if (s == GL_WAIT_FAILED)
-            return mvr_renderer_fail(r, MVR_ERROR_GL, "%s: glClientWaitSync failed", where);
+            return mvr_gl_fail(r, MVR_ERROR_GL, "%s: glClientWaitSync failed", where);
     }
-    return mvr_renderer_fail(r, MVR_ERROR_GL, "%s: the read did not complete in 60 s", where);
+    return mvr_gl_fail(r, MVR_ERROR_GL, "%s: the read did not complete in 60 s", where);
 }
 
 static void convert_layer(const read_layout *l, const void *src, void *dst, size_t pixels)
@@ -331,14 +335,14 @@ mvr_result mvr_renderer_finish_read(mvr_renderer *r, mvr_readback *rb, void *dst
     if (res != MVR_OK)
         return res;
     if (!rb->fence)
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: no read is pending", where);
+        return mvr_gl_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: no read is pending", where);
     if (!dst)
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: dst is NULL", where);
+        return mvr_gl_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: dst is NULL", where);
     size_t need = mvr_readback_size(rb);
     if (size < need)
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: buffer of %zu bytes, %zu needed", where, size,
-                                 need);
-    res = mvr_renderer_begin(r, where);
+        return mvr_gl_fail(r, MVR_ERROR_INVALID_ARGUMENT, "%s: buffer of %zu bytes, %zu needed", where, size,
+                           need);
+    res = mvr_gl_call_begin(r, where);
     if (res != MVR_OK)
         return res; /* the read stays pending: a call with the context current finishes it */
     const mvr_gl_api_table *gl = r->gl;
@@ -349,14 +353,14 @@ mvr_result mvr_renderer_finish_read(mvr_renderer *r, mvr_readback *rb, void *dst
         gl->BindBuffer(GL_PIXEL_PACK_BUFFER, rb->buffer);
         const uint8_t *src = gl->MapBufferRange(GL_PIXEL_PACK_BUFFER, 0, (GLsizeiptr)read_bytes, GL_MAP_READ_BIT);
         if (!src) {
-            res = mvr_renderer_fail(r, MVR_ERROR_GL, "%s: glMapBufferRange of %zu bytes failed", where, read_bytes);
+            res = mvr_gl_fail(r, MVR_ERROR_GL, "%s: glMapBufferRange of %zu bytes failed", where, read_bytes);
         } else {
             for (uint32_t k = 0; k < rb->layers; ++k)
                 convert_layer(&rb->layout, src + pixels * rb->layout.read_bpp * k,
                               (uint8_t *)dst + pixels * rb->layout.out_bpp * k, pixels);
             if (!gl->UnmapBuffer(GL_PIXEL_PACK_BUFFER))
-                res = mvr_renderer_fail(r, MVR_ERROR_GL, "%s: the pixel buffer's contents were lost (glUnmapBuffer)",
-                                        where);
+                res = mvr_gl_fail(r, MVR_ERROR_GL, "%s: the pixel buffer's contents were lost (glUnmapBuffer)",
+                                  where);
         }
         gl->BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     }
@@ -364,7 +368,7 @@ mvr_result mvr_renderer_finish_read(mvr_renderer *r, mvr_readback *rb, void *dst
     gl->DeleteSync(rb->fence);
     rb->fence = 0;
     rb->layers = 0;
-    return mvr_renderer_end(r, where, res);
+    return mvr_gl_call_end(r, where, res);
 }
 
 size_t mvr_readback_layer_size(const mvr_readback *rb)

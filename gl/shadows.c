@@ -9,7 +9,13 @@
  */
 #include <string.h>
 
-#include "renderer_internal.h"
+#include "draw_list.h"
+#include "errors.h"
+#include "program_cache.h"
+#include "renderer.h"
+#include "shadows.h"
+#include "skinning.h"
+#include "targets.h"
 
 #ifndef GL_TEXTURE_COMPARE_MODE
 #define GL_TEXTURE_COMPARE_MODE 0x884C
@@ -53,12 +59,12 @@ void mvr_shadows_release(mvr_renderer *r)
 {
     mvr_shadow_maps *sm = &r->shadows;
     for (uint32_t i = 0; i < sm->fbo_count; ++i)
-        mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &sm->fbos[i].fbo);
+        mvr_gl_delete(r, MVR_GL_FRAMEBUFFER, &sm->fbos[i].fbo);
     sm->fbo_count = 0;
-    mvr_renderer_delete(r, MVR_GL_TEXTURE, &sm->depth);
-    mvr_renderer_delete(r, MVR_GL_TEXTURE, &sm->color);
+    mvr_gl_delete(r, MVR_GL_TEXTURE, &sm->depth);
+    mvr_gl_delete(r, MVR_GL_TEXTURE, &sm->color);
     sm->size = sm->layers = 0;
-    mvr_renderer_delete(r, MVR_GL_SAMPLER, &sm->sampler);
+    mvr_gl_delete(r, MVR_GL_SAMPLER, &sm->sampler);
 }
 
 /* The arrays, (re)made when the size changes or more layers are needed. */
@@ -73,13 +79,13 @@ static mvr_result ensure_maps(mvr_renderer *r, uint32_t size, uint32_t layers)
     gl->GenTextures(1, &sm->depth);
     mvr_state_texture(&r->state, MVR_UNIT_SHADOW_MAP, GL_TEXTURE_2D_ARRAY, sm->depth);
     gl->TexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_DEPTH_COMPONENT32F, (GLsizei)size, (GLsizei)size, (GLsizei)layers);
-    mvr_result res = mvr_renderer_check_alloc(r, "shadow map depth array (%ux%u, %u layers, depth32f)", size, size,
-                                              layers);
+    mvr_result res = mvr_gl_check_alloc(r, "shadow map depth array (%ux%u, %u layers, depth32f)", size, size,
+                                        layers);
     if (res == MVR_OK) {
         gl->GenTextures(1, &sm->color);
         mvr_state_texture(&r->state, MVR_UNIT_SHADOW_MAP, GL_TEXTURE_2D_ARRAY, sm->color);
         gl->TexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_R8, (GLsizei)size, (GLsizei)size, (GLsizei)layers);
-        res = mvr_renderer_check_alloc(r, "shadow map color array (%ux%u, %u layers, r8)", size, size, layers);
+        res = mvr_gl_check_alloc(r, "shadow map color array (%ux%u, %u layers, r8)", size, size, layers);
     }
     if (res != MVR_OK) {
         mvr_shadows_release(r); /* made again, whole, by the next frame that asks */
@@ -109,7 +115,7 @@ static mvr_result shadow_framebuffer(mvr_renderer *r, uint32_t base, uint32_t co
             return MVR_OK;
         }
     if (sm->fbo_count == MVR_SHADOW_FBOS)
-        return mvr_renderer_fail(r, MVR_ERROR_INTERNAL, "shadow framebuffers: more than %d", MVR_SHADOW_FBOS);
+        return mvr_gl_fail(r, MVR_ERROR_INTERNAL, "shadow framebuffers: more than %d", MVR_SHADOW_FBOS);
     const mvr_gl_api_table *gl = r->gl;
     GLuint fbo = 0;
     gl->GenFramebuffers(1, &fbo);
@@ -135,8 +141,8 @@ static mvr_result shadow_framebuffer(mvr_renderer *r, uint32_t base, uint32_t co
     if (res == MVR_OK)
         res = mvr_gl_check_framebuffer(r->ctx, GL_DRAW_FRAMEBUFFER, where);
     if (res != MVR_OK) {
-        mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &sm->fbos[--sm->fbo_count].fbo);
-        return mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
+        mvr_gl_delete(r, MVR_GL_FRAMEBUFFER, &sm->fbos[--sm->fbo_count].fbo);
+        return mvr_gl_fail(r, res, "%s", mvr_context_last_error(r->ctx));
     }
     *out = fbo;
     return MVR_OK;
@@ -176,9 +182,9 @@ typedef struct caster_pass {
 
 static mvr_result bind_caster_program(mvr_renderer *r, const caster_pass *cp, uint32_t features)
 {
-    mvr_shader_variant v = mvr_renderer_mesh_variant(r, features, cp->num_views);
+    mvr_shader_variant v = mvr_mesh_variant(r, features, cp->num_views);
     mvr_program_entry *e = NULL;
-    mvr_result res = mvr_renderer_program(r, &v, &e);
+    mvr_result res = mvr_program_cache_get(r, &v, &e);
     if (res != MVR_OK)
         return res;
     mvr_state_program(&r->state, e->program);

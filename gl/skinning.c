@@ -10,8 +10,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "errors.h"
 #include "program.h"
-#include "renderer_internal.h"
+#include "program_cache.h"
+#include "renderer.h"
+#include "skinning.h"
 
 #define DATA_WIDTH (1u << MVR_DEFORM_WIDTH_LOG2)
 /* the captured vertex: position (vec3), normal (vec3), tangent (vec4),
@@ -33,8 +36,8 @@ static void release_buffers(mvr_renderer *r)
     mvr_skinning *k = &r->skinning;
     for (uint32_t i = 0; i < k->buffer_count; ++i) {
         mvr_state_forget_vao(&r->state, k->buffers[i].vao);
-        mvr_renderer_delete(r, MVR_GL_VERTEX_ARRAY, &k->buffers[i].vao);
-        mvr_renderer_delete(r, MVR_GL_BUFFER, &k->buffers[i].buffer);
+        mvr_gl_delete(r, MVR_GL_VERTEX_ARRAY, &k->buffers[i].vao);
+        mvr_gl_delete(r, MVR_GL_BUFFER, &k->buffers[i].buffer);
     }
     k->buffer_count = 0;
     k->captured_key = 0;
@@ -47,11 +50,11 @@ void mvr_skinning_release(mvr_renderer *r)
     free(k->buffers);
     k->buffers = NULL;
     k->buffer_cap = 0;
-    mvr_renderer_delete(r, MVR_GL_TEXTURE, &k->deltas);
-    mvr_renderer_delete(r, MVR_GL_TEXTURE, &k->data);
+    mvr_gl_delete(r, MVR_GL_TEXTURE, &k->deltas);
+    mvr_gl_delete(r, MVR_GL_TEXTURE, &k->data);
     mvr_state_forget_framebuffer(&r->state, k->capture_fbo);
-    mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &k->capture_fbo);
-    mvr_renderer_delete(r, MVR_GL_RENDERBUFFER, &k->capture_color);
+    mvr_gl_delete(r, MVR_GL_FRAMEBUFFER, &k->capture_fbo);
+    mvr_gl_delete(r, MVR_GL_RENDERBUFFER, &k->capture_color);
     k->deltas_geometry = 0;
     k->data_rows = 0;
 }
@@ -67,11 +70,11 @@ static mvr_result capture_framebuffer(mvr_renderer *r)
         gl->GenFramebuffers(1, &k->capture_fbo);
         mvr_state_draw_framebuffer(&r->state, k->capture_fbo);
         gl->FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, k->capture_color);
-        mvr_result res = mvr_renderer_check_alloc(r, "pre-skinning framebuffer (1x1 R8)");
+        mvr_result res = mvr_gl_check_alloc(r, "pre-skinning framebuffer (1x1 R8)");
         if (res != MVR_OK)
             return res;
         if (gl->CheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-            return mvr_renderer_fail(r, MVR_ERROR_FRAMEBUFFER, "pre-skinning framebuffer (1x1 R8) is incomplete");
+            return mvr_gl_fail(r, MVR_ERROR_FRAMEBUFFER, "pre-skinning framebuffer (1x1 R8) is incomplete");
     }
     mvr_state_draw_framebuffer(&r->state, k->capture_fbo);
     return MVR_OK;
@@ -83,20 +86,20 @@ static mvr_result make_data_texture(mvr_renderer *r, GLuint *tex, uint32_t rows,
 {
     const mvr_gl_api_table *gl = r->gl;
     if (rows > (uint32_t)r->ctx->caps.limits.max_texture_size)
-        return mvr_renderer_fail(r, MVR_ERROR_UNSUPPORTED,
-                                 "%s: %u rows of %u texels exceed GL_MAX_TEXTURE_SIZE %d", what, rows, DATA_WIDTH,
-                                 r->ctx->caps.limits.max_texture_size);
-    mvr_renderer_delete(r, MVR_GL_TEXTURE, tex);
+        return mvr_gl_fail(r, MVR_ERROR_UNSUPPORTED,
+                           "%s: %u rows of %u texels exceed GL_MAX_TEXTURE_SIZE %d", what, rows, DATA_WIDTH,
+                           r->ctx->caps.limits.max_texture_size);
+    mvr_gl_delete(r, MVR_GL_TEXTURE, tex);
     gl->GenTextures(1, tex);
     mvr_state_texture(&r->state, MVR_UNIT_ANIM_DATA, GL_TEXTURE_2D, *tex);
     gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     gl->TexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, (GLsizei)DATA_WIDTH, (GLsizei)rows);
-    mvr_result res = mvr_renderer_check_alloc(r, "%s (%u x %u RGBA32F)", what, DATA_WIDTH, rows);
+    mvr_result res = mvr_gl_check_alloc(r, "%s (%u x %u RGBA32F)", what, DATA_WIDTH, rows);
     if (res == MVR_OK && data)
         gl->TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, (GLsizei)DATA_WIDTH, (GLsizei)rows, GL_RGBA, GL_FLOAT, data);
     if (res != MVR_OK)
-        mvr_renderer_delete(r, MVR_GL_TEXTURE, tex);
+        mvr_gl_delete(r, MVR_GL_TEXTURE, tex);
     return res;
 }
 
@@ -105,19 +108,19 @@ mvr_result mvr_skinning_sync_scene(mvr_renderer *r, const mvr_scene *s)
     mvr_skinning *k = &r->skinning;
     /* the captured buffers' vertex arrays name the old vertex buffers */
     release_buffers(r);
-    mvr_renderer_delete(r, MVR_GL_TEXTURE, &k->deltas);
+    mvr_gl_delete(r, MVR_GL_TEXTURE, &k->deltas);
     k->deltas_geometry = 0;
     if (s->morph_texels == 0)
         return MVR_OK;
     /* deform.glsl indexes texels with a 32-bit int */
     if (s->morph_texels > (uint64_t)INT32_MAX - DATA_WIDTH)
-        return mvr_renderer_fail(r, MVR_ERROR_UNSUPPORTED, "morph targets: %llu delta texels are more than mvr indexes",
-                                 (unsigned long long)s->morph_texels);
+        return mvr_gl_fail(r, MVR_ERROR_UNSUPPORTED, "morph targets: %llu delta texels are more than mvr indexes",
+                           (unsigned long long)s->morph_texels);
     uint32_t rows = (uint32_t)((s->morph_texels + DATA_WIDTH - 1) / DATA_WIDTH);
     size_t floats = (size_t)rows * DATA_WIDTH * 4;
     float *data = calloc(floats, sizeof *data);
     if (!data)
-        return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "morph targets: out of memory (%zu floats)", floats);
+        return mvr_gl_fail(r, MVR_ERROR_OUT_OF_MEMORY, "morph targets: out of memory (%zu floats)", floats);
     for (uint32_t i = 0; i < s->primitive_count; ++i) {
         const scene_primitive *p = &s->primitives[i];
         if (!p->target_count)
@@ -203,7 +206,7 @@ static mvr_result preskin_buffer(mvr_renderer *r, uint32_t index, const mvr_defo
             cap *= 2;
         mvr_preskin_buffer *p = realloc(k->buffers, cap * sizeof *p);
         if (!p)
-            return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "pre-skinning: out of memory");
+            return mvr_gl_fail(r, MVR_ERROR_OUT_OF_MEMORY, "pre-skinning: out of memory");
         k->buffers = p;
         k->buffer_cap = cap;
     }
@@ -217,13 +220,13 @@ static mvr_result preskin_buffer(mvr_renderer *r, uint32_t index, const mvr_defo
     if (b->vao && b->primitive == d->primitive && b->vertices == vertices)
         return MVR_OK;
     mvr_state_forget_vao(&r->state, b->vao);
-    mvr_renderer_delete(r, MVR_GL_VERTEX_ARRAY, &b->vao);
-    mvr_renderer_delete(r, MVR_GL_BUFFER, &b->buffer);
+    mvr_gl_delete(r, MVR_GL_VERTEX_ARRAY, &b->vao);
+    mvr_gl_delete(r, MVR_GL_BUFFER, &b->buffer);
     gl->GenBuffers(1, &b->buffer);
     mvr_state_array_buffer(&r->state, b->buffer);
     gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)vertices * PRESKIN_STRIDE, NULL, GL_DYNAMIC_COPY);
-    mvr_result res = mvr_renderer_check_alloc(r, "pre-skinned vertices of primitive %u (%u vertices)", d->primitive,
-                                              vertices);
+    mvr_result res = mvr_gl_check_alloc(r, "pre-skinned vertices of primitive %u (%u vertices)", d->primitive,
+                                        vertices);
     if (res != MVR_OK)
         return res;
     gl->GenVertexArrays(1, &b->vao);
@@ -283,7 +286,7 @@ mvr_result mvr_skinning_capture(mvr_renderer *r)
         v.program = MVR_PROGRAM_PRESKIN;
         v.features = d->features & MVR_PRESKIN_FEATURES;
         mvr_program_entry *e;
-        res = mvr_renderer_program(r, &v, &e);
+        res = mvr_program_cache_get(r, &v, &e);
         if (res != MVR_OK)
             break;
         mvr_state_program(&r->state, e->program);

@@ -4,7 +4,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "renderer_internal.h"
+#include "errors.h"
+#include "renderer.h"
+#include "targets.h"
 
 static GLenum gl_color_format(mvr_color_format f)
 {
@@ -26,23 +28,23 @@ static mvr_result make_msaa(mvr_target *t)
     /* the format's own limit (float formats may allow fewer than GL_MAX_SAMPLES) */
     gl->GetInternalformativ(GL_RENDERBUFFER, t->internal_format, GL_SAMPLES, 1, &max);
     if ((GLint)t->desc.samples > max)
-        return mvr_renderer_fail(r, MVR_ERROR_UNSUPPORTED,
-                                 "mvr_target_create: %u samples asked, %s allows at most %d on %s", t->desc.samples,
-                                 mvr_color_format_name(t->desc.color_format), max, r->ctx->caps.renderer);
+        return mvr_gl_fail(r, MVR_ERROR_UNSUPPORTED,
+                           "mvr_target_create: %u samples asked, %s allows at most %d on %s", t->desc.samples,
+                           mvr_color_format_name(t->desc.color_format), max, r->ctx->caps.renderer);
     GLsizei w = (GLsizei)t->desc.width, h = (GLsizei)t->desc.height, n = (GLsizei)t->desc.samples;
     gl->GenRenderbuffers(1, &t->msaa_color);
     gl->BindRenderbuffer(GL_RENDERBUFFER, t->msaa_color);
     gl->RenderbufferStorageMultisample(GL_RENDERBUFFER, n, t->internal_format, w, h);
-    mvr_result res = mvr_renderer_check_alloc(r, "mvr_target_create: multisampled color renderbuffer (%dx%d %s, %d "
-                                              "samples)", w, h, mvr_color_format_name(t->desc.color_format), n);
+    mvr_result res = mvr_gl_check_alloc(r, "mvr_target_create: multisampled color renderbuffer (%dx%d %s, %d "
+                                        "samples)", w, h, mvr_color_format_name(t->desc.color_format), n);
     if (res != MVR_OK)
         return res;
     gl->GenRenderbuffers(1, &t->msaa_depth);
     gl->BindRenderbuffer(GL_RENDERBUFFER, t->msaa_depth);
     gl->RenderbufferStorageMultisample(GL_RENDERBUFFER, n, GL_DEPTH_COMPONENT32F, w, h);
     gl->BindRenderbuffer(GL_RENDERBUFFER, 0);
-    res = mvr_renderer_check_alloc(r, "mvr_target_create: multisampled depth renderbuffer (%dx%d depth32f, %d samples)",
-                                   w, h, n);
+    res = mvr_gl_check_alloc(r, "mvr_target_create: multisampled depth renderbuffer (%dx%d depth32f, %d samples)",
+                             w, h, n);
     if (res != MVR_OK)
         return res;
     gl->GenFramebuffers(1, &t->msaa_fbo);
@@ -53,8 +55,8 @@ static mvr_result make_msaa(mvr_target *t)
     if (res == MVR_OK)
         res = mvr_gl_check_framebuffer(r->ctx, GL_DRAW_FRAMEBUFFER, "multisampled framebuffer");
     if (res != MVR_OK)
-        return mvr_renderer_fail(r, res, "mvr_target_create: %u samples: %s", t->desc.samples,
-                                 mvr_context_last_error(r->ctx));
+        return mvr_gl_fail(r, res, "mvr_target_create: %u samples: %s", t->desc.samples,
+                           mvr_context_last_error(r->ctx));
     return MVR_OK;
 }
 
@@ -135,15 +137,15 @@ static mvr_result make_msaa_multiview(mvr_target *t)
         mvr_log(&r->logger, MVR_LOG_INFO, MVR_LOG_ID_GENERAL,
                 "mvr: no multisampled %s array here (%s): MSAA resolves view by view",
                 mvr_color_format_name(t->desc.color_format), mvr_context_last_error(r->ctx));
-        mvr_renderer_delete(r, MVR_GL_TEXTURE, &t->msaa_array_color);
-        mvr_renderer_delete(r, MVR_GL_TEXTURE, &t->msaa_array_depth);
+        mvr_gl_delete(r, MVR_GL_TEXTURE, &t->msaa_array_color);
+        mvr_gl_delete(r, MVR_GL_TEXTURE, &t->msaa_array_depth);
         return MVR_OK;
     }
     t->msaa_multiview = MVR_MSAA_MV_ARRAY;
     return MVR_OK;
 }
 
-/* A failure after mvr_renderer_begin: recorded, and no GL error left behind. */
+/* A failure after mvr_gl_call_begin: recorded, and no GL error left behind. */
 static mvr_result fail_create(mvr_renderer *r, mvr_result result, const char *fmt, ...) MVR_PRINTF(3, 4);
 static mvr_result fail_create(mvr_renderer *r, mvr_result result, const char *fmt, ...)
 {
@@ -152,7 +154,7 @@ static mvr_result fail_create(mvr_renderer *r, mvr_result result, const char *fm
     va_start(ap, fmt);
     mvr_str_vformat(message, sizeof message, fmt, ap);
     va_end(ap);
-    return mvr_renderer_end(r, "mvr_target_create", mvr_renderer_fail(r, result, "%s", message));
+    return mvr_gl_call_end(r, "mvr_target_create", mvr_gl_fail(r, result, "%s", message));
 }
 
 /* One layered array of the target: storage checked, the failure naming it. */
@@ -167,9 +169,9 @@ static mvr_result make_array(mvr_target *t, GLuint *name, const char *what, GLen
     double mib = (double)width * height * t->desc.layers *
                  (format == GL_RGBA32F || format == GL_RGBA32UI ? 16 : format == GL_RGBA16F ? 8 : 4) /
                  (1024.0 * 1024.0);
-    return mvr_renderer_check_alloc(r, "%s (%ux%u, %u layers, %s, %.1f %s)", what, width, height,
-                                    t->desc.layers, format_name, mib >= 1024.0 ? mib / 1024.0 : mib,
-                                    mib >= 1024.0 ? "GiB" : "MiB");
+    return mvr_gl_check_alloc(r, "%s (%ux%u, %u layers, %s, %.1f %s)", what, width, height,
+                              t->desc.layers, format_name, mib >= 1024.0 ? mib / 1024.0 : mib,
+                              mib >= 1024.0 ? "GiB" : "MiB");
 }
 
 /* The color (unless the application's), supersampled and depth arrays. */
@@ -217,35 +219,35 @@ mvr_result mvr_target_create(mvr_renderer *r, const mvr_target_desc *d, mvr_targ
     if (!r)
         return MVR_ERROR_INVALID_ARGUMENT;
     if (!d || !out)
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "mvr_target_create: NULL argument");
+        return mvr_gl_fail(r, MVR_ERROR_INVALID_ARGUMENT, "mvr_target_create: NULL argument");
     *out = NULL;
     if (!r->ctx)
-        return mvr_renderer_fail(r, MVR_ERROR_CONTEXT, "mvr_target_create: the renderer's context was destroyed");
+        return mvr_gl_fail(r, MVR_ERROR_CONTEXT, "mvr_target_create: the renderer's context was destroyed");
     const mvr_caps *c = &r->ctx->caps;
     mvr_target_desc desc = *d;
     if (desc.layers == 0)
         desc.layers = 1;
     if (!mvr_anti_aliasing_name(desc.anti_aliasing))
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "mvr_target_create: unknown anti-aliasing %d",
-                                 (int)desc.anti_aliasing);
+        return mvr_gl_fail(r, MVR_ERROR_INVALID_ARGUMENT, "mvr_target_create: unknown anti-aliasing %d",
+                           (int)desc.anti_aliasing);
     if (!mvr_color_format_name(desc.color_format))
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT, "mvr_target_create: unknown color format %d",
-                                 (int)desc.color_format);
+        return mvr_gl_fail(r, MVR_ERROR_INVALID_ARGUMENT, "mvr_target_create: unknown color format %d",
+                           (int)desc.color_format);
     if (desc.width == 0 || desc.height == 0 || desc.width > (uint32_t)c->limits.max_texture_size ||
         desc.height > (uint32_t)c->limits.max_texture_size)
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT,
-                                 "mvr_target_create: size %ux%u not within 1..%d", desc.width, desc.height,
-                                 c->limits.max_texture_size);
+        return mvr_gl_fail(r, MVR_ERROR_INVALID_ARGUMENT,
+                           "mvr_target_create: size %ux%u not within 1..%d", desc.width, desc.height,
+                           c->limits.max_texture_size);
     uint64_t last_layer = (uint64_t)desc.external_base_layer + desc.layers;
     if (last_layer > (uint64_t)c->limits.max_array_texture_layers)
-        return mvr_renderer_fail(r, MVR_ERROR_INVALID_ARGUMENT,
-                                 "mvr_target_create: layers up to %llu exceed GL_MAX_ARRAY_TEXTURE_LAYERS %d",
-                                 (unsigned long long)last_layer, c->limits.max_array_texture_layers);
+        return mvr_gl_fail(r, MVR_ERROR_INVALID_ARGUMENT,
+                           "mvr_target_create: layers up to %llu exceed GL_MAX_ARRAY_TEXTURE_LAYERS %d",
+                           (unsigned long long)last_layer, c->limits.max_array_texture_layers);
     if ((desc.color_format == MVR_COLOR_FORMAT_RGBA16F && !c->ext.ext_color_buffer_half_float) ||
         (desc.color_format == MVR_COLOR_FORMAT_RGBA32F && !c->ext.ext_color_buffer_float))
-        return mvr_renderer_fail(r, MVR_ERROR_UNSUPPORTED, "mvr_target_create: %s is not renderable on %s",
-                                 mvr_color_format_name(desc.color_format), c->renderer);
-    mvr_result res = mvr_renderer_begin(r, "mvr_target_create");
+        return mvr_gl_fail(r, MVR_ERROR_UNSUPPORTED, "mvr_target_create: %s is not renderable on %s",
+                           mvr_color_format_name(desc.color_format), c->renderer);
+    mvr_result res = mvr_gl_call_begin(r, "mvr_target_create");
     if (res != MVR_OK)
         return res;
     if (!mvr_color_format_name(desc.color_format) || !resolve_anti_aliasing(r, &desc))
@@ -303,11 +305,11 @@ mvr_result mvr_target_create(mvr_renderer *r, const mvr_target_desc *d, mvr_targ
         if (res != MVR_OK && desc.external_color_texture) {
             char why[MVR_ERROR_MESSAGE_SIZE];
             mvr_str_copy(why, sizeof why, r->last_error);
-            res = mvr_renderer_fail(r, res,
-                                    "%s (external texture %u: a %s 2D array of at least %ux%u and %llu layers?)",
-                                    why, desc.external_color_texture,
-                                    mvr_color_format_name(desc.color_format), desc.width, desc.height,
-                                    (unsigned long long)last_layer);
+            res = mvr_gl_fail(r, res,
+                              "%s (external texture %u: a %s 2D array of at least %ux%u and %llu layers?)",
+                              why, desc.external_color_texture,
+                              mvr_color_format_name(desc.color_format), desc.width, desc.height,
+                              (unsigned long long)last_layer);
         }
     }
     if (res == MVR_OK && desc.samples > 1)
@@ -317,7 +319,7 @@ mvr_result mvr_target_create(mvr_renderer *r, const mvr_target_desc *d, mvr_targ
     t->anti_aliasing = desc.samples > 1       ? MVR_ANTI_ALIASING_MSAA
                        : desc.supersample > 1 ? MVR_ANTI_ALIASING_SUPERSAMPLE
                                               : MVR_ANTI_ALIASING_NONE;
-    res = mvr_renderer_end(r, "mvr_target_create", res);
+    res = mvr_gl_call_end(r, "mvr_target_create", res);
     if (res != MVR_OK) {
         mvr_target_destroy(t);
         return res;
@@ -330,20 +332,20 @@ void mvr_target_release_gl(mvr_target *t)
 {
     mvr_renderer *r = t->renderer;
     for (uint32_t i = 0; i < t->fbo_count; ++i)
-        mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &t->fbos[i].fbo);
+        mvr_gl_delete(r, MVR_GL_FRAMEBUFFER, &t->fbos[i].fbo);
     t->fbo_count = 0;
     if (t->owns_color)
-        mvr_renderer_delete(r, MVR_GL_TEXTURE, &t->color);
+        mvr_gl_delete(r, MVR_GL_TEXTURE, &t->color);
     GLuint *textures[] = {&t->depth,     &t->ss_color, &t->msaa_array_color,  &t->msaa_array_depth,  &t->hdr_color,
                           &t->lum,       &t->output_arrays[0], &t->output_arrays[1], &t->output_arrays[2]};
     _Static_assert(MVR_TARGET_OUTPUT_ARRAYS == 3, "every output array released");
     for (size_t i = 0; i < MVR_ARRAY_COUNT(textures); ++i)
-        mvr_renderer_delete(r, MVR_GL_TEXTURE, textures[i]);
-    mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &t->msaa_fbo);
-    mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &t->msaa_hdr_fbo);
-    mvr_renderer_delete(r, MVR_GL_RENDERBUFFER, &t->msaa_color);
-    mvr_renderer_delete(r, MVR_GL_RENDERBUFFER, &t->msaa_depth);
-    mvr_renderer_delete(r, MVR_GL_RENDERBUFFER, &t->msaa_hdr_color);
+        mvr_gl_delete(r, MVR_GL_TEXTURE, textures[i]);
+    mvr_gl_delete(r, MVR_GL_FRAMEBUFFER, &t->msaa_fbo);
+    mvr_gl_delete(r, MVR_GL_FRAMEBUFFER, &t->msaa_hdr_fbo);
+    mvr_gl_delete(r, MVR_GL_RENDERBUFFER, &t->msaa_color);
+    mvr_gl_delete(r, MVR_GL_RENDERBUFFER, &t->msaa_depth);
+    mvr_gl_delete(r, MVR_GL_RENDERBUFFER, &t->msaa_hdr_color);
     t->msaa_multiview = MVR_MSAA_MV_NONE;
     t->lum_levels = 0;
 }
@@ -407,7 +409,7 @@ static mvr_result fbo_find_or_create(mvr_target *t, mvr_fbo_entry key, GLuint *o
         uint32_t cap = t->fbo_cap ? t->fbo_cap * 2 : 8;
         mvr_fbo_entry *p = realloc(t->fbos, cap * sizeof *p);
         if (!p)
-            return mvr_renderer_fail(r, MVR_ERROR_OUT_OF_MEMORY, "framebuffers: out of memory");
+            return mvr_gl_fail(r, MVR_ERROR_OUT_OF_MEMORY, "framebuffers: out of memory");
         t->fbos = p;
         t->fbo_cap = cap;
     }
@@ -430,8 +432,8 @@ static mvr_result fbo_check(mvr_target *t, const char *where)
     if (res == MVR_OK)
         res = mvr_gl_check_framebuffer(r->ctx, GL_DRAW_FRAMEBUFFER, where);
     if (res != MVR_OK) {
-        mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &t->fbos[--t->fbo_count].fbo);
-        return mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
+        mvr_gl_delete(r, MVR_GL_FRAMEBUFFER, &t->fbos[--t->fbo_count].fbo);
+        return mvr_gl_fail(r, res, "%s", mvr_context_last_error(r->ctx));
     }
     return MVR_OK;
 }
@@ -513,8 +515,8 @@ mvr_result mvr_target_output_array_framebuffer(mvr_target *t, uint32_t k, uint32
 mvr_result mvr_target_msaa_framebuffer(mvr_target *t, uint32_t base, uint32_t count, GLuint *out)
 {
     if (t->msaa_multiview == MVR_MSAA_MV_NONE)
-        return mvr_renderer_fail(t->renderer, MVR_ERROR_INTERNAL,
-                                 "multisampled multiview framebuffer without the GL's support");
+        return mvr_gl_fail(t->renderer, MVR_ERROR_INTERNAL,
+                           "multisampled multiview framebuffer without the GL's support");
     mvr_fbo_entry key = {.base = base, .count = count, .msaa = true};
     bool created = false;
     mvr_result res = fbo_find_or_create(t, key, out, &created);
@@ -553,13 +555,13 @@ mvr_result mvr_target_ensure_hdr(mvr_target *t)
     GLsizei w = (GLsizei)t->desc.width, h = (GLsizei)t->desc.height;
     if (!t->hdr_color) {
         if (!r->ctx->caps.ext.ext_color_buffer_half_float && !r->ctx->caps.ext.ext_color_buffer_float)
-            return mvr_renderer_fail(r, MVR_ERROR_UNSUPPORTED,
-                                     "HDR frame (tone mapping, physical exposure or dithering): %s renders to no "
-                                     "half-float format", r->ctx->caps.renderer);
+            return mvr_gl_fail(r, MVR_ERROR_UNSUPPORTED,
+                               "HDR frame (tone mapping, physical exposure or dithering): %s renders to no "
+                               "half-float format", r->ctx->caps.renderer);
         mvr_result res = make_array(t, &t->hdr_color, "the target's HDR color array", GL_RGBA16F, "rgba16f",
                                     t->desc.width, t->desc.height);
         if (res != MVR_OK) {
-            mvr_renderer_delete(r, MVR_GL_TEXTURE, &t->hdr_color); /* made again by the next HDR frame */
+            mvr_gl_delete(r, MVR_GL_TEXTURE, &t->hdr_color); /* made again by the next HDR frame */
             return res;
         }
     }
@@ -569,10 +571,10 @@ mvr_result mvr_target_ensure_hdr(mvr_target *t)
             gl->BindRenderbuffer(GL_RENDERBUFFER, t->msaa_hdr_color);
             gl->RenderbufferStorageMultisample(GL_RENDERBUFFER, (GLsizei)t->desc.samples, GL_RGBA16F, w, h);
             gl->BindRenderbuffer(GL_RENDERBUFFER, 0);
-            mvr_result res = mvr_renderer_check_alloc(r, "multisampled HDR renderbuffer (%dx%d rgba16f, %u samples)",
-                                                      w, h, t->desc.samples);
+            mvr_result res = mvr_gl_check_alloc(r, "multisampled HDR renderbuffer (%dx%d rgba16f, %u samples)",
+                                                w, h, t->desc.samples);
             if (res != MVR_OK) {
-                mvr_renderer_delete(r, MVR_GL_RENDERBUFFER, &t->msaa_hdr_color);
+                mvr_gl_delete(r, MVR_GL_RENDERBUFFER, &t->msaa_hdr_color);
                 return res;
             }
         }
@@ -584,8 +586,8 @@ mvr_result mvr_target_ensure_hdr(mvr_target *t)
         if (res == MVR_OK)
             res = mvr_gl_check_framebuffer(r->ctx, GL_DRAW_FRAMEBUFFER, "multisampled HDR framebuffer");
         if (res != MVR_OK) {
-            mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &t->msaa_hdr_fbo);
-            return mvr_renderer_fail(r, res, "%s", mvr_context_last_error(r->ctx));
+            mvr_gl_delete(r, MVR_GL_FRAMEBUFFER, &t->msaa_hdr_fbo);
+            return mvr_gl_fail(r, res, "%s", mvr_context_last_error(r->ctx));
         }
     }
     return MVR_OK;
@@ -606,10 +608,10 @@ mvr_result mvr_target_luminance_framebuffer(mvr_target *t, int kind, uint32_t ba
         mvr_state_texture(&r->state, 0, GL_TEXTURE_2D_ARRAY, t->lum);
         gl->TexStorage3D(GL_TEXTURE_2D_ARRAY, (GLsizei)levels, GL_RG16F, (GLsizei)t->desc.width,
                          (GLsizei)t->desc.height, (GLsizei)t->desc.layers);
-        mvr_result res = mvr_renderer_check_alloc(r, "auto-exposure luminance array (%ux%u, %u layers, rg16f, %u mips)",
-                                                  t->desc.width, t->desc.height, t->desc.layers, levels);
+        mvr_result res = mvr_gl_check_alloc(r, "auto-exposure luminance array (%ux%u, %u layers, rg16f, %u mips)",
+                                            t->desc.width, t->desc.height, t->desc.layers, levels);
         if (res != MVR_OK) {
-            mvr_renderer_delete(r, MVR_GL_TEXTURE, &t->lum);
+            mvr_gl_delete(r, MVR_GL_TEXTURE, &t->lum);
             return res;
         }
         t->lum_levels = levels;

@@ -11,8 +11,12 @@
  */
 #include <math.h>
 
+#include "errors.h"
 #include "program.h"
-#include "renderer_internal.h"
+#include "program_cache.h"
+#include "renderer.h"
+#include "targets.h"
+#include "transmission.h"
 
 /* The format views are drawn in, and the copy's: the same (a multisampled
  * source resolves only into its own format), except RGBA32F, which ES 3.0
@@ -34,15 +38,15 @@ static mvr_result ensure_array(mvr_renderer *r, GLenum format, uint32_t w, uint3
     if (tr->texture && tr->format == format && tr->width == w && tr->height == h && tr->layers >= layers)
         return MVR_OK;
     const mvr_gl_api_table *gl = r->gl;
-    mvr_renderer_delete(r, MVR_GL_TEXTURE, &tr->texture);
+    mvr_gl_delete(r, MVR_GL_TEXTURE, &tr->texture);
     uint32_t levels = mvr_mip_levels(w, h);
     gl->GenTextures(1, &tr->texture);
     mvr_state_texture(&r->state, MVR_UNIT_TRANSMISSION, GL_TEXTURE_2D_ARRAY, tr->texture);
     gl->TexStorage3D(GL_TEXTURE_2D_ARRAY, (GLsizei)levels, format, (GLsizei)w, (GLsizei)h, (GLsizei)layers);
-    mvr_result res = mvr_renderer_check_alloc(r, "transmission array (%ux%u, %u layers, %u levels)", w, h, layers,
-                                              levels);
+    mvr_result res = mvr_gl_check_alloc(r, "transmission array (%ux%u, %u layers, %u levels)", w, h, layers,
+                                        levels);
     if (res != MVR_OK) {
-        mvr_renderer_delete(r, MVR_GL_TEXTURE, &tr->texture);
+        mvr_gl_delete(r, MVR_GL_TEXTURE, &tr->texture);
         return res;
     }
     tr->format = format;
@@ -72,9 +76,9 @@ mvr_result mvr_transmission_copy(mvr_renderer *r, mvr_target *t, const mvr_frame
     bool ok;
     GLenum format = copy_format(t, plan->factor, plan->msaa, &ok);
     if (!ok)
-        return mvr_renderer_fail(r, MVR_ERROR_UNSUPPORTED,
-                                 "transmission: a multisampled RGBA32F target cannot be resolved into a filterable "
-                                 "copy (use RGBA16F or no MSAA)");
+        return mvr_gl_fail(r, MVR_ERROR_UNSUPPORTED,
+                           "transmission: a multisampled RGBA32F target cannot be resolved into a filterable "
+                           "copy (use RGBA16F or no MSAA)");
     uint32_t w = t->desc.width * plan->factor, h = t->desc.height * plan->factor;
     /* layers for the frame's largest chunk (one on the loop path) */
     uint32_t layers = 1;
@@ -136,8 +140,8 @@ void mvr_transmission_set_uniforms(mvr_renderer *r, mvr_program_entry *e)
 void mvr_transmission_release(mvr_renderer *r)
 {
     mvr_transmission *tr = &r->transmission;
-    mvr_renderer_delete(r, MVR_GL_TEXTURE, &tr->texture);
-    mvr_renderer_delete(r, MVR_GL_FRAMEBUFFER, &tr->fbo);
-    mvr_renderer_delete(r, MVR_GL_SAMPLER, &tr->sampler);
+    mvr_gl_delete(r, MVR_GL_TEXTURE, &tr->texture);
+    mvr_gl_delete(r, MVR_GL_FRAMEBUFFER, &tr->fbo);
+    mvr_gl_delete(r, MVR_GL_SAMPLER, &tr->sampler);
     tr->width = tr->height = tr->layers = 0;
 }

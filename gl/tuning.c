@@ -16,7 +16,11 @@
  */
 #include <string.h>
 
-#include "renderer_internal.h"
+#include "renderer.h"
+#include "skinning.h"
+#include "targets.h"
+#include "timers.h"
+#include "tuning.h"
 
 const char *mvr_auto_state_name(mvr_auto_state state)
 {
@@ -52,7 +56,7 @@ static mvr_tuner *tuner_of(mvr_renderer *r, uint32_t decision)
 static double last_gpu_ms(mvr_renderer *r)
 {
     if (r->timer.pending)
-        mvr_renderer_read_timer(r);
+        mvr_timer_read(r);
     return r->stats.gpu_ms; /* read now, or by mvr_renderer_get_stats already (or none) */
 }
 

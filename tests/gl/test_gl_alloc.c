@@ -19,7 +19,7 @@
 #include <stdlib.h>
 #include <time.h>
 
-#include "renderer_internal.h"
+#include "renderer.h"
 #include "stress/stress_util.h"
 
 #define W 32

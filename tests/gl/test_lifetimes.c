@@ -9,7 +9,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include <stdlib.h>
 
-#include "renderer_internal.h"
+#include "renderer.h"
 #include "stress/stress_util.h"
 
 #define W 16

@@ -10,8 +10,9 @@
 #include <string.h>
 
 #include "gl_test_util.h"
-#include "renderer_internal.h"
+#include "renderer.h"
 #include "shader_gen.h"
+#include "targets.h"
 
 static const char *const variables[] = {"MVR_VIEW_PATH",   "MVR_MATERIAL_PATH",  "MVR_DEPTH",
                                         "MVR_CULLING",     "MVR_INSTANCING",     "MVR_MSAA_MULTIVIEW",

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 
 #include "gl_test_util.h"
-#include "renderer_internal.h"
+#include "renderer.h"
 
 #define W 64
 #define H 48
