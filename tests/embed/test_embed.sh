@@ -116,7 +116,11 @@ for m in mvr mvr-image mvr-gltf; do
     echo "$m requires: ${r:-nothing} (private: $(pc --print-requires-private "$m" | tr '\n' ' '))"
 done
 pc --print-requires --print-requires-private mvr | grep -q osmesa && bad "mvr.pc requires osmesa" || ok "mvr.pc does not require osmesa"
-"$src/tests/embed/check_exports.sh" "$src" "$out/exports" "$prefix/lib/libmvr.so=$src/include/mvr/mvr.h" \
+# libmvr's API: the installed mvr.h and the headers it includes (one not
+# installed fails the check)
+api="$prefix/include/mvr/mvr.h"
+for h in $(sed -n 's|^#include "mvr/\(mvr_[a-z_]*\.h\)".*|\1|p' "$api"); do api="$api:$prefix/include/mvr/$h"; done
+"$src/tests/embed/check_exports.sh" "$src" "$out/exports" "$prefix/lib/libmvr.so=$api" \
     "$prefix/lib/libmvr_image.so=$src/include/mvr/mvr_image.h" "$prefix/lib/libmvr_gltf.so=$src/include/mvr/mvr_gltf.h" ||
     bad "the installed shared libraries export more or less than their headers declare"
 exit $fail

@@ -7,7 +7,10 @@
 // memory budget by its own accounting.
 //
 // The files: tests/io/hostile_files.cpp (made of tests/io/hostile_docs.cpp);
-// the loads, frames and message checks the cases share: hostile_check.cpp.
+// the anim_*, ktx2_*, variants_*, matext_* and codec_* files, each kind with
+// its case: hostile_anim.cpp, hostile_ktx2_files.cpp, hostile_variants.cpp,
+// hostile_material_ext.cpp, hostile_codecs.cpp; the loads, frames and
+// message checks the cases share: hostile_check.cpp.
 //
 //   io_hostile                    runs the cases
 //   io_hostile --write-files DIR  writes the files into DIR (DIR/asset/* plus
@@ -26,8 +29,10 @@
 #include <vector>
 
 #include "gltf_gen.hpp"
+#include "hostile_anim.hpp"
 #include "hostile_check.hpp"
 #include "hostile_docs.hpp"
+#include "hostile_ktx2_files.hpp"
 #include "hostile_variants.hpp"
 #include "hostile_material_ext.hpp"
 
@@ -622,104 +627,6 @@ void read_callback_replaces_file_access(mvr_test_state *t)
                   "widen_read_callback_refused: %s decoded %u missing %u", w.msg.c_str(), w.info.images_decoded,
                   w.info.images_missing);
         CHECK_EQ_INT(t, s.releases, s.reads_ok);
-    }
-}
-
-// Skins, morph targets and animations (hostile_files.cpp, anim_*): each
-// broken file refused with a message naming the object; the valid one loads
-// (and renders); unknown channel paths are warned about once each.
-void skins_morphs_and_animations_are_checked(mvr_test_state *t)
-{
-    const files &f = F();
-    size_t refused = check_refusals(t, f, "");
-    CHECK_MSG(t, refused >= 30, "%zu anim_* files refused", refused);
-    {
-        outcome o = load(t, f.path("anim_valid.gltf"), defaults());
-        CHECK_MSG(t, o.r == MVR_OK && o.warnings.empty(), "anim_valid: %s %s", o.msg.c_str(),
-                  o.warnings.empty() ? "" : o.warnings[0].c_str());
-        if (o.scene) {
-            mvr_scene_info si;
-            mvr_scene_get_info(o.scene, &si);
-            CHECK(t, si.skins == 1 && si.joints == 2 && si.morph_targets == 2 && si.animations == 1);
-            mvr_animation_info ai;
-            CHECK(t, mvr_scene_get_animation_info(o.scene, 0, &ai) == MVR_OK && std::strcmp(ai.name, "wave") == 0 &&
-                         ai.start == 0 && ai.end == 1 && ai.channels == 3 && ai.samplers == 3);
-            CHECK(t, mvr_scene_apply_animation(o.scene, 0, 0.75, MVR_ANIMATION_LOOP) == MVR_OK);
-            std::vector<uint8_t> px = render(t, o.scene, "anim_valid");
-            CHECK_MSG(t, px.empty() || drawn(px) > 50, "anim_valid: %zu pixels drawn", drawn(px));
-        }
-    }
-    {
-        outcome o = load(t, f.path("anim_unknown_paths.gltf"), defaults());
-        CHECK_MSG(t, o.r == MVR_OK, "anim_unknown_paths: %s", o.msg.c_str());
-        CHECK_EQ_INT(t, o.info.animation_channels_ignored, 3);
-        size_t pointer = 0, colour = 0;
-        for (const auto &w : o.warnings) {
-            pointer += has(w, "target path 'pointer' (KHR_animation_pointer) is not implemented; channel ignored");
-            colour += has(w, "target path 'color' is not implemented");
-        }
-        CHECK_MSG(t, pointer == 1 && colour == 1 && o.warnings.size() == 2, "%zu pointer, %zu color warnings of %zu",
-                  pointer, colour, o.warnings.size());
-        CHECK(t, o.warnings.empty() || has(o.warnings[0], "animations[0].channels[3]"));
-        mvr_animation_info ai;
-        CHECK(t, o.scene && mvr_scene_get_animation_info(o.scene, 0, &ai) == MVR_OK && ai.channels == 3);
-    }
-    {
-        outcome o = load(t, f.path("anim_pointer_without_node.gltf"), defaults());
-        CHECK_MSG(t, o.r == MVR_OK, "anim_pointer_without_node: %s", o.msg.c_str());
-        CHECK_EQ_INT(t, o.info.animation_channels_ignored, 1);
-        CHECK(t, o.warned("KHR_animation_pointer"));
-    }
-}
-
-// KTX2 containers (ktx2_* files, tests/io/hostile_files.cpp): every lie in
-// the header, index, DFD, key/value data or levels leaves the image out
-// (a warning naming images[0], the untextured picture) and is refused when
-// strict; nothing is read out of bounds (the sanitizer build) and nothing
-// large is allocated before the budget allows it.
-void ktx2_containers_are_checked(mvr_test_state *t)
-{
-    const files &f = F();
-    {
-        outcome o = load(t, f.path("ktx2_valid.gltf"), defaults());
-        CHECK_MSG(t, o.r == MVR_OK && o.info.images_decoded == 1 && o.warnings.empty(), "ktx2_valid: %s, decoded %u",
-                  o.msg.c_str(), o.info.images_decoded);
-        size_t orange = count_pixels(render(t, o.scene, "ktx2_valid"),
-                                     [](const uint8_t *p) { return p[0] > 240 && p[1] > 120 && p[1] < 160 && p[2] < 40; });
-        CHECK_MSG(t, orange > 200, "ktx2_valid: %zu orange pixels", orange);
-    }
-    const char *left_out[] = {
-        "ktx2_short_header.gltf",    "ktx2_level_past_end.gltf",  "ktx2_level_offset_wraps.gltf",
-        "ktx2_level_count_huge.gltf", "ktx2_level_index_past_end.gltf", "ktx2_dfd_outside.gltf",
-        "ktx2_dfd_total_mismatch.gltf", "ktx2_dfd_block_too_big.gltf", "ktx2_kvd_runaway.gltf",
-        "ktx2_kvd_no_nul.gltf",      "ktx2_sgd_outside.gltf",     "ktx2_level_size_lie.gltf",
-        "ktx2_faces_3.gltf",         "ktx2_height0_depth.gltf",   "ktx2_width0.gltf",
-        "ktx2_basislz_rgba8.gltf",   "ktx2_dims_huge.gltf",       "ktx2_zstd_short.gltf",
-        "ktx2_zstd_long.gltf",       "ktx2_zstd_garbage.gltf",    "ktx2_zstd_over_cap.gltf",
-        "ktx2_cubemap.gltf",         "ktx2_3d.gltf",              "ktx2_array.gltf",
-        "ktx2_rgba16f.gltf",         "ktx2_etc2_truncated.gltf",  "ktx2_etc2_level_size_lie.gltf",
-        "ktx2_etc2_dims_huge.gltf",  "ktx2_etc2_levels_beyond_log2.gltf", "ktx2_etc2_zstd_short.gltf",
-        "ktx2_etc2_bottom_up.gltf",  "ktx2_astc_6x6_size_lie.gltf"};
-    for (const char *n : left_out) {
-        outcome o = load(t, f.path(n), defaults());
-        left_out_and_clean(t, o, n);
-        CHECK_MSG(t, o.ms < 2000, "%s: %.0f ms", n, o.ms);
-        CHECK_MSG(t, o.rss_growth_kb < 64 * 1024, "%s: peak RSS grew by %ld KB", n, o.rss_growth_kb);
-        outcome s = load(t, f.path(n), strict(), (std::string(n) + " strict").c_str());
-        CHECK_MSG(t, (s.r == MVR_ERROR_INVALID_ASSET || s.r == MVR_ERROR_UNSUPPORTED) && has(s.msg, "images[0]"),
-                  "%s strict: %s %s", n, mvr_result_name(s.r), s.msg.c_str());
-    }
-    // the bomb: 1 GiB declared, a frame of 1 KB; refused before the level is inflated
-    for (uint64_t b : {64 * MiB, uint64_t(0)}) {
-        for (bool st : {false, true}) {
-            mvr_gltf_options o = b ? budget(b) : defaults();
-            o.strict = st;
-            std::string label = std::string("ktx2_zstd_bomb_16k") + (b ? " 64M" : " default") + (st ? " strict" : "");
-            outcome r = load(t, f.path("ktx2_zstd_bomb_16k.gltf"), o, label.c_str());
-            CHECK_MSG(t, r.r == MVR_ERROR_OUT_OF_MEMORY && has(r.msg, "memory_budget") && has(r.msg, "images[0]"),
-                      "%s: %s %s", label.c_str(), mvr_result_name(r.r), r.msg.c_str());
-            CHECK_MSG(t, r.rss_growth_kb < 200 * 1024, "%s: peak RSS grew by %ld KB", label.c_str(), r.rss_growth_kb);
-        }
     }
 }
 

@@ -1,0 +1,103 @@
+/*
+ * mvr: how a scene is shown by default (view layouts, views from
+ * a file's camera, the exposure its lights call for) and the demo scenes.
+ *
+ * Part of the public C API; include <mvr/mvr.h>, whose conventions apply.
+ */
+#ifndef MVR_FRAMING_API_H
+#define MVR_FRAMING_API_H
+
+#include "mvr/mvr_renderer.h"
+#include "mvr/mvr_scene.h"
+#include "mvr/mvr_views.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ------------------------------------------------------------------ framing
+ *
+ * How a scene is shown by default: views laid out around its bounding
+ * sphere, for files without cameras (or when the caller wants a layout
+ * instead of the file's camera); views from a camera of the file; the
+ * exposure its lights call for.
+ */
+typedef enum mvr_view_layout {
+    MVR_LAYOUT_STEREO = 0,       /* a row of eyes ipd apart in front of the scene, parallel axes */
+    MVR_LAYOUT_CUBE,             /* six 90-degree views from the center */
+    MVR_LAYOUT_RING,             /* N cameras in a horizontal circle, looking at the center */
+    MVR_LAYOUT_GRID,             /* a light-field grid of cameras on a plane, looking at the center */
+    MVR_LAYOUT_SPHERE,           /* N cameras spread evenly over a sphere (a Fibonacci lattice), looking at
+                                    the center: the capture of a multi-view reconstruction dataset */
+    MVR_LAYOUT_ORBIT             /* a turntable: rings of cameras at rising elevations, looking at the center */
+} mvr_view_layout;
+
+typedef struct mvr_framing_desc {
+    mvr_view_layout layout;
+    uint32_t views;              /* 0 = the layout's own (stereo 2, cube 6, ring 8, grid 9, sphere 50,
+                                    orbit 24) */
+    double ipd;                  /* stereo: scene units between eyes; 0 = mvr_stereo_default_ipd of the framing distance */
+    double aspect;               /* width / height of the layers; 0 = 1 */
+    uint32_t rows;               /* orbit: rings (0 = 3), the views shared out among them (the first
+                                    rings take the remainder), each ring's azimuths staggered by half a step */
+    double elevation_min, elevation_max; /* orbit, radians in (-pi/2, pi/2): the lowest and the highest
+                                    ring, evenly between (both 0 = -15 and 60 degrees; one ring: their mean) */
+} mvr_framing_desc;
+
+/* The eye separation for a subject viewing_distance away: 1/30 of it (the
+ * stereographers' 1/30 rule), so a 2 cm model and a 100 m scene get the same
+ * depth impression; a subject framed 1.9 m away gets 0.064, a human IPD. */
+double mvr_stereo_default_ipd(double viewing_distance);
+
+const char *mvr_view_layout_name(mvr_view_layout layout);
+mvr_result mvr_view_set_frame_scene(const mvr_scene *scene, const mvr_framing_desc *desc, mvr_view_set **out,
+                                    mvr_error *out_error);
+
+/* Views from a camera node of the scene (a file's camera): its world pose
+ * and projection (mvr_scene_camera_view) as the centre of a row of `views`
+ * eyes (0 = 2, a stereo pair; 1 = the camera itself) along the camera's x
+ * axis, ipd apart, with parallel axes and the camera's projection each.
+ * ipd 0 = mvr_stereo_default_ipd of the camera's distance to the centre of
+ * the scene's bounding sphere (the project's stereo rule, the 1/30 rule,
+ * as mvr_view_set_frame_scene applies it to its framing distance); NaN,
+ * infinite or negative is refused. The view set's origin is the camera. */
+mvr_result mvr_view_set_from_camera(const mvr_scene *scene, mvr_node_id camera_node, uint32_t views, double ipd,
+                                    mvr_view_set **out, mvr_error *out_error);
+
+/* The exposure a scene is shown with by default (mvr render and mvr-viewer
+ * both use it): lights in physical units (mvr_scene_lights_physical: a sun
+ * of thousands of lux, as exporters write KHR_lights_punctual) give
+ * MVR_EXPOSURE_AUTO with MVR_TONE_MAP_KHR_PBR_NEUTRAL, as a camera would
+ * expose them; any other scene MVR_EXPOSURE_LINEAR (the light values as
+ * authored, `exposure` as the multiplier), with no tone map, or, when
+ * desc->environment is set (set it first), Khronos PBR Neutral (the
+ * identity below 0.76, highlights rolled off instead of clipped: the
+ * Khronos glTF Sample Viewer's default). Writes only exposure_mode and
+ * tone_map: an application whose user chose an exposure or a tone map
+ * applies that choice after this call. */
+void mvr_render_desc_choose_exposure(const mvr_scene *scene, mvr_render_desc *desc);
+
+/* ------------------------------------------------------------------ demo scenes
+ *
+ * Scenes generated in code (no files), with views to match: the default for
+ * `mvr render` and the benchmark's workload.
+ *   stereo  a small room with varied materials and lights, eyes 64 mm apart
+ *   cube    the room from its center: six 90-degree views (cube-map faces)
+ *   city    a grid of thousands of buildings over 64+ textured materials
+ *   ring    N cameras in a circle around an object
+ */
+typedef struct mvr_demo_desc {
+    uint32_t views;              /* 0 = the demo's own count (stereo 2, cube 6, city 2, ring 8) */
+    uint32_t width, height;      /* layer size, for aspect ratios; 0 = square */
+    mvr_logger logger;
+} mvr_demo_desc;
+
+/* The i-th demo's name; NULL past the last. */
+const char *mvr_demo_name(uint32_t index);
+mvr_result mvr_demo_create(const char *name, const mvr_demo_desc *desc, mvr_scene **out_scene,
+                           mvr_view_set **out_views, mvr_error *out_error);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* MVR_FRAMING_API_H */
