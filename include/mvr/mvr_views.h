@@ -60,7 +60,7 @@ uint32_t mvr_view_set_count(const mvr_view_set *set);
 mvr_result mvr_view_set_get_view(const mvr_view_set *set, uint32_t index, mvr_view_desc *out);
 mvr_result mvr_view_set_get_origin(const mvr_view_set *set, double out[3]);
 
-/* Camera metadata of a view for data pipelines (issue 21): what each pixel
+/* Camera metadata of a view for data pipelines: what each pixel
  * of its viewport sees, in double, whatever the GPU's relative matrices.
  * Conventions: the world is glTF's (right-handed, +Y up, metres if the file
  * says so); world_to_camera / camera_to_world (column-major) use the OpenGL
