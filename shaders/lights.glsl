@@ -1,18 +1,11 @@
 // lights.glsl: the punctual lights (KHR_lights_punctual) and the uniform
 // ambient of the mesh program's fragment stage.
 
-struct mvr_light {
-    vec4 position_range;     // xyz relative to the view origin; w: range (0 = infinite)
-    vec4 direction;          // xyz: direction the light points to (unit)
-    vec4 color;              // rgb: color * intensity
-    vec4 spot;               // x: angle scale, y: angle offset (KHR_lights_punctual)
-};
-
 #define MVR_LIGHT_COUNT (MVR_DIRECTIONAL_LIGHTS + MVR_POINT_LIGHTS + MVR_SPOT_LIGHTS)
 #if MVR_LIGHT_COUNT > 0
-layout(std140) uniform mvr_lights {
-    mvr_light mvr_light_list[MVR_LIGHT_COUNT]; // directional, then point, then spot
-};
+// struct mvr_light and the mvr_lights block of MVR_LIGHT_COUNT of them
+// (directional, then point, then spot), from core/block_layout.c
+#mvr_block mvr_lights
 #endif
 uniform vec3 mvr_ambient;    // rgb radiance of a uniform environment
 

@@ -2,13 +2,8 @@
 
 #ifdef MVR_SHADOWS
 uniform sampler2DArrayShadow mvr_shadow_map; // compare mode: GEQUAL (reversed-Z) or LEQUAL
-layout(std140) uniform mvr_shadows {
-    mat4 mvr_shadow_matrix[MVR_MAX_SHADOW_LAYERS]; // world (relative to the origin) -> (u, v, depth)
-    vec4 mvr_shadow_params[MVR_MAX_SHADOW_LAYERS]; // x: texel size (world; perspective: per unit of
-                                                   // distance), y: 1 = perspective, z: normal bias
-                                                   // in texels, w: 1 / map size
-    ivec4 mvr_light_shadow[MVR_MAX_LIGHTS];        // x: first layer, y: layers (0 = no shadow)
-};
+// mvr_shadows: per layer, per light (core/block_layout.c)
+#mvr_block mvr_shadows
 
 // Fraction of a light reaching p: the first of the light's layers whose map
 // holds p (cascades nest from near to far; outside all of them: lit), 3x3

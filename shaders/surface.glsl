@@ -4,24 +4,10 @@
 // material's alpha. The material extensions' inputs are read in
 // mesh.frag.glsl's main; their functions are in material_*.glsl.
 
-struct mvr_material {
-    vec4 base_color_factor;
-    vec4 emissive;           // rgb: emissive factor * strength, a: alpha cutoff
-    vec4 params;             // x: metallic, y: roughness (spec-gloss: glossiness), z: normal scale,
-                             // w: occlusion strength
-    ivec4 layers[3];         // per texture role: its array layer, 16 bits each (mvr_layer)
-    ivec4 uv;                // xyz: per role 4 bits (TEXCOORD_1, transform slot); w: bit per role
-                             // with a texture (mvr_uv, mvr_has_texture)
-    vec4 uv_transform[16];   // per transform slot: two rows of a 2x3 affine (KHR_texture_transform)
-    vec4 specular;           // rgb: dielectric F0 (KHR_materials_ior x _specular color, unclamped),
-                             // a: specular weight
-    vec4 clearcoat;          // factor, roughness, F0, normal scale (KHR_materials_clearcoat)
-    vec4 sheen;              // rgb: color, a: roughness (KHR_materials_sheen)
-    vec4 transmission;       // factor, thickness, attenuation distance (0: none), dispersion
-    vec4 volume;             // rgb: attenuation color, a: ior
-    vec4 iridescence;        // factor, ior, thickness minimum, maximum (nm)
-    vec4 anisotropy;         // strength, cos and sin of the rotation
-};                           // 480 bytes in std140, whatever the features (core/frame.h)
+// struct mvr_material (480 bytes in std140, whatever the features) and the
+// mvr_materials block: a page of MVR_MAX_MATERIALS of the table, generated
+// from the std140 layout table (core/block_layout.c)
+#mvr_block mvr_materials
 
 // The texture roles (core/material.h)
 #define MVR_ROLE_BASE_COLOR 0
@@ -42,10 +28,6 @@ struct mvr_material {
 #define MVR_ROLE_IRIDESCENCE_THICKNESS 15
 #define MVR_ROLE_ANISOTROPY 16
 #define MVR_ROLE_SPEC_GLOSS 17
-
-layout(std140) uniform mvr_materials {
-    mvr_material mvr_material_table[MVR_MAX_MATERIALS];
-};
 
 #ifdef MVR_MATERIAL_ARRAYS
 #define MVR_SAMPLER sampler2DArray
