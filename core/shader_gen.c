@@ -1,10 +1,15 @@
 #include <string.h>
 
+#include "block_layout.h"
 #include "shader_files.h"
 #include "shader_gen.h"
 
 /* Views per uniform block; a larger view set binds the block per chunk. */
 #define MVR_SHADER_MAX_VIEWS 64
+_Static_assert(MVR_SHADER_MAX_VIEWS == MVR_VIEWS_PER_BLOCK, "the shaders' view arrays are the view block's");
+
+/* A line of a shaders/ file that the named block's declaration replaces. */
+#define BLOCK_DIRECTIVE "#mvr_block "
 
 typedef struct feature_define {
     uint32_t bit;
@@ -77,7 +82,7 @@ static const feature_define background_defines[] = {
 typedef struct program_files {
     const char *shared[2];   /* prepended to both stages, in order (NULL = none) */
     const char *vertex_shared; /* prepended to the vertex stage only */
-    const char *fragment_shared[2]; /* prepended to the fragment stage only, in order (NULL = none) */
+    const char *fragment_shared[13]; /* prepended to the fragment stage only, in order (NULL = none) */
     const char *stage[MVR_SHADER_STAGE_COUNT];
 } program_files;
 
@@ -114,8 +119,14 @@ static bool program_files_of(mvr_program_kind program, program_files *out)
     case MVR_PROGRAM_MESH:
         out->shared[1] = "views.glsl";
         out->vertex_shared = "deform.glsl";
-        out->fragment_shared[0] = "output.glsl";
-        out->fragment_shared[1] = "environment.glsl";
+        /* each file uses only what the ones before it declare */
+        static const char *const mesh_fragment[] = {
+            "output.glsl", "environment.glsl", "surface.glsl", "lights.glsl", "shadows.glsl", "brdf.glsl",
+            "material_anisotropy.glsl", "material_specular.glsl", "material_iridescence.glsl",
+            "material_clearcoat.glsl", "ibl.glsl", "material_transmission.glsl", "material_sheen.glsl",
+        };
+        _Static_assert(sizeof mesh_fragment == sizeof out->fragment_shared, "fragment_shared holds the mesh's files");
+        memcpy(out->fragment_shared, mesh_fragment, sizeof mesh_fragment);
         out->stage[MVR_SHADER_STAGE_VERTEX] = "mesh.vert.glsl";
         out->stage[MVR_SHADER_STAGE_FRAGMENT] = "mesh.frag.glsl";
         return true;
@@ -267,6 +278,56 @@ bool mvr_shader_variant_valid(const mvr_shader_variant *v, char *why, size_t why
     return true;
 }
 
+static const char *std140_glsl_type(mvr_std140_type type)
+{
+    switch (type) {
+    case MVR_STD140_VEC4: return "vec4";
+    case MVR_STD140_IVEC4: return "ivec4";
+    case MVR_STD140_UVEC4: return "uvec4";
+    case MVR_STD140_MAT4: return "mat4";
+    }
+    return "?";
+}
+
+static void append_members(mvr_str_builder *out, const mvr_block_layout *b)
+{
+    for (uint32_t i = 0; i < b->member_count; ++i) {
+        const mvr_block_member *m = &b->members[i];
+        if (m->array_size > 1)
+            mvr_sb_appendf(out, "    %s %s[%u];\n", std140_glsl_type(m->type), m->name, (unsigned)m->array_size);
+        else
+            mvr_sb_appendf(out, "    %s %s;\n", std140_glsl_type(m->type), m->name);
+    }
+}
+
+/* The GLSL declaration of a uniform block of the std140 table
+ * (block_layout.h): its struct and the block holding an array of it, or the
+ * block's own members. */
+static bool append_block(mvr_str_builder *out, const char *name, char *why, size_t why_size)
+{
+    const mvr_block_layout *b = mvr_block_layout_find(name);
+    if (!b) {
+        mvr_str_format(why, why_size, "uniform block %s is not in the std140 layout table", name);
+        return false;
+    }
+    if (!b->element) {
+        mvr_sb_appendf(out, "layout(std140) uniform %s {\n", b->block);
+        append_members(out, b);
+        mvr_sb_append(out, "};\n");
+        return true;
+    }
+    mvr_sb_appendf(out, "struct %s {\n", b->struct_name);
+    append_members(out, b);
+    if (b->padding)
+        mvr_sb_appendf(out, "#if %s > 0\n    vec4 pad[%s];\n#endif\n", b->padding, b->padding);
+    mvr_sb_append(out, "};\n");
+    mvr_sb_appendf(out, "layout(std140) uniform %s {\n    %s %s[%s];\n};\n", b->block, b->struct_name, b->element,
+                   b->element_count);
+    return true;
+}
+
+/* Appends an embedded file, its "#mvr_block NAME" lines replaced by the
+ * blocks' declarations (then #line keeps the file's own line numbers). */
 static bool append_file(mvr_str_builder *out, const char *name, char *why, size_t why_size)
 {
     const mvr_shader_file *f = mvr_shader_file_find(name);
@@ -275,9 +336,22 @@ static bool append_file(mvr_str_builder *out, const char *name, char *why, size_
         return false;
     }
     mvr_sb_appendf(out, "#line 1 // %s\n", name);
-    mvr_sb_append(out, f->text);
-    if (f->length == 0 || f->text[f->length - 1] != '\n')
-        mvr_sb_append(out, "\n");
+    unsigned line = 1;
+    for (const char *p = f->text; *p; ++line) {
+        const char *end = strchr(p, '\n');
+        size_t length = end ? (size_t)(end - p) : strlen(p);
+        const size_t prefix = sizeof BLOCK_DIRECTIVE - 1;
+        if (length > prefix && strncmp(p, BLOCK_DIRECTIVE, prefix) == 0) {
+            char block[64];
+            mvr_str_format(block, sizeof block, "%.*s", (int)(length - prefix), p + prefix);
+            if (!append_block(out, block, why, why_size))
+                return false;
+            mvr_sb_appendf(out, "#line %u\n", line + 1);
+        } else {
+            mvr_sb_appendf(out, "%.*s\n", (int)length, p);
+        }
+        p += end ? length + 1 : length;
+    }
     return true;
 }
 

@@ -7,19 +7,9 @@
 // a 144-byte array stride, the size of one block, plus MVR_DRAW_PAD vec4s
 // where the GL's uniform offset alignment spaces blocks further apart
 // (256 bytes on many desktop GPUs).
-struct mvr_draw_data {
-    mat4 model;              // relative to the view origin
-    vec4 normal_matrix[3];   // inverse-transpose of the model's upper 3x3 (columns)
-    uvec4 ids;               // node, mesh, material, primitive (the extra outputs' IDs)
-    ivec4 info;              // x: material index; y: joint texel base (< 0: not skinned);
-                             // z: morph header texel (< 0: no targets); w: morph delta base
-#if MVR_DRAW_PAD > 0
-    vec4 pad[MVR_DRAW_PAD];
-#endif
-};
-layout(std140) uniform mvr_draw {
-    mvr_draw_data mvr_draws[MVR_DRAW_CAPACITY];
-};
+// struct mvr_draw_data and the mvr_draw block of MVR_DRAW_CAPACITY of them,
+// from the std140 layout table (core/block_layout.c)
+#mvr_block mvr_draw
 
 // locations 0-2 (position, normal, tangent) and 6-9 (joints, weights):
 // deform.glsl

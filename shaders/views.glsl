@@ -3,12 +3,8 @@
 // views' light masks).
 // Matrices are relative to the view set's origin (camera-relative precision:
 // the CPU subtracts the origin in double before narrowing to float).
-layout(std140) uniform mvr_views {
-    mat4 mvr_view_proj[MVR_MAX_VIEWS];
-    vec4 mvr_eye_position[MVR_MAX_VIEWS];   // xyz relative to the origin
-    ivec4 mvr_view_info[MVR_MAX_VIEWS];     // x: bit i set = light i shines in the view
-    mat4 mvr_view_matrix[MVR_MAX_VIEWS];    // world (relative) to camera; sent only for extra outputs
-};
+// The mvr_views block, from the std140 layout table (core/block_layout.c)
+#mvr_block mvr_views
 
 // First view of this pass: a multiview pass covers views
 // [mvr_view_base, mvr_view_base + MVR_NUM_VIEWS); a loop pass covers one view.

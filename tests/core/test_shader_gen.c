@@ -1,5 +1,6 @@
 /* core: shader variants become source text; every variant is well-formed. */
 #include "mvr_test.h"
+#include "block_layout.h"
 #include "shader_files.h"
 #include "shader_gen.h"
 
@@ -162,8 +163,55 @@ static void every_feature_has_a_define(mvr_test_state *t)
     }
 }
 
+/* The uniform blocks' declarations are generated from the std140 table
+ * (block_layout.h): a variant with every block declares each with all its
+ * members, and no "#mvr_block" line is left in any variant's source. */
+static void blocks_are_declared_from_the_layout_table(mvr_test_state *t)
+{
+    mvr_shader_variant v = {.program = MVR_PROGRAM_MESH, .features = MVR_FEATURE_SHADOWS, .point_lights = 2};
+    char *vs = source_of(&v, MVR_SHADER_STAGE_VERTEX);
+    char *fs = source_of(&v, MVR_SHADER_STAGE_FRAGMENT);
+    CHECK(t, vs && fs);
+    uint32_t count = 0;
+    const mvr_block_layout *layouts = mvr_block_layouts(&count);
+    for (uint32_t k = 0; vs && fs && k < count; ++k) {
+        const mvr_block_layout *b = &layouts[k];
+        char decl[128];
+        snprintf(decl, sizeof decl, "layout(std140) uniform %s {\n", b->block);
+        const char *at = strstr(vs, decl) ? strstr(vs, decl) : strstr(fs, decl);
+        CHECK_MSG(t, at != NULL, "no declaration of %s", b->block);
+        if (!at)
+            continue;
+        if (b->element) {
+            snprintf(decl, sizeof decl, "    %s %s[%s];\n", b->struct_name, b->element, b->element_count);
+            CHECK_MSG(t, strstr(at, decl) != NULL, "%s: no %s", b->block, decl);
+            snprintf(decl, sizeof decl, "struct %s {\n", b->struct_name);
+            at = strstr(vs, decl) ? strstr(vs, decl) : strstr(fs, decl);
+            CHECK_MSG(t, at != NULL, "%s: no struct %s", b->block, b->struct_name);
+            if (!at)
+                continue;
+        }
+        for (uint32_t m = 0; m < b->member_count; ++m) {
+            const char *name = b->members[m].name;
+            CHECK_MSG(t, strstr(at, name) != NULL, "%s: no member %s", b->block, name);
+        }
+    }
+    free(vs);
+    free(fs);
+    unsigned left = 0;
+    for (unsigned i = 0; mvr_shader_variant_enumerate(i, 4, &v); ++i) {
+        for (int s = 0; s < MVR_SHADER_STAGE_COUNT; ++s) {
+            char *src = source_of(&v, (mvr_shader_stage)s);
+            CHECK(t, src != NULL);
+            left += src && strstr(src, "#mvr_block") ? 1u : 0u;
+            free(src);
+        }
+    }
+    CHECK_EQ_INT(t, (int)left, 0);
+}
+
 MVR_TEST_MAIN(TEST(every_embedded_file_is_nonempty),
               TEST(version_comes_first_and_defines_follow_features),
               TEST(multiview_layout_only_in_vertex_stage), TEST(invalid_variants_are_refused),
               TEST(enumeration_covers_each_feature_and_view_path),
-              TEST(every_feature_has_a_define))
+              TEST(every_feature_has_a_define), TEST(blocks_are_declared_from_the_layout_table))
