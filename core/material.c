@@ -11,7 +11,7 @@
 
 typedef struct role_info {
     const char *name;
-    const char *sampler;         /* shaders/mesh.frag.glsl */
+    const char *sampler;         /* shaders/surface.glsl, material_*.glsl */
     bool srgb;
     uint32_t feature;
 } role_info;

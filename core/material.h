@@ -1,8 +1,8 @@
 /*
  * Materials (backend-free): the texture roles a material can sample, the
  * scene's validation of a material desc, and the std140 block the mesh
- * fragment stage reads (layout in frame.h, struct mvr_material in
- * shaders/mesh.frag.glsl).
+ * fragment stage reads (layout in block_layout.h, from which the generator
+ * declares struct mvr_material; shaders/surface.glsl and material_*.glsl read it).
  */
 #ifndef MVR_MATERIAL_H
 #define MVR_MATERIAL_H
@@ -47,7 +47,7 @@ typedef enum mvr_texture_role {
 const mvr_texture_ref *mvr_material_role(const mvr_material_desc *m, uint32_t role);
 /* "base color", "clearcoat normal", ... */
 const char *mvr_role_name(uint32_t role);
-/* The sampler uniform of the role in shaders/mesh.frag.glsl. */
+/* The sampler uniform of the role (shaders/surface.glsl and material_*.glsl). */
 const char *mvr_role_sampler(uint32_t role);
 /* Whether a role is stored sRGB-encoded (glTF 2.0 3.9.2 and the extensions:
  * base color, emissive, sheen color, specular color, spec-gloss). */

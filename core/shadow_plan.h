@@ -15,9 +15,9 @@
 #define MVR_SHADOW_MAX_LAYERS MVR_SHADER_MAX_SHADOW_LAYERS
 #define MVR_SHADOW_MAX_CASCADES 4
 #define MVR_FRAME_MAX_LIGHTS (3 * MVR_SHADER_MAX_LIGHTS_PER_TYPE)
-/* std140 size of the mvr_shadows block of shaders/mesh.frag.glsl: receiver
- * matrices, per-layer parameters, per-light (first layer, count); its
- * members' offsets are MVR_SHADOWS_* of frame.h */
+/* std140 size of the mvr_shadows block (shaders/shadows.glsl declares it from
+ * the layout table): receiver matrices, per-layer parameters, per-light (first
+ * layer, count); its members' offsets are MVR_SHADOWS_* of block_layout.h */
 #define MVR_SHADOW_BLOCK_SIZE MVR_SHADOWS_BLOCK_SIZE
 
 typedef struct mvr_shadow_layer {

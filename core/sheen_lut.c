@@ -1,5 +1,5 @@
 /* KHR_materials_sheen on the CPU: the sheen BRDF (the same formulas as
- * shaders/mesh.frag.glsl's MVR_SHEEN code, here in double: the tests'
+ * shaders/material_sheen.glsl's MVR_SHEEN code, here in double: the tests'
  * reference) and the table the shader reads, once per renderer.
  *
  * The sheen BRDF (KHR_materials_sheen, "BRDF"; the Khronos glTF Sample

@@ -1,5 +1,6 @@
 /* gl: the std140 uniform block layouts the C side packs (the one table of
- * core/frame.h, mvr_block_layouts) are the layouts the GL gives the blocks the
+ * core/block_layout.c, mvr_block_layouts, from which the shaders' block
+ * declarations are also generated) are the layouts the GL gives the blocks the
  * shaders declare. For every shader variant of the validation set (and a few
  * more: padded instanced draw blocks, a small material page), each block the
  * program has is found in the table, and each of its members is asked of the
@@ -9,15 +10,16 @@
  * last of a block's struct array are checked, so the struct's stride is too.
  *
  * How it was checked that a mismatch fails (each change then restored):
- * - C side, MVR_MATERIAL_EMISSIVE_OFFSET 16u -> 20u in core/frame.h: every
+ * - C side, MVR_MATERIAL_EMISSIVE_OFFSET 16u -> 20u (then in core/frame.h): every
  *   mesh variant fails ("mvr_materials: mvr_material_table[0].emissive offset
  *   16, table 20"), and the_table_is_std140 too;
  * - C side, MVR_DRAW_INFO_OFFSET (the former "+ 128") 128u -> 112u: "mvr_draw:
  *   mvr_draws[0].info offset 128, table 112";
  * - C side, MVR_VIEWS_PER_BLOCK 64u -> 32u: mvr_views data size 6144 against
  *   3072, member offsets and array sizes, in mesh and background variants;
- * - GLSL side, vec4 emissive and vec4 params swapped in struct mvr_material
- *   of shaders/mesh.frag.glsl: 1214 failed checks per context ("emissive
+ * - GLSL side (when the shaders declared the blocks by hand; now they are
+ *   generated from the table), vec4 emissive and vec4 params swapped in
+ *   struct mvr_material of shaders/mesh.frag.glsl: 1214 failed checks per context ("emissive
  *   offset 32, table 16");
  * - GLSL side, a vec4 added to struct mvr_light: data size and active
  *   member count ("mvr_lights has 20 active members, the table 16") and the
