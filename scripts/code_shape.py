@@ -118,13 +118,51 @@ def renderer_calls(root):
     return found
 
 
+def self_test():
+    """The checks fire on a small tree made to break each of them (and stay
+    quiet on one that does not), so a checker that stopped seeing anything fails."""
+    import subprocess
+    import tempfile
+
+    def tree(function_lines, file_lines, call_up):
+        d = tempfile.mkdtemp(prefix='code_shape_')
+        for sub in ('gl', 'apps', 'include/mvr'):
+            os.makedirs(os.path.join(d, sub))
+        with open(os.path.join(d, 'include/mvr/mvr.h'), 'w') as f:
+            f.write('int mvr_public(void);\n')
+        with open(os.path.join(d, 'gl/renderer.c'), 'w') as f:
+            f.write('int mvr_public(void)\n{\n    return 0;\n}\n\nint mvr_renderer_private(int a)\n{\n'
+                    '    return a;\n}\n')
+        with open(os.path.join(d, 'gl/other.c'), 'w') as f:
+            body = ''.join('    x += %d;\n' % i for i in range(function_lines - 3))
+            f.write('static int helper(int x)\n{\n%s    return x;\n}\n' % body)
+            f.write('int mvr_other(void)\n{\n    return %s;\n}\n'
+                    % ('mvr_renderer_private(1)' if call_up else 'mvr_public()'))
+        with open(os.path.join(d, 'apps/big.c'), 'w') as f:
+            f.write('/* filler */\n' * file_lines)
+        out = subprocess.run([sys.executable, os.path.abspath(__file__), '--root', d],
+                             capture_output=True, text=True)
+        return out.returncode, out.stdout
+
+    rc, text = tree(120, 800, False)
+    ok = rc == 0 and '0 problem(s)' in text
+    rc, text = tree(121, 801, True)
+    ok = ok and rc == 1 and 'helper is 121 lines' in text and 'apps/big.c: 801 lines' in text \
+        and 'calls mvr_renderer_private' in text and '3 problem(s)' in text
+    print('code_shape self-test: ' + ('passed' if ok else 'FAILED\n' + text))
+    return 0 if ok else 1
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
     ap.add_argument('--root', default=os.path.join(os.path.dirname(os.path.abspath(__file__)), '..'))
     ap.add_argument('--max-file', type=int, default=800)
     ap.add_argument('--max-function', type=int, default=120)
     ap.add_argument('--report', action='store_true', help='also list the longest files and functions')
+    ap.add_argument('--self-test', action='store_true', help='check the checks on trees made to break them')
     args = ap.parse_args()
+    if args.self_test:
+        return self_test()
     root = os.path.abspath(args.root)
 
     problems = []
