@@ -24,9 +24,19 @@ static inline void log_sink_fn(mvr_log_level level, mvr_log_id id, const char *m
     }
 }
 
+/* The tests render on the surfaceless provider; MVR_TEST_CONTEXT names
+ * another for them (device: a GPU's EGL device, as scripts/gpu_check runs
+ * them). Tests that ask for another provider on purpose keep it. */
 static inline mvr_context *create_or_report(mvr_test_state *t, mvr_context_provider provider,
                                             mvr_gl_api api, log_sink *sink)
 {
+    const char *forced = getenv("MVR_TEST_CONTEXT");
+    if (provider == MVR_CONTEXT_PROVIDER_SURFACELESS && forced && forced[0]) {
+        mvr_context_provider p = provider;
+        CHECK_MSG(t, mvr_context_provider_from_name(forced, &p) == MVR_OK,
+                  "MVR_TEST_CONTEXT=%s is no provider name", forced);
+        provider = p;
+    }
     mvr_context_desc desc = {0};
     desc.provider = provider;
     desc.api = api;
