@@ -122,10 +122,18 @@ static void probe_bugs(mvr_context *ctx)
      * brackets multiview passes from outside, never inside. All drivers. */
     c->bugs.timer_query_in_multiview_undefined = c->ext.ovr_multiview;
 
-    /* llvmpipe really computes mediump in fp16 (measured here): a mediump
-     * world position or depth visibly loses precision. mvr declares highp in
-     * every stage; the flag lets tests check that this stays so. */
-    c->bugs.mediump_is_fp16 = llvmpipe;
+    /* llvmpipe really computes mediump in fp16 (measured here), and so does
+     * NVIDIA's GLES driver (the stress suite's probe on an H100, driver 580:
+     * 2049 + 1 = 2048): a mediump world position or depth visibly loses
+     * precision. mvr declares highp in every stage; the flag lets tests check
+     * that this stays so. Besides llvmpipe's name, a driver that reports less
+     * than fp32's 23 mantissa bits for a fragment mediump float says so itself
+     * (GLES 3.0 4.5.2 asks only 10). */
+    GLint range[2] = {0, 0}, precision = 23;
+    ctx->gl.GetShaderPrecisionFormat(GL_FRAGMENT_SHADER, GL_MEDIUM_FLOAT, range, &precision);
+    if (ctx->gl.GetError() != GL_NO_ERROR)
+        precision = 23;
+    c->bugs.mediump_is_fp16 = llvmpipe || (precision > 0 && precision < 23);
 
     /* llvmpipe bins a whole multiview pass as one scene and starts
      * rasterizing at its end, so a per-view loop overlaps one view's
