@@ -66,7 +66,9 @@ static void missing_device_is_an_error(mvr_test_state *t)
     CHECK(t, strstr(sink.last_error, "999") != NULL);
 }
 
-/* ctest runs this file with DISPLAY and WAYLAND_DISPLAY unset. */
+/* ctest runs this file with DISPLAY and WAYLAND_DISPLAY unset. Mesa's EGL
+ * then has no default display; NVIDIA's has one without any window system
+ * (seen on an H100, driver 580): there a pbuffer context must simply work. */
 static void pbuffer_without_display_fails(mvr_test_state *t)
 {
     if (getenv("DISPLAY") || getenv("WAYLAND_DISPLAY"))
@@ -76,6 +78,13 @@ static void pbuffer_without_display_fails(mvr_test_state *t)
     mvr_context *ctx = NULL;
     mvr_error err;
     mvr_result r = mvr_context_create(&desc, &ctx, &err);
+    if (r == MVR_OK) {
+        const mvr_caps *caps = mvr_context_caps(ctx);
+        printf("  this EGL's default display needs no window system: %s\n", caps->renderer);
+        CHECK(t, caps->renderer[0] != '\0');
+        mvr_context_destroy(ctx);
+        return;
+    }
     CHECK_MSG(t, r == MVR_ERROR_NO_DISPLAY, "%s: %s", mvr_result_name(r), err.message);
     CHECK(t, ctx == NULL);
     CHECK(t, strstr(err.message, "pbuffer") != NULL);

@@ -135,10 +135,17 @@ static void target_too_large_fails(mvr_test_state *t)
     printf("  %ux%u x %u layers (%.0f GiB of color): %s in %.2f ms: %s\n", size, size, layers,
            (double)size * size * layers * 4 / (1024.0 * 1024.0 * 1024.0), mvr_result_name(res), ms,
            mvr_renderer_last_error(r));
-    CHECK_EQ_INT(t, res, MVR_ERROR_OUT_OF_MEMORY);
     CHECK(t, target == NULL);
-    CHECK(t, strstr(mvr_renderer_last_error(r), "color array") != NULL);
-    CHECK(t, strstr(mvr_renderer_last_error(r), "GL_OUT_OF_MEMORY") != NULL);
+    if (res == MVR_ERROR_FRAMEBUFFER && !c->is_software) {
+        /* a GL that reserves storage lazily (NVIDIA H100, driver 580) takes
+         * the array and refuses the framebuffer: still an error naming it */
+        CHECK(t, strstr(mvr_renderer_last_error(r), "framebuffer") != NULL);
+        CHECK(t, strstr(mvr_renderer_last_error(r), "GL_FRAMEBUFFER_") != NULL);
+    } else {
+        CHECK_EQ_INT(t, res, MVR_ERROR_OUT_OF_MEMORY);
+        CHECK(t, strstr(mvr_renderer_last_error(r), "color array") != NULL);
+        CHECK(t, strstr(mvr_renderer_last_error(r), "GL_OUT_OF_MEMORY") != NULL);
+    }
     CHECK_EQ_INT(t, ctx->gl.GetError(), GL_NO_ERROR);
 
     /* the supersampled array refused after the color array was made: the color array goes too */

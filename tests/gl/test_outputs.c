@@ -195,8 +195,11 @@ static void plane_depth_is_exact(mvr_test_state *t)
         /* float precision: a few units in the last place of 3.7 */
         CHECK_MSG(t, worst_depth < 1e-6, "depth off by %.3g relative", worst_depth);
         /* the ray is interpolated per pixel, not at its exact centre in a
-         * float: a few ulps too */
-        CHECK_MSG(t, worst_distance < 4e-6, "distance off by %.3g relative", worst_distance);
+         * float: a few ulps too on llvmpipe; a GPU's length() is an
+         * approximation (NVIDIA H100, driver 580: 2.05e-5) */
+        const double distance_tolerance = mvr_context_caps(ctx)->is_software ? 4e-6 : 5e-5;
+        CHECK_MSG(t, worst_distance < distance_tolerance, "distance off by %.3g relative (tolerance %.3g)",
+                  worst_distance, distance_tolerance);
         CHECK_MSG(t, bad_ids == 0 && bad_coverage == 0, "%u pixels with other IDs, %u without coverage", bad_ids,
                   bad_coverage);
         /* the plane faces +Y: its world normal, everywhere */
@@ -209,7 +212,11 @@ static void plane_depth_is_exact(mvr_test_state *t)
         CHECK_MSG(t, worst_normal < 1e-6, "normal off by %.3g", worst_normal);
         /* multiview and loop: the same bytes for every output */
         check_same_outputs(t, &mv, &loop);
-        CHECK(t, mv.stats.view_path == MVR_VIEW_PATH_MULTIVIEW && mv.stats.multiview_passes == 2);
+        /* 8 views: one multiview pass per GL_MAX_VIEWS_OVR of them (6 on llvmpipe, 32 on NVIDIA) */
+        const uint32_t max_views = (uint32_t)mvr_context_caps(ctx)->limits.max_views_ovr;
+        const uint32_t passes = max_views ? (8 + max_views - 1) / max_views : 0;
+        CHECK_MSG(t, mv.stats.view_path == MVR_VIEW_PATH_MULTIVIEW && mv.stats.multiview_passes == passes,
+                  "%u multiview passes for 8 views, %u expected", mv.stats.multiview_passes, passes);
         CHECK(t, mv.stats.outputs == ALL_OUTPUTS && mv.stats.output_blend_passes == 0);
     }
     outputs_free(&mv);
