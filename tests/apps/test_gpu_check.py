@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""scripts/gpu_check --quick on the surfaceless provider (issue 36): the check
+"""scripts/gpu_check --quick on the surfaceless provider: the check
 prepared for a lent GPU machine runs end to end here, and its report holds the
 GL's capabilities, each test's result and bench rows with positive times. It
 fails when the script breaks, so the script is ready when a machine is lent.
