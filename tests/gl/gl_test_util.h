@@ -51,4 +51,52 @@ static inline mvr_context *create_or_report(mvr_test_state *t, mvr_context_provi
     return r == MVR_OK ? ctx : NULL;
 }
 
+/* Where two renders of w x h RGBA8 layers differ, as a picture of the
+ * difference: per layer, the differing pixel count, the box holding them,
+ * the largest channel difference and an 8x8 map of the layer ('.' same,
+ * '1'-'9' tenths of the cell's pixels differing). Printed only when they
+ * differ; the pattern says what kind of fault it is (one tile: a race; a
+ * layer: a view mixed up; edges: rasterization; everywhere: state). */
+static inline void report_image_diff(const char *label, const uint8_t *a, const uint8_t *b, uint32_t w,
+                                     uint32_t h, uint32_t layers)
+{
+    for (uint32_t l = 0; l < layers; ++l) {
+        const uint8_t *pa = a + (size_t)l * w * h * 4, *pb = b + (size_t)l * w * h * 4;
+        uint32_t n = 0, x0 = w, y0 = h, x1 = 0, y1 = 0, worst = 0;
+        uint32_t cell[8][8] = {{0}};
+        for (uint32_t y = 0; y < h; ++y)
+            for (uint32_t x = 0; x < w; ++x) {
+                const uint8_t *ca = pa + ((size_t)y * w + x) * 4, *cb = pb + ((size_t)y * w + x) * 4;
+                uint32_t d = 0;
+                for (int c = 0; c < 4; ++c) {
+                    uint32_t e = ca[c] > cb[c] ? (uint32_t)(ca[c] - cb[c]) : (uint32_t)(cb[c] - ca[c]);
+                    d = e > d ? e : d;
+                }
+                if (!d)
+                    continue;
+                ++n;
+                worst = d > worst ? d : worst;
+                x0 = x < x0 ? x : x0;
+                y0 = y < y0 ? y : y0;
+                x1 = x > x1 ? x : x1;
+                y1 = y > y1 ? y : y1;
+                cell[y * 8 / h][x * 8 / w]++;
+            }
+        if (!n)
+            continue;
+        printf("  %s, layer %u: %u of %u pixels differ, box (%u,%u)-(%u,%u), worst %u/255\n", label, l, n, w * h, x0,
+               y0, x1, y1, worst);
+        uint32_t cell_pixels = (w / 8 ? w / 8 : 1) * (h / 8 ? h / 8 : 1);
+        for (int cy = 0; cy < 8; ++cy) {
+            char row[9];
+            for (int cx = 0; cx < 8; ++cx) {
+                uint32_t tenth = (cell[cy][cx] * 10 + cell_pixels - 1) / cell_pixels;
+                row[cx] = cell[cy][cx] == 0 ? '.' : (char)('0' + (tenth > 9 ? 9 : tenth ? tenth : 1));
+            }
+            row[8] = 0;
+            printf("    %s\n", row);
+        }
+    }
+}
+
 #endif

@@ -190,6 +190,7 @@ static void supersampling_on_every_path(mvr_test_state *t)
             if (loop && multi) {
                 CHECK_MSG(t, memcmp(loop, multi, bytes) == 0, "%s x%u: supersampled multiview and loop differ",
                           demos[d], counts[c]);
+                report_image_diff("supersampled multiview vs loop", loop, multi, MW, MH, counts[c]);
                 CHECK_EQ_INT(t, sm.view_path, MVR_VIEW_PATH_MULTIVIEW);
                 /* one resolve pass per multiview chunk, whatever the views */
                 CHECK_EQ_INT(t, sm.resolves, (counts[c] + max_views - 1) / max_views);

@@ -148,6 +148,7 @@ static void post_pass_is_the_same_on_both_paths(mvr_test_state *t)
                 size_t bytes = (size_t)W * H * 4 * views;
                 unsigned diff = max_abs_diff8(a, b, bytes);
                 CHECK_MSG(t, diff == 0, "%s, post %d: multiview and loop differ by %u", demo, k, diff);
+                report_image_diff("post: multiview vs loop", a, b, W, H, views);
                 CHECK_EQ_INT(t, mv.post_passes, 1); /* one multiview pass, whatever N (<= 6 here) */
                 CHECK_EQ_INT(t, loop.post_passes, views);
                 CHECK_MSG(t, mv.exposure_ev100 == loop.exposure_ev100, "%s: EV100 %g vs %g", demo, mv.exposure_ev100,

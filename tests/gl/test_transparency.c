@@ -164,6 +164,8 @@ static void multiview_with_fallback_equals_loop(mvr_test_state *t)
                           mvr_demo_name(d), counts[c]);
                 CHECK_MSG(t, memcmp(img[0], img[2], bytes) == 0, "%s x%u: per_view multiview differs from the loop",
                           mvr_demo_name(d), counts[c]);
+                report_image_diff("auto multiview vs loop", img[0], img[1], 48, 48, counts[c]);
+                report_image_diff("per_view multiview vs loop", img[0], img[2], 48, 48, counts[c]);
                 printf("  %-6s x%-2u blended sub-passes %u; auto: %u chunks diverged, %u fallback passes; "
                        "per_view: %u\n", mvr_demo_name(d), counts[c], st[1].sub_passes[2], st[1].blend_diverged_chunks,
                        st[1].blend_fallback_passes, st[2].blend_fallback_passes);
