@@ -56,8 +56,8 @@ void mvr_gl_delete(mvr_renderer *r, mvr_gl_object kind, GLuint *name)
     case MVR_GL_FRAMEBUFFER: mvr_state_forget_framebuffer(&r->state, *name); break;
     case MVR_GL_VERTEX_ARRAY: mvr_state_forget_vao(&r->state, *name); break;
     case MVR_GL_PROGRAM: mvr_state_forget_program(&r->state, *name); break;
+    case MVR_GL_SAMPLER: mvr_state_forget_sampler(&r->state, *name); break;
     case MVR_GL_RENDERBUFFER:
-    case MVR_GL_SAMPLER:
     case MVR_GL_QUERY:
     case MVR_GL_SYNC:
         break;

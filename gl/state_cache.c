@@ -285,6 +285,13 @@ void mvr_state_forget_vao(mvr_state_cache *s, GLuint vao)
         s->vao = 0;
 }
 
+void mvr_state_forget_sampler(mvr_state_cache *s, GLuint sampler)
+{
+    for (int i = 0; i < MVR_STATE_TEXTURE_UNITS; ++i)
+        if (s->samplers[i] == sampler)
+            s->samplers[i] = 0;
+}
+
 void mvr_state_polygon_offset(mvr_state_cache *s, bool enabled, GLfloat factor, GLfloat units)
 {
     enable(s, GL_POLYGON_OFFSET_FILL, &s->polygon_offset_fill, enabled);

@@ -93,5 +93,8 @@ void mvr_state_forget_buffer(mvr_state_cache *s, GLuint buffer);
 void mvr_state_forget_framebuffer(mvr_state_cache *s, GLuint fbo);
 void mvr_state_forget_program(mvr_state_cache *s, GLuint program);
 void mvr_state_forget_vao(mvr_state_cache *s, GLuint vao);
+/* GL unbinds a deleted sampler from every unit; a GL that hands its name out
+ * again (NVIDIA's does at once) would otherwise see the bind skipped. */
+void mvr_state_forget_sampler(mvr_state_cache *s, GLuint sampler);
 
 #endif
