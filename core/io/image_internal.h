@@ -45,10 +45,12 @@ typedef struct mvr_image_backend {
                         mvr_error *error);
     mvr_result (*decode_cost)(const void *data, size_t size, const char *mime_type, uint64_t *out_bytes,
                               mvr_error *error);
+    /* held: bytes the front found the decoder will hold besides what the
+     * module counts (a progressive JPEG's coefficients), added to its cost */
     mvr_result (*decode)(const void *data, size_t size, const char *mime_type, uint32_t max_dimension,
-                         uint64_t memory_budget, mvr_image_data *out, mvr_error *error);
-    mvr_result (*read)(const char *path, mvr_pixel_type type, uint64_t memory_budget, mvr_image_data *out,
-                       mvr_error *error);
+                         uint64_t memory_budget, uint64_t held, mvr_image_data *out, mvr_error *error);
+    mvr_result (*read)(const char *path, mvr_pixel_type type, uint64_t memory_budget, uint64_t held,
+                       mvr_image_data *out, mvr_error *error);
     mvr_result (*write)(const char *path, const mvr_image_view *image, mvr_error *error);
     mvr_result (*compare)(const mvr_image_view *a, const mvr_image_view *b, double threshold,
                           const char *diff_path, mvr_image_compare_result *out, mvr_error *error);

@@ -241,9 +241,13 @@ static bool png_framing_ok(const unsigned char *p, size_t n, char *why, size_t w
  * are RSTn; the image ends at EOI. A JPEG that ends before EOI is truncated:
  * libjpeg would only warn ("premature end") and fill the rest with grey, so
  * it is refused here. Reads a stream (memory through fmemopen, or a file);
- * false with `why` set when the stream ends first. */
-static bool jpeg_framing_ok(FILE *f, char *why, size_t why_size)
+ * false with `why` set when the stream ends first. *held: what libjpeg holds
+ * besides the pixels: a progressive JPEG (SOF2, 6, 10, 14) keeps every DCT
+ * coefficient until its last scan, 2 bytes a sample (ISO/IEC 10918-1 G.1.1;
+ * libjpeg's whole-image coefficient buffer), from its SOF's size. */
+static bool jpeg_framing_ok(FILE *f, uint64_t *held, char *why, size_t why_size)
 {
+    *held = 0;
     int c = 0;
     if (getc(f) != 0xFF || getc(f) != 0xD8) {
         snprintf(why, why_size, "JPEG has no SOI marker");
@@ -271,6 +275,16 @@ static bool jpeg_framing_ok(FILE *f, char *why, size_t why_size)
             snprintf(why, why_size, "JPEG marker 0xFF%02X has a length of %ld", m, len);
             return false;
         }
+        bool sof = m >= 0xC0 && m <= 0xCF && m != 0xC4 && m != 0xC8 && m != 0xCC;
+        if (sof && (m & 3) == 2 && len >= 8) {
+            int p = getc(f), y1 = getc(f), y0 = getc(f), x1 = getc(f), x0 = getc(f), nc = getc(f);
+            if (nc == EOF)
+                break;
+            (void)p;
+            uint64_t samples = (uint64_t)(y1 << 8 | y0) * (uint64_t)(x1 << 8 | x0) * (uint64_t)nc;
+            *held = mvr_image_add(*held, samples * 2);
+            len -= 6;
+        }
         if (fseek(f, len - 2, SEEK_CUR) != 0)
             break;
     }
@@ -279,22 +293,25 @@ static bool jpeg_framing_ok(FILE *f, char *why, size_t why_size)
 }
 
 /* jpeg_framing_ok over bytes in memory. */
-static bool jpeg_bytes_ok(const unsigned char *p, size_t n, char *why, size_t why_size)
+static bool jpeg_bytes_ok(const unsigned char *p, size_t n, uint64_t *held, char *why, size_t why_size)
 {
     FILE *f = fmemopen((void *)(uintptr_t)p, n, "rb");   /* read-only: the bytes are not written */
     if (!f) {
         snprintf(why, why_size, "out of memory (fmemopen)");
         return false;
     }
-    bool ok = jpeg_framing_ok(f, why, why_size);
+    bool ok = jpeg_framing_ok(f, held, why, why_size);
     fclose(f);
     return ok;
 }
 
-/* The checks every encoded-image call makes; the format, or NULL with the error set. */
+/* The checks every encoded-image call makes; the format, or NULL with the
+ * error set. *held: what the decoder holds besides what the module counts
+ * (a progressive JPEG's coefficients), 0 for other formats. */
 static const image_format *check_encoded(const void *data, size_t size, const char *mime, const char *who,
-                                         mvr_error *error)
+                                         uint64_t *held, mvr_error *error)
 {
+    *held = 0;
     char quoted[96];
     const unsigned char *bytes = (const unsigned char *)data;
     const image_format *f = format_of_bytes(bytes, size);
@@ -310,7 +327,7 @@ static const image_format *check_encoded(const void *data, size_t size, const ch
     }
     char why[128];
     if ((f == &format_png && !png_framing_ok(bytes, size, why, sizeof why)) ||
-        (f == &format_jpeg && !jpeg_bytes_ok(bytes, size, why, sizeof why))) {
+        (f == &format_jpeg && !jpeg_bytes_ok(bytes, size, held, why, sizeof why))) {
         mvr_image_fail(error, MVR_ERROR_INVALID_ASSET, "%s: %s", who, why);
         return NULL;
     }
@@ -367,7 +384,8 @@ mvr_result mvr_image_probe(const void *data, size_t size, const char *mime_type,
     if (!out || !data || size == 0)
         return mvr_image_fail(e, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_probe: no data");
     memset(out, 0, sizeof *out);
-    const image_format *f = check_encoded(data, size, mime_type, "mvr_image_probe", e);
+    uint64_t held = 0;
+    const image_format *f = check_encoded(data, size, mime_type, "mvr_image_probe", &held, e);
     if (!f)
         return e->result;
     if (f == &format_png) {
@@ -386,7 +404,8 @@ mvr_result mvr_image_decode_cost(const void *data, size_t size, const char *mime
     if (!out_bytes || !data || size == 0)
         return mvr_image_fail(e, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_decode_cost: no data");
     *out_bytes = 0;
-    const image_format *f = check_encoded(data, size, mime_type, "mvr_image_decode_cost", e);
+    uint64_t held = 0;
+    const image_format *f = check_encoded(data, size, mime_type, "mvr_image_decode_cost", &held, e);
     if (!f)
         return e->result;
     if (f == &format_png) {
@@ -395,7 +414,10 @@ mvr_result mvr_image_decode_cost(const void *data, size_t size, const char *mime
         FRONT_OR_MODULE(st, "mvr_image_decode_cost", decode_cost(data, size, mime_type, out_bytes, e));
     }
     const mvr_image_backend *m = mvr_image_module("mvr_image_decode_cost", e);
-    return m ? m->decode_cost(data, size, mime_type, out_bytes, e) : e->result;
+    if (!m || m->decode_cost(data, size, mime_type, out_bytes, e) != MVR_OK)
+        return e->result;
+    *out_bytes = mvr_image_add(*out_bytes, held);
+    return MVR_OK;
 }
 
 mvr_result mvr_image_decode_within(const void *data, size_t size, const char *mime_type, uint32_t max_dimension,
@@ -406,16 +428,17 @@ mvr_result mvr_image_decode_within(const void *data, size_t size, const char *mi
         return mvr_image_fail(e, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_decode: no data");
     memset(out, 0, sizeof *out);
     uint64_t budget = memory_budget ? memory_budget : MVR_IMAGE_DEFAULT_MEMORY_BUDGET;
-    const image_format *f = check_encoded(data, size, mime_type, "mvr_image_decode", e);
+    uint64_t held = 0;
+    const image_format *f = check_encoded(data, size, mime_type, "mvr_image_decode", &held, e);
     if (!f)
         return e->result;
     if (f == &format_png) {
         mvr_png_source src = {.data = (const unsigned char *)data, .size = size};
         mvr_png_status st = mvr_png_decode(&src, max_dimension, budget, "mvr_image_decode", out, e);
-        FRONT_OR_MODULE(st, "mvr_image_decode", decode(data, size, mime_type, max_dimension, budget, out, e));
+        FRONT_OR_MODULE(st, "mvr_image_decode", decode(data, size, mime_type, max_dimension, budget, held, out, e));
     }
     const mvr_image_backend *m = mvr_image_module("mvr_image_decode", e);
-    return m ? m->decode(data, size, mime_type, max_dimension, budget, out, e) : e->result;
+    return m ? m->decode(data, size, mime_type, max_dimension, budget, held, out, e) : e->result;
 }
 
 mvr_result mvr_image_decode(const void *data, size_t size, const char *mime_type, uint32_t max_dimension,
@@ -441,9 +464,10 @@ mvr_result mvr_image_read_within(const char *path, mvr_pixel_type type, uint64_t
     size_t got = fread(sig, 1, sizeof sig, file);
     const image_format *f = format_of_bytes(sig, got);
     char why[128];
+    uint64_t held = 0;
     if (f == &format_jpeg) {
         rewind(file);
-        if (!jpeg_framing_ok(file, why, sizeof why)) {
+        if (!jpeg_framing_ok(file, &held, why, sizeof why)) {
             fclose(file);
             return mvr_image_fail(e, MVR_ERROR_INVALID_ASSET, "%s: %s", who, why);
         }
@@ -458,9 +482,9 @@ mvr_result mvr_image_read_within(const char *path, mvr_pixel_type type, uint64_t
     }
     fclose(file);
     if (png)
-        FRONT_OR_MODULE(st, who, read(path, type, budget, out, e));
+        FRONT_OR_MODULE(st, who, read(path, type, budget, held, out, e));
     const mvr_image_backend *m = mvr_image_module(who, e);
-    return m ? m->read(path, type, budget, out, e) : e->result;
+    return m ? m->read(path, type, budget, held, out, e) : e->result;
 }
 
 mvr_result mvr_image_read(const char *path, mvr_pixel_type type, mvr_image_data *out, mvr_error *error)

@@ -164,10 +164,8 @@ static uint32_t native_channel_bytes(const ImageSpec &spec)
 //  - a file stored in another type than the one asked for: OpenImageIO reads
 //    its own type and converts (charged as a whole copy, the most it holds);
 //  - WebP: OpenImageIO 2.4's reader decodes the whole image into its own RGBA8
-//    buffer before handing out any scanline;
-//  - JPEG: a progressive JPEG keeps every DCT coefficient until the last scan
-//    (libjpeg's whole-image coefficient buffer, 2 bytes a sample, ISO/IEC
-//    10918-1 G.1); charged for every JPEG since the header is not yet read.
+//    buffer before handing out any scanline.
+// (A progressive JPEG's coefficients are found and added by the front.)
 static uint64_t decode_cost(ImageInput *in, mvr_pixel_type type)
 {
     const ImageSpec &spec = in->spec();
@@ -182,18 +180,15 @@ static uint64_t decode_cost(ImageInput *in, mvr_pixel_type type)
         converts = converts || t != want;
     if (converts)
         cost = mvr_image_add(cost, mvr_image_mul(samples, native_channel_bytes(spec)));
-    std::string format = in->format_name();
-    if (format == "webp")
+    if (std::string(in->format_name()) == "webp")
         cost = mvr_image_add(cost, mvr_image_mul(pixels, 4));
-    else if (format == "jpeg")
-        cost = mvr_image_add(cost, mvr_image_mul(samples, 2));
     return cost;
 }
 
 // Reads an opened ImageInput into RGBA of the given type, refused before
 // anything is allocated where decode_cost is over the budget.
 static mvr_result read_rgba(ImageInput *in, mvr_pixel_type type, uint32_t max_dimension, uint64_t budget,
-                            const std::string &what, mvr_image_data *out, mvr_error *error)
+                            uint64_t held, const std::string &what, mvr_image_data *out, mvr_error *error)
 {
     const ImageSpec &spec = in->spec();
     uint32_t cap = max_dimension ? max_dimension : 16384;
@@ -202,7 +197,7 @@ static mvr_result read_rgba(ImageInput *in, mvr_pixel_type type, uint32_t max_di
         return fail(error, MVR_ERROR_INVALID_ASSET,
                     what + ": " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
                         " is not within 1.." + std::to_string(cap));
-    uint64_t needed = decode_cost(in, type);
+    uint64_t needed = mvr_image_add(decode_cost(in, type), held);
     if (needed > budget)
         return mvr_image_over_budget(error, what.c_str(), uint32_t(spec.width), uint32_t(spec.height),
                                      uint32_t(spec.nchannels), native_channel_bytes(spec), needed, budget);
@@ -306,18 +301,18 @@ static mvr_result oiio_decode_cost(const void *data, size_t size, const char *mi
 }
 
 static mvr_result oiio_decode(const void *data, size_t size, const char *mime_type, uint32_t max_dimension,
-                              uint64_t budget, mvr_image_data *out, mvr_error *error)
+                              uint64_t budget, uint64_t held, mvr_image_data *out, mvr_error *error)
 {
     if (!out || !data || size == 0)
         return fail(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_decode: no data");
     std::memset(out, 0, sizeof *out);
     return with_encoded(data, size, mime_type, "mvr_image_decode", error, [&](ImageInput *in, const image_format *) {
-        return read_rgba(in, MVR_PIXEL_U8, max_dimension, budget, "mvr_image_decode", out, error);
+        return read_rgba(in, MVR_PIXEL_U8, max_dimension, budget, held, "mvr_image_decode", out, error);
     });
 }
 
-static mvr_result oiio_read(const char *path, mvr_pixel_type type, uint64_t budget, mvr_image_data *out,
-                            mvr_error *error)
+static mvr_result oiio_read(const char *path, mvr_pixel_type type, uint64_t budget, uint64_t held,
+                            mvr_image_data *out, mvr_error *error)
 {
     if (!path || !out)
         return fail(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_read: NULL argument");
@@ -326,7 +321,7 @@ static mvr_result oiio_read(const char *path, mvr_pixel_type type, uint64_t budg
         auto in = ImageInput::open(path);
         if (!in)
             return fail(error, MVR_ERROR_IO, std::string("mvr_image_read(") + path + "): " + OIIO::geterror());
-        return read_rgba(in.get(), type, 0, budget, std::string("mvr_image_read(") + path + ")", out, error);
+        return read_rgba(in.get(), type, 0, budget, held, std::string("mvr_image_read(") + path + ")", out, error);
     } catch (const std::exception &e) {
         return fail(error, MVR_ERROR_IO, std::string("mvr_image_read: ") + e.what());
     } catch (...) {
