@@ -190,7 +190,7 @@ int cli_env_create(const char *command, const cli_env_options *o, bool scene_fil
         memcpy(ed.color, o->uniform, sizeof ed.color);
     } else {
         /* an equirectangular image of linear radiance */
-        if (mvr_image_read(name, MVR_PIXEL_F32, &image, &err) != MVR_OK) {
+        if (mvr_image_read_within(name, MVR_PIXEL_F32, o->memory_budget, &image, &err) != MVR_OK) {
             fprintf(stderr, "%s: --env %s: %s\n", command, name, err.message);
             return MVR_EXIT_FAILURE;
         }

@@ -17,6 +17,7 @@ typedef struct cli_env_options {
     mvr_background background;   /* --background (default: color) */
     float background_blur;       /* --background-blur, roughness 0..1 */
     bool intensity_set, rotation_set, background_set, blur_set;
+    uint64_t memory_budget;      /* decoding the image FILE (--memory-budget); 0 = mvr_image's default */
 } cli_env_options;
 
 /* What a render used, for the stats and the summary. */

@@ -197,7 +197,8 @@ static const cli_option render_table_tail[] = {
      "a glTF image that is missing or cannot be decoded fails the\n"
      "load (default: its textures take their defaults, warned)", NULL, NULL, NULL},
     {CLI_OPT_U32, R_MEMORY_BUDGET, "--memory-budget", NULL, "MIB", 1, 1u << 20, NULL,
-     "most memory a glTF load may hold (default: 2048)", NULL, NULL, NULL},
+     "most memory a glTF load, or decoding the --env image, may\n"
+     "hold (default: 2048)", NULL, NULL, NULL},
     {CLI_OPT_STRING, R_PROGRAM_CACHE, "--program-cache", NULL, "D", 0, 0, NULL,
      "program binaries in D, so a later run compiles no shader;\n"
      "off disables it (default: $XDG_CACHE_HOME/mvr/programs or\n"
@@ -297,7 +298,7 @@ static int apply_scene(const cli_arg *arg, render_options *o)
     case R_LIST: o->list_file = v; break;
     case R_KEEP_GOING: o->keep_going = true; break;
     case R_STRICT: o->strict = true; break;
-    case R_MEMORY_BUDGET: o->memory_budget = (uint64_t)arg->number << 20; break;
+    case R_MEMORY_BUDGET: o->memory_budget = o->env.memory_budget = (uint64_t)arg->number << 20; break;
     default: return 0;
     }
     return 1;

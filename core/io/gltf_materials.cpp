@@ -173,7 +173,6 @@ mvr_image_id converter::decode_image(size_t index, const std::string &iname)
         mvr_result r = mvr_image_probe(bytes, size_t(size), mime.c_str(), &h, &err);
         if (r != MVR_OK)
             throw load_error(r == MVR_ERROR_UNSUPPORTED ? r : MVR_ERROR_INVALID_ASSET, iname + ": " + err.message);
-        raw = uint64_t(h.width) * h.height * uint64_t(h.channels);
     }
     if (h.width > cx.limits.max_image_dimension || h.height > cx.limits.max_image_dimension)
         refuse(iname + ": " + std::to_string(h.width) + "x" + std::to_string(h.height) + " is over the cap of " +
@@ -181,14 +180,21 @@ mvr_image_id converter::decode_image(size_t index, const std::string &iname)
     if (decoded.size() >= cx.limits.max_images)
         refuse(iname + ": more than " + std::to_string(cx.limits.max_images) +
                " images (mvr_gltf_options.max_images)");
-    // Decoding holds the stored channels (or the inflated KTX2 level) and the
-    // RGBA8 result; adding it to the scene, the result and the scene's copy;
-    // then the copy stays. The larger of the two phases is charged before
-    // anything is allocated.
+    // Decoding holds the inflated KTX2 level and the RGBA8 result, or what
+    // mvr_image_decode_cost says PNG / JPEG / WebP decoding holds (the result
+    // and the decoder's own copies: 16-bit rows, OpenImageIO's buffers);
+    // adding it to the scene, the result and the scene's copy; then the copy
+    // stays. The larger of the two phases is charged before anything is
+    // allocated, and the decoder is held to the same figure.
     uint64_t rgba = uint64_t(h.width) * h.height * 4;
+    uint64_t decode_cost = rgba + raw;
+    if (!ktx2 && mvr_image_decode_cost(bytes, size_t(size), mime.c_str(), &decode_cost, &err) != MVR_OK)
+        throw load_error(err.result == MVR_ERROR_UNSUPPORTED ? err.result : MVR_ERROR_INVALID_ASSET,
+                         iname + ": " + err.message);
+    uint64_t charge = std::max(decode_cost, 2 * rgba);
     mvr_image_id id = {0};
     {
-        charged decoding(cx.mem, rgba + std::max(raw, rgba),
+        charged decoding(cx.mem, charge,
                          iname + " (" + std::to_string(h.width) + "x" + std::to_string(h.height) + ", decoding)");
         mvr_image_data pixels;
         std::memset(&pixels, 0, sizeof pixels);
@@ -211,8 +217,8 @@ mvr_image_id converter::decode_image(size_t index, const std::string &iname)
                                                                        : MVR_ERROR_INVALID_ASSET,
                                  iname + ": " + why);
             }
-        } else if (mvr_image_decode(bytes, size_t(size), mime.c_str(), cx.limits.max_image_dimension, &pixels, &err) !=
-                   MVR_OK) {
+        } else if (mvr_image_decode_within(bytes, size_t(size), mime.c_str(), cx.limits.max_image_dimension, charge,
+                                           &pixels, &err) != MVR_OK) {
             throw load_error(err.result == MVR_ERROR_OUT_OF_MEMORY || err.result == MVR_ERROR_UNSUPPORTED
                                  ? err.result
                                  : MVR_ERROR_INVALID_ASSET,

@@ -28,7 +28,7 @@ extern "C" {
 
 /* Bumped whenever the table or a function's meaning changes: a module of
  * another build is refused rather than called with the wrong layout. */
-#define MVR_IMAGE_MODULE_ABI 1u
+#define MVR_IMAGE_MODULE_ABI 2u
 #define MVR_IMAGE_MODULE_FILE "libmvr_image_oiio.so"
 #define MVR_IMAGE_MODULE_ENTRY "mvr_image_oiio_backend"
 /* A path: the module to load instead of searching for it (tests point it at
@@ -36,15 +36,21 @@ extern "C" {
 #define MVR_IMAGE_MODULE_ENV "MVR_IMAGE_MODULE"
 
 /* Each function is the public one of the same name as OpenImageIO does it;
- * the front has checked the arguments, the signature and the MIME type. */
+ * the front has checked the arguments, the signature and the MIME type (and a
+ * JPEG's framing). memory_budget is never 0 here: the front resolves it. */
 typedef struct mvr_image_backend {
     uint32_t abi;                /* MVR_IMAGE_MODULE_ABI */
     uint32_t size;               /* sizeof(mvr_image_backend) */
     mvr_result (*probe)(const void *data, size_t size, const char *mime_type, mvr_image_header *out,
                         mvr_error *error);
+    mvr_result (*decode_cost)(const void *data, size_t size, const char *mime_type, uint64_t *out_bytes,
+                              mvr_error *error);
+    /* held: bytes the front found the decoder will hold besides what the
+     * module counts (a progressive JPEG's coefficients), added to its cost */
     mvr_result (*decode)(const void *data, size_t size, const char *mime_type, uint32_t max_dimension,
-                         mvr_image_data *out, mvr_error *error);
-    mvr_result (*read)(const char *path, mvr_pixel_type type, mvr_image_data *out, mvr_error *error);
+                         uint64_t memory_budget, uint64_t held, mvr_image_data *out, mvr_error *error);
+    mvr_result (*read)(const char *path, mvr_pixel_type type, uint64_t memory_budget, uint64_t held,
+                       mvr_image_data *out, mvr_error *error);
     mvr_result (*write)(const char *path, const mvr_image_view *image, mvr_error *error);
     mvr_result (*compare)(const mvr_image_view *a, const mvr_image_view *b, double threshold,
                           const char *diff_path, mvr_image_compare_result *out, mvr_error *error);
@@ -77,15 +83,53 @@ typedef struct mvr_png_source {
  * palette, low bit depths and tRNS). */
 mvr_png_status mvr_png_probe(const mvr_png_source *src, mvr_image_header *out, mvr_error *error);
 
+/* What mvr_png_decode holds at its peak for this image, from its header: the
+ * RGBA8 result, one native row or (interlaced) the whole native image at the
+ * file's bit depth after expansion, and the row pointers. */
+mvr_png_status mvr_png_decode_cost(const mvr_png_source *src, uint64_t *out_bytes, mvr_error *error);
+
 /* RGBA8, rows top first, as OpenImageIO's read_image(UINT8) and mvr's
- * channel expansion give it. max_dimension 0 = 16384; `what` starts messages. */
-mvr_png_status mvr_png_decode(const mvr_png_source *src, uint32_t max_dimension, const char *what,
-                              mvr_image_data *out, mvr_error *error);
+ * channel expansion give it. max_dimension 0 = 16384; memory_budget 0 = the
+ * default; both checked before anything is allocated; `what` starts messages.
+ * A PNG libpng refuses is a final answer (MVR_PNG_FAILED, libpng's message):
+ * OpenImageIO's libpng would refuse it too, and print to stderr doing so. */
+mvr_png_status mvr_png_decode(const mvr_png_source *src, uint32_t max_dimension, uint64_t memory_budget,
+                              const char *what, mvr_image_data *out, mvr_error *error);
 
 /* An RGBA8 view to an 8-bit RGBA PNG with an sRGB chunk, alpha unassociated
  * as OpenImageIO's PNG writer does it (the colour of a pixel with alpha a,
  * 0 < a < 255, becomes min(255, c * 255 / a)). */
 mvr_png_status mvr_png_write(const char *path, const mvr_image_view *image, mvr_error *error);
+
+/* The refusal of an image over its memory budget: MVR_ERROR_OUT_OF_MEMORY,
+ * naming what, the declared size and both byte counts (inline: the front and
+ * the module, a separate shared object, both say it). */
+static inline mvr_result mvr_image_over_budget(mvr_error *error, const char *what, uint32_t width, uint32_t height,
+                                               uint32_t channels, uint32_t bytes_per_channel, uint64_t needed,
+                                               uint64_t budget)
+{
+    if (error) {
+        snprintf(error->message, sizeof error->message,
+                 "%.300s: declared %ux%u, %u channel(s) of %u byte(s): decoding would hold %.1f MiB, over the memory "
+                 "budget of %.1f MiB",
+                 what, width, height, channels, bytes_per_channel, (double)needed / 1048576.0,
+                 (double)budget / 1048576.0);
+        error->result = MVR_ERROR_OUT_OF_MEMORY;
+    }
+    return MVR_ERROR_OUT_OF_MEMORY;
+}
+
+/* a * b, or UINT64_MAX where it overflows (a cost that large is over any budget) */
+static inline uint64_t mvr_image_mul(uint64_t a, uint64_t b)
+{
+    uint64_t r;
+    return __builtin_mul_overflow(a, b, &r) ? UINT64_MAX : r;
+}
+
+static inline uint64_t mvr_image_add(uint64_t a, uint64_t b)
+{
+    return a > UINT64_MAX - b ? UINT64_MAX : a + b;
+}
 
 /* printf into error (NULL: nothing), returns r. */
 mvr_result mvr_image_fail(mvr_error *error, mvr_result r, const char *fmt, ...)

@@ -25,6 +25,7 @@
 #include <limits.h>
 #include <pthread.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -234,10 +235,83 @@ static bool png_framing_ok(const unsigned char *p, size_t n, char *why, size_t w
     return false;
 }
 
-/* The checks every encoded-image call makes; the format, or NULL with the error set. */
-static const image_format *check_encoded(const void *data, size_t size, const char *mime, const char *who,
-                                         mvr_error *error)
+/* JPEG framing (ISO/IEC 10918-1, B.1.1): after SOI, marker segments (a
+ * length after every marker but SOI, EOI, RSTn and TEM), each SOS followed by
+ * entropy-coded data in which 0xFF is stuffed as FF 00 and the only markers
+ * are RSTn; the image ends at EOI. A JPEG that ends before EOI is truncated:
+ * libjpeg would only warn ("premature end") and fill the rest with grey, so
+ * it is refused here. Reads a stream (memory through fmemopen, or a file);
+ * false with `why` set when the stream ends first. *held: what libjpeg holds
+ * besides the pixels: a progressive JPEG (SOF2, 6, 10, 14) keeps every DCT
+ * coefficient until its last scan, 2 bytes a sample (ISO/IEC 10918-1 G.1.1;
+ * libjpeg's whole-image coefficient buffer), from its SOF's size. */
+static bool jpeg_framing_ok(FILE *f, uint64_t *held, char *why, size_t why_size)
 {
+    *held = 0;
+    int c = 0;
+    if (getc(f) != 0xFF || getc(f) != 0xD8) {
+        snprintf(why, why_size, "JPEG has no SOI marker");
+        return false;
+    }
+    /* bytes other than 0xFF: entropy-coded data after an SOS, or stray bytes
+     * before a marker (libjpeg skips those with a warning; so does this) */
+    while ((c = getc(f)) != EOF) {
+        if (c != 0xFF)
+            continue;
+        int m;
+        while ((m = getc(f)) == 0xFF) {
+        } /* fill bytes */
+        if (m == EOF)
+            break;
+        if (m == 0xD9)
+            return true;                            /* EOI */
+        if (m == 0x00 || (m >= 0xD0 && m <= 0xD7) || m == 0x01)
+            continue;                               /* stuffed 0xFF, RSTn, TEM: no length */
+        int hi = getc(f), lo = getc(f);
+        if (lo == EOF)
+            break;
+        long len = hi << 8 | lo;
+        if (len < 2) {
+            snprintf(why, why_size, "JPEG marker 0xFF%02X has a length of %ld", m, len);
+            return false;
+        }
+        bool sof = m >= 0xC0 && m <= 0xCF && m != 0xC4 && m != 0xC8 && m != 0xCC;
+        if (sof && (m & 3) == 2 && len >= 8) {
+            int p = getc(f), y1 = getc(f), y0 = getc(f), x1 = getc(f), x0 = getc(f), nc = getc(f);
+            if (nc == EOF)
+                break;
+            (void)p;
+            uint64_t samples = (uint64_t)(y1 << 8 | y0) * (uint64_t)(x1 << 8 | x0) * (uint64_t)nc;
+            *held = mvr_image_add(*held, samples * 2);
+            len -= 6;
+        }
+        if (fseek(f, len - 2, SEEK_CUR) != 0)
+            break;
+    }
+    snprintf(why, why_size, "JPEG ends before its EOI marker (truncated?)");
+    return false;
+}
+
+/* jpeg_framing_ok over bytes in memory. */
+static bool jpeg_bytes_ok(const unsigned char *p, size_t n, uint64_t *held, char *why, size_t why_size)
+{
+    FILE *f = fmemopen((void *)(uintptr_t)p, n, "rb");   /* read-only: the bytes are not written */
+    if (!f) {
+        snprintf(why, why_size, "out of memory (fmemopen)");
+        return false;
+    }
+    bool ok = jpeg_framing_ok(f, held, why, why_size);
+    fclose(f);
+    return ok;
+}
+
+/* The checks every encoded-image call makes; the format, or NULL with the
+ * error set. *held: what the decoder holds besides what the module counts
+ * (a progressive JPEG's coefficients), 0 for other formats. */
+static const image_format *check_encoded(const void *data, size_t size, const char *mime, const char *who,
+                                         uint64_t *held, mvr_error *error)
+{
+    *held = 0;
     char quoted[96];
     const unsigned char *bytes = (const unsigned char *)data;
     const image_format *f = format_of_bytes(bytes, size);
@@ -252,7 +326,8 @@ static const image_format *check_encoded(const void *data, size_t size, const ch
         return NULL;
     }
     char why[128];
-    if (f == &format_png && !png_framing_ok(bytes, size, why, sizeof why)) {
+    if ((f == &format_png && !png_framing_ok(bytes, size, why, sizeof why)) ||
+        (f == &format_jpeg && !jpeg_bytes_ok(bytes, size, held, why, sizeof why))) {
         mvr_image_fail(error, MVR_ERROR_INVALID_ASSET, "%s: %s", who, why);
         return NULL;
     }
@@ -309,7 +384,8 @@ mvr_result mvr_image_probe(const void *data, size_t size, const char *mime_type,
     if (!out || !data || size == 0)
         return mvr_image_fail(e, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_probe: no data");
     memset(out, 0, sizeof *out);
-    const image_format *f = check_encoded(data, size, mime_type, "mvr_image_probe", e);
+    uint64_t held = 0;
+    const image_format *f = check_encoded(data, size, mime_type, "mvr_image_probe", &held, e);
     if (!f)
         return e->result;
     if (f == &format_png) {
@@ -321,52 +397,99 @@ mvr_result mvr_image_probe(const void *data, size_t size, const char *mime_type,
     return m ? m->probe(data, size, mime_type, out, e) : e->result;
 }
 
-mvr_result mvr_image_decode(const void *data, size_t size, const char *mime_type, uint32_t max_dimension,
-                            mvr_image_data *out, mvr_error *error)
+mvr_result mvr_image_decode_cost(const void *data, size_t size, const char *mime_type, uint64_t *out_bytes,
+                                 mvr_error *error)
+{
+    LOCAL_ERROR(error);
+    if (!out_bytes || !data || size == 0)
+        return mvr_image_fail(e, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_decode_cost: no data");
+    *out_bytes = 0;
+    uint64_t held = 0;
+    const image_format *f = check_encoded(data, size, mime_type, "mvr_image_decode_cost", &held, e);
+    if (!f)
+        return e->result;
+    if (f == &format_png) {
+        mvr_png_source src = {.data = (const unsigned char *)data, .size = size};
+        mvr_png_status st = mvr_png_decode_cost(&src, out_bytes, e);
+        FRONT_OR_MODULE(st, "mvr_image_decode_cost", decode_cost(data, size, mime_type, out_bytes, e));
+    }
+    const mvr_image_backend *m = mvr_image_module("mvr_image_decode_cost", e);
+    if (!m || m->decode_cost(data, size, mime_type, out_bytes, e) != MVR_OK)
+        return e->result;
+    *out_bytes = mvr_image_add(*out_bytes, held);
+    return MVR_OK;
+}
+
+mvr_result mvr_image_decode_within(const void *data, size_t size, const char *mime_type, uint32_t max_dimension,
+                                   uint64_t memory_budget, mvr_image_data *out, mvr_error *error)
 {
     LOCAL_ERROR(error);
     if (!out || !data || size == 0)
         return mvr_image_fail(e, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_decode: no data");
     memset(out, 0, sizeof *out);
-    const image_format *f = check_encoded(data, size, mime_type, "mvr_image_decode", e);
+    uint64_t budget = memory_budget ? memory_budget : MVR_IMAGE_DEFAULT_MEMORY_BUDGET;
+    uint64_t held = 0;
+    const image_format *f = check_encoded(data, size, mime_type, "mvr_image_decode", &held, e);
     if (!f)
         return e->result;
     if (f == &format_png) {
         mvr_png_source src = {.data = (const unsigned char *)data, .size = size};
-        mvr_png_status st = mvr_png_decode(&src, max_dimension, "mvr_image_decode", out, e);
-        FRONT_OR_MODULE(st, "mvr_image_decode", decode(data, size, mime_type, max_dimension, out, e));
+        mvr_png_status st = mvr_png_decode(&src, max_dimension, budget, "mvr_image_decode", out, e);
+        FRONT_OR_MODULE(st, "mvr_image_decode", decode(data, size, mime_type, max_dimension, budget, held, out, e));
     }
     const mvr_image_backend *m = mvr_image_module("mvr_image_decode", e);
-    return m ? m->decode(data, size, mime_type, max_dimension, out, e) : e->result;
+    return m ? m->decode(data, size, mime_type, max_dimension, budget, held, out, e) : e->result;
 }
 
-mvr_result mvr_image_read(const char *path, mvr_pixel_type type, mvr_image_data *out, mvr_error *error)
+mvr_result mvr_image_decode(const void *data, size_t size, const char *mime_type, uint32_t max_dimension,
+                            mvr_image_data *out, mvr_error *error)
+{
+    return mvr_image_decode_within(data, size, mime_type, max_dimension, 0, out, error);
+}
+
+mvr_result mvr_image_read_within(const char *path, mvr_pixel_type type, uint64_t memory_budget,
+                                 mvr_image_data *out, mvr_error *error)
 {
     LOCAL_ERROR(error);
     if (!path || !out)
         return mvr_image_fail(e, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_read: NULL argument");
     memset(out, 0, sizeof *out);
+    uint64_t budget = memory_budget ? memory_budget : MVR_IMAGE_DEFAULT_MEMORY_BUDGET;
     char who[MVR_ERROR_MESSAGE_SIZE / 2];
     snprintf(who, sizeof who, "mvr_image_read(%s)", path);
-    if (type == MVR_PIXEL_U8) {
-        /* an 8-bit read of a PNG file is the front's; anything else, OpenImageIO's */
-        FILE *file = fopen(path, "rb");
-        if (!file)
-            return mvr_image_fail(e, MVR_ERROR_IO, "%s: %s", who, strerror(errno));
-        unsigned char sig[8];
-        bool png = fread(sig, 1, sizeof sig, file) == sizeof sig && format_of_bytes(sig, sizeof sig) == &format_png;
-        mvr_png_status st = MVR_PNG_DEFER;
-        if (png) {
-            rewind(file);
-            mvr_png_source src = {.file = file};
-            st = mvr_png_decode(&src, 0, who, out, e);
+    FILE *file = fopen(path, "rb");
+    if (!file)
+        return mvr_image_fail(e, MVR_ERROR_IO, "%s: %s", who, strerror(errno));
+    unsigned char sig[8];
+    size_t got = fread(sig, 1, sizeof sig, file);
+    const image_format *f = format_of_bytes(sig, got);
+    char why[128];
+    uint64_t held = 0;
+    if (f == &format_jpeg) {
+        rewind(file);
+        if (!jpeg_framing_ok(file, &held, why, sizeof why)) {
+            fclose(file);
+            return mvr_image_fail(e, MVR_ERROR_INVALID_ASSET, "%s: %s", who, why);
         }
-        fclose(file);
-        if (png)
-            FRONT_OR_MODULE(st, who, read(path, type, out, e));
     }
+    /* an 8-bit read of a PNG file is the front's; anything else, OpenImageIO's */
+    bool png = type == MVR_PIXEL_U8 && f == &format_png;
+    mvr_png_status st = MVR_PNG_DEFER;
+    if (png) {
+        rewind(file);
+        mvr_png_source src = {.file = file};
+        st = mvr_png_decode(&src, 0, budget, who, out, e);
+    }
+    fclose(file);
+    if (png)
+        FRONT_OR_MODULE(st, who, read(path, type, budget, held, out, e));
     const mvr_image_backend *m = mvr_image_module(who, e);
-    return m ? m->read(path, type, out, e) : e->result;
+    return m ? m->read(path, type, budget, held, out, e) : e->result;
+}
+
+mvr_result mvr_image_read(const char *path, mvr_pixel_type type, mvr_image_data *out, mvr_error *error)
+{
+    return mvr_image_read_within(path, type, 0, out, error);
 }
 
 /* The name's last four characters, lower case: ".png", ".exr", ... */

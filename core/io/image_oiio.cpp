@@ -9,6 +9,7 @@
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -148,9 +149,46 @@ bool to_buf(const mvr_image_view *v, ImageBuf &out, bool as_float)
 
 }  // namespace
 
-// Reads an opened ImageInput into RGBA of the given type.
-static mvr_result read_rgba(ImageInput *in, mvr_pixel_type type, uint32_t max_dimension, const std::string &what,
-                            mvr_image_data *out, mvr_error *error)
+// The widest channel of the file, in bytes (EXR channels may differ).
+static uint32_t native_channel_bytes(const ImageSpec &spec)
+{
+    size_t widest = spec.format.size();
+    for (const TypeDesc &t : spec.channelformats)
+        widest = std::max(widest, t.size());
+    return uint32_t(widest);
+}
+
+// What read_rgba holds at its peak for an opened image, from its header: the
+// pixels as read_image delivers them (every stored channel, in the asked-for
+// type) and the RGBA result, plus what the decoders hold besides:
+//  - a file stored in another type than the one asked for: OpenImageIO reads
+//    its own type and converts (charged as a whole copy, the most it holds);
+//  - WebP: OpenImageIO 2.4's reader decodes the whole image into its own RGBA8
+//    buffer before handing out any scanline.
+// (A progressive JPEG's coefficients are found and added by the front.)
+static uint64_t decode_cost(ImageInput *in, mvr_pixel_type type)
+{
+    const ImageSpec &spec = in->spec();
+    uint64_t pixels = mvr_image_mul(uint64_t(std::max(spec.width, 0)), uint64_t(std::max(spec.height, 0)));
+    uint64_t nc = uint64_t(std::max(spec.nchannels, 0));
+    uint64_t out_bytes = type == MVR_PIXEL_F32 ? 4 : 1;
+    uint64_t samples = mvr_image_mul(pixels, nc);
+    uint64_t cost = mvr_image_add(mvr_image_mul(samples, out_bytes), mvr_image_mul(pixels, 4 * out_bytes));
+    TypeDesc want = type == MVR_PIXEL_F32 ? TypeDesc::FLOAT : TypeDesc::UINT8;
+    bool converts = spec.format != want;
+    for (const TypeDesc &t : spec.channelformats)
+        converts = converts || t != want;
+    if (converts)
+        cost = mvr_image_add(cost, mvr_image_mul(samples, native_channel_bytes(spec)));
+    if (std::string(in->format_name()) == "webp")
+        cost = mvr_image_add(cost, mvr_image_mul(pixels, 4));
+    return cost;
+}
+
+// Reads an opened ImageInput into RGBA of the given type, refused before
+// anything is allocated where decode_cost is over the budget.
+static mvr_result read_rgba(ImageInput *in, mvr_pixel_type type, uint32_t max_dimension, uint64_t budget,
+                            uint64_t held, const std::string &what, mvr_image_data *out, mvr_error *error)
 {
     const ImageSpec &spec = in->spec();
     uint32_t cap = max_dimension ? max_dimension : 16384;
@@ -159,6 +197,10 @@ static mvr_result read_rgba(ImageInput *in, mvr_pixel_type type, uint32_t max_di
         return fail(error, MVR_ERROR_INVALID_ASSET,
                     what + ": " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
                         " is not within 1.." + std::to_string(cap));
+    uint64_t needed = mvr_image_add(decode_cost(in, type), held);
+    if (needed > budget)
+        return mvr_image_over_budget(error, what.c_str(), uint32_t(spec.width), uint32_t(spec.height),
+                                     uint32_t(spec.nchannels), native_channel_bytes(spec), needed, budget);
     int nc = spec.nchannels;
     size_t pixels = size_t(spec.width) * size_t(spec.height);
     TypeDesc t = type == MVR_PIXEL_F32 ? TypeDesc::FLOAT : TypeDesc::UINT8;
@@ -245,18 +287,32 @@ static mvr_result oiio_probe(const void *data, size_t size, const char *mime_typ
     });
 }
 
-static mvr_result oiio_decode(const void *data, size_t size, const char *mime_type,
-                                       uint32_t max_dimension, mvr_image_data *out, mvr_error *error)
+static mvr_result oiio_decode_cost(const void *data, size_t size, const char *mime_type, uint64_t *out_bytes,
+                                   mvr_error *error)
+{
+    if (!out_bytes || !data || size == 0)
+        return fail(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_decode_cost: no data");
+    *out_bytes = 0;
+    return with_encoded(data, size, mime_type, "mvr_image_decode_cost", error,
+                        [&](ImageInput *in, const image_format *) {
+                            *out_bytes = decode_cost(in, MVR_PIXEL_U8);
+                            return MVR_OK;
+                        });
+}
+
+static mvr_result oiio_decode(const void *data, size_t size, const char *mime_type, uint32_t max_dimension,
+                              uint64_t budget, uint64_t held, mvr_image_data *out, mvr_error *error)
 {
     if (!out || !data || size == 0)
         return fail(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_decode: no data");
     std::memset(out, 0, sizeof *out);
     return with_encoded(data, size, mime_type, "mvr_image_decode", error, [&](ImageInput *in, const image_format *) {
-        return read_rgba(in, MVR_PIXEL_U8, max_dimension, "mvr_image_decode", out, error);
+        return read_rgba(in, MVR_PIXEL_U8, max_dimension, budget, held, "mvr_image_decode", out, error);
     });
 }
 
-static mvr_result oiio_read(const char *path, mvr_pixel_type type, mvr_image_data *out, mvr_error *error)
+static mvr_result oiio_read(const char *path, mvr_pixel_type type, uint64_t budget, uint64_t held,
+                            mvr_image_data *out, mvr_error *error)
 {
     if (!path || !out)
         return fail(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_read: NULL argument");
@@ -265,7 +321,7 @@ static mvr_result oiio_read(const char *path, mvr_pixel_type type, mvr_image_dat
         auto in = ImageInput::open(path);
         if (!in)
             return fail(error, MVR_ERROR_IO, std::string("mvr_image_read(") + path + "): " + OIIO::geterror());
-        return read_rgba(in.get(), type, 0, std::string("mvr_image_read(") + path + ")", out, error);
+        return read_rgba(in.get(), type, 0, budget, held, std::string("mvr_image_read(") + path + ")", out, error);
     } catch (const std::exception &e) {
         return fail(error, MVR_ERROR_IO, std::string("mvr_image_read: ") + e.what());
     } catch (...) {
@@ -363,7 +419,8 @@ static mvr_result oiio_compare(const mvr_image_view *a, const mvr_image_view *b,
 // The module's one exported symbol (-fvisibility=hidden and a version script
 // keep everything else, OpenImageIO's templates included, local).
 static const mvr_image_backend oiio_backend = {
-    MVR_IMAGE_MODULE_ABI, sizeof(mvr_image_backend), oiio_probe, oiio_decode, oiio_read, oiio_write, oiio_compare,
+    MVR_IMAGE_MODULE_ABI, sizeof(mvr_image_backend), oiio_probe, oiio_decode_cost, oiio_decode, oiio_read, oiio_write,
+    oiio_compare,
 };
 
 extern "C" __attribute__((visibility("default"))) const mvr_image_backend *mvr_image_oiio_backend(uint32_t abi)

@@ -144,6 +144,24 @@ static mvr_png_status deferred(mvr_error *error, const char *what, const char *w
     return MVR_PNG_DEFER;
 }
 
+/* libpng refused the file: final, since OpenImageIO reads PNG through the
+ * same libpng and would refuse it too, printing libpng's message to stderr. */
+static mvr_png_status refused(mvr_error *error, const char *what, const char *why)
+{
+    mvr_image_fail(error, MVR_ERROR_INVALID_ASSET, "%s: %s", what, why);
+    return MVR_PNG_FAILED;
+}
+
+/* What decoding holds at its peak (see mvr_png_decode_cost). */
+static uint64_t layout_cost(const png_layout *l)
+{
+    uint64_t pixels = (uint64_t)l->width * l->height;
+    uint64_t row_bytes = mvr_image_mul((uint64_t)l->width, (uint64_t)l->channels * (uint64_t)(l->depth / 8));
+    uint64_t native = l->interlaced ? mvr_image_mul(row_bytes, l->height) : row_bytes;
+    uint64_t rows = l->interlaced ? (uint64_t)l->height * sizeof(png_bytep) : 0;
+    return mvr_image_add(mvr_image_add(mvr_image_mul(pixels, 4), native), rows);
+}
+
 mvr_png_status mvr_png_probe(const mvr_png_source *src, mvr_image_header *out, mvr_error *error)
 {
     png_job job = {.src = src};
@@ -157,7 +175,7 @@ mvr_png_status mvr_png_probe(const mvr_png_source *src, mvr_image_header *out, m
     const char *why = NULL;
     if (setjmp(png_jmpbuf(png))) {
         png_destroy_read_struct(&png, &info, NULL);
-        return deferred(error, "mvr_image_probe", job.message);
+        return refused(error, "mvr_image_probe", job.message);
     }
     bool ok = read_layout(png, info, &l, &why);
     png_destroy_read_struct(&png, &info, NULL);
@@ -231,8 +249,31 @@ static void free_buffers(volatile png_buffers *b)
     b->rows = NULL;
 }
 
-mvr_png_status mvr_png_decode(const mvr_png_source *src, uint32_t max_dimension, const char *what,
-                              mvr_image_data *out, mvr_error *error)
+mvr_png_status mvr_png_decode_cost(const mvr_png_source *src, uint64_t *out_bytes, mvr_error *error)
+{
+    png_job job = {.src = src};
+    png_infop info = NULL;
+    png_structp png = new_reader(&job, &info);
+    if (!png) {
+        mvr_image_fail(error, MVR_ERROR_OUT_OF_MEMORY, "mvr_image_decode_cost: out of memory (libpng)");
+        return MVR_PNG_FAILED;
+    }
+    png_layout l;
+    const char *why = NULL;
+    if (setjmp(png_jmpbuf(png))) {
+        png_destroy_read_struct(&png, &info, NULL);
+        return refused(error, "mvr_image_decode_cost", job.message);
+    }
+    bool ok = read_layout(png, info, &l, &why);
+    png_destroy_read_struct(&png, &info, NULL);
+    if (!ok)
+        return deferred(error, "mvr_image_decode_cost", why);
+    *out_bytes = layout_cost(&l);
+    return MVR_PNG_OK;
+}
+
+mvr_png_status mvr_png_decode(const mvr_png_source *src, uint32_t max_dimension, uint64_t memory_budget,
+                              const char *what, mvr_image_data *out, mvr_error *error)
 {
     png_job job = {.src = src};
     png_infop info = NULL;
@@ -248,7 +289,7 @@ mvr_png_status mvr_png_decode(const mvr_png_source *src, uint32_t max_dimension,
     if (setjmp(png_jmpbuf(png))) {
         free_buffers(&b);
         png_destroy_read_struct(&png, &info, NULL);
-        return deferred(error, what, job.message);
+        return refused(error, what, job.message);
     }
     if (!read_layout(png, info, &l, &why)) {
         png_destroy_read_struct(&png, &info, NULL);
@@ -258,6 +299,14 @@ mvr_png_status mvr_png_decode(const mvr_png_source *src, uint32_t max_dimension,
     if (l.width == 0 || l.height == 0 || l.width > cap || l.height > cap) {
         png_destroy_read_struct(&png, &info, NULL);
         mvr_image_fail(error, MVR_ERROR_INVALID_ASSET, "%s: %ux%u is not within 1..%u", what, l.width, l.height, cap);
+        return MVR_PNG_FAILED;
+    }
+    uint64_t budget = memory_budget ? memory_budget : MVR_IMAGE_DEFAULT_MEMORY_BUDGET;
+    uint64_t needed = layout_cost(&l);
+    if (needed > budget) {
+        png_destroy_read_struct(&png, &info, NULL);
+        mvr_image_over_budget(error, what, l.width, l.height, (uint32_t)l.channels, (uint32_t)l.depth / 8u, needed,
+                              budget);
         return MVR_PNG_FAILED;
     }
     size_t row_bytes = png_get_rowbytes(png, info);

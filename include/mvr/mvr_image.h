@@ -56,12 +56,35 @@ mvr_result mvr_image_probe(const void *data, size_t size, const char *mime_type,
 
 /* Decodes an encoded image from memory into RGBA8 (gray, gray-alpha and RGB
  * expanded, 16-bit scaled), the format chosen as mvr_image_probe chooses it.
- * Images larger than max_dimension (0 = 16384) either way are refused. */
+ * Images larger than max_dimension (0 = 16384) either way are refused, and so
+ * are truncated ones (a PNG without IEND, a JPEG without its EOI marker), and
+ * images over the default memory budget (see below). */
 mvr_result mvr_image_decode(const void *data, size_t size, const char *mime_type,
                             uint32_t max_dimension, mvr_image_data *out, mvr_error *error);
 
-/* Reads a file into RGBA8 or RGBA float. */
+/* Reads a file into RGBA8 or RGBA float, within the default memory budget. */
 mvr_result mvr_image_read(const char *path, mvr_pixel_type type, mvr_image_data *out, mvr_error *error);
+
+/* Memory: every decode and read checks, from the header and before it
+ * allocates anything, what decoding holds at its peak (the RGBA result, the
+ * pixels as the decoder delivers them, and the decoder's own working copies:
+ * a 16-bit interlaced PNG's whole native image, OpenImageIO's copy in the
+ * file's own type before converting, WebP's decoded image, a progressive
+ * JPEG's coefficients) against a budget; over it, the call fails with
+ * MVR_ERROR_OUT_OF_MEMORY naming the file, the declared size and the budget.
+ * A budget of 0 means this default, the glTF loader's default too. */
+#define MVR_IMAGE_DEFAULT_MEMORY_BUDGET (UINT64_C(2) << 30)
+
+/* What decoding the bytes (mvr_image_decode) holds at its peak, in bytes,
+ * from the header alone; the glTF loader charges it to the load's budget. */
+mvr_result mvr_image_decode_cost(const void *data, size_t size, const char *mime_type, uint64_t *out_bytes,
+                                 mvr_error *error);
+
+/* mvr_image_decode and mvr_image_read with a memory budget (0 = the default). */
+mvr_result mvr_image_decode_within(const void *data, size_t size, const char *mime_type, uint32_t max_dimension,
+                                   uint64_t memory_budget, mvr_image_data *out, mvr_error *error);
+mvr_result mvr_image_read_within(const char *path, mvr_pixel_type type, uint64_t memory_budget,
+                                 mvr_image_data *out, mvr_error *error);
 
 /* Writes a file; the format follows the extension: .png (8-bit, the bytes as
  * given: sRGB-encoded for mvr's sRGB targets), .exr (half float, linear:

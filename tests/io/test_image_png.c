@@ -248,8 +248,8 @@ static mvr_png_status compare_decoders(mvr_test_state *t, const mvr_image_backen
         }
     }
     mvr_image_data fd = {0}, od = {0};
-    mvr_png_status ds = mvr_png_decode(&src, 0, what, &fd, &fe);
-    mvr_result dr = m->decode(b->data, b->size, "image/png", 0, &od, &oe);
+    mvr_png_status ds = mvr_png_decode(&src, 0, 0, what, &fd, &fe);
+    mvr_result dr = m->decode(b->data, b->size, "image/png", 0, MVR_IMAGE_DEFAULT_MEMORY_BUDGET, 0, &od, &oe);
     if (ds == MVR_PNG_OK) {
         CHECK_MSG(t, dr == MVR_OK, "%s: the front decodes, OpenImageIO refuses: %s", what, oe.message);
         if (dr == MVR_OK) {
@@ -361,7 +361,7 @@ static int walk_pngs(mvr_test_state *t, const mvr_image_backend *m, const char *
         mvr_image_data a = {0}, o = {0};
         mvr_error ae = {0}, oe = {0};
         CHECK_MSG(t, mvr_image_read(path, MVR_PIXEL_U8, &a, &ae) == MVR_OK, "%s", ae.message);
-        CHECK_MSG(t, m->read(path, MVR_PIXEL_U8, &o, &oe) == MVR_OK, "%s", oe.message);
+        CHECK_MSG(t, m->read(path, MVR_PIXEL_U8, MVR_IMAGE_DEFAULT_MEMORY_BUDGET, 0, &o, &oe) == MVR_OK, "%s", oe.message);
         if (a.pixels && o.pixels)
             CHECK_MSG(t, a.width == o.width && a.height == o.height &&
                              memcmp(a.pixels, o.pixels, (size_t)a.width * a.height * 4) == 0,
@@ -560,7 +560,7 @@ static void writers_agree(mvr_test_state *t)
         /* and both read back alike through either decoder */
         mvr_image_data ra = {0}, ro = {0};
         CHECK_MSG(t, mvr_image_read(a, MVR_PIXEL_U8, &ra, &err) == MVR_OK, "%s", err.message);
-        CHECK_MSG(t, m->read(o, MVR_PIXEL_U8, &ro, &err) == MVR_OK, "%s", err.message);
+        CHECK_MSG(t, m->read(o, MVR_PIXEL_U8, MVR_IMAGE_DEFAULT_MEMORY_BUDGET, 0, &ro, &err) == MVR_OK, "%s", err.message);
         if (ra.pixels && ro.pixels)
             CHECK(t, memcmp(ra.pixels, ro.pixels, 256u * 256u * 4u) == 0);
         mvr_image_free(&ra);
@@ -585,8 +585,8 @@ static void refused_by_both(mvr_test_state *t)
         mvr_png_source src = {.data = b.data, .size = b.size};
         mvr_image_data d = {0};
         mvr_error e = {0}, oe = {0};
-        CHECK(t, mvr_png_decode(&src, 0, "bad crc", &d, &e) == MVR_PNG_DEFER);
-        CHECK(t, m->decode(b.data, b.size, NULL, 0, &d, &oe) != MVR_OK);
+        CHECK(t, mvr_png_decode(&src, 0, 0, "bad crc", &d, &e) == MVR_PNG_FAILED);
+        CHECK(t, m->decode(b.data, b.size, NULL, 0, MVR_IMAGE_DEFAULT_MEMORY_BUDGET, 0, &d, &oe) != MVR_OK);
         CHECK(t, mvr_image_decode(b.data, b.size, NULL, 0, &d, &e) == MVR_ERROR_INVALID_ASSET);
         CHECK(t, d.pixels == NULL);
         free(b.data);
@@ -602,7 +602,7 @@ static void refused_by_both(mvr_test_state *t)
     CHECK(t, mvr_image_decode(b.data, b.size, "image/png", 39, &d, &e) == MVR_ERROR_INVALID_ASSET);
     CHECK_MSG(t, strstr(e.message, "40x30 is not within 1..39") != NULL, "%s", e.message);
     mvr_png_source src = {.data = b.data, .size = b.size};
-    CHECK(t, mvr_png_decode(&src, 39, "cap", &d, &e) == MVR_PNG_FAILED);
+    CHECK(t, mvr_png_decode(&src, 39, 0, "cap", &d, &e) == MVR_PNG_FAILED);
     /* a MIME type that disagrees with the bytes */
     CHECK(t, mvr_image_decode(b.data, b.size, "image/jpeg", 0, &d, &e) == MVR_ERROR_INVALID_ASSET);
     CHECK_MSG(t, strstr(e.message, "mimeType 'image/jpeg' but the bytes are png") != NULL, "%s", e.message);
@@ -662,13 +662,20 @@ static void module_unavailable(mvr_test_state *t, const char *expect)
     CHECK_MSG(t, mvr_image_read(path, MVR_PIXEL_U8, &back, &err) == MVR_OK, "%s", err.message);
     CHECK(t, back.pixels && memcmp(back.pixels, "abc\377", 4) == 0);
     mvr_image_free(&back);
-    /* a deferred PNG (corrupt) reports the front's reason and the module's */
-    png_spec s = {.width = 8, .height = 8, .color = PNG_COLOR_TYPE_RGB, .depth = 8, .srgb = -1, .bad_crc = true};
+    /* a deferred PNG (alpha with an ICC profile) reports the front's reason and the module's */
+    png_spec s = {.width = 8, .height = 8, .color = PNG_COLOR_TYPE_RGB_ALPHA, .depth = 8, .srgb = -1, .icc = true};
     bytes b;
     CHECK(t, make_png(&s, NULL, 3, &b));
     CHECK(t, mvr_image_decode(b.data, b.size, NULL, 0, &back, &err) == MVR_ERROR_INVALID_ASSET);
     CHECK_MSG(t, strstr(err.message, "mvr_image_decode: ") == err.message && strstr(err.message, MVR_IMAGE_MODULE_FILE),
               "%s", err.message);
+    free(b.data);
+    /* a corrupt one is the front's final answer: libpng's reason, no module needed */
+    png_spec c = {.width = 8, .height = 8, .color = PNG_COLOR_TYPE_RGB, .depth = 8, .srgb = -1, .bad_crc = true};
+    CHECK(t, make_png(&c, NULL, 3, &b));
+    CHECK(t, mvr_image_decode(b.data, b.size, NULL, 0, &back, &err) == MVR_ERROR_INVALID_ASSET);
+    CHECK_MSG(t, strstr(err.message, "incorrect data check") && !strstr(err.message, MVR_IMAGE_MODULE_FILE), "%s",
+              err.message);
     free(b.data);
 }
 
