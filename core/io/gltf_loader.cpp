@@ -571,6 +571,11 @@ mvr_result load(const unsigned char *bytes, size_t size, const std::string &base
                         "KHR_animation_pointer's) are not implemented; ignored (channel indices in later messages "
                         "skip them)");
             }
+            // accessors of a type glTF 2.0 does not define: no components
+            // (accessor_at refuses them by name, any other reader by their count)
+            for (const auto &u : cx.res.unknown_accessor_types)
+                if (size_t(u.first) < model.accessors.size())
+                    model.accessors[size_t(u.first)].type = -1;
             // undo the pre-pass's placeholder view: those accessors are zeros
             if (cx.res.placeholder_view) {
                 for (int i : cx.res.viewless_accessors)
