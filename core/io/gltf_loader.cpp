@@ -194,15 +194,13 @@ constexpr uint32_t FLOAT = ANY_FLOAT;
 constexpr uint32_t I8 = 1u << 0, U8 = 1u << 1, I16 = 1u << 2, U16 = 1u << 3;
 
 // ---- what rendering the scene will allocate, charged at load ----
-// The renderer's uploads hold memory beyond the scene's own copy (on
-// llvmpipe, host memory): they are charged to the load's budget as part of
-// the scene, so a file whose render would exceed the budget is refused here,
-// naming what needs it, before anything is allocated for it.
+// The renderer's uploads hold memory beyond the scene's copy (host memory on
+// llvmpipe): charged as part of the scene, so a file whose render would
+// exceed the budget is refused here, before anything is allocated for it.
 
 // gl/skinning.c keeps each morph delta as one RGBA32F texel.
 constexpr uint64_t morph_texel_bytes = 16;
-// While targets are read the load holds its copy and the scene's (3 floats a
-// texel each) beside what the GPU will hold.
+// Reading targets holds the load's and the scene's copy (3 floats a texel each).
 constexpr uint64_t morph_read_bytes = 2 * 3 * sizeof(float);
 
 // Delta texels of primitive p's targets as core/scene.c lays them out
