@@ -7,6 +7,21 @@
 #include "core_util.h"
 
 #define PI 3.14159265358979323846
+/* Eye separations past this many scene units are refused: the eyes' row
+ * ((views - 1) x ipd wide) then stays where double poses and the float
+ * matrices relative to the origin hold it (1e300 overflowed them to inf). */
+#define MAX_IPD 1e9
+/* Layer aspect ratios outside [1 / MAX_ASPECT, MAX_ASPECT] are refused: a
+ * 16384 x 1 layer is inside; near 0 the framing distance grows without
+ * bound (the narrow direction's field of view goes to 0). */
+#define MAX_ASPECT 65536.0
+
+/* ipd as the framing functions take it: 0 (the default), or a finite
+ * distance in (0, MAX_IPD]; NaN, infinite, negative and larger refused. */
+static bool ipd_ok(double ipd)
+{
+    return ipd >= 0 && ipd <= MAX_IPD;
+}
 
 const char *mvr_view_layout_name(mvr_view_layout layout)
 {
@@ -69,8 +84,19 @@ mvr_result mvr_view_set_frame_scene(const mvr_scene *scene, const mvr_framing_de
                              (int)d.layout);
     static const uint32_t defaults[] = {2, 6, 8, 9, 50, 24};
     uint32_t n = d.views ? d.views : defaults[d.layout];
-    if (n > 1024)
-        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_view_set_frame_scene: %u views (at most 1024)", n);
+    if (n > MVR_VIEW_SET_MAX_VIEWS)
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_view_set_frame_scene: %u views (at most %u)", n,
+                             MVR_VIEW_SET_MAX_VIEWS);
+    /* 0 = the default; NaN fails every comparison */
+    if (!(d.aspect == 0 || (d.aspect >= 1.0 / MAX_ASPECT && d.aspect <= MAX_ASPECT)))
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
+                             "mvr_view_set_frame_scene: aspect %g (width / height in [1/%g, %g]; 0 = 1)", d.aspect,
+                             MAX_ASPECT, MAX_ASPECT);
+    if (!ipd_ok(d.ipd))
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
+                             "mvr_view_set_frame_scene: ipd %g (a distance in [0, %g] scene units; 0 = scaled to the "
+                             "scene)",
+                             d.ipd, MAX_IPD);
     uint32_t rows = d.rows ? d.rows : 3u;
     double el_lo = d.elevation_min, el_hi = d.elevation_max;
     if (el_lo == 0.0 && el_hi == 0.0) {
@@ -192,12 +218,14 @@ mvr_result mvr_view_set_from_camera(const mvr_scene *scene, mvr_node_id camera_n
         return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_view_set_from_camera: NULL argument");
     *out = NULL;
     uint32_t n = views ? views : 2;
-    if (n > 1024)
-        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_view_set_from_camera: %u views (at most 1024)",
-                             n);
-    if (!(ipd >= 0) || !isfinite(ipd))
+    if (n > MVR_VIEW_SET_MAX_VIEWS)
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_view_set_from_camera: %u views (at most %u)", n,
+                             MVR_VIEW_SET_MAX_VIEWS);
+    if (!ipd_ok(ipd))
         return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
-                             "mvr_view_set_from_camera: ipd %g (a distance >= 0; 0 = scaled to the scene)", ipd);
+                             "mvr_view_set_from_camera: ipd %g (a distance in [0, %g] scene units; 0 = scaled to the "
+                             "scene)",
+                             ipd, MAX_IPD);
     mvr_view_desc base;
     mvr_result got = mvr_scene_camera_view(scene, camera_node, &base);
     if (got == MVR_ERROR_OUT_OF_MEMORY)

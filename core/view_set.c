@@ -85,9 +85,9 @@ mvr_result mvr_view_set_create(const mvr_view_set_desc *d, mvr_view_set **out, m
     *out = NULL;
     if (d->view_count == 0 || !d->views)
         return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_view_set_create: no views");
-    if (d->view_count > 4096)
-        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
-                             "mvr_view_set_create: %u views (at most 4096)", d->view_count);
+    if (d->view_count > MVR_VIEW_SET_MAX_VIEWS)
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_view_set_create: %u views (at most %u)",
+                             d->view_count, MVR_VIEW_SET_MAX_VIEWS);
     char why[256];
     for (uint32_t i = 0; i < d->view_count; ++i)
         if (!check_view(&d->views[i], i, why, sizeof why))

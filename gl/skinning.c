@@ -117,6 +117,12 @@ mvr_result mvr_skinning_sync_scene(mvr_renderer *r, const mvr_scene *s)
         return mvr_gl_fail(r, MVR_ERROR_UNSUPPORTED, "morph targets: %llu delta texels are more than mvr indexes",
                            (unsigned long long)s->morph_texels);
     uint32_t rows = (uint32_t)((s->morph_texels + DATA_WIDTH - 1) / DATA_WIDTH);
+    /* the GL's limit before the staging copy: a texture the GL cannot hold
+     * is refused without allocating its bytes first */
+    if (rows > (uint32_t)r->ctx->caps.limits.max_texture_size)
+        return mvr_gl_fail(r, MVR_ERROR_UNSUPPORTED,
+                           "morph target deltas: %u rows of %u texels exceed GL_MAX_TEXTURE_SIZE %d", rows,
+                           DATA_WIDTH, r->ctx->caps.limits.max_texture_size);
     size_t floats = (size_t)rows * DATA_WIDTH * 4;
     float *data = calloc(floats, sizeof *data);
     if (!data)

@@ -170,6 +170,10 @@ static const Accessor &accessor_at(context &cx, int index, const std::string &wh
     if (index < 0 || size_t(index) >= m.accessors.size())
         refuse(what + ": accessor " + std::to_string(index) + " does not exist (" + std::to_string(m.accessors.size()) +
                " accessors)");
+    auto unknown = cx.res.unknown_accessor_types.find(index);
+    if (unknown != cx.res.unknown_accessor_types.end())
+        refuse(what + ": accessor " + std::to_string(index) + " has type " + quote(unknown->second) +
+               ", which glTF 2.0 does not define");
     return m.accessors[size_t(index)];
 }
 

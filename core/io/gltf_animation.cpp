@@ -450,6 +450,19 @@ void convert_animation(converter &cv, size_t ai)
         std::string sw = w + ".samplers[" + str(j) + "]";
         std::vector<float> t = read_floats(cx, s.input, 1, sw + ".input", FLOAT);
         all_finite(t, s.input, sw + ".input");
+        // times without a bufferView (nor sparse values) are all 0 (glTF 2.0,
+        // 3.6.2.1), which the schema allows; at every time >= 0 such a sampler
+        // gives its last key (3.11: clamped past the last key), so that key
+        // alone is kept
+        size_t keep_from = 0;
+        const tinygltf::Accessor &ta = cx.model->accessors[size_t(s.input)];
+        if (t.size() > 1 && ta.bufferView < 0 && ta.sparse.count <= 0 &&
+            std::all_of(t.begin(), t.end(), [](float x) { return x == 0.0f; })) {
+            keep_from = t.size() - 1;
+            cx.debug(sw + ".input: accessor " + std::to_string(s.input) + " has no bufferView (every key at 0 s): the last "
+                     "key alone is kept");
+            t.erase(t.begin(), t.begin() + std::ptrdiff_t(keep_from));
+        }
         for (size_t k = 1; k < t.size(); ++k)
             if (!(t[k] > t[k - 1]))
                 refuse(sw + ".input: accessor " + std::to_string(s.input) + " key " + str(k) + " (" + num(t[k]) +
@@ -464,12 +477,13 @@ void convert_animation(converter &cv, size_t ai)
         if (quantizable)
             require_normalized(cx, s.output, ow);
         uint64_t per_key = uint64_t(nd.components) * (interp[j] == MVR_INTERPOLATION_CUBICSPLINE ? 3 : 1);
-        uint64_t want = mul_checked(t.size(), per_key, sw);
+        uint64_t want = mul_checked(t.size() + keep_from, per_key, sw);
         if (v.size() != want)
             refuse(ow + ": accessor " + std::to_string(s.output) + " has " + str(v.size() / size_t(type_comps)) +
-                   " elements; " + str(t.size()) + " keys of " + interpolation_name(interp[j]) + " " +
+                   " elements; " + str(t.size() + keep_from) + " keys of " + interpolation_name(interp[j]) + " " +
                    mvr_animation_path_name(nd.path) + " (read by " + nd.by + ") need " + str(want / uint64_t(type_comps)));
         all_finite(v, s.output, ow);
+        v.erase(v.begin(), v.begin() + std::ptrdiff_t(keep_from * per_key));
         if (t.size() > UINT32_MAX || v.size() > UINT32_MAX)
             refuse(sw + ": too many keys");
         copy_bytes = add_checked(copy_bytes, (t.size() + v.size()) * sizeof(float), sw);

@@ -133,6 +133,9 @@ struct resources {
     // cameras tinygltf would refuse to parse (unknown type, missing fields):
     // replaced by a placeholder, an error only if a node uses them
     std::map<int, std::string> bad_cameras;
+    // accessors[i].type strings glTF 2.0 does not define (its schema admits
+    // any string): parsed as a placeholder, refused when the accessor is read
+    std::map<int, std::string> unknown_accessor_types;
     const unsigned char *bin = nullptr;   // the GLB's BIN chunk (buffer 0), if any
     uint64_t bin_size = 0;
     bool glb = false;

@@ -193,6 +193,78 @@ std::vector<uint32_t> to_list(int mode, std::vector<uint32_t> in, mvr_primitive_
 constexpr uint32_t FLOAT = ANY_FLOAT;
 constexpr uint32_t I8 = 1u << 0, U8 = 1u << 1, I16 = 1u << 2, U16 = 1u << 3;
 
+// ---- what rendering the scene will allocate, charged at load ----
+// The renderer's uploads hold memory beyond the scene's copy (host memory on
+// llvmpipe): charged as part of the scene, so a file whose render would
+// exceed the budget is refused here, before anything is allocated for it.
+
+// gl/skinning.c keeps each morph delta as one RGBA32F texel.
+constexpr uint64_t morph_texel_bytes = 16;
+// Reading targets holds the load's and the scene's copy (3 floats a texel each).
+constexpr uint64_t morph_read_bytes = 2 * 3 * sizeof(float);
+
+// Delta texels of primitive p's targets as core/scene.c lays them out
+// (morph_texels): vertices x targets x the attributes some target moves
+// (POSITION, NORMAL and TANGENT where the primitive has them; none at all
+// still moves POSITION by zero). From the JSON alone: a target without
+// data (no bufferView, sparse or not) counts for what it expands to.
+uint64_t morph_texels(const tinygltf::Primitive &p, size_t vcount, bool has_normals, bool has_tangents,
+                      const std::string &pw)
+{
+    bool moved[3] = {false, false, false};
+    for (const auto &target : p.targets)
+        for (const auto &a : target) {
+            moved[0] = moved[0] || a.first == "POSITION";
+            moved[1] = moved[1] || (a.first == "NORMAL" && has_normals);
+            moved[2] = moved[2] || (a.first == "TANGENT" && has_tangents);
+        }
+    uint64_t attributes = uint64_t(moved[0]) + uint64_t(moved[1]) + uint64_t(moved[2]);
+    return mul_checked(mul_checked(vcount, p.targets.size(), pw), attributes ? attributes : 1, pw);
+}
+
+// The GPU-side bytes of one scene image: RGBA8 with its mip chain (the
+// renderer generates mips), or a block-compressed image's levels decoded to
+// RGBA8, width x height x 4 each (what a GL without the format, Mesa's
+// llvmpipe among them for ASTC and ETC2, holds after decoding it at upload).
+uint64_t texture_upload_bytes(const scene_image &img)
+{
+    uint64_t total = 0, w = img.width, h = img.height;
+    bool blocks = img.format != MVR_IMAGE_FORMAT_RGBA8;
+    for (uint32_t level = 0;; ++level) {
+        if (blocks && level >= img.levels)
+            break;
+        total += w * h * 4;
+        if (!blocks && w == 1 && h == 1)
+            break;
+        w = w > 1 ? w / 2 : 1;
+        h = h > 1 ? h / 2 : 1;
+    }
+    return total;
+}
+
+// Every image the scene holds, charged for its upload (named by the first
+// glTF image that gave it).
+void charge_texture_uploads(context &cx, const mvr_scene *scene, const std::map<int, mvr_image_id> &images)
+{
+    std::map<uint32_t, int> source;   // scene image id -> glTF image
+    for (const auto &gi : images)
+        if (gi.second.id != 0)
+            source.emplace(gi.second.id, gi.first);
+    for (uint32_t i = 0; i < scene->image_count; ++i) {
+        const scene_image &img = scene->images[i];
+        auto from = source.find(i + 1);
+        std::string name = from != source.end() ? "images[" + std::to_string(from->second) + "]"
+                                                : "image " + std::to_string(i + 1);
+        bool blocks = img.format != MVR_IMAGE_FORMAT_RGBA8;
+        std::string dims = std::to_string(img.width) + "x" + std::to_string(img.height);
+        cx.mem.charge(texture_upload_bytes(img),
+                      name + " (" + dims + (blocks ? std::string(" ") + mvr_image_format_name(img.format) + ", " +
+                                                         std::to_string(img.levels) + " levels, decoded to RGBA8"
+                                                   : std::string(" RGBA8 with its mips")) +
+                          ") uploaded for rendering");
+    }
+}
+
 }  // namespace
 
 mvr_mesh_id converter::mesh(int index)
@@ -276,6 +348,15 @@ mvr_mesh_id converter::mesh(int index)
                     d.col[v * 4 + size_t(ch)] = c[v * size_t(comps) + size_t(ch)];
         }
         skin_attributes(p, pw, vcount, d, facts);
+        if (!p.targets.empty()) {
+            uint64_t texels = morph_texels(p, vcount, !d.nrm.empty(), !d.tan.empty(), pw);
+            uint64_t gpu = mul_checked(texels, morph_texel_bytes, pw);
+            std::string what = pw + ".targets (" + std::to_string(p.targets.size()) + " targets of " +
+                               std::to_string(vcount) + " vertices: " + std::to_string(texels) + " delta texels";
+            { charged reading(cx.mem, add_checked(gpu, mul_checked(texels, morph_read_bytes, pw), pw),
+                              what + ", read, with the scene's copy and the GPU's)"); }
+            cx.mem.charge(gpu, what + ", RGBA32F for rendering)");   // held with the scene
+        }
         morph_targets(p, pw, vcount, d);
         std::vector<uint32_t> idx;
         if (p.indices >= 0) {
@@ -571,6 +652,11 @@ mvr_result load(const unsigned char *bytes, size_t size, const std::string &base
                         "KHR_animation_pointer's) are not implemented; ignored (channel indices in later messages "
                         "skip them)");
             }
+            // accessors of a type glTF 2.0 does not define: no components
+            // (accessor_at refuses them by name, any other reader by their count)
+            for (const auto &u : cx.res.unknown_accessor_types)
+                if (size_t(u.first) < model.accessors.size())
+                    model.accessors[size_t(u.first)].type = -1;
             // undo the pre-pass's placeholder view: those accessors are zeros
             if (cx.res.placeholder_view) {
                 for (int i : cx.res.viewless_accessors)
@@ -624,6 +710,7 @@ mvr_result load(const unsigned char *bytes, size_t size, const std::string &base
         }
         cv.skins();
         cv.animations();
+        charge_texture_uploads(cx, scene, cv.images);
         scene->logger = o.logger;
         if (info) {
             info->warnings = cx.warnings;

@@ -5,6 +5,7 @@
 // opens a file, never decodes a resource, and never reads the BIN chunk
 // (tinygltf 2.7 bounds that chunk without its 8-byte header, an 8-byte heap
 // over-read, and binds every uri-less buffer to it).
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 
@@ -437,6 +438,43 @@ static void material_extension_shapes(const nlohmann::json &doc)
     }
 }
 
+// Numbers with a zero fraction become integers (3.0 -> 3), everywhere but
+// in extras (the application's own data, passed on as written). JSON Schema,
+// which glTF 2.0's schema is written in, counts any number with a zero
+// fractional part as an "integer" (draft 2020-12, Validation 6.1.1), so
+// "count": 3.0 is valid; tinygltf 2.7 and the checks below take only JSON
+// integers. A number field is unchanged by this: JSON has one number type.
+// Only magnitudes below 2^53 (exact in a double) are rewritten.
+static void integral_numbers(nlohmann::json &v, int depth)
+{
+    if (v.is_number_float()) {
+        double d = v.get<double>();
+        if (std::fabs(d) < 9007199254740992.0 && d == std::trunc(d))
+            v = d < 0 ? nlohmann::json(int64_t(d)) : nlohmann::json(uint64_t(d));
+        return;
+    }
+    if (depth >= max_json_depth) /* scan_json bounded the nesting already */
+        return;
+    if (v.is_array()) {
+        for (auto &e : v)
+            integral_numbers(e, depth + 1);
+    } else if (v.is_object()) {
+        for (auto it = v.begin(); it != v.end(); ++it)
+            if (it.key() != "extras")
+                integral_numbers(it.value(), depth + 1);
+    }
+}
+
+// glTF 2.0's accessor types (5.1.10: the schema's anyOf also admits any
+// other string, for types a later version may add).
+static bool known_accessor_type(const std::string &t)
+{
+    for (const char *k : {"SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT3", "MAT4"})
+        if (t == k)
+            return true;
+    return false;
+}
+
 std::string extract_resources(const json_text &text, resources &res, uint64_t *model_size)
 {
     nlohmann::json doc;
@@ -447,6 +485,7 @@ std::string extract_resources(const json_text &text, resources &res, uint64_t *m
     }
     if (!doc.is_object())
         refuse(std::string("the JSON is a ") + doc.type_name() + ", not an object");
+    integral_numbers(doc, 0);
     *model_size = model_bytes(doc);
     auto buffers = doc.find("buffers");
     if (buffers != doc.end()) {
@@ -526,6 +565,13 @@ std::string extract_resources(const json_text &text, resources &res, uint64_t *m
             nlohmann::json &a = (*accessors)[i];
             if (a.is_object() && a.find("bufferView") == a.end())
                 res.viewless_accessors.push_back(int(i));
+            // a type tinygltf 2.7 would refuse the whole file for: an error
+            // only where the accessor is read (the loader marks it so)
+            auto type = a.is_object() ? a.find("type") : a.end();
+            if (a.is_object() && type != a.end() && type->is_string() && !known_accessor_type(type->get<std::string>())) {
+                res.unknown_accessor_types[int(i)] = type->get<std::string>();
+                *type = "SCALAR";
+            }
         }
         if (!res.viewless_accessors.empty()) {
             nlohmann::json &views = doc["bufferViews"];

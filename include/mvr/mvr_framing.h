@@ -35,9 +35,11 @@ typedef enum mvr_view_layout {
 typedef struct mvr_framing_desc {
     mvr_view_layout layout;
     uint32_t views;              /* 0 = the layout's own (stereo 2, cube 6, ring 8, grid 9, sphere 50,
-                                    orbit 24) */
-    double ipd;                  /* stereo: scene units between eyes; 0 = mvr_stereo_default_ipd of the framing distance */
-    double aspect;               /* width / height of the layers; 0 = 1 */
+                                    orbit 24); at most MVR_VIEW_SET_MAX_VIEWS */
+    double ipd;                  /* stereo: scene units between eyes, in [0, 1e9]; 0 = mvr_stereo_default_ipd of
+                                    the framing distance; NaN, infinite, negative or larger is refused */
+    double aspect;               /* width / height of the layers, in [1/65536, 65536]; 0 = 1; NaN, infinite,
+                                    negative or outside is refused */
     uint32_t rows;               /* orbit: rings (0 = 3), the views shared out among them (the first
                                     rings take the remainder), each ring's azimuths staggered by half a step */
     double elevation_min, elevation_max; /* orbit, radians in (-pi/2, pi/2): the lowest and the highest
@@ -60,7 +62,7 @@ mvr_result mvr_view_set_frame_scene(const mvr_scene *scene, const mvr_framing_de
  * ipd 0 = mvr_stereo_default_ipd of the camera's distance to the centre of
  * the scene's bounding sphere (the project's stereo rule, the 1/30 rule,
  * as mvr_view_set_frame_scene applies it to its framing distance); NaN,
- * infinite or negative is refused. The view set's origin is the camera. */
+ * infinite, negative or over 1e9 is refused. The view set's origin is the camera. */
 mvr_result mvr_view_set_from_camera(const mvr_scene *scene, mvr_node_id camera_node, uint32_t views, double ipd,
                                     mvr_view_set **out, mvr_error *out_error);
 

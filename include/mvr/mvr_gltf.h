@@ -23,7 +23,10 @@
  *   file bytes, the parsed JSON (estimated from its token count before it is
  *   parsed), external and data-URI buffers, decoded image bytes (from the
  *   image header, before decoding) and the vertex and index data, each before
- *   it is allocated; what exceeds it fails with MVR_ERROR_OUT_OF_MEMORY and a
+ *   it is allocated, and what rendering the scene will allocate (morph target
+ *   deltas, 16 bytes per vertex, target and attribute, counted before any
+ *   target is read; images as uploaded, block-compressed ones decoded to
+ *   RGBA8); what exceeds it fails with MVR_ERROR_OUT_OF_MEMORY and a
  *   message naming the object. Only buffers and images the scene uses are
  *   read, each once (two images or buffers naming the same file share one
  *   read and one decode).

@@ -38,6 +38,10 @@ void mvr_view_look_at(mvr_view_desc *view, const double eye[3], const double tar
 
 typedef struct mvr_view_set mvr_view_set;
 
+/* The most views one view set holds (mvr_view_set_create and the framing
+ * functions alike; the CLI's --views and camera files share the cap). */
+#define MVR_VIEW_SET_MAX_VIEWS 1024u
+
 typedef struct mvr_view_set_desc {
     uint32_t view_count;
     const mvr_view_desc *views;
