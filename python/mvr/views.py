@@ -194,7 +194,7 @@ class Views(Handle):
         flip = {"opengl": np.diag([1.0, 1.0, 1.0]), "opencv": np.diag([1.0, -1.0, -1.0])}
         if convention not in flip:
             raise ValueError("convention: 'opengl' or 'opencv', got %r" % (convention,))
-        n = poses.shape[0]
+        n = c_int(poses.shape[0], "camera_to_world: pose count", 0, U32_MAX)
         ks = None
         if intrinsics is not None:
             ks = _stack(intrinsics, (3, 3), "intrinsics")
