@@ -455,6 +455,23 @@ mvr_result mvr_context_make_current(mvr_context *ctx)
     return MVR_OK;
 }
 
+mvr_result mvr_context_release_current(mvr_context *ctx)
+{
+    if (!ctx)
+        return MVR_ERROR_INVALID_ARGUMENT;
+    /* the application's context is its own to bind; another thread's (or no)
+     * current context is left alone */
+    if (ctx->provider_kind == MVR_CONTEXT_PROVIDER_EXTERNAL || !mvr_context_is_current(ctx))
+        return MVR_OK;
+    flush_garbage(ctx);
+    char why[MVR_ERROR_MESSAGE_SIZE] = "";
+    mvr_result r = ctx->ops->release_current(ctx->provider, why, sizeof why);
+    if (r != MVR_OK)
+        return mvr_context_fail(ctx, r, "mvr_context_release_current(%s): %s",
+                                mvr_context_provider_name(ctx->provider_kind), why);
+    return MVR_OK;
+}
+
 const char *mvr_context_last_error(const mvr_context *ctx)
 {
     return ctx ? ctx->last_error : "mvr_context_last_error: context is NULL";

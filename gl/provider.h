@@ -22,6 +22,8 @@ typedef struct mvr_provider_ops {
     void (*describe)(mvr_provider *provider, mvr_caps *caps);
     /* Whether the provider's context is current on the calling thread. */
     bool (*is_current)(const mvr_provider *provider);
+    /* Makes no context current on the calling thread (the provider's API). */
+    mvr_result (*release_current)(mvr_provider *provider, char *why, size_t why_size);
 } mvr_provider_ops;
 
 /* EGL's current context for a client API (EGL_OPENGL_ES_API, EGL_OPENGL_API)

@@ -381,6 +381,19 @@ static bool egl_is_current(const mvr_provider *p)
            mvr_egl_current_context(p->api == MVR_GL_API_DESKTOP ? EGL_OPENGL_API : EGL_OPENGL_ES_API) == p->context;
 }
 
+static mvr_result egl_release_current(mvr_provider *p, char *why, size_t why_size)
+{
+    /* EGL keeps a current context per client API: release the one this
+     * provider's contexts bind; eglMakeCurrent flushes it first (EGL 1.5,
+     * section 3.7.3) */
+    if (!eglBindAPI(p->api == MVR_GL_API_DESKTOP ? EGL_OPENGL_API : EGL_OPENGL_ES_API) ||
+        !eglMakeCurrent(p->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT)) {
+        mvr_str_format(why, why_size, "eglMakeCurrent(EGL_NO_CONTEXT) failed (%s)", egl_error_name(eglGetError()));
+        return MVR_ERROR_CONTEXT;
+    }
+    return MVR_OK;
+}
+
 static void egl_describe(mvr_provider *p, mvr_caps *caps)
 {
     mvr_str_copy(caps->egl_vendor, sizeof caps->egl_vendor, eglQueryString(p->display, EGL_VENDOR));
@@ -396,6 +409,7 @@ static const mvr_provider_ops egl_ops = {
     .get_proc = egl_get_proc,
     .describe = egl_describe,
     .is_current = egl_is_current,
+    .release_current = egl_release_current,
 };
 
 const mvr_provider_ops *mvr_provider_egl_ops(void)

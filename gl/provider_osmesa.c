@@ -100,6 +100,17 @@ static bool osmesa_is_current(const mvr_provider *p)
     return OSMesaGetCurrentContext() == p->context;
 }
 
+static mvr_result osmesa_release_current(mvr_provider *p, char *why, size_t why_size)
+{
+    (void)p;
+    /* OSMesa's way to unbind: a NULL context and buffer */
+    if (!OSMesaMakeCurrent(NULL, NULL, GL_UNSIGNED_BYTE, 0, 0)) {
+        mvr_str_copy(why, why_size, "OSMesaMakeCurrent(NULL) failed");
+        return MVR_ERROR_CONTEXT;
+    }
+    return MVR_OK;
+}
+
 static const mvr_provider_ops osmesa_ops = {
     .create = osmesa_create,
     .destroy = osmesa_destroy,
@@ -107,6 +118,7 @@ static const mvr_provider_ops osmesa_ops = {
     .get_proc = osmesa_get_proc,
     .describe = osmesa_describe,
     .is_current = osmesa_is_current,
+    .release_current = osmesa_release_current,
 };
 
 const mvr_provider_ops *mvr_provider_osmesa_ops(void)

@@ -85,9 +85,15 @@ mvr_result mvr_context_create(const mvr_context_desc *desc, mvr_context **out_co
  * "Lifetimes and the current context" in mvr_renderer.h). */
 void mvr_context_destroy(mvr_context *context);
 /* Makes the context current on this thread (EXTERNAL: checks that it is
- * current, as is_current says). The only call besides mvr_context_create
- * that changes the thread's current context. */
+ * current, as is_current says). With mvr_context_release_current, the only
+ * calls besides mvr_context_create that change the thread's current context. */
 mvr_result mvr_context_make_current(mvr_context *context);
+/* Makes no context current on this thread, if this context is the current
+ * one (after deleting GL objects that waited for it), so that another thread
+ * may make it current: an EGL context is current on one thread at most.
+ * MVR_OK and nothing changed where the context is not current here, and for
+ * EXTERNAL (mvr never changes the application's binding). */
+mvr_result mvr_context_release_current(mvr_context *context);
 /* The message of the last failed call on this object; "" when none failed. */
 const char *mvr_context_last_error(const mvr_context *context);
 mvr_context_provider mvr_context_get_provider(const mvr_context *context);

@@ -1,6 +1,12 @@
-"""Errors, logging and handle bookkeeping shared by the mvr classes."""
+"""Errors, logging, handle bookkeeping and argument checks shared by the mvr
+classes."""
 import ctypes
+import functools
 import logging
+import numbers
+import operator
+import os
+import threading
 
 from . import _native as N
 
@@ -68,12 +74,17 @@ def logger():
 
 
 class Handle:
-    """Owns one mvr object: close() destroys it once; with-blocks close it."""
+    """Owns one mvr object: close() destroys it once; with-blocks close it.
+
+    Each object has a lock (reentrant): every call that uses the C object
+    holds it, and so does close(), which therefore waits for a call in
+    flight on another thread instead of freeing what that call reads."""
 
     _what = "mvr object"
 
     def __init__(self):
         self._handle = None
+        self._lock = threading.RLock()
 
     def _destroy(self, handle):  # pragma: no cover - each class has its own
         raise NotImplementedError
@@ -90,9 +101,13 @@ class Handle:
         return self._handle is None
 
     def close(self):
-        handle, self._handle = self._handle, None
-        if handle is not None:
-            self._destroy(handle)
+        lock = getattr(self, "_lock", None)  # None: __init__ failed before Handle's
+        if lock is None:
+            return
+        with lock:
+            handle, self._handle = self._handle, None
+            if handle is not None:
+                self._destroy(handle)
 
     def __enter__(self):
         self.handle  # noqa: B018 - entering a closed object is an error
@@ -123,7 +138,62 @@ def as_c_float(values, n, what):
     return (ctypes.c_float * n)(*vals)
 
 
-def bytes_or_none(s):
+def locked(method):
+    """Runs a Handle's method holding the object's lock (see Handle)."""
+    @functools.wraps(method)
+    def run(self, *args, **kwargs):
+        with self._lock:
+            return method(self, *args, **kwargs)
+    return run
+
+
+# the C types' ranges: ctypes wraps a Python int outside them silently
+# (-1 becomes 0xFFFFFFFF, 2**33 + 64 becomes 64)
+U32_MAX = 2 ** 32 - 1
+U64_MAX = 2 ** 64 - 1
+I32_MAX = 2 ** 31 - 1
+
+
+def c_int(value, what, lo, hi):
+    """value as a Python int in [lo, hi]; ValueError naming `what` and the
+    range otherwise. Integral floats (640.0) pass; 0.5, NaN and non-numbers
+    do not."""
+    try:
+        v = operator.index(value)
+    except TypeError:
+        v = None
+        if isinstance(value, numbers.Real) and not isinstance(value, bool):
+            f = float(value)
+            if f.is_integer():
+                v = int(f)
+    if v is None:
+        raise ValueError("%s: an integer in [%d, %d] expected, got %r" % (what, lo, hi, value))
+    if not lo <= v <= hi:
+        raise ValueError("%s: %d is outside the allowed range [%d, %d]" % (what, v, lo, hi))
+    return v
+
+
+def _no_nul(b, what, value):
+    if b"\0" in b:
+        raise ValueError("%s: %r holds a NUL character, which would cut the string short in C" % (what, value))
+    return b
+
+
+def c_text(s, what):
+    """A str (UTF-8) or bytes for a char * argument, None for None;
+    ValueError for a NUL inside, TypeError for anything else."""
     if s is None:
         return None
-    return s.encode("utf-8") if isinstance(s, str) else bytes(s)
+    if isinstance(s, str):
+        return _no_nul(s.encode("utf-8"), what, s)
+    if isinstance(s, (bytes, bytearray)):
+        return _no_nul(bytes(s), what, s)
+    raise TypeError("%s: a str or bytes expected, got %s" % (what, type(s).__name__))
+
+
+def c_path(p, what):
+    """A path (str, bytes or os.PathLike) for a char * argument, None for
+    None; ValueError for a NUL inside."""
+    if p is None:
+        return None
+    return _no_nul(os.fsencode(p), what, p)

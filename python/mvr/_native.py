@@ -366,6 +366,7 @@ _decl(core, "mvr_result_name", c_char_p, c_int)
 _decl(core, "mvr_context_create", R, POINTER(mvr_context_desc), PP, PE)
 _decl(core, "mvr_context_destroy", None, P)
 _decl(core, "mvr_context_make_current", R, P)
+_decl(core, "mvr_context_release_current", R, P)  # None in a libmvr older than it
 _decl(core, "mvr_context_last_error", c_char_p, P)
 _decl(core, "mvr_context_caps", POINTER(mvr_caps), P)
 _decl(core, "mvr_context_get_provider", c_int, P)

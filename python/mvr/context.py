@@ -1,11 +1,11 @@
 """The GL side: a context with its renderer, render targets and readback."""
+import contextlib
 import ctypes
-import os
 
 import numpy as np
 
 from . import _native as N
-from ._common import Error, Handle, bytes_or_none, check, check_created, logger
+from ._common import I32_MAX, U32_MAX, Error, Handle, c_int, c_path, check, check_created, logger
 
 OUTPUTS = ("color", "depth", "distance", "normal", "ids", "coverage")
 
@@ -55,7 +55,18 @@ class Context(Handle):
     "loop"), material_path, depth_mode, transparency_order, skinning_path,
     program_cache_dir (a folder for program binaries), disable_culling,
     disable_instancing. close() (or the end of a `with` block) destroys the
-    targets, the renderer and the context, releasing their GL objects."""
+    targets, the renderer and the context, releasing their GL objects.
+
+    Threads: a Context renders from any thread, one call at a time. Every
+    call that touches it holds the Context's lock, makes the GL context
+    current on the calling thread and releases it before returning (an EGL
+    context is current on one thread at most), so the next call may come
+    from another thread; calls from several threads wait for each other.
+    Calls leave no GL context current on the calling thread. close() takes
+    the lock too: it waits for a render in flight on another thread, and
+    any call after it raises mvr.ClosedError. Two Contexts render on two
+    threads at the same time; a Scene, Views or Environment is used by one
+    call at a time (each has its own lock)."""
 
     _what = "mvr.Context"
 
@@ -65,11 +76,13 @@ class Context(Handle):
         super().__init__()
         self._renderer = None
         self._target = None
+        self._depth = 0  # nesting of _current() on the thread holding the lock
         self._logger = logger()
         d = N.desc(N.mvr_context_desc)
         d.provider = N.PROVIDER(provider, "provider")
         d.api = N.GL_API(api, "api")
-        d.device_index = int(device_index)
+        d.device_index = c_int(device_index, "device_index", 0, I32_MAX)
+        cache_dir = c_path(program_cache_dir if program_cache_dir else None, "program_cache_dir")
         d.debug = bool(debug)
         d.logger = self._logger
         out = ctypes.c_void_p()
@@ -86,7 +99,7 @@ class Context(Handle):
             rd.depth_mode = N.DEPTH_MODE(depth_mode, "depth_mode")
             rd.transparency_order = N.TRANSPARENCY(transparency_order, "transparency_order")
             rd.skinning_path = N.SKINNING_PATH(skinning_path, "skinning_path")
-            self._cache_dir = bytes_or_none(os.fspath(program_cache_dir) if program_cache_dir else None)
+            self._cache_dir = cache_dir
             rd.program_cache_dir = self._cache_dir
             rd.disable_culling = bool(disable_culling)
             rd.disable_instancing = bool(disable_instancing)
@@ -94,14 +107,54 @@ class Context(Handle):
             check_created(N.C.mvr_renderer_create(ctypes.byref(rd), ctypes.byref(r), ctypes.byref(err)), err,
                           "mvr_renderer_create")
             self._renderer = r.value
+            # mvr_context_create left it current here: free for any thread
+            self._release(self._handle)
         except BaseException:
             self.close()
             raise
 
+    def _release(self, h):
+        if N.C.mvr_context_release_current is None:  # a libmvr older than the call: stays current
+            return
+        check(N.C.mvr_context_release_current(h), lambda: N.text(N.C.mvr_context_last_error(h)),
+              "mvr_context_release_current")
+
+    @contextlib.contextmanager
+    def _current(self):
+        """Holds the lock with the GL context current on this thread; releases
+        the GL context when the outermost such block ends."""
+        with self._lock:
+            h = self.handle  # ClosedError once closed
+            if self._depth == 0:
+                check(N.C.mvr_context_make_current(h), lambda: N.text(N.C.mvr_context_last_error(h)),
+                      "mvr_context_make_current")
+            self._depth += 1
+            try:
+                yield h
+            except BaseException:
+                self._depth -= 1
+                if self._depth == 0:
+                    with contextlib.suppress(Error):  # the call's own error says more
+                        self._release(h)
+                raise
+            self._depth -= 1
+            if self._depth == 0:
+                self._release(h)
+
+    def close(self):
+        """Destroys the target, the renderer and the context; waits for a
+        call in flight on another thread. Closing twice is fine."""
+        with self._lock:
+            if self._depth:
+                raise Error("mvr.Context.close() from inside a call on the same Context (a logging handler?)")
+            super().close()
+
     def _destroy(self, handle):
-        # targets, then the renderer, then the context: each GL object is
-        # deleted while its context is current (the library would also
-        # accept any order)
+        # targets, then the renderer, then the context, with the context
+        # current here: each GL object is deleted while its context is
+        # current (the library would also accept any order); destroying
+        # the context releases it
+        N.C.mvr_context_make_current(handle)
         if self._target is not None:
             N.C.mvr_target_destroy(self._target.handle)
             self._target = None
@@ -117,6 +170,10 @@ class Context(Handle):
     def caps(self):
         """What the GL offers: renderer, version, max_views (GL_MAX_VIEWS_OVR),
         multiview, software, and the whole mvr_caps as nested dicts."""
+        with self._lock:
+            return self._caps_locked()
+
+    def _caps_locked(self):
         c = N.C.mvr_context_caps(self.handle).contents
 
         def as_dict(s):
@@ -133,7 +190,8 @@ class Context(Handle):
 
     @property
     def provider(self):
-        return N.text(N.C.mvr_context_provider_name(N.C.mvr_context_get_provider(self.handle)))
+        with self._lock:
+            return N.text(N.C.mvr_context_provider_name(N.C.mvr_context_get_provider(self.handle)))
 
     def _target_for(self, width, height, layers, color_format, samples, outputs_mask):
         key = (width, height, layers, color_format, samples, outputs_mask)
@@ -175,10 +233,16 @@ class Context(Handle):
         that cast them), "all", "off". normal_space: "world" or "camera";
         alpha_cutoff: where blended surfaces start to count in depth / ids
         outputs (0 = 0.5)."""
-        h = self.handle
-        width, height = (int(s) for s in size)
-        if width <= 0 or height <= 0:
-            raise ValueError("size: positive (width, height) expected, got %r" % (size,))
+        self.handle  # noqa: B018 - raises once closed
+        # every argument checked before the GL (and any allocation) sees it
+        try:
+            width, height = size
+        except (TypeError, ValueError):
+            raise ValueError("size: (width, height) expected, got %r" % (size,)) from None
+        width = c_int(width, "size: width", 1, U32_MAX)
+        height = c_int(height, "size: height", 1, U32_MAX)
+        samples = c_int(samples, "samples", 0, U32_MAX)
+        color_format = N.COLOR_FORMAT(color_format, "color_format")
         if isinstance(outputs, str):
             outputs = (outputs,)
         outputs = tuple(outputs)
@@ -192,64 +256,70 @@ class Context(Handle):
         if color_dtype not in ("uint8", "float32", np.uint8, np.float32):
             raise ValueError("color_dtype: 'uint8' or 'float32', got %r" % (color_dtype,))
         color_float = np.dtype(color_dtype) == np.float32
-        layers = len(views)
-        if layers == 0:
-            raise Error("render: the view set has no views")
-
-        # the renderer draws with its context current on this thread
-        check(N.C.mvr_context_make_current(h), lambda: N.text(N.C.mvr_context_last_error(h)),
-              "mvr_context_make_current")
-        target = self._target_for(width, height, layers, N.COLOR_FORMAT(color_format, "color_format"),
-                                  int(samples), mask)
 
         rd = N.desc(N.mvr_render_desc)
         rd.clear_color[:] = [float(c) for c in clear_color]
         rd.exposure = float(exposure)
         rd.ev100 = float(ev100)
-        if environment is not None:
-            rd.environment = environment.handle
         rd.background = N.BACKGROUND(background, "background")
         rd.background_blur = float(background_blur)
         rd.shadows.mode = N.SHADOW_MODE(shadows, "shadows")
-        if choose_exposure:
-            N.C.mvr_render_desc_choose_exposure(scene.handle, ctypes.byref(rd))
-        if exposure_mode is not None:
-            rd.exposure_mode = N.EXPOSURE_MODE(exposure_mode, "exposure_mode")
-        if tone_map is not None:
-            rd.tone_map = N.TONE_MAP(tone_map, "tone_map")
+        exposure_mode = None if exposure_mode is None else N.EXPOSURE_MODE(exposure_mode, "exposure_mode")
+        tone_map = None if tone_map is None else N.TONE_MAP(tone_map, "tone_map")
         rd.normal_space = N.NORMAL_SPACE(normal_space, "normal_space")
         rd.output_alpha_cutoff = float(alpha_cutoff)
-        check(N.C.mvr_renderer_render(self._renderer, scene.handle, views.handle, target, ctypes.byref(rd)),
-              self._renderer_error, "mvr_renderer_render")
 
-        results = []
-        for layer in range(layers):
-            arrays = {}
-            if "color" in outputs:
-                arr = np.empty((height, width, 4), np.float32 if color_float else np.uint8)
-                fmt = N.READBACK("rgba32f" if color_float else "rgba8")
-                check(N.C.mvr_renderer_read_layer(self._renderer, target, layer, fmt, arr.ctypes.data, arr.nbytes),
-                      self._renderer_error, "mvr_renderer_read_layer(%d)" % layer)
-                arrays["color"] = arr
-            for o in extra:
-                channels, dtype = N.OUTPUT_PIXEL[o]
-                shape = (height, width, channels) if channels > 1 else (height, width)
-                arr = np.empty(shape, dtype)
-                check(N.C.mvr_renderer_read_output(self._renderer, target, layer, N.OUTPUT(o), arr.ctypes.data,
-                                                   arr.nbytes), self._renderer_error,
-                      "mvr_renderer_read_output(%d, %s)" % (layer, o))
-                arrays[o] = arr
-            # GL rows are bottom to top: image order is top to bottom
-            arrays = {k: np.ascontiguousarray(v[::-1]) for k, v in arrays.items()}
-            results.append(RenderedView(layer, views.camera(layer, width, height), arrays))
-        return results
+        with contextlib.ExitStack() as held:
+            # the context (current on this thread), then what the render
+            # reads: one order everywhere, so two threads never wait on each other
+            held.enter_context(self._current())
+            for obj in (scene, views, environment):
+                if obj is not None:
+                    held.enter_context(obj._lock)
+            layers = len(views)
+            if layers == 0:
+                raise Error("render: the view set has no views")
+            if environment is not None:
+                rd.environment = environment.handle
+            if choose_exposure:
+                N.C.mvr_render_desc_choose_exposure(scene.handle, ctypes.byref(rd))
+            if exposure_mode is not None:
+                rd.exposure_mode = exposure_mode
+            if tone_map is not None:
+                rd.tone_map = tone_map
+            target = self._target_for(width, height, layers, color_format, samples, mask)
+            check(N.C.mvr_renderer_render(self._renderer, scene.handle, views.handle, target, ctypes.byref(rd)),
+                  self._renderer_error, "mvr_renderer_render")
+            return [self._read_view(target, views, layer, width, height, outputs, extra, color_float)
+                    for layer in range(layers)]
+
+    def _read_view(self, target, views, layer, width, height, outputs, extra, color_float):
+        arrays = {}
+        if "color" in outputs:
+            arr = np.empty((height, width, 4), np.float32 if color_float else np.uint8)
+            fmt = N.READBACK("rgba32f" if color_float else "rgba8")
+            check(N.C.mvr_renderer_read_layer(self._renderer, target, layer, fmt, arr.ctypes.data, arr.nbytes),
+                  self._renderer_error, "mvr_renderer_read_layer(%d)" % layer)
+            arrays["color"] = arr
+        for o in extra:
+            channels, dtype = N.OUTPUT_PIXEL[o]
+            shape = (height, width, channels) if channels > 1 else (height, width)
+            arr = np.empty(shape, dtype)
+            check(N.C.mvr_renderer_read_output(self._renderer, target, layer, N.OUTPUT(o), arr.ctypes.data,
+                                               arr.nbytes), self._renderer_error,
+                  "mvr_renderer_read_output(%d, %s)" % (layer, o))
+            arrays[o] = arr
+        # GL rows are bottom to top: image order is top to bottom
+        arrays = {k: np.ascontiguousarray(v[::-1]) for k, v in arrays.items()}
+        return RenderedView(layer, views.camera(layer, width, height), arrays)
 
     @property
     def stats(self):
         """The last render's mvr_frame_stats as a dict (paths that ran by name)."""
-        self.handle  # noqa: B018 - raises once closed
         s = N.out(N.mvr_frame_stats)
-        N.C.mvr_renderer_get_stats(self._renderer, ctypes.byref(s))
+        with self._lock:
+            self.handle  # noqa: B018 - raises once closed
+            N.C.mvr_renderer_get_stats(self._renderer, ctypes.byref(s))
         d = {}
         for name in N.mvr_frame_stats.field_names():
             v = getattr(s, name)

@@ -1,11 +1,19 @@
 """Scenes (a glTF file, or objects added in code) and environments."""
 import ctypes
-import os
 
 import numpy as np
 
 from . import _native as N
-from ._common import (Error, Handle, as_c_double, as_c_float, bytes_or_none, check, check_created, logger)
+from ._common import (U32_MAX, U64_MAX, Error, Handle, as_c_double, as_c_float, c_int, c_path, c_text, check,
+                      check_created, locked, logger)
+
+# animation and variant indices: the last uint32 means "all" / "the default"
+_INDEX_MAX = U32_MAX - 1
+
+
+def _id(value, what):
+    """An object id (mvr_*_id: a uint32, 0 = none)."""
+    return c_int(value, what, 0, U32_MAX)
 
 
 def _f32(a, cols, what, rows=None):
@@ -72,10 +80,11 @@ class Scene(Handle):
         if N.C.mvr_gltf_load_file is None:
             raise Error("this mvr was built without the glTF loader (libmvr_gltf.so)", "MVR_ERROR_UNSUPPORTED")
         opts = N.desc(N.mvr_gltf_options)
-        opts.scene = 0 if scene is None else int(scene) + 1
+        opts.scene = 0 if scene is None else c_int(scene, "scene", 0, _INDEX_MAX) + 1
         opts.strict = bool(strict)
-        opts.memory_budget = int(memory_budget)
-        keep = [bytes_or_none(base_dir), bytes_or_none(allowed_root)]
+        opts.memory_budget = c_int(memory_budget, "memory_budget", 0, U64_MAX)
+        file_path = c_path(path, "path")
+        keep = [c_path(base_dir, "base_dir"), c_path(allowed_root, "allowed_root")]
         opts.base_dir = keep[0]
         opts.file_access.allowed_root = keep[1]
         lg = logger()
@@ -83,7 +92,7 @@ class Scene(Handle):
         out = ctypes.c_void_p()
         info = N.out(N.mvr_gltf_info)
         err = N.mvr_error()
-        r = N.C.mvr_gltf_load_file(os.fsencode(path), ctypes.byref(opts), ctypes.byref(out), ctypes.byref(info),
+        r = N.C.mvr_gltf_load_file(file_path, ctypes.byref(opts), ctypes.byref(out), ctypes.byref(info),
                                    ctypes.byref(err))
         check_created(r, err, "mvr_gltf_load_file")
         self = cls._adopt(out.value)
@@ -92,19 +101,22 @@ class Scene(Handle):
 
     # ------------------------------------------------------------ adding objects
 
+    @locked
     def add_image(self, rgba, name=None):
         """An RGBA8 image: a (height, width, 4) uint8 array, rows top first."""
         arr = np.ascontiguousarray(rgba, dtype=np.uint8)
         if arr.ndim != 3 or arr.shape[2] != 4:
             raise ValueError("add_image: a (height, width, 4) uint8 array expected, got shape %s" % (arr.shape,))
         d = N.desc(N.mvr_image_desc)
-        d.width, d.height = arr.shape[1], arr.shape[0]
+        d.width = c_int(arr.shape[1], "add_image: width", 0, U32_MAX)
+        d.height = c_int(arr.shape[0], "add_image: height", 0, U32_MAX)
         d.rgba8 = _ptr(arr, ctypes.c_uint8)
-        d.name = bytes_or_none(name)
+        d.name = c_text(name, "name")
         out = N.Id()
         self._check(N.C.mvr_scene_add_image(self.handle, ctypes.byref(d), ctypes.byref(out)), "add_image")
         return out.id
 
+    @locked
     def add_material(self, *, base_color=(1, 1, 1, 1), metallic=1.0, roughness=1.0, emissive=(0, 0, 0),
                      emissive_strength=1.0, alpha_mode="opaque", alpha_cutoff=0.5, double_sided=False, unlit=False,
                      base_color_texture=0, metallic_roughness_texture=0, normal_texture=0, emissive_texture=0,
@@ -125,8 +137,8 @@ class Scene(Handle):
         for role, image in (("base_color", base_color_texture), ("metallic_roughness", metallic_roughness_texture),
                             ("normal", normal_texture), ("emissive", emissive_texture),
                             ("occlusion", occlusion_texture)):
-            getattr(d, role).image.id = int(image)
-        keep = bytes_or_none(name)
+            getattr(d, role).image.id = _id(image, role + "_texture")
+        keep = c_text(name, "name")
         d.name = keep
         # in a buffer with slack, like every descriptor (N.desc)
         dd = N.desc(N.mvr_material_desc)
@@ -135,6 +147,7 @@ class Scene(Handle):
         self._check(N.C.mvr_scene_add_material(self.handle, ctypes.byref(dd), ctypes.byref(out)), "add_material")
         return out.id
 
+    @locked
     def add_mesh(self, primitives=None, *, name=None, **primitive):
         """A mesh of one or more primitives. Each is a dict (or, for one
         primitive, keyword arguments) of: positions (N x 3), normals (N x 3),
@@ -149,6 +162,7 @@ class Scene(Handle):
         if isinstance(primitives, dict):
             primitives = [primitives]
         keep = []
+        c_int(len(primitives), "add_mesh: primitive count", 0, U32_MAX)
         prims = (N.mvr_primitive_desc * len(primitives))()
         for k, p in enumerate(primitives):
             known = {"positions", "normals", "tangents", "texcoords0", "texcoords1", "colors", "indices",
@@ -161,7 +175,7 @@ class Scene(Handle):
             pos = _f32(p["positions"], 3, "primitive %d positions" % k)
             n = pos.shape[0]
             d = prims[k]
-            d.vertex_count = n
+            d.vertex_count = c_int(n, "add_mesh: primitive %d vertex count" % k, 0, U32_MAX)
             d.positions = _ptr(pos, ctypes.c_float)
             keep.append(pos)
             for attr, cols in (("normals", 3), ("tangents", 4), ("texcoords0", 2), ("texcoords1", 2),
@@ -172,6 +186,8 @@ class Scene(Handle):
                     setattr(d, attr, _ptr(a, ctypes.c_float))
             if p.get("indices") is not None:
                 idx = np.asarray(p["indices"]).reshape(-1)
+                if idx.size and idx.dtype.kind not in "iu":
+                    raise ValueError("add_mesh: primitive %d: integer indices expected, got %s" % (k, idx.dtype))
                 if idx.size and (idx.min() < 0 or idx.max() >= n):
                     raise ValueError("add_mesh: primitive %d: indices outside 0..%d" % (k, n - 1))
                 if idx.dtype == np.uint16:
@@ -180,19 +196,20 @@ class Scene(Handle):
                 else:
                     idx = np.ascontiguousarray(idx, dtype=np.uint32)
                     d.indices32 = _ptr(idx, ctypes.c_uint32)
-                d.index_count = idx.size
+                d.index_count = c_int(idx.size, "add_mesh: primitive %d index count" % k, 0, U32_MAX)
                 keep.append(idx)
-            d.material.id = int(p.get("material", 0) or 0)
+            d.material.id = _id(p.get("material", 0) or 0, "add_mesh: primitive %d material" % k)
             d.mode = N.PRIMITIVE_MODE(p.get("mode", "triangles"), "mode")
         md = N.desc(N.mvr_mesh_desc)
         md.primitives = prims
         md.primitive_count = len(primitives)
-        keep_name = bytes_or_none(name)
+        keep_name = c_text(name, "name")
         md.name = keep_name
         out = N.Id()
         self._check(N.C.mvr_scene_add_mesh(self.handle, ctypes.byref(md), ctypes.byref(out)), "add_mesh")
         return out.id
 
+    @locked
     def add_light(self, type="directional", *, color=(1, 1, 1), intensity=1.0, range=0.0, inner_cone_angle=0.0,
                   outer_cone_angle=0.0, cast_shadows=False, layers=0):
         """A KHR_lights_punctual light (shines along its node's -Z): type
@@ -205,11 +222,12 @@ class Scene(Handle):
         d.inner_cone_angle = float(inner_cone_angle)
         d.outer_cone_angle = float(outer_cone_angle)
         d.cast_shadows = bool(cast_shadows)
-        d.layers = int(layers)
+        d.layers = c_int(layers, "layers", 0, U32_MAX)
         out = N.Id()
         self._check(N.C.mvr_scene_add_light(self.handle, ctypes.byref(d), ctypes.byref(out)), "add_light")
         return out.id
 
+    @locked
     def add_camera(self, *, yfov=0.0, aspect=0.0, znear=0.0, zfar=0.0, xmag=None, ymag=None):
         """A camera (put it on a node): perspective (yfov radians, 0 = 60
         degrees; aspect 0 = the viewport's), or orthographic when xmag and
@@ -225,6 +243,7 @@ class Scene(Handle):
         self._check(N.C.mvr_scene_add_camera(self.handle, ctypes.byref(p), ctypes.byref(out)), "add_camera")
         return out.id
 
+    @locked
     def add_node(self, *, mesh=0, light=0, camera=0, parent=0, translation=(0, 0, 0), rotation=(0, 0, 0, 1),
                  scale=(1, 1, 1), matrix=None, name=None):
         """A node: translation, rotation (quaternion x, y, z, w), scale, or a
@@ -232,7 +251,8 @@ class Scene(Handle):
         what it carries (mesh, light, camera ids) and its parent (a node id,
         0 = a root). Returns its id (the node id of the `ids` output)."""
         d = N.desc(N.mvr_node_desc)
-        d.parent.id, d.mesh.id, d.light.id, d.camera.id = int(parent), int(mesh), int(light), int(camera)
+        d.parent.id, d.mesh.id = _id(parent, "parent"), _id(mesh, "mesh")
+        d.light.id, d.camera.id = _id(light, "light"), _id(camera, "camera")
         d.translation = as_c_double(translation, 3, "translation")
         d.rotation = as_c_double(rotation, 4, "rotation")
         d.scale = as_c_double(scale, 3, "scale")
@@ -242,17 +262,19 @@ class Scene(Handle):
                 raise ValueError("matrix: a 4x4 array expected, got shape %s" % (m.shape,))
             d.use_matrix = True
             d.matrix = as_c_double(m.T.reshape(-1), 16, "matrix")  # column-major
-        keep = bytes_or_none(name)
+        keep = c_text(name, "name")
         d.name = keep
         out = N.Id()
         self._check(N.C.mvr_scene_add_node(self.handle, ctypes.byref(d), ctypes.byref(out)), "add_node")
         return out.id
 
+    @locked
     def set_node_transform(self, node, translation=(0, 0, 0), rotation=(0, 0, 0, 1), scale=(1, 1, 1)):
         self._check(N.C.mvr_scene_set_node_transform(
-            self.handle, N.Id(int(node)), as_c_double(translation, 3, "translation"),
+            self.handle, N.Id(_id(node, "node")), as_c_double(translation, 3, "translation"),
             as_c_double(rotation, 4, "rotation"), as_c_double(scale, 3, "scale")), "set_node_transform")
 
+    @locked
     def set_ambient(self, rgb):
         """Uniform ambient radiance from every direction (linear RGB)."""
         N.C.mvr_scene_set_ambient(self.handle, as_c_float(rgb, 3, "ambient"))
@@ -260,6 +282,7 @@ class Scene(Handle):
     # ------------------------------------------------------------ queries
 
     @property
+    @locked
     def info(self):
         """Counts (images, materials, meshes, nodes, ...) and world bounds."""
         i = N.out(N.mvr_scene_info)
@@ -270,12 +293,14 @@ class Scene(Handle):
         return d
 
     @property
+    @locked
     def camera_nodes(self):
         """The node ids of nodes that carry a camera, in node order."""
         h = self.handle
         return [N.C.mvr_scene_camera_node(h, k).id for k in range(N.C.mvr_scene_camera_node_count(h))]
 
     @property
+    @locked
     def animations(self):
         """[(name, start, end)] in seconds, in the file's order."""
         h = self.handle
@@ -286,6 +311,7 @@ class Scene(Handle):
             out.append((N.text(ai.name), ai.start, ai.end))
         return out
 
+    @locked
     def apply_animation(self, animation, time, *, loop=False):
         """Poses the scene at `time` seconds of an animation: its index, its
         name, or "all" (every animation at that time)."""
@@ -298,29 +324,34 @@ class Scene(Handle):
             if animation == "all":
                 return N.ANIMATION_ALL
             k = ctypes.c_uint32()
-            self._check(N.C.mvr_scene_find_animation(self.handle, animation.encode(), ctypes.byref(k)), "animation")
+            self._check(N.C.mvr_scene_find_animation(self.handle, c_text(animation, "animation"), ctypes.byref(k)),
+                        "animation")
             return k.value
-        return int(animation)
+        return c_int(animation, "animation", 0, _INDEX_MAX)
 
+    @locked
     def reset_pose(self):
         N.C.mvr_scene_reset_pose(self.handle)
 
     @property
+    @locked
     def variants(self):
         """Material variant names (KHR_materials_variants), in order."""
         h = self.handle
         return [N.text(N.C.mvr_scene_variant_name(h, k)) for k in range(N.C.mvr_scene_variant_count(h))]
 
+    @locked
     def select_variant(self, variant):
         """Selects a material variant by name or index; None: the default."""
         if variant is None:
             index = N.VARIANT_DEFAULT
         elif isinstance(variant, str):
             k = ctypes.c_uint32()
-            self._check(N.C.mvr_scene_find_variant(self.handle, variant.encode(), ctypes.byref(k)), "variant")
+            self._check(N.C.mvr_scene_find_variant(self.handle, c_text(variant, "variant"), ctypes.byref(k)),
+                        "variant")
             index = k.value
         else:
-            index = int(variant)
+            index = c_int(variant, "variant", 0, _INDEX_MAX)
         self._check(N.C.mvr_scene_select_variant(self.handle, index), "select_variant")
 
 
@@ -351,12 +382,13 @@ class Environment(Handle):
                 a = np.concatenate([a, np.ones(a.shape[:2] + (1,), np.float32)], axis=2)
             keep = np.ascontiguousarray(a)
             d.pixels = _ptr(keep, ctypes.c_float)
-            d.width, d.height = keep.shape[1], keep.shape[0]
+            d.width = c_int(keep.shape[1], "Environment: pixels width", 0, U32_MAX)
+            d.height = c_int(keep.shape[0], "Environment: pixels height", 0, U32_MAX)
         d.color = as_c_float(color, 3, "color")
         d.intensity = float(intensity)
         d.rotation = float(rotation)
-        d.specular_size = int(specular_size)
-        d.specular_samples = int(specular_samples)
+        d.specular_size = c_int(specular_size, "specular_size", 0, U32_MAX)
+        d.specular_samples = c_int(specular_samples, "specular_samples", 0, U32_MAX)
         self._logger = logger()
         d.logger = self._logger
         out = ctypes.c_void_p()
@@ -372,7 +404,7 @@ class Environment(Handle):
             raise Error("this mvr was built without image I/O (libmvr_image.so)", "MVR_ERROR_UNSUPPORTED")
         img = N.out(N.mvr_image_data)
         err = N.mvr_error()
-        check_created(N.C.mvr_image_read(os.fsencode(path), N.PIXEL_TYPE("f32"), ctypes.byref(img),
+        check_created(N.C.mvr_image_read(c_path(path, "path"), N.PIXEL_TYPE("f32"), ctypes.byref(img),
                                          ctypes.byref(err)), err, "mvr_image_read")
         try:
             count = img.width * img.height * 4

@@ -6,7 +6,7 @@ import math
 import numpy as np
 
 from . import _native as N
-from ._common import Error, Handle, check, check_created
+from ._common import U32_MAX, Error, Handle, c_int, check, check_created, locked
 
 # frustum half-angles the library takes (core/view_set.c: |angle| < 1.5707)
 _MAX_ANGLE = 1.5707
@@ -147,13 +147,15 @@ class Views(Handle):
         highest) in radians (None = -15 and 60 degrees)."""
         d = N.desc(N.mvr_framing_desc)
         d.layout = N.LAYOUT(layout, "layout")
-        d.views, d.aspect, d.ipd, d.rows = int(count), float(aspect), float(ipd), int(rows)
+        d.views, d.rows = c_int(count, "count", 0, U32_MAX), c_int(rows, "rows", 0, U32_MAX)
+        d.aspect, d.ipd = float(aspect), float(ipd)
         if elevation is not None:
             d.elevation_min, d.elevation_max = (float(e) for e in elevation)
         out = ctypes.c_void_p()
         err = N.mvr_error()
-        check_created(N.C.mvr_view_set_frame_scene(scene.handle, ctypes.byref(d), ctypes.byref(out),
-                                                   ctypes.byref(err)), err, "mvr_view_set_frame_scene")
+        with scene._lock:
+            check_created(N.C.mvr_view_set_frame_scene(scene.handle, ctypes.byref(d), ctypes.byref(out),
+                                                       ctypes.byref(err)), err, "mvr_view_set_frame_scene")
         return cls(out.value)
 
     @classmethod
@@ -161,14 +163,17 @@ class Views(Handle):
         """Views from a camera of the scene (mvr_view_set_from_camera):
         camera = its index among scene.camera_nodes; count eyes ipd apart
         along the camera's x axis (1 = the camera itself)."""
-        nodes = scene.camera_nodes
-        if not 0 <= camera < len(nodes):
-            raise Error("from_camera: the scene has %d camera nodes; %r is not one" % (len(nodes), camera))
+        count = c_int(count, "count", 0, U32_MAX)
         out = ctypes.c_void_p()
         err = N.mvr_error()
-        check_created(N.C.mvr_view_set_from_camera(scene.handle, N.Id(nodes[camera]), int(count), float(ipd),
-                                                   ctypes.byref(out), ctypes.byref(err)), err,
-                      "mvr_view_set_from_camera")
+        with scene._lock:
+            nodes = scene.camera_nodes
+            if not 0 <= camera < len(nodes):
+                raise Error("from_camera: the scene has %d camera nodes; %r is not one" % (len(nodes), camera))
+            camera = c_int(camera, "camera", 0, len(nodes) - 1)
+            check_created(N.C.mvr_view_set_from_camera(scene.handle, N.Id(nodes[camera]), count, float(ipd),
+                                                       ctypes.byref(out), ctypes.byref(err)), err,
+                          "mvr_view_set_from_camera")
         return cls(out.value)
 
     @classmethod
@@ -189,7 +194,7 @@ class Views(Handle):
         flip = {"opengl": np.diag([1.0, 1.0, 1.0]), "opencv": np.diag([1.0, -1.0, -1.0])}
         if convention not in flip:
             raise ValueError("convention: 'opengl' or 'opencv', got %r" % (convention,))
-        n = poses.shape[0]
+        n = c_int(poses.shape[0], "camera_to_world: pose count", 0, U32_MAX)
         ks = None
         if intrinsics is not None:
             ks = _stack(intrinsics, (3, 3), "intrinsics")
@@ -248,20 +253,25 @@ class Views(Handle):
                       "mvr_view_set_create")
         return cls(out.value)
 
+    @locked
     def __len__(self):
         return N.C.mvr_view_set_count(self.handle)
 
+    @locked
     def camera(self, index, width, height):
         """View `index`'s Camera on a layer of width x height pixels."""
         n = len(self)
         if not 0 <= index < n:
             raise Error("camera: view %r of %d views" % (index, n))
+        index = c_int(index, "index", 0, n - 1)
+        width, height = c_int(width, "width", 0, U32_MAX), c_int(height, "height", 0, U32_MAX)
         c = N.out(N.mvr_view_camera)
         h = self.handle
-        check(N.C.mvr_view_set_get_camera(h, int(index), int(width), int(height), ctypes.byref(c)),
+        check(N.C.mvr_view_set_get_camera(h, index, width, height, ctypes.byref(c)),
               lambda: N.text(N.C.mvr_view_set_last_error(h)), "mvr_view_set_get_camera(%d, %dx%d)" %
               (index, width, height))
         return Camera(c)
 
+    @locked
     def cameras(self, width, height):
         return [self.camera(i, width, height) for i in range(len(self))]
