@@ -16,7 +16,8 @@ static const char magic[8] = {'M', 'V', 'R', 'P', 'B', 'I', 'N', '2'};
 static const char old_magic[8] = {'M', 'V', 'R', 'P', 'B', 'I', 'N', '1'};
 enum { HEADER_SIZE = 8 + 4 + 4 + 8 + 8, TAG_SIZE = 8 };
 #define MIN_FILE_SIZE ((uint64_t)HEADER_SIZE + 1 + TAG_SIZE)
-#define MAX_FILE_SIZE ((uint64_t)HEADER_SIZE + MVR_PROGRAM_BINARY_MAX_DRIVER + MVR_PROGRAM_BINARY_MAX_PAYLOAD + TAG_SIZE)
+#define MAX_FILE_SIZE \
+    ((uint64_t)HEADER_SIZE + MVR_PROGRAM_BINARY_MAX_DRIVER + MVR_PROGRAM_BINARY_MAX_PAYLOAD + TAG_SIZE)
 
 /* FNV-1a, 64-bit (Fowler, Noll, Vo; offset basis 14695981039346656037,
  * prime 1099511628211): a lookup key, not an adversary. */

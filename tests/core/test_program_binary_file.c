@@ -364,6 +364,17 @@ static void unsafe_key_files_are_refused(mvr_test_state *t)
         unlink(real);
         fixture_done(&fx);
     }
+    /* a key file of another user: only root can hand one over to test it */
+    fixture fx;
+    if (geteuid() != 0 || !fixture_init(t, &fx))
+        return;
+    char why[512] = "";
+    mvr_program_cache_key key;
+    CHECK(t, chown(fx.key_path, 65534, (gid_t)-1) == 0);
+    CHECK(t, !mvr_program_cache_key_load(fx.dir, &key, why, sizeof why));
+    CHECK_MSG(t, strstr(why, fx.key_path) != NULL && strstr(why, "owned by uid 65534") != NULL, "%s", why);
+    printf("  %-16s -> %s\n", "another owner", why);
+    fixture_done(&fx);
 }
 
 MVR_TEST_MAIN(TEST(siphash_matches_the_paper), TEST(round_trip_and_missing), TEST(stale_entries_are_told_apart),
