@@ -202,7 +202,12 @@ static int open_regular(const char *path, struct stat *st, int *missing, char *w
             mvr_str_format(why, why_size, "cannot be opened (%s)", strerror(errno));
         return -1;
     }
-    if (fstat(fd, st) != 0 || !S_ISREG(st->st_mode)) {
+    if (fstat(fd, st) != 0) {
+        mvr_str_format(why, why_size, "cannot be examined (%s)", strerror(errno));
+        close(fd);
+        return -1;
+    }
+    if (!S_ISREG(st->st_mode)) {
         mvr_str_format(why, why_size, "%s, not a regular file", file_kind(st->st_mode));
         close(fd);
         return -1;
