@@ -68,8 +68,8 @@ static GLuint load_binary(mvr_context *ctx, uint32_t format, const void *data, s
     return 0;
 }
 
-static void store_binary(mvr_context *ctx, GLuint program, const char *path, const char *driver, uint64_t key,
-                         mvr_program_build_info *info)
+static void store_binary(mvr_context *ctx, GLuint program, const char *path, const mvr_program_cache_key *mac,
+                         const char *driver, uint64_t key, mvr_program_build_info *info)
 {
     const mvr_gl_api_table *gl = &ctx->gl;
     GLint length = 0;
@@ -85,7 +85,7 @@ static void store_binary(mvr_context *ctx, GLuint program, const char *path, con
     GLenum format = 0;
     gl->GetProgramBinary(program, length, &written, &format, data);
     if (gl->GetError() == GL_NO_ERROR && written > 0 &&
-        mvr_program_binary_write(path, driver, key, format, data, (size_t)written, info->why, sizeof info->why))
+        mvr_program_binary_write(path, mac, driver, key, format, data, (size_t)written, info->why, sizeof info->why))
         info->binary_stored = true;
     else if (info->why[0])
         info->binary_store_failed = true;
@@ -170,12 +170,19 @@ mvr_result mvr_gl_program_build_cached(mvr_context *ctx, const mvr_shader_varian
         key = mvr_program_binary_key(driver, vs_src.data, fs_src.data);
         use_cache = mvr_program_binary_path(cache_dir, name, driver, path, sizeof path);
     }
+    /* entries are authenticated with the user's key; an unsafe key file turns
+     * the cache off, reported like an unwritable folder */
+    mvr_program_cache_key mac = {{0}};
+    if (use_cache && !mvr_program_cache_key_load(cache_dir, &mac, info->why, sizeof info->why)) {
+        info->binary_store_failed = true;
+        use_cache = false;
+    }
     if (use_cache) {
         uint32_t format = 0;
         void *data = NULL;
         size_t size = 0;
         mvr_program_binary_status st =
-            mvr_program_binary_read(path, driver, key, &format, &data, &size, why, sizeof why);
+            mvr_program_binary_read(path, &mac, driver, key, &format, &data, &size, why, sizeof why);
         if (st == MVR_PROGRAM_BINARY_HIT) {
             program = load_binary(ctx, format, data, size);
             if (!program)
@@ -193,7 +200,7 @@ mvr_result mvr_gl_program_build_cached(mvr_context *ctx, const mvr_shader_varian
         r = link_sources(ctx, name, vs_src.data, fs_src.data, use_cache, variant->program == MVR_PROGRAM_PRESKIN,
                          &program);
         if (r == MVR_OK && use_cache)
-            store_binary(ctx, program, path, driver, key, info);
+            store_binary(ctx, program, path, &mac, driver, key, info);
     }
     mvr_sb_free(&vs_src);
     mvr_sb_free(&fs_src);

@@ -55,7 +55,7 @@ typedef struct mvr_program_build_info {
     bool from_binary;       /* linked from the binary cache, nothing compiled */
     bool binary_rejected;   /* a cache entry was there but corrupt, stale or refused */
     bool binary_stored;     /* compiled, and the binary written to the cache */
-    bool binary_store_failed;
+    bool binary_store_failed; /* storing failed, or the key file is unsafe (cache off) */
     char why[512];          /* what was wrong with a rejected entry, or why storing failed */
 } mvr_program_build_info;
 

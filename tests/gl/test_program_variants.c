@@ -229,14 +229,19 @@ static void flip_byte(const char *path, long from_end)
     fclose(f);
 }
 
-/* Rewrites a file as a well-formed entry (right driver, key and checksum)
- * whose payload the driver cannot use: only the driver can refuse it. */
-static bool replace_payload_with_garbage(const char *path)
+/* Rewrites a file as an authentic entry (right driver, key and the user's
+ * tag) whose payload the driver cannot use: only the driver can refuse it. */
+static bool replace_payload_with_garbage(const char *dir, const char *path)
 {
+    mvr_program_cache_key mac;
+    char why[512];
     FILE *f = fopen(path, "rb");
-    if (!f)
+    if (!f || !mvr_program_cache_key_load(dir, &mac, why, sizeof why)) {
+        if (f)
+            fclose(f);
         return false;
-    unsigned char header[40];
+    }
+    unsigned char header[32];
     char driver[MVR_PROGRAM_BINARY_MAX_DRIVER + 1] = "";
     bool ok = fread(header, 1, sizeof header, f) == sizeof header;
     uint32_t format = 0, driver_len = 0;
@@ -255,8 +260,7 @@ static bool replace_payload_with_garbage(const char *path)
     unsigned char garbage[512];
     for (size_t i = 0; i < sizeof garbage; ++i)
         garbage[i] = (unsigned char)(i * 31 + 7);
-    char why[256];
-    return mvr_program_binary_write(path, driver, key, format, garbage, sizeof garbage, why, sizeof why) != 0;
+    return mvr_program_binary_write(path, &mac, driver, key, format, garbage, sizeof garbage, why, sizeof why) != 0;
 }
 
 static void binary_cache_restart_compiles_nothing(mvr_test_state *t)
@@ -307,7 +311,7 @@ static void binary_cache_restart_compiles_nothing(mvr_test_state *t)
             CHECK(t, truncate(files[1], size / 2) == 0);
         }
         if (n >= 3)
-            CHECK(t, replace_payload_with_garbage(files[2]));
+            CHECK(t, replace_payload_with_garbage(dir, files[2]));
         ok = render_with_cache(t, ctx, dir, NULL, &damaged);
     }
     if (ok && n >= 1) {
@@ -324,7 +328,9 @@ static void binary_cache_restart_compiles_nothing(mvr_test_state *t)
     n = cache_files(dir, files, 16);
     for (uint32_t i = 0; i < n; ++i)
         remove(files[i]);
-    CHECK_MSG(t, rmdir(dir) == 0, "%s holds more than the cache's files", dir);
+    char key_file[512];
+    CHECK(t, mvr_program_cache_key_path(dir, key_file, sizeof key_file) && remove(key_file) == 0);
+    CHECK_MSG(t, rmdir(dir) == 0, "%s holds more than the cache's files and key", dir);
 
     /* a directory that does not exist: a warning, and the frame still renders */
     log_sink sink = {0};
