@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "gltf_accessor_json.hpp"
 #include "gltf_prepass.hpp"
 
 namespace mvr_gltf {
@@ -448,6 +449,7 @@ std::string extract_resources(const json_text &text, resources &res, uint64_t *m
     if (!doc.is_object())
         refuse(std::string("the JSON is a ") + doc.type_name() + ", not an object");
     *model_size = model_bytes(doc);
+    check_accessor_json(doc);   // before tinygltf narrows or drops what it reads
     auto buffers = doc.find("buffers");
     if (buffers != doc.end()) {
         if (!buffers->is_array())
