@@ -65,9 +65,9 @@ public:
 
 private:
     void open_roots();
-    // The descriptor of the regular-or-not file a decoded relative path
-    // names, opened by walking from a root's descriptor one component at a
-    // time (gltf_files.cpp); the caller closes it.
+    // A descriptor of what a decoded relative path names (not yet known to
+    // be a regular file), opened by walking from a root's descriptor one
+    // component at a time (gltf_files.cpp); the caller closes it.
     int open_confined(const std::string &decoded, const std::string &uri, const std::string &what);
     read_result read_data_uri(const std::string &uri, const std::string &what);
     shared_bytes read_fd(int fd, uint64_t size, const std::string &uri, const std::string &what);

@@ -20,7 +20,7 @@ struct sparse_quad {
     int indices_view = -1, values_view = -1;
 };
 
-// indices: the two sparse indices (u16); sparse: extra members of "sparse".
+// The quad with sparse indices i0, i1 (u16) and values x = 3.
 sparse_quad make_sparse_quad(uint16_t i0, uint16_t i1)
 {
     sparse_quad q;
