@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "gltf_accessor_json.hpp"
 #include "gltf_internal.hpp"
 
 namespace mvr_gltf {
@@ -183,25 +184,101 @@ struct sparse_data {
     uint64_t count = 0, index_size = 0;
     const unsigned char *indices = nullptr, *values = nullptr;
     std::string name;
-    uint64_t target(uint64_t k, uint64_t accessor_count, const std::string &what) const
+    // Index k, read in order k = 0, 1, ...: inside the accessor and, as glTF
+    // 2.0 (accessor.sparse.indices) requires, strictly increasing.
+    uint64_t target(uint64_t k, uint64_t accessor_count, const std::string &what)
     {
         uint64_t t = index_value(indices + k * index_size, index_size);
         if (t >= accessor_count)
             refuse(what + ": " + name + ".indices[" + std::to_string(k) + "] = " + std::to_string(t) +
                    " is past the accessor's " + std::to_string(accessor_count) + " elements");
+        if (k > 0 && t <= previous)
+            refuse(what + ": " + name + ".indices[" + std::to_string(k) + "] = " + std::to_string(t) +
+                   " is not greater than indices[" + std::to_string(k - 1) + "] = " + std::to_string(previous) +
+                   " (sparse indices must be strictly increasing)");
+        previous = t;
         return t;
     }
+    uint64_t previous = 0;
 };
+
+// ------------------------------------------------------------ the JSON itself
+
+// A member that must be an integer in lo..hi when present (glTF 2.0's schema
+// minimums; hi where tinygltf narrows to int). nlohmann holds a non-negative
+// integer as unsigned, a negative one as signed.
+static void integer_in(const nlohmann::json &o, const char *key, uint64_t lo, uint64_t hi, const std::string &owner)
+{
+    auto it = o.find(key);
+    if (it == o.end())
+        return;
+    bool ok = it->is_number_integer() && (it->is_number_unsigned() || it->get<int64_t>() >= 0) &&
+              it->get<uint64_t>() >= lo && it->get<uint64_t>() <= hi;
+    if (!ok)
+        refuse(owner + "." + key + " is " + quote(it->dump()) + ", not an integer " +
+               (hi == UINT64_MAX ? ">= " + std::to_string(lo) : "in " + std::to_string(lo) + ".." + std::to_string(hi)));
+}
+
+static const nlohmann::json *array_member(const nlohmann::json &doc, const char *key)
+{
+    auto it = doc.find(key);
+    return it != doc.end() && it->is_array() ? &*it : nullptr;
+}
+
+void check_accessor_json(const nlohmann::json &doc)
+{
+    const uint64_t any = UINT64_MAX, int_max = INT32_MAX;
+    if (const nlohmann::json *views = array_member(doc, "bufferViews")) {
+        for (size_t i = 0; i < views->size(); ++i) {
+            const nlohmann::json &v = (*views)[i];
+            std::string name = "bufferViews[" + std::to_string(i) + "]";
+            if (!v.is_object())
+                continue;   // tinygltf refuses it
+            integer_in(v, "byteOffset", 0, any, name);
+            integer_in(v, "byteStride", 0, any, name);
+        }
+    }
+    const nlohmann::json *accessors = array_member(doc, "accessors");
+    for (size_t i = 0; accessors && i < accessors->size(); ++i) {
+        const nlohmann::json &a = (*accessors)[i];
+        std::string name = "accessors[" + std::to_string(i) + "]";
+        if (!a.is_object())
+            continue;
+        integer_in(a, "byteOffset", 0, any, name);
+        integer_in(a, "bufferView", 0, int_max, name);
+        auto sparse = a.find("sparse");
+        if (sparse == a.end() || !sparse->is_object())
+            continue;
+        // glTF 2.0, accessor.sparse.count: 1 at least, and "MUST NOT be
+        // greater than the number of the base accessor elements"
+        auto count = a.find("count");
+        uint64_t elements = count != a.end() && count->is_number_unsigned() ? count->get<uint64_t>() : 0;
+        integer_in(*sparse, "count", 1, elements < int_max ? elements : int_max, name + ".sparse");
+        for (const char *part : {"indices", "values"}) {
+            auto p = sparse->find(part);
+            if (p == sparse->end() || !p->is_object())
+                continue;
+            std::string pname = name + ".sparse." + part;
+            integer_in(*p, "bufferView", 0, int_max, pname);
+            integer_in(*p, "byteOffset", 0, int_max, pname);
+            integer_in(*p, "componentType", 0, int_max, pname);
+        }
+    }
+}
 
 static sparse_data sparse_of(context &cx, const Accessor &a, uint64_t count, uint64_t elem, const std::string &what,
                              const std::string &aname)
 {
     sparse_data sp;
     sp.name = aname + ".sparse";
-    sp.count = uint64_t(a.sparse.count);
-    if (a.sparse.count <= 0 || sp.count > count)
-        refuse(what + ": " + sp.name + " count " + std::to_string(a.sparse.count) + " not in 1.." +
-               std::to_string(count));
+    // (check_accessor_json refused what tinygltf would narrow; int64 here
+    // so that no count prints wrapped)
+    int64_t scount = a.sparse.count;
+    if (scount <= 0 || uint64_t(scount) > count)
+        refuse(what + ": " + sp.name + ".count " + std::to_string(scount) + " is not in 1.." + std::to_string(count));
+    sp.count = uint64_t(scount);
+    if (a.sparse.indices.byteOffset < 0 || a.sparse.values.byteOffset < 0)
+        refuse(what + ": " + sp.name + " has a negative byteOffset");
     int itype = a.sparse.indices.componentType;
     if (itype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && itype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
         itype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)

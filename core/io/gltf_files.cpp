@@ -130,6 +130,251 @@ file_resolver::file_resolver(const std::string &base_dir, bool allow_files, cons
 {
 }
 
+static std::string real_path(const std::string &p)
+{
+    char *r = ::realpath(p.c_str(), nullptr);
+    if (!r)
+        return "";
+    std::string s = r;
+    std::free(r);
+    return s;
+}
+
+// The components of a path, "" and "." left out ("a//./b" is "a/b" to the
+// kernel too); ".." is kept: only the walk knows what it climbs out of.
+static std::vector<std::string> components(const std::string &path)
+{
+    std::vector<std::string> out;
+    size_t at = 0;
+    while (at <= path.size()) {
+        size_t end = path.find('/', at);
+        if (end == std::string::npos)
+            end = path.size();
+        if (end > at && path.compare(at, end - at, ".") != 0)
+            out.push_back(path.substr(at, end - at));
+        at = end + 1;
+    }
+    return out;
+}
+
+namespace {
+
+struct unique_fd {
+    int fd = -1;
+    explicit unique_fd(int f) : fd(f) {}
+    unique_fd(unique_fd &&o) noexcept : fd(o.fd) { o.fd = -1; }
+    unique_fd &operator=(unique_fd &&) = delete;
+    unique_fd(const unique_fd &) = delete;
+    ~unique_fd()
+    {
+        if (fd >= 0)
+            ::close(fd);
+    }
+};
+
+// Where a walk stands: a root and the folders below it, each opened from the
+// one above it without following a link, so the innermost descriptor is
+// inside the root whatever is renamed or relinked meanwhile.
+struct cursor {
+    const file_resolver::root_dir *root = nullptr;
+    std::vector<unique_fd> dirs;
+    int fd() const { return dirs.empty() ? root->fd : dirs.back().fd; }
+};
+
+// The longest root whose components begin `parts`; how many it covers.
+const file_resolver::root_dir *root_of(const std::vector<file_resolver::root_dir> &roots,
+                                       const std::vector<std::string> &parts, size_t *covered)
+{
+    const file_resolver::root_dir *best = nullptr;
+    for (const auto &r : roots) {
+        std::vector<std::string> rp = components(r.path);
+        if (rp.size() > parts.size() || (best && rp.size() <= *covered))
+            continue;
+        bool prefix = true;
+        for (size_t i = 0; i < rp.size() && prefix; ++i)
+            prefix = rp[i] == parts[i];
+        if (prefix) {
+            best = &r;
+            *covered = rp.size();
+        }
+    }
+    return best;
+}
+
+// A symbolic link's text: 1, not a link: 0 (errno from readlinkat), a text
+// too long to resolve: 1 with an empty text.
+int read_link(int dir, const std::string &name, std::string *text)
+{
+    std::vector<char> buf(PATH_MAX);
+    ssize_t n = ::readlinkat(dir, name.c_str(), buf.data(), buf.size());
+    if (n < 0)
+        return 0;
+    text->assign(buf.data(), size_t(n) < buf.size() ? size_t(n) : 0);
+    return 1;
+}
+
+}  // namespace
+
+void file_resolver::open_roots()
+{
+    if (roots_ready_)
+        return;
+    auto add = [&](const std::string &given, const std::string &name) {
+        root_dir r;
+        r.path = real_path(given);
+        if (!r.path.empty())
+            r.fd = ::open(r.path.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+        if (r.fd < 0)
+            throw load_error(MVR_ERROR_IO, name + " " + quote(given) + " cannot be opened");
+        roots_.push_back(r);
+    };
+    add(base_.empty() ? "." : base_, "the asset folder");
+    if (access_.allowed_root)
+        add(access_.allowed_root, "file_access.allowed_root");
+    roots_ready_ = true;
+}
+
+file_resolver::~file_resolver()
+{
+    for (const auto &r : roots_)
+        ::close(r.fd);
+}
+
+// Opens the file a decoded relative path names without a window between
+// check and use: the URI's dot-segments are removed as text (RFC 3986,
+// 5.2.4) and the result must lie under a root; then every component is opened
+// with openat(O_NOFOLLOW) from the descriptor of the folder above it. A
+// symbolic link met on the way is resolved here, as POSIX resolves pathnames
+// (XBD 4.13: its text replaces it, relative to the folder holding it), and
+// is kept only while the walk stays under a root: links inside the folder
+// keep working, and nothing outside a root is ever opened. A link that leads
+// out and one that leads nowhere get one answer, so a refusal never tells
+// whether a path outside the folder exists.
+int file_resolver::open_confined(const std::string &decoded, const std::string &uri, const std::string &what)
+{
+    std::string d = decoded;
+    for (char &c : d)
+        if (c == '\\')
+            c = '/'; /* Windows exporters write backslashes; never a way around the checks */
+    const std::string named = what + " " + quote(uri);
+    if (!d.empty() && d[0] == '/')
+        refuse(named + ": absolute paths are refused (URIs are relative to the asset's folder)");
+    if (!allow_files_)
+        refuse(named + ": external files are refused (loaded from memory without a base_dir or a file_access.read)");
+    open_roots();
+    std::vector<std::string> parts = components(roots_[0].path);
+    for (const std::string &seg : components(d)) {
+        if (seg != "..")
+            parts.push_back(seg);
+        else if (!parts.empty())
+            parts.pop_back();
+    }
+    size_t covered = 0;
+    cursor c;
+    c.root = root_of(roots_, parts, &covered);
+    if (!c.root || covered == parts.size())
+        refuse(named + ": the path leaves the asset's folder");
+    // what is left to walk, next component last
+    std::vector<std::string> pending(parts.rbegin(), parts.rend() - long(covered));
+    const std::string link_out = ": it goes through a symbolic link that does not resolve inside the asset's folder";
+    constexpr int max_links = 40;   // Linux's MAXSYMLINKS
+    int links = 0;
+    while (!pending.empty()) {
+        std::string name = std::move(pending.back());
+        pending.pop_back();
+        if (name == "..") {
+            // only from a link's text (the URI's went above); climbing out of
+            // a root re-enters a root above it, or leaves
+            if (!c.dirs.empty()) {
+                c.dirs.pop_back();
+                continue;
+            }
+            std::vector<std::string> up = components(c.root->path);
+            if (up.empty())
+                continue;   // "/.." is "/"
+            up.pop_back();
+            const root_dir *r = root_of(roots_, up, &covered);
+            if (!r)
+                refuse(named + link_out);
+            c.dirs.clear();
+            c.root = r;
+            for (size_t i = up.size(); i > covered; --i)
+                pending.push_back(up[i - 1]);
+            continue;
+        }
+        bool last = pending.empty();
+        int flags = O_RDONLY | O_CLOEXEC | O_NOFOLLOW | O_NOCTTY | (last ? O_NONBLOCK : O_DIRECTORY);
+        int fd = ::openat(c.fd(), name.c_str(), flags);
+        if (fd >= 0) {
+            if (last)
+                return fd;
+            c.dirs.emplace_back(fd);
+            continue;
+        }
+        int err = errno;
+        std::string text;
+        if (!read_link(c.fd(), name, &text)) {
+            // ELOOP from a link that was swapped back for a file meanwhile: again
+            if (err == ELOOP && ++links <= max_links) {
+                pending.push_back(name);
+                continue;
+            }
+            if (err == ENOENT || err == ENOTDIR)
+                throw load_error(MVR_ERROR_IO, named + ": no such file in the asset's folder");
+            throw load_error(MVR_ERROR_IO, named + ": cannot be opened (" + std::strerror(err) + ")");
+        }
+        if (++links > max_links)
+            throw load_error(MVR_ERROR_IO, named + ": more than 40 symbolic links on the way");
+        if (text.empty())
+            refuse(named + link_out);
+        std::vector<std::string> target = components(text);
+        if (text[0] == '/') {
+            // absolute: it must name a root first (roots are real paths, so
+            // their components are compared as text)
+            const root_dir *r = root_of(roots_, target, &covered);
+            if (!r)
+                refuse(named + link_out);
+            c.dirs.clear();
+            c.root = r;
+            target.erase(target.begin(), target.begin() + long(covered));
+        }
+        pending.insert(pending.end(), target.rbegin(), target.rend());
+        if (pending.empty())
+            refuse(named + ": not a regular file");   // a link to a root itself
+    }
+    refuse(named + ": not a regular file");
+}
+
+shared_bytes file_resolver::read_fd(int fd, uint64_t size, const std::string &uri, const std::string &what)
+{
+    if (size > max_file_bytes_)
+        refuse(what + " " + quote(uri) + ": " + std::to_string(size) + " bytes, over the cap of " +
+               std::to_string(max_file_bytes_) + " (mvr_gltf_options.max_file_bytes)");
+    auto out = std::make_shared<owned_bytes>();
+    mem_.charge(size, what + " " + quote(uri));
+    out->mem = &mem_;
+    try {
+        out->bytes.resize(size_t(size));
+    } catch (...) {
+        out->mem = nullptr;
+        mem_.release(size);
+        throw;
+    }
+    size_t got = 0;
+    while (got < size) {
+        ssize_t n = ::read(fd, out->bytes.data() + got, size_t(size) - got);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n <= 0)
+            break;
+        got += size_t(n);
+    }
+    if (got != size)
+        throw load_error(MVR_ERROR_IO, what + " " + quote(uri) + ": read " + std::to_string(got) + " of " +
+                                           std::to_string(size) + " bytes");
+    return out;
+}
+
 read_result file_resolver::read(const std::string &uri, const std::string &what, bool shared)
 {
     std::string scheme = scheme_of(uri);
@@ -155,178 +400,25 @@ read_result file_resolver::read(const std::string &uri, const std::string &what,
         if (!decoded.empty() && (decoded[0] == '/' || decoded[0] == '\\'))
             refuse(what + " " + quote(uri) + ": absolute paths are refused (URIs are relative to the asset's folder)");
         r.key = "callback:" + decoded;
+        auto found = cache_.find(r.key);
+        r.fresh = found == cache_.end();
+        r.data = r.fresh ? read_callback(decoded, uri, what) : found->second;
     } else {
-        r.key = confine(decoded, uri, what);
+        // everything below comes from the one descriptor the walk opened:
+        // what was checked is what is read
+        unique_fd file(open_confined(decoded, uri, what));
+        struct stat sb;
+        if (fstat(file.fd, &sb) != 0 || !S_ISREG(sb.st_mode))
+            refuse(what + " " + quote(uri) + ": not a regular file");
+        // the same file however it is spelled or linked
+        r.key = "file:" + std::to_string(uint64_t(sb.st_dev)) + ":" + std::to_string(uint64_t(sb.st_ino));
+        auto found = cache_.find(r.key);
+        r.fresh = found == cache_.end();
+        r.data = r.fresh ? read_fd(file.fd, uint64_t(sb.st_size), uri, what) : found->second;
     }
-    auto found = cache_.find(r.key);
-    r.fresh = found == cache_.end();
-    if (!r.fresh)
-        r.data = found->second;
-    else if (access_.read)
-        r.data = read_callback(decoded, uri, what);
-    else
-        r.data = read_file(r.key, uri, what);
     if (shared)
         cache_[r.key] = r.data;
     return r;
-}
-
-static bool under(const std::string &path, const std::string &root)
-{
-    if (root == "/")
-        return true;
-    return path.size() > root.size() && path.compare(0, root.size(), root) == 0 && path[root.size()] == '/';
-}
-
-static std::string real_path(const std::string &p)
-{
-    char *r = ::realpath(p.c_str(), nullptr);
-    if (!r)
-        return "";
-    std::string s = r;
-    std::free(r);
-    return s;
-}
-
-// The real path of the file a decoded relative path names, once it is known
-// to stay under an allowed root, lexically and after symbolic links.
-std::string file_resolver::confine(const std::string &decoded, const std::string &uri, const std::string &what)
-{
-    std::string d = decoded;
-    for (char &c : d)
-        if (c == '\\')
-            c = '/'; /* Windows exporters write backslashes; never a way around the checks */
-    if (!d.empty() && d[0] == '/')
-        refuse(what + " " + quote(uri) + ": absolute paths are refused (URIs are relative to the asset's folder)");
-    if (!allow_files_)
-        refuse(what + " " + quote(uri) +
-               ": external files are refused (loaded from memory without a base_dir or a file_access.read)");
-    if (!roots_ready_) {
-        std::string base = real_path(base_.empty() ? "." : base_);
-        if (base.empty())
-            throw load_error(MVR_ERROR_IO, "the asset folder " + quote(base_) + " cannot be opened");
-        roots_.push_back(base);
-        if (access_.allowed_root) {
-            std::string root = real_path(access_.allowed_root);
-            if (root.empty())
-                throw load_error(MVR_ERROR_IO, "file_access.allowed_root " + quote(access_.allowed_root) +
-                                                   " cannot be opened");
-            roots_.push_back(root);
-        }
-        roots_ready_ = true;
-    }
-    // lexical normalisation against the folder's real path: "." and empty
-    // segments vanish, ".." removes the last segment
-    std::vector<std::string> parts;
-    {
-        const std::string &base = roots_[0];
-        size_t at = 1;
-        while (at <= base.size()) {
-            size_t end = base.find('/', at);
-            if (end == std::string::npos)
-                end = base.size();
-            if (end > at)
-                parts.push_back(base.substr(at, end - at));
-            at = end + 1;
-        }
-    }
-    size_t at = 0;
-    while (at <= d.size()) {
-        size_t end = d.find('/', at);
-        if (end == std::string::npos)
-            end = d.size();
-        std::string seg = d.substr(at, end - at);
-        if (seg == "..") {
-            if (!parts.empty())
-                parts.pop_back();
-        } else if (!seg.empty() && seg != ".") {
-            parts.push_back(seg);
-        }
-        at = end + 1;
-    }
-    std::string lexical;
-    for (const auto &p : parts)
-        lexical += "/" + p;
-    if (lexical.empty())
-        lexical = "/";
-    bool inside = false;
-    for (const auto &root : roots_)
-        inside = inside || under(lexical, root);
-    if (!inside)
-        refuse(what + " " + quote(uri) + ": the path leaves the asset's folder");
-    // Symbolic links: the real path must stay inside too. One answer for a
-    // link that leads out and for one that leads nowhere, so a refusal never
-    // tells whether a path outside the folder exists.
-    const std::string link_out = ": it goes through a symbolic link that does not resolve inside the asset's folder";
-    std::string real = real_path(lexical);
-    if (real.empty()) {
-        // missing: plainly (no link on the way), or behind a link
-        std::string prefix;
-        for (const auto &p : parts) {
-            prefix += "/" + p;
-            struct stat sb;
-            if (::lstat(prefix.c_str(), &sb) != 0)
-                break;
-            if (S_ISLNK(sb.st_mode))
-                refuse(what + " " + quote(uri) + link_out);
-        }
-        throw load_error(MVR_ERROR_IO, what + " " + quote(uri) + ": no such file in the asset's folder");
-    }
-    inside = false;
-    for (const auto &root : roots_)
-        inside = inside || under(real, root);
-    if (!inside)
-        refuse(what + " " + quote(uri) + link_out);
-    return real;
-}
-
-shared_bytes file_resolver::read_file(const std::string &path, const std::string &uri, const std::string &what)
-{
-    // O_NONBLOCK: opening a FIFO must not wait for a writer
-    int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOCTTY);
-    if (fd < 0)
-        throw load_error(MVR_ERROR_IO, what + " " + quote(uri) + ": cannot be opened (" + std::strerror(errno) + ")");
-    struct stat sb;
-    if (fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
-        ::close(fd);
-        refuse(what + " " + quote(uri) + ": not a regular file");
-    }
-    uint64_t size = uint64_t(sb.st_size);
-    if (size > max_file_bytes_) {
-        ::close(fd);
-        refuse(what + " " + quote(uri) + ": " + std::to_string(size) + " bytes, over the cap of " +
-               std::to_string(max_file_bytes_) + " (mvr_gltf_options.max_file_bytes)");
-    }
-    auto out = std::make_shared<owned_bytes>();
-    try {
-        mem_.charge(size, what + " " + quote(uri));
-    } catch (...) {
-        ::close(fd);
-        throw;
-    }
-    out->mem = &mem_;
-    try {
-        out->bytes.resize(size_t(size));
-    } catch (...) {
-        ::close(fd);
-        out->mem = nullptr;
-        mem_.release(size);
-        throw;
-    }
-    size_t got = 0;
-    while (got < size) {
-        ssize_t n = ::read(fd, out->bytes.data() + got, size_t(size) - got);
-        if (n < 0 && errno == EINTR)
-            continue;
-        if (n <= 0)
-            break;
-        got += size_t(n);
-    }
-    ::close(fd);
-    if (got != size)
-        throw load_error(MVR_ERROR_IO, what + " " + quote(uri) + ": read " + std::to_string(got) + " of " +
-                                           std::to_string(size) + " bytes");
-    return out;
 }
 
 shared_bytes file_resolver::read_callback(const std::string &decoded, const std::string &uri, const std::string &what)

@@ -47,16 +47,30 @@ public:
     // without a folder: external files are refused).
     file_resolver(const std::string &base_dir, bool allow_files, const mvr_gltf_file_access &access,
                   uint64_t max_file_bytes, budget &mem);
+    ~file_resolver();
+    file_resolver(const file_resolver &) = delete;
+    file_resolver &operator=(const file_resolver &) = delete;
     // Reads what `uri` (as written in the file) names; `what` names it in
     // messages ("buffers[2].uri"). Refusals, missing files and the budget
     // throw load_error. shared: keep the bytes for other URIs naming the
     // same file (buffers); images are decoded once by key instead.
     read_result read(const std::string &uri, const std::string &what, bool shared);
 
+    // A folder a file may lie under: its real path and a descriptor opened
+    // once, from which every walk starts.
+    struct root_dir {
+        std::string path;
+        int fd = -1;
+    };
+
 private:
-    std::string confine(const std::string &decoded, const std::string &uri, const std::string &what);
+    void open_roots();
+    // A descriptor of what a decoded relative path names (not yet known to
+    // be a regular file), opened by walking from a root's descriptor one
+    // component at a time (gltf_files.cpp); the caller closes it.
+    int open_confined(const std::string &decoded, const std::string &uri, const std::string &what);
     read_result read_data_uri(const std::string &uri, const std::string &what);
-    shared_bytes read_file(const std::string &path, const std::string &uri, const std::string &what);
+    shared_bytes read_fd(int fd, uint64_t size, const std::string &uri, const std::string &what);
     shared_bytes read_callback(const std::string &decoded, const std::string &uri, const std::string &what);
 
     std::string base_;
@@ -64,7 +78,7 @@ private:
     mvr_gltf_file_access access_;
     uint64_t max_file_bytes_;
     budget &mem_;
-    std::vector<std::string> roots_;   // real paths a file may lie under
+    std::vector<root_dir> roots_;   // the asset's folder first, then allowed_root
     bool roots_ready_ = false;
     std::map<std::string, shared_bytes> cache_;
 };

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "gltf_accessor_json.hpp"
 #include "gltf_prepass.hpp"
 
 namespace mvr_gltf {
@@ -487,6 +488,7 @@ std::string extract_resources(const json_text &text, resources &res, uint64_t *m
         refuse(std::string("the JSON is a ") + doc.type_name() + ", not an object");
     integral_numbers(doc, 0);
     *model_size = model_bytes(doc);
+    check_accessor_json(doc);   // before tinygltf narrows or drops what it reads
     auto buffers = doc.find("buffers");
     if (buffers != doc.end()) {
         if (!buffers->is_array())

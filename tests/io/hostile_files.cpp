@@ -13,6 +13,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "hostile_accessors.hpp"
 #include "hostile_anim.hpp"
 #include "hostile_codecs.hpp"
 #include "hostile_docs.hpp"
@@ -597,6 +598,7 @@ files write_all(const std::string &root_in)
     variant_files(f); // hostile_variants.cpp: KHR_materials_variants
     material_ext_files(f); // hostile_material_ext.cpp: the PBR extensions
     ktx2_files(f);
+    accessor_files(f); // hostile_accessors.cpp: offsets, sparse indices and counts
 
     std::string index = "file\twhat\texpect\n";
     for (const auto &h : f.list)

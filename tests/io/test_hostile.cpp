@@ -29,12 +29,14 @@
 #include <vector>
 
 #include "gltf_gen.hpp"
+#include "hostile_accessors.hpp"
 #include "hostile_anim.hpp"
 #include "hostile_check.hpp"
 #include "hostile_docs.hpp"
 #include "hostile_ktx2_files.hpp"
 #include "hostile_variants.hpp"
 #include "hostile_material_ext.hpp"
+#include "hostile_race.hpp"
 
 namespace {
 
@@ -739,6 +741,9 @@ int main(int argc, char **argv)
         TEST(ktx2_containers_are_checked),
         TEST(material_variants_are_checked),
         TEST(material_extensions_are_checked),
+        TEST(accessor_offsets_and_sparse_are_checked),
+        TEST(symlink_swaps_never_read_outside),
+        TEST(symlinks_inside_the_folder_still_resolve),
     };
     int rc = mvr_test_run(cases, sizeof cases / sizeof cases[0]);
     hostile::release_context();
