@@ -1,6 +1,5 @@
 /* mvr bench reports: the terminal table, CSV, JSON, images and the plot. */
 #define _POSIX_C_SOURCE 200809L
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -9,6 +8,7 @@
 #include <unistd.h>
 
 #include "bench.h"
+#include "cli_write.h"
 #include "json.h"
 #include "mvr/mvr_image.h"
 
@@ -269,13 +269,38 @@ static void csv_env_columns(FILE *f, const bench_run *run, const bench_config *c
             r->prefilter_passes, r->library_default, r->maps_rmse, psnr, r->maps_max_abs, r->maps_pareto);
 }
 
-bool bench_write_csv(const bench_run *run, const char *path)
+/* Opens a report file (cli_write.h: every write checked, renamed into
+ * place whole); NULL, printed, when it cannot be. */
+static FILE *report_open(cli_write_file *out, const char *path)
 {
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        fprintf(stderr, "mvr bench: cannot write %s: %s\n", path, strerror(errno));
+    char why[4200];
+    if (cli_write_open(out, path, why, sizeof why))
+        return out->f;
+    fprintf(stderr, "mvr bench: %s\n", why);
+    return NULL;
+}
+
+/* Closes it: renamed into place when ok and every write, the flush and the
+ * close succeeded; removed otherwise. */
+static bool report_close(cli_write_file *out, bool ok)
+{
+    if (!ok) {
+        cli_write_abandon(out);
         return false;
     }
+    char why[4200];
+    if (cli_write_close(out, why, sizeof why))
+        return true;
+    fprintf(stderr, "mvr bench: %s\n", why);
+    return false;
+}
+
+bool bench_write_csv(const bench_run *run, const char *path)
+{
+    cli_write_file out;
+    FILE *f = report_open(&out, path);
+    if (!f)
+        return false;
     fputs(csv_header, f);
     for (uint32_t k = 0; k < run->count; ++k) {
         const bench_config *c = &run->configs[k];
@@ -301,10 +326,7 @@ bool bench_write_csv(const bench_run *run, const char *path)
                 r->texture_binds, r->ubo_range_binds, r->pareto);
         csv_env_columns(f, run, c, r);
     }
-    bool ok = fclose(f) == 0;
-    if (!ok)
-        fprintf(stderr, "mvr bench: cannot write %s\n", path);
-    return ok;
+    return report_close(&out, true);
 }
 
 /* The run: what was measured, where, and how. */
@@ -448,11 +470,10 @@ static void write_config_json(json_writer *jw, const bench_run *run, uint32_t k)
 
 bool bench_write_json(const bench_run *run, const char *path)
 {
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        fprintf(stderr, "mvr bench: cannot write %s: %s\n", path, strerror(errno));
+    cli_write_file out;
+    FILE *f = report_open(&out, path);
+    if (!f)
         return false;
-    }
     json_writer jw = {f, 0, {false}, {0}};
     json_begin_object(&jw, NULL);
     write_run_json(&jw, run);
@@ -462,10 +483,7 @@ bool bench_write_json(const bench_run *run, const char *path)
     json_end_array(&jw);
     json_end_object(&jw);
     fputc('\n', f);
-    bool ok = fclose(f) == 0;
-    if (!ok)
-        fprintf(stderr, "mvr bench: cannot write %s\n", path);
-    return ok;
+    return report_close(&out, true);
 }
 
 /* The views side by side, as one image (rows top-down, as read). */
@@ -550,11 +568,10 @@ static bool run_gnuplot(const bench_run *run, const char *script, const char *re
  * converged maps. */
 static bool write_front(const bench_run *run, const char *path, bool maps)
 {
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        fprintf(stderr, "mvr bench: cannot write %s: %s\n", path, strerror(errno));
+    cli_write_file out;
+    FILE *f = report_open(&out, path);
+    if (!f)
         return false;
-    }
     bool *done = calloc(run->count, sizeof *done);
     for (uint32_t i = 0; done && i < run->count; ++i) {
         int next = -1;
@@ -575,10 +592,9 @@ static bool write_front(const bench_run *run, const char *path, bool maps)
     }
     bool ok = done != NULL;
     free(done);
-    ok = fclose(f) == 0 && ok;
     if (!ok)
-        fprintf(stderr, "mvr bench: cannot write %s\n", path);
-    return ok;
+        fprintf(stderr, "mvr bench: cannot write %s: out of memory\n", path);
+    return report_close(&out, ok);
 }
 
 /* --env-axes: plot_env.gp, plot_env.png and plot_env.svg: against the
@@ -587,11 +603,10 @@ static bool env_plot(const bench_run *run)
 {
     char path[4096];
     snprintf(path, sizeof path, "%s/plot_env.gp", run->out_dir);
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        fprintf(stderr, "mvr bench: cannot write %s: %s\n", path, strerror(errno));
+    cli_write_file out;
+    FILE *f = report_open(&out, path);
+    if (!f)
         return false;
-    }
     /* columns of results.csv: 8 ran, 17 rmse, 21 group, 31 specular size,
      * 32 specular samples, 34 prefilter ms median, 38 library default,
      * 39 maps rmse */
@@ -637,7 +652,8 @@ static bool env_plot(const bench_run *run)
             "eval plot_it\n",
             run->reference_samples, run->scene_name, run->environment, run->views, run->width, run->height,
             run->renderer);
-    fclose(f);
+    if (!report_close(&out, true))
+        return false; /* no gnuplot on a partial script */
     snprintf(path, sizeof path, "%s/pareto_env.dat", run->out_dir);
     if (!write_front(run, path, false))
         return false;
@@ -653,11 +669,10 @@ static bool env_plot(const bench_run *run)
  * their labels stacked upwards, so each stays readable. */
 static bool write_labels(const bench_run *run, const char *path)
 {
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        fprintf(stderr, "mvr bench: cannot write %s: %s\n", path, strerror(errno));
+    cli_write_file out;
+    FILE *f = report_open(&out, path);
+    if (!f)
         return false;
-    }
     double t_max = 0, e_max = 0;
     for (uint32_t k = 0; k < run->count; ++k)
         if (run->results[k].ran) {
@@ -675,7 +690,7 @@ static bool write_labels(const bench_run *run, const char *path)
                      fabs(run->results[j].rmse - r->rmse) < de;
         fprintf(f, "%.4f,%.6f,%s\n", r->wall_median, r->rmse + level * de, run->configs[k].name);
     }
-    return fclose(f) == 0;
+    return report_close(&out, true);
 }
 
 bool bench_plot(const bench_run *run)
@@ -684,11 +699,10 @@ bool bench_plot(const bench_run *run)
         return env_plot(run);
     char path[4096];
     snprintf(path, sizeof path, "%s/plot.gp", run->out_dir);
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        fprintf(stderr, "mvr bench: cannot write %s: %s\n", path, strerror(errno));
+    cli_write_file out;
+    FILE *f = report_open(&out, path);
+    if (!f)
         return false;
-    }
     /* columns of results.csv: 1 config, 8 ran, 11 wall ms median, 17 rmse, 43/44 wall ms q1/q3 */
     fprintf(f,
             "# mvr bench: median frame time (bars: q1..q3) against RMSE to the reference (from results.csv;\n"
@@ -717,7 +731,8 @@ bool bench_plot(const bench_run *run)
             "set output 'plot.svg'\n"
             "eval plot_it\n",
             run->scene_name, run->views, run->width, run->height, run->renderer);
-    fclose(f);
+    if (!report_close(&out, true))
+        return false; /* no gnuplot on a partial script */
     snprintf(path, sizeof path, "%s/pareto.dat", run->out_dir);
     if (!write_front(run, path, false))
         return false;

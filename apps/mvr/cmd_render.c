@@ -13,6 +13,7 @@
 #include "cli_progress.h" /* cli_now */
 #include "cli_env.h"
 #include "cli_scene.h"
+#include "cli_write.h"
 #include "commands.h"
 #include "mvr/mvr_gltf.h"
 #include "render_files.h" /* SCENE... and --list */
@@ -396,15 +397,19 @@ static int step_write(const render_session *s, render_job *j)
         }
     }
     if (o->stats_file) {
-        FILE *f = fopen(o->stats_file, "w");
-        if (!f) {
-            fprintf(stderr, "mvr render: cannot write %s: %s\n", o->stats_file, strerror(errno));
+        cli_write_file out; /* checked and atomic: no partial stats.json on a full disk */
+        char why[4200];
+        bool ok = cli_write_open(&out, o->stats_file, why, sizeof why);
+        if (ok) {
+            render_stats_write_json(out.f, j->renderer, &st, o->scene_file ? o->scene_file : o->demo, o->width,
+                                    o->height, o->supersample, o->scene_file ? &j->gltf_info : NULL, &j->env_used,
+                                    &o->render, o, &j->anim, &readback);
+            ok = cli_write_close(&out, why, sizeof why);
+        }
+        if (!ok) {
+            fprintf(stderr, "mvr render: %s\n", why);
             return MVR_EXIT_FAILURE;
         }
-        render_stats_write_json(f, j->renderer, &st, o->scene_file ? o->scene_file : o->demo, o->width, o->height,
-                                o->supersample, o->scene_file ? &j->gltf_info : NULL, &j->env_used, &o->render, o,
-                                &j->anim, &readback);
-        fclose(f);
     }
     if (!o->quiet)
         print_summary(s, j, &st, &readback);

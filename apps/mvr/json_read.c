@@ -1,7 +1,11 @@
 /* The CLI's JSON reader (json_read.h): recursive descent over the whole
  * text, bounded in depth, value count and number length, so a hostile file
- * costs at most its own size in memory and a fixed stack. */
-#define _POSIX_C_SOURCE 200809L
+ * costs at most its own size in memory and a fixed stack, and time linear in
+ * its size: each byte is scanned a bounded number of times, containers grow
+ * by doubling, and duplicate keys are found through a hash set per object
+ * (expected O(1) per key) rather than by comparing each key with all the
+ * earlier ones. */
+#define _DEFAULT_SOURCE /* getrandom */
 #include "json_read.h"
 
 #include <errno.h>
@@ -10,6 +14,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/random.h>
+#include <time.h>
+#include <unistd.h>
 
 typedef struct reader {
     const char *p, *end;
@@ -17,6 +24,7 @@ typedef struct reader {
     uint32_t values;
     char *why;
     size_t why_size;
+    uint64_t seed[2]; /* the key of the member-name hash, fresh per parse */
 } reader;
 
 static bool fail(reader *r, const char *fmt, ...)
@@ -232,10 +240,133 @@ static bool string(reader *r, char **out)
     return true;
 }
 
+/* ------------------------------------------------------------ member names
+ * Duplicate member names are found with a hash set of the object's names
+ * (their decoded bytes). The file is hostile, so the hash is SipHash-2-4, a
+ * keyed pseudorandom function (Aumasson and Bernstein, "SipHash: a fast
+ * short-input PRF", INDOCRYPT 2012), keyed with 128 random bits drawn per
+ * parse: whoever writes the file cannot tell which names share a slot, so
+ * no file makes the probes long (hash flooding); the seeded hashes of many
+ * tables (MurmurHash2/3, CityHash) have collisions computed offline whatever
+ * the seed (Aumasson, Bernstein and Bosslet, "Hash-flooding DoS reloaded",
+ * 2012). Open addressing with linear probing, kept at most half full:
+ * expected O(1) probes per name. */
+
+static uint64_t rotl64(uint64_t x, int b)
+{
+    return (x << b) | (x >> (64 - b));
+}
+
+/* One SipRound (the paper's section 2) on the state v[0..3]. */
+static void sip_round(uint64_t v[4])
+{
+    v[0] += v[1], v[1] = rotl64(v[1], 13), v[1] ^= v[0], v[0] = rotl64(v[0], 32);
+    v[2] += v[3], v[3] = rotl64(v[3], 16), v[3] ^= v[2];
+    v[0] += v[3], v[3] = rotl64(v[3], 21), v[3] ^= v[0];
+    v[2] += v[1], v[1] = rotl64(v[1], 17), v[1] ^= v[2], v[2] = rotl64(v[2], 32);
+}
+
+/* SipHash-2-4 of data[0..len) under the key k[0], k[1] (the paper's k0, k1:
+ * the key's bytes read little-endian); words of the message little-endian,
+ * the last one carrying len mod 256 in its top byte. */
+static uint64_t siphash24(const uint64_t k[2], const unsigned char *data, size_t len)
+{
+    uint64_t v[4] = {k[0] ^ 0x736f6d6570736575ull, k[1] ^ 0x646f72616e646f6dull, k[0] ^ 0x6c7967656e657261ull,
+                     k[1] ^ 0x7465646279746573ull};
+    size_t full = len / 8 * 8;
+    for (size_t i = 0; i <= full; i += 8) {
+        uint64_t m = 0;
+        if (i < full) {
+            for (int b = 7; b >= 0; --b)
+                m = m << 8 | data[i + (size_t)b];
+        } else { /* the final word: the tail bytes and the length */
+            for (size_t b = len - full; b-- > 0;)
+                m = m << 8 | data[full + b];
+            m |= (uint64_t)(len & 0xff) << 56;
+        }
+        v[3] ^= m;
+        sip_round(v);
+        sip_round(v);
+        v[0] ^= m;
+    }
+    v[2] ^= 0xff;
+    for (int i = 0; i < 4; ++i)
+        sip_round(v);
+    return v[0] ^ v[1] ^ v[2] ^ v[3];
+}
+
+/* 128 bits from the kernel; where it has none to give (no getrandom, a
+ * sandbox that forbids it), the clock, the process and an address, so at
+ * least no build of mvr has one fixed key. */
+static void fresh_seed(uint64_t seed[2])
+{
+    if (getrandom(seed, 2 * sizeof seed[0], GRND_NONBLOCK) == (ssize_t)(2 * sizeof seed[0]))
+        return;
+    struct timespec ts = {0, 0};
+    clock_gettime(CLOCK_REALTIME, &ts);
+    seed[0] = (uint64_t)ts.tv_sec * 0x9e3779b97f4a7c15ull ^ (uint64_t)ts.tv_nsec;
+    seed[1] = ((uint64_t)getpid() << 32) ^ (uint64_t)(uintptr_t)seed ^ rotl64(seed[0], 29);
+}
+
+typedef struct key_set {
+    uint32_t *slots; /* a member's index + 1; 0: empty */
+    uint32_t mask;   /* the slot count - 1 (a power of two); 0 before the first name */
+} key_set;
+
+static uint32_t key_slot(const reader *r, const key_set *set, const char *key)
+{
+    return (uint32_t)siphash24(r->seed, (const unsigned char *)key, strlen(key)) & set->mask;
+}
+
+/* Adds key (not yet in keys[0..count)) to the set of keys[0..count);
+ * *added false: an equal name is there already. false (failed): out of
+ * memory. Grows first, so at most half the slots are ever taken. */
+static bool key_set_add(reader *r, key_set *set, char *const *keys, uint32_t count, const char *key, bool *added)
+{
+    if (((uint64_t)count + 1) * 2 > (uint64_t)set->mask + (set->slots ? 1 : 0)) {
+        uint64_t slots = set->slots ? ((uint64_t)set->mask + 1) * 2 : 8;
+        while (slots < ((uint64_t)count + 1) * 2)
+            slots *= 2;
+        /* count <= JSON_READ_MAX_VALUES, so slots <= 2^23: no overflow */
+        uint32_t *grown = calloc((size_t)slots, sizeof *grown);
+        if (!grown)
+            return fail(r, "out of memory");
+        free(set->slots);
+        set->slots = grown;
+        set->mask = (uint32_t)(slots - 1);
+        for (uint32_t k = 0; k < count; ++k) {
+            uint32_t s = key_slot(r, set, keys[k]);
+            while (set->slots[s])
+                s = (s + 1) & set->mask;
+            set->slots[s] = k + 1;
+        }
+    }
+    uint32_t s = key_slot(r, set, key);
+    for (; set->slots[s]; s = (s + 1) & set->mask)
+        if (strcmp(keys[set->slots[s] - 1], key) == 0) {
+            *added = false;
+            return true;
+        }
+    set->slots[s] = count + 1;
+    *added = true;
+    return true;
+}
+
 static bool value(reader *r, json_value *v, int depth);
 
-/* Items or members into a growing array (doubling), then handed to v. */
+static bool members(reader *r, json_value *v, int depth, bool object, key_set *names);
+
+/* Items or members into a growing array (doubling), then handed to v; an
+ * object's names in a hash set while it is read. */
 static bool container(reader *r, json_value *v, int depth, bool object)
+{
+    key_set names = {NULL, 0};
+    bool ok = members(r, v, depth, object, &names);
+    free(names.slots);
+    return ok;
+}
+
+static bool members(reader *r, json_value *v, int depth, bool object, key_set *names)
 {
     char close = object ? '}' : ']';
     uint32_t cap = 0;
@@ -266,12 +397,16 @@ static bool container(reader *r, json_value *v, int depth, bool object)
             char *key = NULL;
             if (!string(r, &key))
                 return false;
-            for (uint32_t k = 0; k < v->count; ++k)
-                if (strcmp(v->keys[k], key) == 0) {
-                    bool ok = fail(r, "the key \"%.60s\" appears twice in one object", key);
-                    free(key);
-                    return ok;
-                }
+            bool added = false;
+            if (!key_set_add(r, names, v->keys, v->count, key, &added)) {
+                free(key);
+                return false;
+            }
+            if (!added) {
+                bool ok = fail(r, "the key \"%.60s\" appears twice in one object", key);
+                free(key);
+                return ok;
+            }
             v->keys[v->count] = key;
             skip_space(r);
             if (r->p >= r->end || *r->p != ':') {
@@ -335,7 +470,8 @@ static bool value(reader *r, json_value *v, int depth)
 bool json_read(const char *text, size_t size, json_value *out, char *why, size_t why_size)
 {
     memset(out, 0, sizeof *out);
-    reader r = {text, text + size, 1, 0, why, why_size};
+    reader r = {text, text + size, 1, 0, why, why_size, {0, 0}};
+    fresh_seed(r.seed);
     if (size >= 3 && memcmp(text, "\xef\xbb\xbf", 3) == 0)
         r.p += 3;
     bool ok = value(&r, out, 0);

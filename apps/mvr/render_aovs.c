@@ -5,9 +5,9 @@
  * (https://numpy.org/doc/stable/reference/generated/numpy.lib.format.html). */
 #include "render_aovs.h"
 
+#include "cli_write.h"
 #include "json.h"
 
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -71,11 +71,10 @@ static bool write_npy(const char *path, const char *descr, uint32_t h, uint32_t 
     memcpy(header + 10, dict, len);
     memset(header + 10 + len, ' ', padded - total);
     header[padded - 1] = '\n';
-    FILE *f = fopen(path, "wb");
-    if (!f) {
-        snprintf(why, why_size, "cannot write %s: %s", path, strerror(errno));
+    cli_write_file out; /* checked, and renamed into place whole */
+    if (!cli_write_open(&out, path, why, why_size))
         return false;
-    }
+    FILE *f = out.f;
     /* rows go out one at a time, last first: a buffer of many rows keeps the writes few
      * (glibc ignores the size of a buffer it allocates itself) */
     char iobuf[1 << 16];
@@ -83,10 +82,7 @@ static bool write_npy(const char *path, const char *descr, uint32_t h, uint32_t 
     bool ok = fwrite(header, 1, padded, f) == padded;
     for (uint32_t y = h; ok && y-- > 0;)
         ok = fwrite(rows_up + (size_t)y * stride, 1, stride, f) == stride;
-    ok = fclose(f) == 0 && ok;
-    if (!ok)
-        snprintf(why, why_size, "cannot write %s", path);
-    return ok;
+    return cli_write_close(&out, why, why_size); /* a failed fwrite left the error flag set */
 }
 
 bool render_aovs_write_view(const char *dir, mvr_output output, uint32_t view, int64_t frame, int frame_digits,
@@ -142,11 +138,17 @@ bool render_aovs_write_ids(const char *dir, const mvr_scene *scene)
 {
     char path[4096];
     int len = snprintf(path, sizeof path, "%s/ids.json", dir);
-    FILE *f = len > 0 && (size_t)len < sizeof path ? fopen(path, "w") : NULL;
-    if (!f) {
-        fprintf(stderr, "mvr render: cannot write %s/ids.json\n", dir);
+    if (len <= 0 || (size_t)len >= sizeof path) {
+        fprintf(stderr, "mvr render: cannot write %s/ids.json: the path is too long\n", dir);
         return false;
     }
+    cli_write_file out;
+    char why[4200];
+    if (!cli_write_open(&out, path, why, sizeof why)) {
+        fprintf(stderr, "mvr render: %s\n", why);
+        return false;
+    }
+    FILE *f = out.f;
     mvr_scene_info info;
     mvr_scene_get_info(scene, &info);
     json_writer jw = {.out = f};
@@ -180,8 +182,8 @@ bool render_aovs_write_ids(const char *dir, const mvr_scene *scene)
     json_end_array(&jw);
     json_end_object(&jw);
     fputc('\n', f);
-    if (fclose(f) != 0) {
-        fprintf(stderr, "mvr render: cannot write %s\n", path);
+    if (!cli_write_close(&out, why, sizeof why)) {
+        fprintf(stderr, "mvr render: %s\n", why);
         return false;
     }
     return true;

@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "cli_scene.h"
+#include "cli_write.h"
 #include "json.h"
 #include "mvr/mvr_image.h"
 
@@ -342,13 +343,16 @@ static bool write_colmap(const render_options *o, const mvr_view_set *views, uin
         fprintf(stderr, "mvr render: cannot create %s: %s\n", dir, strerror(errno));
         return false;
     }
+    /* each file checked, and renamed into place whole or not at all */
+    cli_write_file out[3];
     FILE *files[3] = {NULL, NULL, NULL};
     static const char *const names[3] = {"cameras.txt", "images.txt", "points3D.txt"};
+    char why[4200] = "";
     bool ok = true;
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < 3 && ok; ++k) {
         snprintf(path, sizeof path, "%s/%s", dir, names[k]);
-        files[k] = fopen(path, "w");
-        ok = ok && files[k];
+        ok = cli_write_open(&out[k], path, why, sizeof why);
+        files[k] = ok ? out[k].f : NULL;
     }
     if (ok) {
         fprintf(files[0], "# Camera list with one line of data per camera:\n#   CAMERA_ID, MODEL, WIDTH, HEIGHT, "
@@ -393,11 +397,18 @@ static bool write_colmap(const render_options *o, const mvr_view_set *views, uin
         fprintf(files[1], "%u %.17g %.17g %.17g %.17g %.17g %.17g %.17g %u %s\n\n", k + 1, q[0], q[1], q[2], q[3], t[0],
                 t[1], t[2], k + 1, name);
     }
-    for (int k = 0; k < 3; ++k)
-        if (files[k] && fclose(files[k]) != 0)
-            ok = false;
+    if (!ok && !why[0])
+        snprintf(why, sizeof why, "cannot write the COLMAP model into %s: a view has no camera", dir);
+    for (int k = 0; k < 3; ++k) {
+        if (!files[k])
+            continue;
+        if (!ok)
+            cli_write_abandon(&out[k]);
+        else
+            ok = cli_write_close(&out[k], why, sizeof why);
+    }
     if (!ok)
-        fprintf(stderr, "mvr render: writing the COLMAP model into %s failed\n", dir);
+        fprintf(stderr, "mvr render: %s\n", why);
     return ok;
 }
 
@@ -407,11 +418,13 @@ bool render_output_write_cameras(const render_options *o, const mvr_view_set *vi
     bool ok = true;
     for (int file = 0; file < 2 && ok; ++file) {
         snprintf(path, sizeof path, "%s/%s", o->out_dir, file == 0 ? "cameras.json" : "transforms.json");
-        FILE *f = fopen(path, "w");
-        if (!f) {
-            fprintf(stderr, "mvr render: cannot write %s\n", path);
+        cli_write_file out;
+        char why[4200];
+        if (!cli_write_open(&out, path, why, sizeof why)) {
+            fprintf(stderr, "mvr render: %s\n", why);
             return false;
         }
+        FILE *f = out.f;
         json_writer jw = {.out = f};
         json_begin_object(&jw, NULL);
         if (file == 0) {
@@ -468,9 +481,13 @@ bool render_output_write_cameras(const render_options *o, const mvr_view_set *vi
         json_end_array(&jw);
         json_end_object(&jw);
         fputc('\n', f);
-        ok = fclose(f) == 0 && ok;
-        if (!ok)
-            fprintf(stderr, "mvr render: writing %s failed\n", path);
+        if (!ok) {
+            cli_write_abandon(&out);
+            fprintf(stderr, "mvr render: writing %s failed: a view has no camera\n", path);
+        } else if (!cli_write_close(&out, why, sizeof why)) {
+            fprintf(stderr, "mvr render: %s\n", why);
+            ok = false;
+        }
     }
     if (ok && o->colmap)
         ok = write_colmap(o, views, n);
