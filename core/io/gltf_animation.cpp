@@ -456,7 +456,7 @@ void convert_animation(converter &cv, size_t ai)
         // alone is kept
         size_t keep_from = 0;
         const tinygltf::Accessor &ta = cx.model->accessors[size_t(s.input)];
-        if (t.size() > 1 && ta.bufferView < 0 && ta.sparse.count <= 0 &&
+        if (t.size() > 1 && ta.bufferView < 0 && !ta.sparse.isSparse &&
             std::all_of(t.begin(), t.end(), [](float x) { return x == 0.0f; })) {
             keep_from = t.size() - 1;
             cx.debug(sw + ".input: accessor " + std::to_string(s.input) + " has no bufferView (every key at 0 s): the last "
