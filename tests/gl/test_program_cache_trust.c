@@ -12,6 +12,8 @@
 #include <unistd.h>
 
 #include "gl_test_util.h"
+#include "program_binary_file.h"
+#include "program_cache_files.h"
 
 #define W 48
 #define H 32
@@ -71,24 +73,6 @@ static bool render_run(mvr_test_state *t, mvr_context *ctx, const char *dir, tru
     return ok;
 }
 
-/* The cache's entries (regular or not), sorted, into names[max][512]. */
-static uint32_t entries(const char *dir, char names[][512], uint32_t max)
-{
-    uint32_t n = 0;
-    DIR *d = opendir(dir);
-    if (!d)
-        return 0;
-    struct dirent *e;
-    while ((e = readdir(d)) != NULL && n < max) {
-        size_t len = strlen(e->d_name);
-        if (len > 7 && strcmp(e->d_name + len - 7, ".mvrbin") == 0)
-            snprintf(names[n++], 512, "%s/%s", dir, e->d_name);
-    }
-    closedir(d);
-    qsort(names, n, 512, (int (*)(const void *, const void *))strcmp);
-    return n;
-}
-
 /* Removes everything directly in dir, then dir. */
 static void remove_dir(const char *dir)
 {
@@ -105,13 +89,6 @@ static void remove_dir(const char *dir)
         closedir(d);
     }
     rmdir(dir);
-}
-
-static uint64_t fnv1a64(uint64_t h, const unsigned char *p, size_t n)
-{
-    for (size_t i = 0; i < n; ++i)
-        h = (h ^ p[i]) * 0x100000001b3ull;
-    return h;
 }
 
 static uint64_t get_le(const unsigned char *p, int bytes)
@@ -142,10 +119,10 @@ static bool forge(const char *path)
         uint64_t size = get_le(bytes + 24, 8);
         if (40 + driver_len + size != n)
             return false;
-        uint64_t h = fnv1a64(0xcbf29ce484222325ull, bytes + 40, driver_len);
-        h = fnv1a64(h, bytes + 16, 8); /* key */
-        h = fnv1a64(h, bytes + 8, 4);  /* format */
-        h = fnv1a64(h, bytes + 40 + driver_len, (size_t)size);
+        uint64_t h = mvr_fnv1a64(MVR_FNV1A64_INIT, bytes + 40, driver_len);
+        h = mvr_fnv1a64(h, bytes + 16, 8); /* key */
+        h = mvr_fnv1a64(h, bytes + 8, 4);  /* format */
+        h = mvr_fnv1a64(h, bytes + 40 + driver_len, (size_t)size);
         for (int i = 0; i < 8; ++i)
             bytes[32 + i] = (unsigned char)(h >> (8 * i));
     }
@@ -194,7 +171,7 @@ static bool fixture_init(mvr_test_state *t, cache_fixture *fx, bool cold_run)
     if (cold_run) {
         if (!render_run(t, fx->ctx, fx->dir, NULL, &fx->cold))
             return false;
-        fx->n = entries(fx->dir, fx->files, 16);
+        fx->n = program_cache_entries(fx->dir, fx->files, 16);
         CHECK_MSG(t, fx->n >= 2 && fx->n == fx->cold.stats.programs_compiled, "%u entries for %u programs", fx->n,
                   fx->cold.stats.programs_compiled);
     }
@@ -315,7 +292,7 @@ static void unsafe_key_file_turns_the_cache_off(mvr_test_state *t)
         bool ok = render_run(t, fx.ctx, fx.dir, NULL, &first) && render_run(t, fx.ctx, fx.dir, &log, &second);
         char files[16][512];
         if (ok) {
-            CHECK_EQ_INT(t, entries(fx.dir, files, 16), 0);
+            CHECK_EQ_INT(t, program_cache_entries(fx.dir, files, 16), 0);
             CHECK_EQ_INT(t, second.stats.program_binary_loads, 0);
             CHECK(t, second.stats.programs_compiled > 0);
             CHECK_MSG(t, log.warnings >= 1 && strstr(log.text, key) != NULL, "%s key; log:\n%s",

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "gl_test_util.h"
+#include "program_cache_files.h"
 #include "program_binary_file.h"
 #include "shader_gen.h"
 
@@ -199,24 +200,6 @@ static bool render_with_cache(mvr_test_state *t, mvr_context *ctx, const char *d
     return render_demo_run(t, ctx, "stereo", rd, 0, out);
 }
 
-/* The cache's files, sorted, into names[max][512]; returns the count. */
-static uint32_t cache_files(const char *dir, char names[][512], uint32_t max)
-{
-    uint32_t n = 0;
-    DIR *d = opendir(dir);
-    if (!d)
-        return 0;
-    struct dirent *e;
-    while ((e = readdir(d)) != NULL && n < max) {
-        size_t len = strlen(e->d_name);
-        if (len > 7 && strcmp(e->d_name + len - 7, ".mvrbin") == 0)
-            snprintf(names[n++], 512, "%s/%s", dir, e->d_name);
-    }
-    closedir(d);
-    qsort(names, n, 512, (int (*)(const void *, const void *))strcmp);
-    return n;
-}
-
 static void flip_byte(const char *path, long from_end)
 {
     FILE *f = fopen(path, "r+b");
@@ -279,7 +262,7 @@ static void binary_cache_restart_compiles_nothing(mvr_test_state *t)
     char files[16][512];
 
     bool ok = render_with_cache(t, ctx, NULL, NULL, &none) && render_with_cache(t, ctx, dir, NULL, &cold);
-    uint32_t n = cache_files(dir, files, 16);
+    uint32_t n = program_cache_entries(dir, files, 16);
     if (ok) {
         printf("  cold start: %u compiled, %u files\n", cold.stats.programs_compiled, n);
         CHECK(t, cold.stats.programs_compiled > 0);
@@ -325,7 +308,7 @@ static void binary_cache_restart_compiles_nothing(mvr_test_state *t)
         CHECK_EQ_INT(t, healed.stats.program_binary_rejects, 0);
         CHECK_EQ_INT(t, healed.stats.program_binary_loads, n);
     }
-    n = cache_files(dir, files, 16);
+    n = program_cache_entries(dir, files, 16);
     for (uint32_t i = 0; i < n; ++i)
         remove(files[i]);
     char key_file[512];
