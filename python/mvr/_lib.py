@@ -3,10 +3,11 @@
 Where the libraries are looked for, first found wins:
   1. $MVR_LIBRARY_DIR, a folder holding libmvr.so.0 (nothing else is tried
      when it is set: a wrong path is an error, not a silent fallback);
-  2. the folder `cmake --install` recorded in mvr/_config.py (LIBDIR);
-  3. build/ of the source tree this package sits in (python/mvr/../../build),
+  2. the package's own _libs/ folder (a wheel's: pip install .);
+  3. the folder `cmake --install` recorded in mvr/_config.py (LIBDIR);
+  4. build/ of the source tree this package sits in (python/mvr/../../build),
      the README's build folder;
-  4. the dynamic loader's own search (LD_LIBRARY_PATH, ld.so.cache).
+  5. the dynamic loader's own search (LD_LIBRARY_PATH, ld.so.cache).
 libmvr.so.0 is loaded first, so the others find it by its soname wherever
 they were installed.
 """
@@ -30,7 +31,7 @@ def _search_dirs():
     env = os.environ.get("MVR_LIBRARY_DIR")
     if env:
         return [("MVR_LIBRARY_DIR", pathlib.Path(env))], True
-    dirs = []
+    dirs = [("the package's own libraries", _HERE / "_libs")]
     installed = _config_libdir()
     if installed:
         dirs.append(("the installed package's LIBDIR", pathlib.Path(installed)))
