@@ -41,6 +41,39 @@ class RenderedView:
         return "RenderedView(%d: %s)" % (self.index, got)
 
 
+class _RenderJob:
+    """A render's checked arguments: what the GL gets (desc(), under the
+    objects' locks: hold()) and what comes back."""
+
+    def __init__(self, scene, views, environment, rd, choose_exposure, exposure_mode, tone_map, width, height,
+                 samples, color_format, outputs, extra, mask, color_float):
+        self.scene, self.views, self.environment = scene, views, environment
+        self._rd, self._choose, self._exposure_mode, self._tone_map = rd, choose_exposure, exposure_mode, tone_map
+        self.width, self.height, self.samples, self.color_format = width, height, samples, color_format
+        self.outputs, self.extra, self.mask, self.color_float = outputs, extra, mask, color_float
+
+    def hold(self, stack):
+        """Takes the locks of what the render reads (scene, views,
+        environment), in the one order every call takes them."""
+        for obj in (self.scene, self.views, self.environment):
+            if obj is not None:
+                stack.enter_context(obj._lock)
+
+    def desc(self):
+        """The mvr_render_desc, with the environment's handle and the
+        exposure chosen for the scene (hold() first)."""
+        rd = self._rd
+        if self.environment is not None:
+            rd.environment = self.environment.handle
+        if self._choose:
+            N.C.mvr_render_desc_choose_exposure(self.scene.handle, ctypes.byref(rd))
+        if self._exposure_mode is not None:
+            rd.exposure_mode = self._exposure_mode
+        if self._tone_map is not None:
+            rd.tone_map = self._tone_map
+        return rd
+
+
 class _Target:
     def __init__(self, handle, key):
         self.handle, self.key = handle, key
@@ -233,8 +266,34 @@ class Context(Handle):
         that cast them), "all", "off". normal_space: "world" or "camera";
         alpha_cutoff: where blended surfaces start to count in depth / ids
         outputs (0 = 0.5)."""
+        job = self._prepare(scene, views, size, outputs=outputs, color_dtype=color_dtype,
+                            color_format=color_format, samples=samples, clear_color=clear_color,
+                            environment=environment, background=background, background_blur=background_blur,
+                            exposure=exposure, exposure_mode=exposure_mode, tone_map=tone_map, ev100=ev100,
+                            choose_exposure=choose_exposure, shadows=shadows, normal_space=normal_space,
+                            alpha_cutoff=alpha_cutoff)
+        with contextlib.ExitStack() as held:
+            # the context (current on this thread), then what the render
+            # reads: one order everywhere, so two threads never wait on each other
+            held.enter_context(self._current())
+            job.hold(held)
+            layers = len(views)
+            if layers == 0:
+                raise Error("render: the view set has no views")
+            rd = job.desc()
+            target = self._target_for(job.width, job.height, layers, job.color_format, job.samples, job.mask)
+            check(N.C.mvr_renderer_render(self._renderer, scene.handle, views.handle, target, ctypes.byref(rd)),
+                  self._renderer_error, "mvr_renderer_render")
+            return [self._read_view(target, views, layer, job.width, job.height, job.outputs, job.extra,
+                                    job.color_float)
+                    for layer in range(layers)]
+
+    def _prepare(self, scene, views, size, *, outputs, color_dtype, color_format, samples, clear_color, environment,
+                 background, background_blur, exposure, exposure_mode, tone_map, ev100, choose_exposure, shadows,
+                 normal_space, alpha_cutoff):
+        """Every argument of a render checked, before the GL (and any
+        allocation) sees it: a _RenderJob."""
         self.handle  # noqa: B018 - raises once closed
-        # every argument checked before the GL (and any allocation) sees it
         try:
             width, height = size
         except (TypeError, ValueError):
@@ -268,30 +327,8 @@ class Context(Handle):
         tone_map = None if tone_map is None else N.TONE_MAP(tone_map, "tone_map")
         rd.normal_space = N.NORMAL_SPACE(normal_space, "normal_space")
         rd.output_alpha_cutoff = float(alpha_cutoff)
-
-        with contextlib.ExitStack() as held:
-            # the context (current on this thread), then what the render
-            # reads: one order everywhere, so two threads never wait on each other
-            held.enter_context(self._current())
-            for obj in (scene, views, environment):
-                if obj is not None:
-                    held.enter_context(obj._lock)
-            layers = len(views)
-            if layers == 0:
-                raise Error("render: the view set has no views")
-            if environment is not None:
-                rd.environment = environment.handle
-            if choose_exposure:
-                N.C.mvr_render_desc_choose_exposure(scene.handle, ctypes.byref(rd))
-            if exposure_mode is not None:
-                rd.exposure_mode = exposure_mode
-            if tone_map is not None:
-                rd.tone_map = tone_map
-            target = self._target_for(width, height, layers, color_format, samples, mask)
-            check(N.C.mvr_renderer_render(self._renderer, scene.handle, views.handle, target, ctypes.byref(rd)),
-                  self._renderer_error, "mvr_renderer_render")
-            return [self._read_view(target, views, layer, width, height, outputs, extra, color_float)
-                    for layer in range(layers)]
+        return _RenderJob(scene, views, environment, rd, choose_exposure, exposure_mode, tone_map, width, height,
+                          samples, color_format, outputs, extra, mask, color_float)
 
     def _read_view(self, target, views, layer, width, height, outputs, extra, color_float):
         arrays = {}
@@ -328,3 +365,32 @@ class Context(Handle):
         d["material_path"] = N.MATERIAL_PATH.name(s.material_path)
         d["depth_mode"] = N.DEPTH_MODE.name(s.depth_mode)
         return d
+
+    def render_stream(self, scene, views, size, *, chunk=0, outputs=("color",), color_dtype="uint8",
+                      color_format="default", samples=0, clear_color=(0, 0, 0, 0), environment=None,
+                      background="color", background_blur=0.0, exposure=1.0, exposure_mode=None, tone_map=None,
+                      ev100=0.0, choose_exposure=False, shadows="default", normal_space="world", alpha_cutoff=0.0):
+        """Renders every view of `views` as render() does, but yields the
+        RenderedViews one by one, in view order, as their chunk comes back,
+        instead of returning them all: memory stays flat in the number of
+        views (the ring of two chunk targets and one chunk's arrays; what
+        the caller keeps is the caller's). The arguments are render()'s;
+        chunk: views per GL pass (0 = GL_MAX_VIEWS_OVR, fewer where a
+        chunk's readback would pass 64 MiB). Every argument is checked
+        here, before the first view is rendered. The pixels are render()'s,
+        byte for byte, except a shared auto exposure (metered over every
+        view first, then fixed, as `mvr render` does) and shadow cascades
+        (fitted to each chunk's views). Between two views the Context is
+        free for other calls (from this thread or another); closing the
+        generator early (break) releases its GL objects."""
+        from .stream import Stream
+        job = self._prepare(scene, views, size, outputs=outputs, color_dtype=color_dtype,
+                            color_format=color_format, samples=samples, clear_color=clear_color,
+                            environment=environment, background=background, background_blur=background_blur,
+                            exposure=exposure, exposure_mode=exposure_mode, tone_map=tone_map, ev100=ev100,
+                            choose_exposure=choose_exposure, shadows=shadows, normal_space=normal_space,
+                            alpha_cutoff=alpha_cutoff)
+        chunk = c_int(chunk, "chunk", 0, 64)
+        with views._lock:
+            stream = Stream(self, job, chunk)
+        return iter(stream)

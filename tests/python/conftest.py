@@ -14,6 +14,18 @@ ROOT = pathlib.Path(__file__).resolve().parents[2]
 PEERS = ROOT / "tests" / "data" / "peers"
 
 
+def pytest_sessionstart(session):
+    """MVR_PY_EXPECT_PREFIX (ctest python_package: the suite run by a venv's
+    interpreter): the mvr under test must be the one installed there, not
+    the source tree's."""
+    prefix = os.environ.get("MVR_PY_EXPECT_PREFIX")
+    if prefix:
+        import mvr
+        where = pathlib.Path(mvr.__file__).resolve()
+        assert where.is_relative_to(pathlib.Path(prefix).resolve()), (
+            "testing %s, not the mvr installed in %s" % (where, prefix))
+
+
 def reference_path():
     return pathlib.Path(os.environ.get("MVR_PY_REFERENCE", ROOT / "build" / "tests" / "py_reference"))
 

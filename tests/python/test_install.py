@@ -64,7 +64,7 @@ def test_where_the_package_looks_for_libmvr(tmp_path):
     libdir = pathlib.Path(mvr.LIBRARY_DIR) if mvr.LIBRARY_DIR else None
     if libdir is None:
         pytest.skip("this run found libmvr through the dynamic loader")
-    shutil.copytree(src, tmp_path / "pkg" / "mvr", ignore=shutil.ignore_patterns("__pycache__", "_config.py"))
+    shutil.copytree(src, tmp_path / "pkg" / "mvr", ignore=shutil.ignore_patterns("__pycache__", "_config.py", "_libs"))
     p = run_import(tmp_path / "pkg", {"MVR_LIBRARY_DIR": str(libdir)}, tmp_path)
     assert p.returncode == 0 and p.stdout.strip() == str(libdir), p.stderr
     (tmp_path / "empty").mkdir()
