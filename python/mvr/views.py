@@ -299,6 +299,7 @@ class Views(Handle):
 
     @locked
     def __len__(self) -> int:
+        """The number of views (one layer each)."""
         return N.C.mvr_view_set_count(self.handle)
 
     @locked
