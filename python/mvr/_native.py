@@ -12,6 +12,7 @@ structs grew past these mirrors then writes into the slack, and reads its new
 trailing fields as zero, their default, instead of past the end of memory.
 """
 import ctypes
+from typing import Any, Dict, List, Optional, Sequence, Tuple
 from ctypes import (POINTER, Structure, c_bool, c_char, c_char_p, c_double, c_float, c_int, c_int32, c_size_t,
                     c_uint8, c_uint16, c_uint32, c_uint64, c_void_p, CFUNCTYPE)
 
@@ -23,16 +24,17 @@ from . import _lib
 class Enum:
     """A C enum: Python names (lower case) to C constants and their values."""
 
-    def __init__(self, c_type, members):
+    def __init__(self, c_type: str, members: Sequence[Tuple[Optional[str], str]]) -> None:
         self.c_type = c_type
-        self.values = {}   # python name -> int
-        self.c_names = {}  # python name -> C constant name
+        self.values: Dict[str, int] = {}   # python name -> int
+        self.c_names: Dict[str, str] = {}  # python name -> C constant name
         for value, (py, c) in enumerate(members):
             if py is not None:
                 self.values[py] = value
                 self.c_names[py] = c
 
-    def __call__(self, name, what=None):
+    def __call__(self, name: Any, what: Optional[str] = None) -> int:
+        """The C value of a name (or of a valid int); ValueError naming `what`."""
         if isinstance(name, int) and not isinstance(name, bool):
             if name in self.values.values():
                 return name
@@ -40,14 +42,15 @@ class Enum:
             return self.values[name.lower()]
         raise ValueError("%s: %r is not one of %s" % (what or self.c_type, name, ", ".join(self.values)))
 
-    def name(self, value):
+    def name(self, value: int) -> str:
+        """The Python name of a C value (str(value) for an unknown one)."""
         for k, v in self.values.items():
             if v == value:
                 return k
         return str(value)
 
 
-def _seq(c_type, prefix, names):
+def _seq(c_type: str, prefix: str, names: List[str]) -> Enum:
     return Enum(c_type, [(n, prefix + n.upper()) for n in names])
 
 
@@ -93,8 +96,8 @@ PIXEL_TYPE = _seq("mvr_pixel_type", "MVR_PIXEL_", ["u8", "f32"])
 OUTPUT = _seq("mvr_output", "MVR_OUTPUT_", ["color", "depth", "distance", "normal", "ids", "coverage"])
 NORMAL_SPACE = _seq("mvr_normal_space", "MVR_NORMAL_SPACE_", ["world", "camera"])
 
-ENUMS = [RESULT, LOG_LEVEL, LOG_ID, PROVIDER, GL_API, ALPHA_MODE, PRIMITIVE_MODE, LIGHT_TYPE, PROJECTION_TYPE, FILTER, WRAP,
-         ANIMATION_WRAP, ENV_SOURCE, VIEW_PATH, MATERIAL_PATH, SKINNING_PATH, DEPTH_MODE, TRANSPARENCY, TONE_MAP,
+ENUMS = [RESULT, LOG_LEVEL, LOG_ID, PROVIDER, GL_API, ALPHA_MODE, PRIMITIVE_MODE, LIGHT_TYPE, PROJECTION_TYPE, FILTER,
+         WRAP, ANIMATION_WRAP, ENV_SOURCE, VIEW_PATH, MATERIAL_PATH, SKINNING_PATH, DEPTH_MODE, TRANSPARENCY, TONE_MAP,
          COLOR_FORMAT, ANTI_ALIASING, SHADOW_MODE, EXPOSURE_MODE, BACKGROUND, READBACK, LAYOUT, PIXEL_TYPE, OUTPUT,
          NORMAL_SPACE]
 
@@ -121,12 +124,12 @@ class S(Structure):
     """Base of the mirrors: lists its fields for the layout test."""
 
     @classmethod
-    def field_names(cls):
+    def field_names(cls) -> List[str]:
         return [f[0] for f in cls._fields_]
 
 
-def _struct(name, fields):
-    cls = type(name, (S,), {"_fields_": fields})
+def _struct(name: str, fields: List[Tuple[str, Any]]) -> Any:
+    cls: Any = type(name, (S,), {"_fields_": fields})
     cls.c_name = name  # nested structs: their tag (struct mvr_material_specular)
     return cls
 
@@ -332,7 +335,7 @@ STRUCTS = [Id, mvr_error, mvr_logger, mvr_context_desc, mvr_caps_ext, mvr_caps_l
 _SLACK = 4096
 
 
-def out(cls):
+def out(cls: Any) -> Any:
     """A zeroed struct inside a buffer with slack (see the module's doc)."""
     buf = (c_uint8 * (ctypes.sizeof(cls) + _SLACK))()
     s = cls.from_buffer(buf)
@@ -351,13 +354,16 @@ R = c_int  # mvr_result
 
 
 class _Functions:
-    pass
+    """The C functions, declared below (None where the library lacks one)."""
+
+    def __getattr__(self, name: str) -> Any:  # for the type checker: set dynamically by _decl
+        raise AttributeError(name)
 
 
 C = _Functions()
 
 
-def _decl(lib, name, restype, *args):
+def _decl(lib: Any, name: str, restype: Any, *args: Any) -> None:
     setattr(C, name, _lib.fn(lib, name, restype, *args))
 
 
@@ -405,6 +411,13 @@ _decl(core, "mvr_view_set_frame_scene", R, P, POINTER(mvr_framing_desc), PP, PE)
 _decl(core, "mvr_view_set_from_camera", R, P, Id, c_uint32, c_double, PP, PE)
 _decl(core, "mvr_environment_create", R, POINTER(mvr_environment_desc), PP, PE)
 _decl(core, "mvr_environment_destroy", None, P)
+_decl(core, "mvr_environment_intensity", c_float, P)
+_decl(core, "mvr_environment_rotation", c_float, P)
+_decl(core, "mvr_environment_set_intensity", None, P, c_float)
+_decl(core, "mvr_environment_set_rotation", None, P, c_float)
+_decl(core, "mvr_scene_node_name", c_char_p, P, Id)
+_decl(core, "mvr_scene_mesh_name", c_char_p, P, Id)
+_decl(core, "mvr_scene_material_name", c_char_p, P, Id)
 _decl(core, "mvr_renderer_create", R, POINTER(mvr_renderer_desc), PP, PE)
 _decl(core, "mvr_renderer_destroy", None, P)
 _decl(core, "mvr_renderer_last_error", c_char_p, P)
@@ -426,9 +439,11 @@ _decl(_lib.image, "mvr_image_read", R, c_char_p, c_int, POINTER(mvr_image_data),
 _decl(_lib.image, "mvr_image_free", None, POINTER(mvr_image_data))
 
 
-def text(b):
+def text(b: Optional[bytes]) -> str:
+    """A C string (bytes or NULL) as str."""
     return b.decode("utf-8", "replace") if b else ""
 
 
-def result_name(r):
+def result_name(r: int) -> str:
+    """mvr_result_name(r)."""
     return text(C.mvr_result_name(r))

@@ -1,15 +1,29 @@
 """The GL side: a context with its renderer, render targets and readback."""
 import contextlib
 import ctypes
+from typing import Any, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
 from . import _native as N
-from ._common import I32_MAX, U32_MAX, Error, Handle, c_int, c_path, check, check_created, logger
+from ._common import (I32_MAX, U32_MAX, Error, Handle, PathArg, c_float, c_floats, c_int, c_path, check,
+                      check_created, logger)
+from .scene import Environment, Scene
+from .views import Camera, Views
 
 OUTPUTS = ("color", "depth", "distance", "normal", "ids", "coverage")
 
+# One set of defaults: what `mvr render FILE` and mvr-viewer show a file with
+# (apps/mvr/render_options.c, cli_scene.c cli_render_desc_defaults,
+# cli_env.c); tests/python/test_defaults.py renders both and compares bytes.
+DEFAULT_SIZE = (640, 480)
+"""The layers' (width, height): `mvr render`'s --size."""
+DEFAULT_CLEAR_COLOR = (0.02, 0.025, 0.035, 1.0)
+"""Linear RGBA of uncovered pixels: `mvr render`'s opaque dark sky (--clear)."""
+DEFAULT_ENVIRONMENT = "neutral"
+"""The built-in neutral studio (--env): most glTF files ship without lights."""
 
+EnvironmentArg = Union[Environment, str, None]
 class RenderedView:
     """One view of a render: numpy arrays, rows top to bottom (image order:
     row 0 is the top of the picture; GL's own readback order is the
@@ -24,18 +38,26 @@ class RenderedView:
     coverage (H, W) float32: 1 where a surface was recorded
     Outputs not asked for are None."""
 
-    def __init__(self, index, camera, arrays):
+    color: Optional[np.ndarray]
+    depth: Optional[np.ndarray]
+    distance: Optional[np.ndarray]
+    normal: Optional[np.ndarray]
+    ids: Optional[np.ndarray]
+    coverage: Optional[np.ndarray]
+
+    def __init__(self, index: int, camera: Camera, arrays: Mapping[str, np.ndarray]) -> None:
         self.index = index
         self.camera = camera
         for name in OUTPUTS:
             setattr(self, name, arrays.get(name))
 
-    def __getitem__(self, name):
+    def __getitem__(self, name: str) -> Optional[np.ndarray]:
+        """The output by name (KeyError for a name not in OUTPUTS)."""
         if name not in OUTPUTS:
             raise KeyError(name)
         return getattr(self, name)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         got = ", ".join("%s %s %s" % (n, getattr(self, n).shape, getattr(self, n).dtype)
                         for n in OUTPUTS if getattr(self, n) is not None)
         return "RenderedView(%d: %s)" % (self.index, got)
@@ -43,39 +65,40 @@ class RenderedView:
 
 class _RenderJob:
     """A render's checked arguments: what the GL gets (desc(), under the
-    objects' locks: hold()) and what comes back."""
+    objects' locks: hold()) and what comes back; close() closes the views
+    made for it (views=None)."""
 
-    def __init__(self, scene, views, environment, rd, choose_exposure, exposure_mode, tone_map, width, height,
-                 samples, color_format, outputs, extra, mask, color_float):
-        self.scene, self.views, self.environment = scene, views, environment
-        self._rd, self._choose, self._exposure_mode, self._tone_map = rd, choose_exposure, exposure_mode, tone_map
+    def __init__(self, scene: Scene, views: Views, own_views: bool, env: Optional[Environment], rd: Any,
+                 exposure: "_ExposureChoice", width: int, height: int, samples: int, color_format: int,
+                 outputs: Tuple[str, ...], extra: List[str], mask: int, color_float: bool) -> None:
+        self.scene, self.views, self._own_views, self.environment = scene, views, own_views, env
+        self._rd, self._exposure = rd, exposure
         self.width, self.height, self.samples, self.color_format = width, height, samples, color_format
         self.outputs, self.extra, self.mask, self.color_float = outputs, extra, mask, color_float
 
-    def hold(self, stack):
+    def hold(self, stack: contextlib.ExitStack) -> None:
         """Takes the locks of what the render reads (scene, views,
         environment), in the one order every call takes them."""
         for obj in (self.scene, self.views, self.environment):
             if obj is not None:
                 stack.enter_context(obj._lock)
 
-    def desc(self):
-        """The mvr_render_desc, with the environment's handle and the
-        exposure chosen for the scene (hold() first)."""
+    def desc(self) -> Any:
+        """The mvr_render_desc with the environment and the exposure
+        applied (hold() first)."""
         rd = self._rd
         if self.environment is not None:
             rd.environment = self.environment.handle
-        if self._choose:
-            N.C.mvr_render_desc_choose_exposure(self.scene.handle, ctypes.byref(rd))
-        if self._exposure_mode is not None:
-            rd.exposure_mode = self._exposure_mode
-        if self._tone_map is not None:
-            rd.tone_map = self._tone_map
+        self._exposure.apply(self.scene, rd)  # after the environment: it weighs in
         return rd
+
+    def close(self) -> None:
+        if self._own_views:
+            self.views.close()
 
 
 class _Target:
-    def __init__(self, handle, key):
+    def __init__(self, handle: int, key: Tuple[int, ...]) -> None:
         self.handle, self.key = handle, key
 
 
@@ -103,12 +126,17 @@ class Context(Handle):
 
     _what = "mvr.Context"
 
-    def __init__(self, provider="default", *, api="default", device_index=0, debug=False, view_path="auto",
-                 material_path="auto", depth_mode="auto", transparency_order="auto", skinning_path="auto",
-                 program_cache_dir=None, disable_culling=False, disable_instancing=False):
+    def __init__(self, provider: str = "default", *, api: str = "default", device_index: int = 0,
+                 debug: bool = False, view_path: str = "auto", material_path: str = "auto", depth_mode: str = "auto",
+                 transparency_order: str = "auto", skinning_path: str = "auto",
+                 program_cache_dir: Optional[PathArg] = None, disable_culling: bool = False,
+                 disable_instancing: bool = False) -> None:
         super().__init__()
-        self._renderer = None
-        self._target = None
+        self._renderer: Optional[int] = None
+        self._target: Optional[_Target] = None
+        # environments named by a string ("neutral", "uniform"), made once:
+        # the renderer keeps an environment's prefiltered maps while it is the same one
+        self._environments: Dict[str, Environment] = {}
         self._depth = 0  # nesting of _current() on the thread holding the lock
         self._logger = logger()
         d = N.desc(N.mvr_context_desc)
@@ -141,19 +169,19 @@ class Context(Handle):
                           "mvr_renderer_create")
             self._renderer = r.value
             # mvr_context_create left it current here: free for any thread
-            self._release(self._handle)
+            self._release(self.handle)
         except BaseException:
             self.close()
             raise
 
-    def _release(self, h):
+    def _release(self, h: int) -> None:
         if N.C.mvr_context_release_current is None:  # a libmvr older than the call: stays current
             return
         check(N.C.mvr_context_release_current(h), lambda: N.text(N.C.mvr_context_last_error(h)),
               "mvr_context_release_current")
 
     @contextlib.contextmanager
-    def _current(self):
+    def _current(self) -> Iterator[int]:
         """Holds the lock with the GL context current on this thread; releases
         the GL context when the outermost such block ends."""
         with self._lock:
@@ -174,7 +202,7 @@ class Context(Handle):
             if self._depth == 0:
                 self._release(h)
 
-    def close(self):
+    def close(self) -> None:
         """Destroys the target, the renderer and the context; waits for a
         call in flight on another thread. Closing twice is fine."""
         with self._lock:
@@ -182,7 +210,7 @@ class Context(Handle):
                 raise Error("mvr.Context.close() from inside a call on the same Context (a logging handler?)")
             super().close()
 
-    def _destroy(self, handle):
+    def _destroy(self, handle: int) -> None:
         # targets, then the renderer, then the context, with the context
         # current here: each GL object is deleted while its context is
         # current (the library would also accept any order); destroying
@@ -195,22 +223,25 @@ class Context(Handle):
             N.C.mvr_renderer_destroy(self._renderer)
             self._renderer = None
         N.C.mvr_context_destroy(handle)
+        for env in self._environments.values():  # no GL in an environment
+            env.close()
+        self._environments.clear()
 
-    def _renderer_error(self):
+    def _renderer_error(self) -> str:
         return N.text(N.C.mvr_renderer_last_error(self._renderer))
 
     @property
-    def caps(self):
+    def caps(self) -> Dict[str, Any]:
         """What the GL offers: renderer, version, max_views (GL_MAX_VIEWS_OVR),
         multiview, software, and the whole mvr_caps as nested dicts."""
         with self._lock:
             return self._caps_locked()
 
-    def _caps_locked(self):
+    def _caps_locked(self) -> Dict[str, Any]:
         c = N.C.mvr_context_caps(self.handle).contents
 
-        def as_dict(s):
-            d = {}
+        def as_dict(s: Any) -> Dict[str, Any]:
+            d: Dict[str, Any] = {}
             for name in s.field_names():
                 v = getattr(s, name)
                 d[name] = as_dict(v) if isinstance(v, N.S) else N.text(v) if isinstance(v, bytes) else v
@@ -222,11 +253,13 @@ class Context(Handle):
         return d
 
     @property
-    def provider(self):
+    def provider(self) -> str:
+        """The context provider that was made ("surfaceless", "device", ...)."""
         with self._lock:
             return N.text(N.C.mvr_context_provider_name(N.C.mvr_context_get_provider(self.handle)))
 
-    def _target_for(self, width, height, layers, color_format, samples, outputs_mask):
+    def _target_for(self, width: int, height: int, layers: int, color_format: int, samples: int,
+                    outputs_mask: int) -> int:
         key = (width, height, layers, color_format, samples, outputs_mask)
         if self._target is not None and self._target.key == key:
             return self._target.handle
@@ -241,99 +274,161 @@ class Context(Handle):
         out = ctypes.c_void_p()
         check(N.C.mvr_target_create(self._renderer, ctypes.byref(td), ctypes.byref(out)), self._renderer_error,
               "mvr_target_create")
-        self._target = _Target(out.value, key)
-        return out.value
+        handle = int(out.value or 0)  # a created target is never NULL
+        self._target = _Target(handle, key)
+        return handle
 
-    def render(self, scene, views, size, *, outputs=("color",), color_dtype="uint8", color_format="default",
-               samples=0, clear_color=(0, 0, 0, 0), environment=None, background="color", background_blur=0.0,
-               exposure=1.0, exposure_mode=None, tone_map=None, ev100=0.0, choose_exposure=False,
-               shadows="default", normal_space="world", alpha_cutoff=0.0):
+    def render(self, scene: Scene, views: Optional[Views] = None, size: Tuple[int, int] = DEFAULT_SIZE, *,
+               outputs: Union[str, Sequence[str]] = ("color",), color_dtype: Any = "uint8",
+               color_format: str = "default", samples: int = 0,
+               clear_color: Sequence[float] = DEFAULT_CLEAR_COLOR, environment: EnvironmentArg = DEFAULT_ENVIRONMENT,
+               background: str = "color", background_blur: float = 0.0, exposure: Optional[float] = None,
+               exposure_mode: Optional[str] = None, tone_map: Optional[str] = None, ev100: Optional[float] = None,
+               choose_exposure: Optional[bool] = None, shadows: str = "default", normal_space: str = "world",
+               alpha_cutoff: float = 0.0) -> List[RenderedView]:
         """Renders every view of `views` (view i into layer i) at size =
         (width, height) and returns one RenderedView per view, each with
         the outputs asked for ("color", "depth", "distance", "normal",
         "ids", "coverage") and its camera.
 
+        The defaults are `mvr render`'s for a file (docs/guide.md, Python,
+        "Defaults"), so ctx.render(scene) gives its pixels: views None =
+        Views.default(scene, size) (the file's first camera as a stereo
+        pair, else the stereo framing), size 640 x 480, the neutral studio
+        environment, the opaque dark sky DEFAULT_CLEAR_COLOR, the exposure
+        and tone map mvr_render_desc_choose_exposure picks, no MSAA.
+
         color_dtype "uint8" reads the stored bytes, "float32" floats
         (normalized for 8-bit formats); color_format "default" (sRGB
         storage), "rgba8", "rgba16f" or "rgba32f" (linear); samples: MSAA
-        samples per pixel (0 = none). clear_color: linear RGBA of what no
-        geometry covers (or background "environment" / "blur" with an
-        mvr.Environment). exposure: the linear multiplier; exposure_mode
-        ("linear", "ev100", "camera", "auto") and tone_map ("none", "aces",
-        "pbr_neutral"); choose_exposure=True picks both as `mvr render`
-        does for the scene (mvr_render_desc_choose_exposure; an explicit
-        exposure_mode or tone_map still wins). shadows: "default" (lights
-        that cast them), "all", "off". normal_space: "world" or "camera";
-        alpha_cutoff: where blended surfaces start to count in depth / ids
-        outputs (0 = 0.5)."""
+        samples per pixel, 0 or 1 (none) or a power of two up to the GL's
+        GL_MAX_SAMPLES. clear_color: linear RGB or RGBA (alpha 1) of what no
+        geometry covers. environment: an mvr.Environment, "neutral" (the
+        built-in studio), "uniform" (radiance 1 from everywhere), or None
+        (no image-based lighting: the scene's own lights alone); background
+        "color", "environment" or "blur" (background_blur: its roughness,
+        0 = 0.5). Exposure: with none of exposure, exposure_mode and ev100
+        given, the scene's choice (choose_exposure; False: linear, exposure
+        1); exposure alone is a linear multiplier, ev100 alone an EV100;
+        exposure_mode "linear", "ev100", "camera" or "auto"; tone_map
+        "none", "aces" or "pbr_neutral" (default: the chosen one, or
+        "pbr_neutral" for "auto" and "none" otherwise, as `mvr render`).
+        choose_exposure=True chooses even with exposure options given
+        (those still win). shadows: "default" (lights that cast them),
+        "all", "off". normal_space: "world" or "camera"; alpha_cutoff: where
+        blended surfaces start to count in depth / ids outputs (0 = 0.5)."""
         job = self._prepare(scene, views, size, outputs=outputs, color_dtype=color_dtype,
                             color_format=color_format, samples=samples, clear_color=clear_color,
                             environment=environment, background=background, background_blur=background_blur,
                             exposure=exposure, exposure_mode=exposure_mode, tone_map=tone_map, ev100=ev100,
                             choose_exposure=choose_exposure, shadows=shadows, normal_space=normal_space,
                             alpha_cutoff=alpha_cutoff)
-        with contextlib.ExitStack() as held:
-            # the context (current on this thread), then what the render
-            # reads: one order everywhere, so two threads never wait on each other
-            held.enter_context(self._current())
-            job.hold(held)
-            layers = len(views)
-            if layers == 0:
-                raise Error("render: the view set has no views")
-            rd = job.desc()
-            target = self._target_for(job.width, job.height, layers, job.color_format, job.samples, job.mask)
-            check(N.C.mvr_renderer_render(self._renderer, scene.handle, views.handle, target, ctypes.byref(rd)),
-                  self._renderer_error, "mvr_renderer_render")
-            return [self._read_view(target, views, layer, job.width, job.height, job.outputs, job.extra,
-                                    job.color_float)
-                    for layer in range(layers)]
+        try:
+            with contextlib.ExitStack() as held:
+                # the context (current on this thread), then what the render
+                # reads: one order everywhere, so two threads never wait on each other
+                held.enter_context(self._current())
+                job.hold(held)
+                layers = len(job.views)
+                if layers == 0:
+                    raise Error("render: the view set has no views")
+                rd = job.desc()
+                target = self._target_for(job.width, job.height, layers, job.color_format, job.samples, job.mask)
+                check(N.C.mvr_renderer_render(self._renderer, scene.handle, job.views.handle, target,
+                                              ctypes.byref(rd)), self._renderer_error, "mvr_renderer_render")
+                got = [self._read_view(target, job.views, layer, job.width, job.height, job.outputs, job.extra,
+                                       job.color_float)
+                       for layer in range(layers)]
+        finally:
+            job.close()
+        return got
 
-    def _prepare(self, scene, views, size, *, outputs, color_dtype, color_format, samples, clear_color, environment,
-                 background, background_blur, exposure, exposure_mode, tone_map, ev100, choose_exposure, shadows,
-                 normal_space, alpha_cutoff):
+    def _prepare(self, scene: Scene, views: Optional[Views], size: Tuple[int, int], *,
+                 outputs: Union[str, Sequence[str]], color_dtype: Any, color_format: str, samples: int,
+                 clear_color: Sequence[float], environment: EnvironmentArg, background: str, background_blur: float,
+                 exposure: Optional[float], exposure_mode: Optional[str], tone_map: Optional[str],
+                 ev100: Optional[float], choose_exposure: Optional[bool], shadows: str, normal_space: str,
+                 alpha_cutoff: float) -> "_RenderJob":
         """Every argument of a render checked, before the GL (and any
-        allocation) sees it: a _RenderJob."""
+        allocation) sees it: a _RenderJob (close() it)."""
         self.handle  # noqa: B018 - raises once closed
+        if not isinstance(scene, Scene):
+            raise TypeError("scene: an mvr.Scene expected, got %s" % type(scene).__name__)
+        if views is not None and not isinstance(views, Views):
+            raise TypeError("views: an mvr.Views (or None: Views.default) expected, got %s" % type(views).__name__)
+        # every argument checked before the GL (and any allocation) sees it
         try:
             width, height = size
         except (TypeError, ValueError):
             raise ValueError("size: (width, height) expected, got %r" % (size,)) from None
         width = c_int(width, "size: width", 1, U32_MAX)
         height = c_int(height, "size: height", 1, U32_MAX)
-        samples = c_int(samples, "samples", 0, U32_MAX)
-        color_format = N.COLOR_FORMAT(color_format, "color_format")
-        if isinstance(outputs, str):
-            outputs = (outputs,)
-        outputs = tuple(outputs)
-        for o in outputs:
-            if o not in OUTPUTS:
-                raise ValueError("outputs: %r is not one of %s" % (o, ", ".join(OUTPUTS)))
-        extra = [o for o in outputs if o != "color"]
+        samples = self._checked_samples(samples)
+        color_format_value = N.COLOR_FORMAT(color_format, "color_format")
+        outputs, extra = _checked_outputs(outputs)
         mask = 0
         for o in extra:
             mask |= 1 << N.OUTPUT(o)
         if color_dtype not in ("uint8", "float32", np.uint8, np.float32):
             raise ValueError("color_dtype: 'uint8' or 'float32', got %r" % (color_dtype,))
         color_float = np.dtype(color_dtype) == np.float32
+        rd = self._render_desc(clear_color, background, background_blur, shadows, normal_space, alpha_cutoff,
+                               environment)
+        exposure_choice = _ExposureChoice(exposure, exposure_mode, tone_map, ev100, choose_exposure)
+        env = self._environment(environment)
+        used = Views.default(scene, (width, height)) if views is None else views
+        return _RenderJob(scene, used, views is None, env, rd, exposure_choice, width, height,
+                          samples, color_format_value, outputs, extra, mask, color_float)
 
+    def _checked_samples(self, samples: Any) -> int:
+        """0 or 1 (none), or a power of two up to GL_MAX_SAMPLES: the GL
+        would round another count up to one it has, silently."""
+        n = c_int(samples, "samples", 0, U32_MAX)
+        if n <= 1:
+            return n
+        with self._lock:
+            most = N.C.mvr_context_caps(self.handle).contents.limits.max_samples
+        if n & (n - 1) or n > most:
+            counts = ", ".join(str(1 << k) for k in range(1, 31) if (1 << k) <= most)
+            raise ValueError("samples: %d is not an MSAA count this GL has (0 or 1 = none, or %s)" %
+                             (n, counts or "none: GL_MAX_SAMPLES is %d" % most))
+        return n
+
+    @staticmethod
+    def _render_desc(clear_color: Sequence[float], background: str, background_blur: float, shadows: str,
+                     normal_space: str, alpha_cutoff: float, environment: EnvironmentArg) -> Any:
         rd = N.desc(N.mvr_render_desc)
-        rd.clear_color[:] = [float(c) for c in clear_color]
-        rd.exposure = float(exposure)
-        rd.ev100 = float(ev100)
+        rgba = c_floats(clear_color, (3, 4), "clear_color")
+        rd.clear_color[:] = rgba + [1.0] * (4 - len(rgba))
         rd.background = N.BACKGROUND(background, "background")
-        rd.background_blur = float(background_blur)
+        if rd.background != N.BACKGROUND("color") and environment is None:
+            raise ValueError("background: %r needs an environment (environment is None)" % (background,))
+        rd.background_blur = c_float(background_blur, "background_blur", 0.0, 1.0)
         rd.shadows.mode = N.SHADOW_MODE(shadows, "shadows")
-        exposure_mode = None if exposure_mode is None else N.EXPOSURE_MODE(exposure_mode, "exposure_mode")
-        tone_map = None if tone_map is None else N.TONE_MAP(tone_map, "tone_map")
         rd.normal_space = N.NORMAL_SPACE(normal_space, "normal_space")
-        rd.output_alpha_cutoff = float(alpha_cutoff)
-        return _RenderJob(scene, views, environment, rd, choose_exposure, exposure_mode, tone_map, width, height,
-                          samples, color_format, outputs, extra, mask, color_float)
+        rd.output_alpha_cutoff = c_float(alpha_cutoff, "alpha_cutoff", 0.0, 1.0)
+        return rd
 
-    def _read_view(self, target, views, layer, width, height, outputs, extra, color_float):
-        arrays = {}
+    def _environment(self, environment: EnvironmentArg) -> Optional[Environment]:
+        """An Environment for the render's argument: strings name the
+        Context's own, made on first use and kept (prefiltered once)."""
+        if environment is None or isinstance(environment, Environment):
+            return environment
+        if isinstance(environment, str) and environment.lower() in ("neutral", "uniform"):
+            name = environment.lower()
+            with self._lock:
+                self.handle  # noqa: B018 - none made for a closed Context
+                if name not in self._environments:
+                    self._environments[name] = Environment(name)
+                return self._environments[name]
+        raise ValueError("environment: an mvr.Environment, 'neutral', 'uniform' or None expected, got %r" %
+                         (environment,))
+
+    def _read_view(self, target: int, views: Views, layer: int, width: int, height: int, outputs: Sequence[str],
+                   extra: Sequence[str], color_float: bool) -> RenderedView:
+        arrays: Dict[str, np.ndarray] = {}
         if "color" in outputs:
-            arr = np.empty((height, width, 4), np.float32 if color_float else np.uint8)
+            arr = np.empty((height, width, 4), np.float32 if color_float else np.uint8)  # type: np.ndarray
             fmt = N.READBACK("rgba32f" if color_float else "rgba8")
             check(N.C.mvr_renderer_read_layer(self._renderer, target, layer, fmt, arr.ctypes.data, arr.nbytes),
                   self._renderer_error, "mvr_renderer_read_layer(%d)" % layer)
@@ -351,13 +446,13 @@ class Context(Handle):
         return RenderedView(layer, views.camera(layer, width, height), arrays)
 
     @property
-    def stats(self):
+    def stats(self) -> Dict[str, Any]:
         """The last render's mvr_frame_stats as a dict (paths that ran by name)."""
         s = N.out(N.mvr_frame_stats)
         with self._lock:
             self.handle  # noqa: B018 - raises once closed
             N.C.mvr_renderer_get_stats(self._renderer, ctypes.byref(s))
-        d = {}
+        d: Dict[str, Any] = {}
         for name in N.mvr_frame_stats.field_names():
             v = getattr(s, name)
             d[name] = list(v) if isinstance(v, ctypes.Array) else v
@@ -366,31 +461,93 @@ class Context(Handle):
         d["depth_mode"] = N.DEPTH_MODE.name(s.depth_mode)
         return d
 
-    def render_stream(self, scene, views, size, *, chunk=0, outputs=("color",), color_dtype="uint8",
-                      color_format="default", samples=0, clear_color=(0, 0, 0, 0), environment=None,
-                      background="color", background_blur=0.0, exposure=1.0, exposure_mode=None, tone_map=None,
-                      ev100=0.0, choose_exposure=False, shadows="default", normal_space="world", alpha_cutoff=0.0):
+
+    def render_stream(self, scene: Scene, views: Optional[Views] = None, size: Tuple[int, int] = DEFAULT_SIZE, *,
+                      chunk: int = 0, outputs: Union[str, Sequence[str]] = ("color",), color_dtype: Any = "uint8",
+                      color_format: str = "default", samples: int = 0,
+                      clear_color: Sequence[float] = DEFAULT_CLEAR_COLOR,
+                      environment: EnvironmentArg = DEFAULT_ENVIRONMENT, background: str = "color",
+                      background_blur: float = 0.0, exposure: Optional[float] = None,
+                      exposure_mode: Optional[str] = None, tone_map: Optional[str] = None,
+                      ev100: Optional[float] = None, choose_exposure: Optional[bool] = None,
+                      shadows: str = "default", normal_space: str = "world",
+                      alpha_cutoff: float = 0.0) -> Iterator[RenderedView]:
         """Renders every view of `views` as render() does, but yields the
         RenderedViews one by one, in view order, as their chunk comes back,
         instead of returning them all: memory stays flat in the number of
         views (the ring of two chunk targets and one chunk's arrays; what
-        the caller keeps is the caller's). The arguments are render()'s;
-        chunk: views per GL pass (0 = GL_MAX_VIEWS_OVR, fewer where a
-        chunk's readback would pass 64 MiB). Every argument is checked
-        here, before the first view is rendered. The pixels are render()'s,
-        byte for byte, except a shared auto exposure (metered over every
-        view first, then fixed, as `mvr render` does) and shadow cascades
-        (fitted to each chunk's views). Between two views the Context is
-        free for other calls (from this thread or another); closing the
-        generator early (break) releases its GL objects."""
+        the caller keeps is the caller's). The arguments and defaults are
+        render()'s; chunk: views per GL pass (0 = GL_MAX_VIEWS_OVR, fewer
+        where a chunk's readback would pass 64 MiB). Every argument is
+        checked here, before the first view is rendered. The pixels are
+        render()'s, byte for byte, except a shared auto exposure (metered
+        over every view first, then fixed, as `mvr render` does) and shadow
+        cascades (fitted to each chunk's views). Between two views the
+        Context is free for other calls (from this thread or another);
+        closing the generator early (break) releases its GL objects."""
         from .stream import Stream
+        chunk = c_int(chunk, "chunk", 0, 64)
         job = self._prepare(scene, views, size, outputs=outputs, color_dtype=color_dtype,
                             color_format=color_format, samples=samples, clear_color=clear_color,
                             environment=environment, background=background, background_blur=background_blur,
                             exposure=exposure, exposure_mode=exposure_mode, tone_map=tone_map, ev100=ev100,
                             choose_exposure=choose_exposure, shadows=shadows, normal_space=normal_space,
                             alpha_cutoff=alpha_cutoff)
-        chunk = c_int(chunk, "chunk", 0, 64)
-        with views._lock:
-            stream = Stream(self, job, chunk)
+        try:
+            with job.views._lock:
+                stream = Stream(self, job, chunk)
+        except BaseException:
+            job.close()
+            raise
         return iter(stream)
+
+
+def _checked_outputs(outputs: Union[str, Sequence[str]]) -> Tuple[Tuple[str, ...], List[str]]:
+    """The output names asked for (each known, none twice) and those other than colour."""
+    if isinstance(outputs, str):
+        outputs = (outputs,)
+    try:
+        names = tuple(outputs)
+    except TypeError:
+        raise ValueError("outputs: a sequence of %s expected, got %r" % (", ".join(OUTPUTS), outputs)) from None
+    for o in names:
+        if not isinstance(o, str) or o not in OUTPUTS:
+            raise ValueError("outputs: %r is not one of %s" % (o, ", ".join(OUTPUTS)))
+        if names.count(o) > 1:
+            raise ValueError("outputs: %r is asked for twice" % (o,))
+    return names, [o for o in names if o != "color"]
+
+
+class _ExposureChoice:
+    """render()'s exposure arguments, checked, applied to a render desc as
+    `mvr render` applies its options: the scene's choice
+    (mvr_render_desc_choose_exposure) unless one is given; a given mode
+    without a tone map gets PBR Neutral for "auto", none otherwise."""
+
+    def __init__(self, exposure: Optional[float], mode: Optional[str], tone_map: Optional[str],
+                 ev100: Optional[float], choose: Optional[bool]) -> None:
+        self.exposure = 1.0 if exposure is None else c_float(exposure, "exposure", 0.0, lo_open=True)
+        self.ev100 = None if ev100 is None else c_float(ev100, "ev100")
+        self.mode = None if mode is None else N.EXPOSURE_MODE(mode, "exposure_mode")
+        if self.mode is None and self.ev100 is not None:
+            self.mode = N.EXPOSURE_MODE("ev100")
+        elif self.mode is None and exposure is not None:
+            self.mode = N.EXPOSURE_MODE("linear")
+        self.tone_map = None if tone_map is None else N.TONE_MAP(tone_map, "tone_map")
+        self.choose = self.mode is None if choose is None else bool(choose)
+
+    def apply(self, scene: Scene, rd: Any) -> None:
+        rd.exposure = self.exposure
+        rd.ev100 = self.ev100 or 0.0
+        if self.choose:
+            N.C.mvr_render_desc_choose_exposure(scene.handle, ctypes.byref(rd))
+        else:
+            rd.exposure_mode = N.EXPOSURE_MODE("linear")
+            rd.tone_map = N.TONE_MAP("none")
+        if self.mode is not None:
+            rd.exposure_mode = self.mode
+            if not self.choose:
+                auto = self.mode == N.EXPOSURE_MODE("auto")
+                rd.tone_map = N.TONE_MAP("pbr_neutral" if auto else "none")
+        if self.tone_map is not None:
+            rd.tone_map = self.tone_map

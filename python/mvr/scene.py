@@ -1,22 +1,27 @@
 """Scenes (a glTF file, or objects added in code) and environments."""
 import ctypes
+import math
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
 from . import _native as N
-from ._common import (U32_MAX, U64_MAX, Error, Handle, as_c_double, as_c_float, c_int, c_path, c_text, check,
-                      check_created, locked, logger)
+from ._common import (U32_MAX, U64_MAX, Error, Handle, PathArg, as_c_double, as_c_float, c_float, c_int, c_path,
+                      c_text, check, check_created, locked, logger)
+
+Text = Union[str, bytes, None]
+_PLURAL = {"node": "nodes", "mesh": "meshes", "material": "materials"}
 
 # animation and variant indices: the last uint32 means "all" / "the default"
 _INDEX_MAX = U32_MAX - 1
 
 
-def _id(value, what):
+def _id(value: Any, what: str) -> int:
     """An object id (mvr_*_id: a uint32, 0 = none)."""
     return c_int(value, what, 0, U32_MAX)
 
 
-def _f32(a, cols, what, rows=None):
+def _f32(a: Any, cols: int, what: str, rows: Optional[int] = None) -> np.ndarray:
     """A C-contiguous float32 (rows, cols) copy of an array-like, checked."""
     arr = np.asarray(a, dtype=np.float32)
     if arr.ndim not in (1, 2) or arr.size % cols or (arr.ndim == 2 and arr.shape[1] != cols):
@@ -29,7 +34,7 @@ def _f32(a, cols, what, rows=None):
     return arr
 
 
-def _ptr(arr, ctype):
+def _ptr(arr: Optional[np.ndarray], ctype: Any) -> Any:
     return arr.ctypes.data_as(ctypes.POINTER(ctype)) if arr is not None else None
 
 
@@ -41,9 +46,9 @@ class Scene(Handle):
 
     _what = "mvr.Scene"
 
-    def __init__(self):
+    def __init__(self) -> None:
         super().__init__()
-        self.gltf_info = None  # dict, for scenes from Scene.load
+        self.gltf_info: Optional[Dict[str, int]] = None  # for scenes from Scene.load
         self._logger = logger()
         desc = N.desc(N.mvr_scene_desc)
         desc.logger = self._logger
@@ -54,7 +59,7 @@ class Scene(Handle):
         self._handle = out.value
 
     @classmethod
-    def _adopt(cls, handle):
+    def _adopt(cls, handle: int) -> "Scene":
         self = cls.__new__(cls)
         Handle.__init__(self)
         self.gltf_info = None
@@ -62,16 +67,17 @@ class Scene(Handle):
         self._handle = handle
         return self
 
-    def _destroy(self, handle):
+    def _destroy(self, handle: int) -> None:
         N.C.mvr_scene_destroy(handle)
 
-    def _check(self, result, what):
+    def _check(self, result: int, what: str) -> None:
         check(result, lambda: N.text(N.C.mvr_scene_last_error(self._handle)), what)
 
     # ------------------------------------------------------------ loading
 
     @classmethod
-    def load(cls, path, *, scene=None, strict=False, memory_budget=0, base_dir=None, allowed_root=None):
+    def load(cls, path: PathArg, *, scene: Optional[int] = None, strict: bool = False, memory_budget: int = 0,
+             base_dir: Optional[PathArg] = None, allowed_root: Optional[PathArg] = None) -> "Scene":
         """Loads a .gltf or .glb file (mvr_gltf_load_file). scene: the index
         of the file's scene (None = its default); strict: missing images are
         errors; memory_budget: bytes (0 = 2 GiB); allowed_root: a folder
@@ -95,14 +101,14 @@ class Scene(Handle):
         r = N.C.mvr_gltf_load_file(file_path, ctypes.byref(opts), ctypes.byref(out), ctypes.byref(info),
                                    ctypes.byref(err))
         check_created(r, err, "mvr_gltf_load_file")
-        self = cls._adopt(out.value)
+        self = cls._adopt(int(out.value or 0))
         self.gltf_info = {name: getattr(info, name) for name in N.mvr_gltf_info.field_names()}
         return self
 
     # ------------------------------------------------------------ adding objects
 
     @locked
-    def add_image(self, rgba, name=None):
+    def add_image(self, rgba: Any, name: Text = None) -> int:
         """An RGBA8 image: a (height, width, 4) uint8 array, rows top first."""
         arr = np.ascontiguousarray(rgba, dtype=np.uint8)
         if arr.ndim != 3 or arr.shape[2] != 4:
@@ -117,23 +123,25 @@ class Scene(Handle):
         return out.id
 
     @locked
-    def add_material(self, *, base_color=(1, 1, 1, 1), metallic=1.0, roughness=1.0, emissive=(0, 0, 0),
-                     emissive_strength=1.0, alpha_mode="opaque", alpha_cutoff=0.5, double_sided=False, unlit=False,
-                     base_color_texture=0, metallic_roughness_texture=0, normal_texture=0, emissive_texture=0,
-                     occlusion_texture=0, ior=1.5, name=None):
+    def add_material(self, *, base_color: Sequence[float] = (1, 1, 1, 1), metallic: float = 1.0,
+                     roughness: float = 1.0, emissive: Sequence[float] = (0, 0, 0), emissive_strength: float = 1.0,
+                     alpha_mode: str = "opaque", alpha_cutoff: float = 0.5, double_sided: bool = False,
+                     unlit: bool = False, base_color_texture: int = 0, metallic_roughness_texture: int = 0,
+                     normal_texture: int = 0, emissive_texture: int = 0, occlusion_texture: int = 0, ior: float = 1.5,
+                     name: Text = None) -> int:
         """A glTF metallic-roughness material (glTF's defaults); textures are
         image ids from add_image (TEXCOORD_0). Returns its id."""
         d = N.C.mvr_material_defaults()
-        d.base_color_factor = as_c_float(base_color, 4, "base_color")
-        d.metallic_factor = float(metallic)
-        d.roughness_factor = float(roughness)
-        d.emissive_factor = as_c_float(emissive, 3, "emissive")
-        d.emissive_strength = float(emissive_strength)
+        d.base_color_factor = as_c_float(base_color, 4, "base_color", 0.0)
+        d.metallic_factor = c_float(metallic, "metallic", 0.0, 1.0)
+        d.roughness_factor = c_float(roughness, "roughness", 0.0, 1.0)
+        d.emissive_factor = as_c_float(emissive, 3, "emissive", 0.0)
+        d.emissive_strength = c_float(emissive_strength, "emissive_strength", 0.0)
         d.alpha_mode = N.ALPHA_MODE(alpha_mode, "alpha_mode")
-        d.alpha_cutoff = float(alpha_cutoff)
+        d.alpha_cutoff = c_float(alpha_cutoff, "alpha_cutoff", 0.0)
         d.double_sided = bool(double_sided)
         d.unlit = bool(unlit)
-        d.ior = float(ior)
+        d.ior = c_float(ior, "ior", 0.0)  # KHR_materials_ior: 1 or more, 0 for the old 1/0 convention
         for role, image in (("base_color", base_color_texture), ("metallic_roughness", metallic_roughness_texture),
                             ("normal", normal_texture), ("emissive", emissive_texture),
                             ("occlusion", occlusion_texture)):
@@ -148,7 +156,8 @@ class Scene(Handle):
         return out.id
 
     @locked
-    def add_mesh(self, primitives=None, *, name=None, **primitive):
+    def add_mesh(self, primitives: Union[None, Dict[str, Any], Sequence[Dict[str, Any]]] = None, *,
+                 name: Text = None, **primitive: Any) -> int:
         """A mesh of one or more primitives. Each is a dict (or, for one
         primitive, keyword arguments) of: positions (N x 3), normals (N x 3),
         tangents (N x 4), texcoords0 / texcoords1 (N x 2), colors (N x 4,
@@ -161,7 +170,7 @@ class Scene(Handle):
             raise TypeError("add_mesh: give primitives=[...] or one primitive's keyword arguments, not both")
         if isinstance(primitives, dict):
             primitives = [primitives]
-        keep = []
+        keep: List[Any] = []
         c_int(len(primitives), "add_mesh: primitive count", 0, U32_MAX)
         prims = (N.mvr_primitive_desc * len(primitives))()
         for k, p in enumerate(primitives):
@@ -210,17 +219,19 @@ class Scene(Handle):
         return out.id
 
     @locked
-    def add_light(self, type="directional", *, color=(1, 1, 1), intensity=1.0, range=0.0, inner_cone_angle=0.0,
-                  outer_cone_angle=0.0, cast_shadows=False, layers=0):
+    def add_light(self, type: str = "directional", *, color: Sequence[float] = (1, 1, 1), intensity: float = 1.0,
+                  range: float = 0.0, inner_cone_angle: float = 0.0, outer_cone_angle: float = 0.0,
+                  cast_shadows: bool = False, layers: int = 0) -> int:
         """A KHR_lights_punctual light (shines along its node's -Z): type
         "directional" (lux), "point" or "spot" (candela). Returns its id."""
         d = N.desc(N.mvr_light_desc)
         d.type = N.LIGHT_TYPE(type, "light type")
-        d.color = as_c_float(color, 3, "color")
-        d.intensity = float(intensity)
-        d.range = float(range)
-        d.inner_cone_angle = float(inner_cone_angle)
-        d.outer_cone_angle = float(outer_cone_angle)
+        d.color = as_c_float(color, 3, "color", 0.0)
+        d.intensity = c_float(intensity, "intensity", 0.0)
+        d.range = c_float(range, "range", 0.0)  # 0 = infinite
+        # KHR_lights_punctual: 0 <= inner < outer <= pi/2 (the library judges the pair)
+        d.inner_cone_angle = c_float(inner_cone_angle, "inner_cone_angle", 0.0, math.pi / 2)
+        d.outer_cone_angle = c_float(outer_cone_angle, "outer_cone_angle", 0.0, math.pi / 2)
         d.cast_shadows = bool(cast_shadows)
         d.layers = c_int(layers, "layers", 0, U32_MAX)
         out = N.Id()
@@ -228,24 +239,26 @@ class Scene(Handle):
         return out.id
 
     @locked
-    def add_camera(self, *, yfov=0.0, aspect=0.0, znear=0.0, zfar=0.0, xmag=None, ymag=None):
+    def add_camera(self, *, yfov: float = 0.0, aspect: float = 0.0, znear: float = 0.0, zfar: float = 0.0,
+                   xmag: Optional[float] = None, ymag: Optional[float] = None) -> int:
         """A camera (put it on a node): perspective (yfov radians, 0 = 60
         degrees; aspect 0 = the viewport's), or orthographic when xmag and
         ymag (half extents) are given. Returns its id."""
         p = N.desc(N.mvr_projection)
         if xmag is not None or ymag is not None:
             p.type = N.PROJECTION_TYPE("orthographic")
-            p.xmag, p.ymag = float(xmag or 0), float(ymag or 0)
+            p.xmag, p.ymag = c_float(xmag or 0, "xmag"), c_float(ymag or 0, "ymag")
         else:
-            p.yfov, p.aspect = float(yfov), float(aspect)
-        p.znear, p.zfar = float(znear), float(zfar)
+            p.yfov, p.aspect = c_float(yfov, "yfov", 0.0), c_float(aspect, "aspect", 0.0)
+        p.znear, p.zfar = c_float(znear, "znear"), c_float(zfar, "zfar")
         out = N.Id()
         self._check(N.C.mvr_scene_add_camera(self.handle, ctypes.byref(p), ctypes.byref(out)), "add_camera")
         return out.id
 
     @locked
-    def add_node(self, *, mesh=0, light=0, camera=0, parent=0, translation=(0, 0, 0), rotation=(0, 0, 0, 1),
-                 scale=(1, 1, 1), matrix=None, name=None):
+    def add_node(self, *, mesh: int = 0, light: int = 0, camera: int = 0, parent: int = 0,
+                 translation: Sequence[float] = (0, 0, 0), rotation: Sequence[float] = (0, 0, 0, 1),
+                 scale: Sequence[float] = (1, 1, 1), matrix: Any = None, name: Text = None) -> int:
         """A node: translation, rotation (quaternion x, y, z, w), scale, or a
         4x4 matrix (numpy layout: row-major, m[:3, 3] the translation);
         what it carries (mesh, light, camera ids) and its parent (a node id,
@@ -269,21 +282,23 @@ class Scene(Handle):
         return out.id
 
     @locked
-    def set_node_transform(self, node, translation=(0, 0, 0), rotation=(0, 0, 0, 1), scale=(1, 1, 1)):
+    def set_node_transform(self, node: int, translation: Sequence[float] = (0, 0, 0),
+                           rotation: Sequence[float] = (0, 0, 0, 1), scale: Sequence[float] = (1, 1, 1)) -> None:
+        """Sets a node's translation, rotation (quaternion x, y, z, w) and scale."""
         self._check(N.C.mvr_scene_set_node_transform(
             self.handle, N.Id(_id(node, "node")), as_c_double(translation, 3, "translation"),
             as_c_double(rotation, 4, "rotation"), as_c_double(scale, 3, "scale")), "set_node_transform")
 
     @locked
-    def set_ambient(self, rgb):
-        """Uniform ambient radiance from every direction (linear RGB)."""
-        N.C.mvr_scene_set_ambient(self.handle, as_c_float(rgb, 3, "ambient"))
+    def set_ambient(self, rgb: Sequence[float]) -> None:
+        """Uniform ambient radiance from every direction (linear RGB, >= 0)."""
+        N.C.mvr_scene_set_ambient(self.handle, as_c_float(rgb, 3, "ambient", 0.0))
 
     # ------------------------------------------------------------ queries
 
     @property
     @locked
-    def info(self):
+    def info(self) -> Dict[str, Any]:
         """Counts (images, materials, meshes, nodes, ...) and world bounds."""
         i = N.out(N.mvr_scene_info)
         N.C.mvr_scene_get_info(self.handle, ctypes.byref(i))
@@ -294,14 +309,50 @@ class Scene(Handle):
 
     @property
     @locked
-    def camera_nodes(self):
+    def camera_nodes(self) -> List[int]:
         """The node ids of nodes that carry a camera, in node order."""
         h = self.handle
         return [N.C.mvr_scene_camera_node(h, k).id for k in range(N.C.mvr_scene_camera_node_count(h))]
 
+    # ------------------------------------------------------------ ids -> names
+
+    def _name(self, fn: Any, kind: str, ident: Any) -> str:
+        with self._lock:
+            got = fn(self.handle, N.Id(_id(ident, kind)))
+            if got is None:  # NULL: no such id ("" is an unnamed one)
+                plural = _PLURAL[kind]
+                raise KeyError("%s %r: the scene has %d %s (ids 1 .. their count)" % (
+                    kind, ident, self.info[plural], plural))
+        return N.text(got)
+
+    def node_name(self, node: int) -> str:
+        """The name of a node id (the `ids` output's channel 0; "" when
+        unnamed); KeyError for an id the scene does not have."""
+        return self._name(N.C.mvr_scene_node_name, "node", node)
+
+    def mesh_name(self, mesh: int) -> str:
+        """The name of a mesh id (the `ids` output's channel 1); as node_name."""
+        return self._name(N.C.mvr_scene_mesh_name, "mesh", mesh)
+
+    def material_name(self, material: int) -> str:
+        """The name of a material id (the `ids` output's channel 2); as node_name."""
+        return self._name(N.C.mvr_scene_material_name, "material", material)
+
     @property
     @locked
-    def animations(self):
+    def names(self) -> Dict[str, Dict[int, str]]:
+        """Every id's name: {"nodes": {id: name}, "meshes": {...},
+        "materials": {...}} (ids 1 .. the counts of `info`; "" when unnamed),
+        to look up what the `ids` output names."""
+        info = self.info
+        return {key: {k: self._name(fn, kind, k) for k in range(1, info[key] + 1)}
+                for key, kind, fn in (("nodes", "node", N.C.mvr_scene_node_name),
+                                      ("meshes", "mesh", N.C.mvr_scene_mesh_name),
+                                      ("materials", "material", N.C.mvr_scene_material_name))}
+
+    @property
+    @locked
+    def animations(self) -> List[Tuple[str, float, float]]:
         """[(name, start, end)] in seconds, in the file's order."""
         h = self.handle
         out = []
@@ -312,14 +363,15 @@ class Scene(Handle):
         return out
 
     @locked
-    def apply_animation(self, animation, time, *, loop=False):
+    def apply_animation(self, animation: Union[int, str], time: float, *, loop: bool = False) -> None:
         """Poses the scene at `time` seconds of an animation: its index, its
         name, or "all" (every animation at that time)."""
         index = self._animation_index(animation)
         wrap = N.ANIMATION_WRAP("loop" if loop else "clamp")
-        self._check(N.C.mvr_scene_apply_animation(self.handle, index, float(time), wrap), "apply_animation")
+        self._check(N.C.mvr_scene_apply_animation(self.handle, index, c_float(time, "time"), wrap),
+                    "apply_animation")
 
-    def _animation_index(self, animation):
+    def _animation_index(self, animation: Union[int, str]) -> int:
         if isinstance(animation, str):
             if animation == "all":
                 return N.ANIMATION_ALL
@@ -330,18 +382,19 @@ class Scene(Handle):
         return c_int(animation, "animation", 0, _INDEX_MAX)
 
     @locked
-    def reset_pose(self):
+    def reset_pose(self) -> None:
+        """Back to the nodes' own transforms (before any animation)."""
         N.C.mvr_scene_reset_pose(self.handle)
 
     @property
     @locked
-    def variants(self):
+    def variants(self) -> List[str]:
         """Material variant names (KHR_materials_variants), in order."""
         h = self.handle
         return [N.text(N.C.mvr_scene_variant_name(h, k)) for k in range(N.C.mvr_scene_variant_count(h))]
 
     @locked
-    def select_variant(self, variant):
+    def select_variant(self, variant: Union[int, str, None]) -> None:
         """Selects a material variant by name or index; None: the default."""
         if variant is None:
             index = N.VARIANT_DEFAULT
@@ -357,20 +410,26 @@ class Scene(Handle):
 
 class Environment(Handle):
     """Image-based lighting (mvr_environment): source "neutral" (the built-in
-    studio), "uniform" (color: one radiance from everywhere), or an
-    equirectangular image of linear radiance: pixels = (height, width, 3 or
-    4) floats, rows top first (Environment.from_file reads .hdr / .exr).
-    intensity multiplies it, rotation turns it (degrees about +Y)."""
+    studio, Context.render's default), "uniform" (color: one radiance from
+    everywhere), or an equirectangular image of linear radiance: pixels =
+    (height, width, 3 or 4) floats, rows top first (Environment.from_file
+    reads .hdr / .exr). intensity (> 0) multiplies it, rotation turns it
+    (degrees about +Y); both can change later (the `intensity` and
+    `rotation` properties) without prefiltering again. specular_size: the
+    prefiltered cube face, a power of two 16..1024 (0 = 128);
+    specular_samples: GGX samples per texel, 1..4096 (0 = 256)."""
 
     _what = "mvr.Environment"
 
-    def __init__(self, source="neutral", *, pixels=None, color=(1, 1, 1), intensity=1.0, rotation=0.0,
-                 specular_size=0, specular_samples=0):
+    def __init__(self, source: str = "neutral", *, pixels: Any = None, color: Sequence[float] = (1, 1, 1),
+                 intensity: float = 1.0, rotation: float = 0.0, specular_size: int = 0,
+                 specular_samples: int = 0) -> None:
         super().__init__()
         if pixels is not None:
             source = "pixels"
         d = N.desc(N.mvr_environment_desc)
         d.source = N.ENV_SOURCE(source, "environment source")
+        self.source = N.ENV_SOURCE.name(d.source)
         keep = None
         if d.source == N.ENV_SOURCE("pixels"):
             if pixels is None:
@@ -382,13 +441,20 @@ class Environment(Handle):
                 a = np.concatenate([a, np.ones(a.shape[:2] + (1,), np.float32)], axis=2)
             keep = np.ascontiguousarray(a)
             d.pixels = _ptr(keep, ctypes.c_float)
-            d.width = c_int(keep.shape[1], "Environment: pixels width", 0, U32_MAX)
-            d.height = c_int(keep.shape[0], "Environment: pixels height", 0, U32_MAX)
-        d.color = as_c_float(color, 3, "color")
-        d.intensity = float(intensity)
-        d.rotation = float(rotation)
-        d.specular_size = c_int(specular_size, "specular_size", 0, U32_MAX)
-        d.specular_samples = c_int(specular_samples, "specular_samples", 0, U32_MAX)
+            d.width = c_int(keep.shape[1], "Environment: pixels width", 1, U32_MAX)
+            d.height = c_int(keep.shape[0], "Environment: pixels height", 1, U32_MAX)
+        rgb = as_c_float(color, 3, "color", 0.0)
+        if not any(rgb):  # the library would read all 0 as (1, 1, 1)
+            raise ValueError("color: %r is black: a uniform environment gives no light (environment=None "
+                             "renders without one)" % (tuple(color),))
+        d.color = rgb
+        d.intensity = _intensity(intensity)
+        d.rotation = c_float(rotation, "rotation")
+        size = c_int(specular_size, "specular_size", 0, 1024)
+        if size and (size < 16 or size & (size - 1)):
+            raise ValueError("specular_size: %d is not a power of two in 16 .. 1024 (or 0 = 128)" % size)
+        d.specular_size = size
+        d.specular_samples = c_int(specular_samples, "specular_samples", 0, 4096)
         self._logger = logger()
         d.logger = self._logger
         out = ctypes.c_void_p()
@@ -397,9 +463,37 @@ class Environment(Handle):
                       "mvr_environment_create")
         self._handle = out.value
 
+    @property
+    @locked
+    def intensity(self) -> float:
+        """The multiplier of the radiance (> 0)."""
+        return float(N.C.mvr_environment_intensity(self.handle))
+
+    @intensity.setter
+    @locked
+    def intensity(self, value: float) -> None:
+        N.C.mvr_environment_set_intensity(self.handle, _intensity(value))
+
+    @property
+    @locked
+    def rotation(self) -> float:
+        """The turn about +Y, in degrees."""
+        return float(N.C.mvr_environment_rotation(self.handle))
+
+    @rotation.setter
+    @locked
+    def rotation(self, degrees: float) -> None:
+        N.C.mvr_environment_set_rotation(self.handle, c_float(degrees, "rotation"))
+
+    def __repr__(self) -> str:
+        if self.closed:
+            return "Environment(%s, closed)" % self.source
+        return "Environment(%s, intensity=%g, rotation=%g)" % (self.source, self.intensity, self.rotation)
+
     @classmethod
-    def from_file(cls, path, **kwargs):
-        """An equirectangular .hdr / .exr (or any image OpenImageIO reads)."""
+    def from_file(cls, path: PathArg, **kwargs: Any) -> "Environment":
+        """An equirectangular .hdr / .exr (or any image OpenImageIO reads);
+        kwargs as Environment's (intensity, rotation, ...)."""
         if N.C.mvr_image_read is None:
             raise Error("this mvr was built without image I/O (libmvr_image.so)", "MVR_ERROR_UNSUPPORTED")
         img = N.out(N.mvr_image_data)
@@ -414,5 +508,10 @@ class Environment(Handle):
             N.C.mvr_image_free(ctypes.byref(img))
         return cls("pixels", pixels=pixels, **kwargs)
 
-    def _destroy(self, handle):
+    def _destroy(self, handle: int) -> None:
         N.C.mvr_environment_destroy(handle)
+
+
+def _intensity(value: Any) -> float:
+    # > 0: the library reads 0 as 1; None (environment=None) is how to turn the light off
+    return c_float(value, "intensity", 0.0, lo_open=True)

@@ -275,6 +275,7 @@ class Stream:
             self._close()
 
     def _close(self):
+        self.job.close()  # the views made for it (views=None)
         if not self.slots and self.meter is None:
             return
         with self.ctx._lock:

@@ -2,17 +2,26 @@
 intrinsics given as numpy arrays; and each view's camera metadata."""
 import ctypes
 import math
+from typing import TYPE_CHECKING, Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
 from . import _native as N
-from ._common import U32_MAX, Error, Handle, c_int, check, check_created, locked
+from ._common import U32_MAX, Error, Handle, c_float, c_floats, c_int, check, check_created, locked
+
+if TYPE_CHECKING:  # scene.py does not import views.py: no cycle at run time either
+    from .scene import Scene
+
+# the library's limits (include/mvr/mvr_views.h, mvr_framing.h)
+MAX_VIEWS = 1024          # MVR_VIEW_SET_MAX_VIEWS
+_MAX_ASPECT = 65536.0     # mvr_framing_desc.aspect in [1/65536, 65536]
+_MAX_IPD = 1e9            # mvr_framing_desc.ipd in [0, 1e9]
 
 # frustum half-angles the library takes (core/view_set.c: |angle| < 1.5707)
 _MAX_ANGLE = 1.5707
 
 
-def _mat(cols16):
+def _mat(cols16: Any) -> np.ndarray:
     """16 doubles, column-major (C) -> a 4x4 numpy array (M @ p)."""
     return np.array(cols16[:], dtype=np.float64).reshape(4, 4).T.copy()
 
@@ -32,7 +41,7 @@ class Camera:
     the OpenGL clip matrix (z in [-1, 1]). Orthographic views have
     perspective False and no pinhole (K is None, fx .. cy are 0)."""
 
-    def __init__(self, c):
+    def __init__(self, c: Any) -> None:
         self.width, self.height = c.width, c.height
         self.perspective = bool(c.perspective)
         self.fx, self.fy, self.cx, self.cy = c.fx, c.fy, c.cx, c.cy
@@ -41,16 +50,18 @@ class Camera:
         self.camera_to_world = _mat(c.camera_to_world)
 
     @property
-    def K(self):
+    def K(self) -> Optional[np.ndarray]:
+        """The 3x3 pinhole matrix (None for an orthographic view)."""
         if not self.perspective:
             return None
         return np.array([[self.fx, 0.0, self.cx], [0.0, self.fy, self.cy], [0.0, 0.0, 1.0]])
 
     @property
-    def position(self):
+    def position(self) -> np.ndarray:
+        """The camera centre in world coordinates."""
         return self.camera_to_world[:3, 3].copy()
 
-    def project(self, points):
+    def project(self, points: Any) -> Tuple[np.ndarray, np.ndarray]:
         """World points (N x 3) -> pixel coordinates (N x 2: column u, row
         v; continuous, pixel k covers [k, k + 1)) and depth along the view
         axis (N: positive in front of the camera)."""
@@ -63,37 +74,37 @@ class Camera:
         v = self.fy * -cam[:, 1] / z + self.cy
         return np.stack([u, v], axis=1), z
 
-    def to_dict(self):
+    def to_dict(self) -> Dict[str, Any]:
         """JSON-ready: lists for the matrices (rows)."""
         return {"width": self.width, "height": self.height, "perspective": self.perspective, "fx": self.fx,
                 "fy": self.fy, "cx": self.cx, "cy": self.cy, "projection": self.projection.tolist(),
                 "world_to_camera": self.world_to_camera.tolist(),
                 "camera_to_world": self.camera_to_world.tolist()}
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return "Camera(%dx%d, fx=%.6g, fy=%.6g, cx=%.6g, cy=%.6g, position=%s)" % (
             self.width, self.height, self.fx, self.fy, self.cx, self.cy, np.round(self.position, 6).tolist())
 
 
-def look_at(eye, target, up=(0.0, 1.0, 0.0)):
+def look_at(eye: Sequence[float], target: Sequence[float], up: Sequence[float] = (0.0, 1.0, 0.0)) -> np.ndarray:
     """A camera_to_world matrix (4x4, OpenGL camera: looking along -Z) at
     eye looking at target."""
-    eye, target, up = (np.asarray(v, dtype=np.float64) for v in (eye, target, up))
-    f = target - eye
+    e, t, u = (np.asarray(c_floats(v, 3, name), dtype=np.float64)
+               for v, name in ((eye, "eye"), (target, "target"), (up, "up")))
+    f = t - e
     if not np.linalg.norm(f) > 0:
         raise ValueError("look_at: eye and target are the same point")
     f = f / np.linalg.norm(f)
-    s = np.cross(f, up)
+    s = np.cross(f, u)
     if not np.linalg.norm(s) > 1e-12:
         raise ValueError("look_at: up is parallel to the viewing direction")
     s = s / np.linalg.norm(s)
-    u = np.cross(s, f)
     m = np.eye(4)
-    m[:3, 0], m[:3, 1], m[:3, 2], m[:3, 3] = s, u, -f, eye
+    m[:3, 0], m[:3, 1], m[:3, 2], m[:3, 3] = s, np.cross(s, f), -f, e
     return m
 
 
-def _quaternion(r):
+def _quaternion(r: np.ndarray) -> np.ndarray:
     """Rotation matrix -> unit quaternion (x, y, z, w)."""
     t = r[0, 0] + r[1, 1] + r[2, 2]
     if t > 0:
@@ -108,11 +119,11 @@ def _quaternion(r):
     else:
         s = math.sqrt(1.0 + r[2, 2] - r[0, 0] - r[1, 1]) * 2
         q = ((r[0, 2] + r[2, 0]) / s, (r[1, 2] + r[2, 1]) / s, 0.25 * s, (r[1, 0] - r[0, 1]) / s)
-    q = np.array(q)
-    return q / np.linalg.norm(q)
+    qa = np.array(q)
+    return qa / np.linalg.norm(qa)
 
 
-def _stack(a, shape, what):
+def _stack(a: Any, shape: Tuple[int, int], what: str) -> np.ndarray:
     arr = np.asarray(a, dtype=np.float64)
     if arr.shape == shape:
         arr = arr[None]
@@ -130,40 +141,67 @@ class Views(Handle):
 
     _what = "mvr.Views"
 
-    def __init__(self, handle):
+    def __init__(self, handle: int) -> None:
         super().__init__()
         self._handle = handle
 
-    def _destroy(self, handle):
+    def _destroy(self, handle: int) -> None:
         N.C.mvr_view_set_destroy(handle)
 
     @classmethod
-    def layout(cls, scene, layout="stereo", *, count=0, aspect=1.0, ipd=0.0, rows=0, elevation=None):
+    def layout(cls, scene: "Scene", layout: str = "stereo", *, count: int = 0, aspect: float = 1.0,
+               ipd: float = 0.0, rows: int = 0, elevation: Optional[Sequence[float]] = None) -> "Views":
         """Views laid out around the scene's bounding sphere
         (mvr_view_set_frame_scene): layout "stereo", "cube", "ring", "grid",
-        "sphere" or "orbit"; count 0 = the layout's own (2, 6, 8, 9, 50, 24);
-        aspect = width / height of the images; ipd 0 = 1/30 of the framing
-        distance; orbit: rows (rings; 0 = 3) and elevation = (lowest,
-        highest) in radians (None = -15 and 60 degrees)."""
+        "sphere" or "orbit"; count 0 = the layout's own (2, 6, 8, 9, 50, 24),
+        at most 1024; aspect = width / height of the images (1/65536 ..
+        65536); ipd 0 = 1/30 of the framing distance; orbit: rows (rings;
+        0 = 3) and elevation = (lowest, highest) in radians, inside
+        (-pi/2, pi/2) (None = -15 and 60 degrees)."""
         d = N.desc(N.mvr_framing_desc)
         d.layout = N.LAYOUT(layout, "layout")
-        d.views, d.rows = c_int(count, "count", 0, U32_MAX), c_int(rows, "rows", 0, U32_MAX)
-        d.aspect, d.ipd = float(aspect), float(ipd)
+        d.views, d.rows = c_int(count, "count", 0, MAX_VIEWS), c_int(rows, "rows", 0, U32_MAX)
+        d.aspect = c_float(aspect, "aspect", 1.0 / _MAX_ASPECT, _MAX_ASPECT)
+        d.ipd = c_float(ipd, "ipd", 0.0, _MAX_IPD)
         if elevation is not None:
-            d.elevation_min, d.elevation_max = (float(e) for e in elevation)
+            lo, hi = c_floats(elevation, 2, "elevation")
+            for name, e in (("elevation[0]", lo), ("elevation[1]", hi)):
+                if not abs(e) < math.pi / 2:
+                    raise ValueError("%s: %r radians is not inside (-pi/2, pi/2)" % (name, e))
+            if lo > hi:
+                raise ValueError("elevation: (lowest, highest) expected, got %r" % (tuple(elevation),))
+            d.elevation_min, d.elevation_max = lo, hi
         out = ctypes.c_void_p()
         err = N.mvr_error()
         with scene._lock:
             check_created(N.C.mvr_view_set_frame_scene(scene.handle, ctypes.byref(d), ctypes.byref(out),
                                                        ctypes.byref(err)), err, "mvr_view_set_frame_scene")
-        return cls(out.value)
+        return cls(int(out.value or 0))
 
     @classmethod
-    def from_camera(cls, scene, camera=0, *, count=1, ipd=0.0):
+    def default(cls, scene: "Scene", size: Tuple[int, int] = (640, 480)) -> "Views":
+        """The views `mvr render FILE` (and mvr-viewer) show a scene from at
+        size = (width, height): its first camera node as a stereo pair
+        (Views.from_camera(scene, 0, count=2)) when it has one, else the
+        stereo framing at the size's aspect. Context.render(views=None)
+        renders these."""
+        try:
+            width, height = size
+        except (TypeError, ValueError):
+            raise ValueError("size: (width, height) expected, got %r" % (size,)) from None
+        width, height = c_int(width, "size: width", 1, U32_MAX), c_int(height, "size: height", 1, U32_MAX)
+        if scene.camera_nodes:
+            return cls.from_camera(scene, 0, count=2)
+        return cls.layout(scene, "stereo", aspect=width / height)
+
+    @classmethod
+    def from_camera(cls, scene: "Scene", camera: int = 0, *, count: int = 1, ipd: float = 0.0) -> "Views":
         """Views from a camera of the scene (mvr_view_set_from_camera):
-        camera = its index among scene.camera_nodes; count eyes ipd apart
-        along the camera's x axis (1 = the camera itself)."""
-        count = c_int(count, "count", 0, U32_MAX)
+        camera = its index among scene.camera_nodes; count eyes (1 .. 1024)
+        ipd apart along the camera's x axis (1 = the camera itself; ipd 0 =
+        1/30 of the camera's distance to the scene)."""
+        count = c_int(count, "count", 1, MAX_VIEWS)
+        ipd = c_float(ipd, "ipd", 0.0, _MAX_IPD)
         out = ctypes.c_void_p()
         err = N.mvr_error()
         with scene._lock:
@@ -171,14 +209,15 @@ class Views(Handle):
             if not 0 <= camera < len(nodes):
                 raise Error("from_camera: the scene has %d camera nodes; %r is not one" % (len(nodes), camera))
             camera = c_int(camera, "camera", 0, len(nodes) - 1)
-            check_created(N.C.mvr_view_set_from_camera(scene.handle, N.Id(nodes[camera]), count, float(ipd),
+            check_created(N.C.mvr_view_set_from_camera(scene.handle, N.Id(nodes[camera]), count, ipd,
                                                        ctypes.byref(out), ctypes.byref(err)), err,
                           "mvr_view_set_from_camera")
-        return cls(out.value)
+        return cls(int(out.value or 0))
 
     @classmethod
-    def from_poses(cls, camera_to_world, intrinsics=None, size=None, *, yfov=0.0, znear=0.0, zfar=0.0,
-                   convention="opengl", origin=None):
+    def from_poses(cls, camera_to_world: Any, intrinsics: Any = None, size: Optional[Sequence[float]] = None, *,
+                   yfov: float = 0.0, znear: float = 0.0, zfar: float = 0.0, convention: str = "opengl",
+                   origin: Optional[Sequence[float]] = None) -> "Views":
         """Views from camera poses: camera_to_world is (4, 4) or (N, 4, 4)
         (rigid: rotation and translation; convention "opengl": the camera
         looks along -Z with +Y up, as Camera.camera_to_world, glTF and
@@ -194,7 +233,12 @@ class Views(Handle):
         flip = {"opengl": np.diag([1.0, 1.0, 1.0]), "opencv": np.diag([1.0, -1.0, -1.0])}
         if convention not in flip:
             raise ValueError("convention: 'opengl' or 'opencv', got %r" % (convention,))
-        n = c_int(poses.shape[0], "camera_to_world: pose count", 0, U32_MAX)
+        n = c_int(poses.shape[0], "camera_to_world: pose count", 1, MAX_VIEWS)
+        yfov = c_float(yfov, "yfov", 0.0)  # 0 = 60 degrees
+        if yfov >= math.pi:
+            raise ValueError("yfov: %r radians must be below pi" % (yfov,))
+        # znear / zfar: numbers here; their range is the view set's to judge (its message names the view)
+        znear, zfar = (float(z) for z in (znear, zfar))
         ks = None
         if intrinsics is not None:
             ks = _stack(intrinsics, (3, 3), "intrinsics")
@@ -204,7 +248,7 @@ class Views(Handle):
                 raise ValueError("intrinsics: %d matrices for %d poses" % (ks.shape[0], n))
             if size is None:
                 raise ValueError("intrinsics need size=(width, height): the image they are in pixels of")
-            width, height = (float(s) for s in size)
+            width, height = c_floats(size, 2, "size")
             if not (width > 0 and height > 0):
                 raise ValueError("size: positive width and height expected, got %r" % (size,))
         views = (N.mvr_view_desc * n)()
@@ -219,10 +263,10 @@ class Views(Handle):
             v.position[:] = m[:3, 3].tolist()
             v.orientation[:] = _quaternion(r).tolist()
             p = v.projection
-            p.znear, p.zfar = float(znear), float(zfar)
+            p.znear, p.zfar = znear, zfar
             if ks is None:
                 p.type = N.PROJECTION_TYPE("perspective")
-                p.yfov = float(yfov)
+                p.yfov = yfov
                 continue
             k = ks[i]
             fx, fy, cx, cy = k[0, 0], k[1, 1], k[0, 2], k[1, 2]
@@ -246,19 +290,20 @@ class Views(Handle):
         d.views = views
         if origin is not None:
             d.origin_set = True
-            d.origin[:] = [float(o) for o in origin]
+            d.origin[:] = c_floats(origin, 3, "origin")
         out = ctypes.c_void_p()
         err = N.mvr_error()
         check_created(N.C.mvr_view_set_create(ctypes.byref(d), ctypes.byref(out), ctypes.byref(err)), err,
                       "mvr_view_set_create")
-        return cls(out.value)
+        return cls(int(out.value or 0))
 
     @locked
-    def __len__(self):
+    def __len__(self) -> int:
+        """The number of views (one layer each)."""
         return N.C.mvr_view_set_count(self.handle)
 
     @locked
-    def camera(self, index, width, height):
+    def camera(self, index: int, width: int, height: int) -> Camera:
         """View `index`'s Camera on a layer of width x height pixels."""
         n = len(self)
         if not 0 <= index < n:
@@ -273,5 +318,6 @@ class Views(Handle):
         return Camera(c)
 
     @locked
-    def cameras(self, width, height):
+    def cameras(self, width: int, height: int) -> List[Camera]:
+        """Every view's Camera on layers of width x height pixels."""
         return [self.camera(i, width, height) for i in range(len(self))]

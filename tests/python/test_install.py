@@ -19,7 +19,7 @@ with mvr.Context() as ctx, mvr.Scene() as s:
     mesh = s.add_mesh(positions=[[-1, -1, -3], [1, -1, -3], [0, 1, -3]], material=m)
     s.add_node(mesh=mesh)
     with mvr.Views.from_poses(np.eye(4)) as views:
-        (v,) = ctx.render(s, views, (16, 16))
+        (v,) = ctx.render(s, views, (16, 16), environment=None)  # unlit red, exact without a tone map
 print(tuple(v.color[8, 8]))
 """
 
