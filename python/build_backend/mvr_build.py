@@ -17,7 +17,7 @@ so one wheel serves every Python 3 of the platform it was built on. What
 it needs from the system at run time: docs/guide.md ("Installing with pip").
 
 Config settings (pip --config-settings KEY=VALUE, python -m build -CKEY=VALUE):
-  build-dir    CMake's build folder (default <source>/build/wheel; kept,
+  build-dir    CMake's build folder (default <source>/build-wheel; kept,
                so a second build only relinks what changed)
   cmake-args   more -D options for CMake, space-separated
   jobs         parallel build jobs (default: CMAKE_BUILD_PARALLEL_LEVEL or
@@ -118,7 +118,7 @@ def _setting(config_settings, key, default=None):
 
 def _build_libraries(config_settings):
     """Configures and builds the shared libraries; returns {soname: path}."""
-    build_dir = pathlib.Path(_setting(config_settings, "build-dir", ROOT / "build" / "wheel")).resolve()
+    build_dir = pathlib.Path(_setting(config_settings, "build-dir", ROOT / "build-wheel")).resolve()
     extra = shlex.split(_setting(config_settings, "cmake-args", "") or "")
     jobs = str(_setting(config_settings, "jobs", os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL") or os.cpu_count() or 1))
     # every library finds its neighbours in its own folder ($ORIGIN): the
