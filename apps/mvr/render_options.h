@@ -34,6 +34,8 @@ typedef struct render_options {
     bool plan;                   /* --plan */
     bool colmap;                 /* --colmap */
     uint32_t outputs;            /* --outputs: mvr_target_desc.outputs (0 = colour alone) */
+    double depth_png_scale;      /* scene units per step of a 16-bit depth PNG (depth_VVVV.png): set
+                                    per run before the first view is written (0 = not yet) */
     mvr_view_path view_path;
     mvr_material_path material_path;
     mvr_depth_mode depth_mode;
