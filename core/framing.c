@@ -32,6 +32,7 @@ const char *mvr_view_layout_name(mvr_view_layout layout)
     case MVR_LAYOUT_GRID: return "grid";
     case MVR_LAYOUT_SPHERE: return "sphere";
     case MVR_LAYOUT_ORBIT: return "orbit";
+    case MVR_LAYOUT_RANDOM: return "random";
     }
     return NULL;
 }
@@ -42,9 +43,10 @@ double mvr_stereo_default_ipd(double viewing_distance)
 }
 
 /* The centre of the scene's bounding sphere and its radius (the origin and
- * 1 for a scene that draws nothing). */
-static void bounding_sphere(const mvr_scene *scene, double c[3], double *radius)
+ * 1 for a scene that draws nothing: false then). */
+static bool bounding_sphere(const mvr_scene *scene, double c[3], double *radius)
 {
+    bool real = false;
     mvr_scene_info info;
     mvr_scene_get_info(scene, &info);
     c[0] = c[1] = c[2] = 0;
@@ -57,15 +59,350 @@ static void bounding_sphere(const mvr_scene *scene, double c[3], double *radius)
             ext2 += e * e;
         }
         r = sqrt(ext2);
-        if (!(r > 1e-9) || !isfinite(r))
+        real = r > 1e-9 && isfinite(r);
+        if (!real)
             r = 1.0;
     }
     *radius = r;
+    return real;
 }
 
-static void look(mvr_view_desc *v, const double eye[3], const double target[3], const double up[3])
+/* The smallest and the largest field of view a framing takes: near 0 the
+ * framing distance grows without bound, near pi the frustum's edge reaches
+ * the 90 degrees the view set refuses. */
+#define MIN_YFOV 1e-3
+#define MAX_YFOV 3.1
+/* Camera distances past this many scene units are refused, as MAX_IPD. */
+#define MAX_RADIUS 1e9
+#define MAX_MARGIN 0.9
+
+/* What every view of one framing shares: the scene's bounds, the lens and
+ * how far the cameras stand. */
+typedef struct framing {
+    double c[3], r;              /* the bounds' centre and half-diagonal (the bounding sphere) */
+    double lo[3], hi[3];         /* the bounding box */
+    double yfov;                 /* radians */
+    double tan_x, tan_y;         /* tangents of the half fields of view */
+    double dist;                 /* the sphere fit's distance, or desc.radius */
+    double radius, margin;       /* desc's */
+    bool fit_box;
+    mvr_up_axis up;
+} framing;
+
+/* A vector of the layouts' own frame (+Y up, the stereo eyes on +Z) in the
+ * world's: identity for Y-up; for Z-up (x, y, z) -> (x, -z, y), the
+ * rotation Blender's glTF exporter undoes ((x, y, z) -> (x, z, -y)). */
+static void to_world(mvr_up_axis up, const double l[3], double w[3])
 {
-    mvr_view_look_at(v, eye, target, up);
+    if (up == MVR_UP_Z) {
+        w[0] = l[0];
+        w[1] = -l[2];
+        w[2] = l[1];
+    } else {
+        w[0] = l[0];
+        w[1] = l[1];
+        w[2] = l[2];
+    }
+}
+
+static double dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void cross3(const double a[3], const double b[3], double out[3])
+{
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static bool normalize3(double v[3])
+{
+    double len = sqrt(dot3(v, v));
+    if (!(len > 0) || !isfinite(len))
+        return false;
+    for (int k = 0; k < 3; ++k)
+        v[k] /= len;
+    return true;
+}
+
+/* The least distance from the centre along back (unit, world; the camera
+ * looks along -back with up as its up hint) at which every corner of the
+ * bounding box projects inside the image less the margin: a corner q
+ * (relative to the centre) at x, y in the camera's right and up axes and
+ * `along` on back is inside where |x| <= k_x (d - along), likewise y. The
+ * largest of these bounds is met with equality, so the box touches the
+ * inset on that axis. */
+static double box_fit_distance(const framing *f, const double back[3], const double up[3])
+{
+    double fwd[3] = {-back[0], -back[1], -back[2]}, right[3], cam_up[3];
+    cross3(fwd, up, right);
+    if (!normalize3(right))
+        return f->dist;
+    cross3(right, fwd, cam_up);
+    double kx = (1.0 - f->margin) * f->tan_x, ky = (1.0 - f->margin) * f->tan_y;
+    double d = 0, along_max = -INFINITY;
+    for (int corner = 0; corner < 8; ++corner) {
+        double q[3];
+        for (int k = 0; k < 3; ++k)
+            q[k] = ((corner >> k) & 1 ? f->hi[k] : f->lo[k]) - f->c[k];
+        double along = dot3(q, back);
+        d = fmax(d, along + fabs(dot3(q, right)) / kx);
+        d = fmax(d, along + fabs(dot3(q, cam_up)) / ky);
+        along_max = fmax(along_max, along);
+    }
+    /* a box seen end-on along the axis: keep its nearest corner in front */
+    return fmax(d, along_max + f->r * 1e-3);
+}
+
+/* View v at the centre plus offset (the layout's frame), looking at the
+ * centre plus target (NULL: the centre) with up (the layout's frame). An
+ * orbiting view (around the centre) stands at the framing's distance along
+ * its direction when radius or the box fit ask; znear keeps the whole
+ * bounding sphere in front. */
+static void place(const framing *f, mvr_view_desc *v, const double offset[3], const double target[3],
+                  const double up[3], bool orbiting)
+{
+    double eye_w[3], target_w[3] = {0, 0, 0}, up_w[3];
+    to_world(f->up, offset, eye_w);
+    to_world(f->up, up, up_w);
+    if (target)
+        to_world(f->up, target, target_w);
+    if (orbiting && (f->fit_box || f->radius > 0)) {
+        double back[3] = {eye_w[0], eye_w[1], eye_w[2]};
+        if (normalize3(back)) {
+            double d = f->fit_box ? box_fit_distance(f, back, up_w) : f->radius;
+            for (int k = 0; k < 3; ++k)
+                eye_w[k] = back[k] * d;
+            v->projection.znear = fmax(d - f->r, d * 1e-3) * 0.5;
+        }
+    }
+    double eye[3], at[3];
+    for (int k = 0; k < 3; ++k) {
+        eye[k] = f->c[k] + eye_w[k];
+        at[k] = f->c[k] + target_w[k];
+    }
+    mvr_view_look_at(v, eye, at, up_w);
+}
+
+/* splitmix64 (Steele, Lea and Flood 2014, "Fast splittable pseudorandom
+ * number generators"): a whole sequence from one 64-bit seed, any seed. */
+static uint64_t splitmix64(uint64_t *state)
+{
+    uint64_t z = (*state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+/* uniform in [0, 1): the top 53 bits */
+static double uniform01(uint64_t *state)
+{
+    return (double)(splitmix64(state) >> 11) * (1.0 / 9007199254740992.0);
+}
+
+/* n unit directions (the layout's frame) in the band of heights [h_lo,
+ * h_hi] on +Y, uniform by area (Archimedes: height and azimuth uniform),
+ * each at least min_spacing radians from those before (dart throwing, the
+ * Poisson-disk sampling of Cook 1986), in at most 100 n + 10000 throws. */
+static mvr_result random_directions(double (*dirs)[3], uint32_t n, double h_lo, double h_hi, uint64_t seed,
+                                    double min_spacing, mvr_error *error)
+{
+    uint64_t state = seed;
+    double cos_min = cos(min_spacing);
+    uint64_t tries = 0, max_tries = 100ull * n + 10000ull;
+    uint32_t placed = 0;
+    while (placed < n) {
+        if (tries++ >= max_tries)
+            return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
+                                 "mvr_view_set_frame_scene: random layout: min_spacing %g rad leaves room for %u of "
+                                 "%u views (after %llu tries); ask for a smaller spacing, fewer views or a wider "
+                                 "elevation band",
+                                 min_spacing, placed, n, (unsigned long long)max_tries);
+        double h = h_lo + (h_hi - h_lo) * uniform01(&state), a = 2.0 * PI * uniform01(&state);
+        double ring = sqrt(fmax(1.0 - h * h, 0.0));
+        double d[3] = {ring * sin(a), h, ring * cos(a)};
+        bool apart = true;
+        for (uint32_t j = 0; j < placed && apart; ++j)
+            apart = !(min_spacing > 0) || dot3(d, dirs[j]) < cos_min;
+        if (apart)
+            memcpy(dirs[placed++], d, sizeof d);
+    }
+    return MVR_OK;
+}
+
+/* The descriptor's camera sampling fields, checked: NaN fails every
+ * comparison, so each test is written to pass only in range. */
+static mvr_result check_sampling(const mvr_framing_desc *d, mvr_error *error)
+{
+    const char *fn = "mvr_view_set_frame_scene";
+    if (!(d->yfov == 0 || (d->yfov >= MIN_YFOV && d->yfov <= MAX_YFOV)))
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "%s: yfov %g (radians in [%g, %g]; 0 = 50 degrees)",
+                             fn, d->yfov, MIN_YFOV, MAX_YFOV);
+    if (!(d->radius >= 0 && d->radius <= MAX_RADIUS))
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
+                             "%s: radius %g (a distance in (0, %g] scene units; 0 = fitted)", fn, d->radius,
+                             MAX_RADIUS);
+    if (!(d->margin >= 0 && d->margin <= MAX_MARGIN))
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
+                             "%s: margin %g (a fraction of the image in [0, %g])", fn, d->margin, MAX_MARGIN);
+    if (d->radius > 0 && d->fit_box)
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
+                             "%s: radius %g and fit_box: give the distance or fit the box, not both", fn, d->radius);
+    if (d->margin > 0 && !d->fit_box)
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "%s: margin %g is for fit_box", fn, d->margin);
+    if (!(d->min_spacing >= 0 && d->min_spacing <= PI))
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "%s: min_spacing %g (radians in [0, pi])", fn,
+                             d->min_spacing);
+    if (d->up != MVR_UP_Y && d->up != MVR_UP_Z)
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "%s: up %d (MVR_UP_Y or MVR_UP_Z)", fn, (int)d->up);
+    if (d->hemisphere != MVR_HEMISPHERE_FULL && d->hemisphere != MVR_HEMISPHERE_UPPER)
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "%s: hemisphere %d (FULL or UPPER)", fn,
+                             (int)d->hemisphere);
+    bool around = d->layout == MVR_LAYOUT_SPHERE || d->layout == MVR_LAYOUT_RANDOM || d->layout == MVR_LAYOUT_ORBIT;
+    if (d->hemisphere == MVR_HEMISPHERE_UPPER && !around)
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
+                             "%s: hemisphere UPPER is for the sphere, random and orbit layouts (not %s)", fn,
+                             mvr_view_layout_name(d->layout));
+    if (d->layout == MVR_LAYOUT_CUBE && (d->yfov != 0 || d->radius > 0 || d->fit_box))
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
+                             "%s: the cube layout's six 90-degree views stand at the centre: yfov, radius and "
+                             "fit_box do not apply", fn);
+    return MVR_OK;
+}
+
+/* The elevation band (radians) of the sphere, random and orbit layouts,
+ * checked, with the upper hemisphere's clip. */
+static mvr_result elevation_band(const mvr_framing_desc *d, double *lo, double *hi, mvr_error *error)
+{
+    double el_lo = d->elevation_min, el_hi = d->elevation_max;
+    bool orbit = d->layout == MVR_LAYOUT_ORBIT;
+    if (el_lo == 0.0 && el_hi == 0.0) {
+        el_lo = orbit ? -15.0 * PI / 180.0 : -PI / 2;
+        el_hi = orbit ? 60.0 * PI / 180.0 : PI / 2;
+    }
+    /* an orbit ring at a pole would be one point with up along the view */
+    bool inside = orbit ? (el_lo > -PI / 2 && el_hi < PI / 2) : (el_lo >= -PI / 2 && el_hi <= PI / 2);
+    if (!(inside && el_lo <= el_hi))
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
+                             "mvr_view_set_frame_scene: %s elevations %g .. %g rad are not an interval inside "
+                             "%s-pi/2, pi/2%s",
+                             mvr_view_layout_name(d->layout), el_lo, el_hi, orbit ? "(" : "[", orbit ? ")" : "]");
+    if (d->hemisphere == MVR_HEMISPHERE_UPPER) {
+        if (el_hi < 0)
+            return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
+                                 "mvr_view_set_frame_scene: hemisphere UPPER with elevations %g .. %g rad: no view "
+                                 "is above the horizon",
+                                 el_lo, el_hi);
+        el_lo = fmax(el_lo, 0.0);
+    }
+    *lo = el_lo;
+    *hi = el_hi;
+    return MVR_OK;
+}
+
+/* The bounds, the lens and the framing distance of a scene. */
+static void framing_init(const mvr_scene *scene, const mvr_framing_desc *d, double aspect, framing *f)
+{
+    memset(f, 0, sizeof *f);
+    bool has_bounds = bounding_sphere(scene, f->c, &f->r);
+    mvr_scene_info info;
+    mvr_scene_get_info(scene, &info);
+    for (int k = 0; k < 3; ++k) {
+        /* a scene that draws nothing: the cube inside the unit sphere */
+        f->lo[k] = has_bounds ? info.bounds_min[k] : f->c[k] - f->r / sqrt(3.0);
+        f->hi[k] = has_bounds ? info.bounds_max[k] : f->c[k] + f->r / sqrt(3.0);
+    }
+    double yfov = d->yfov > 0 ? d->yfov : 50.0 * PI / 180.0;
+    f->yfov = yfov;
+    f->tan_y = tan(yfov * 0.5);
+    f->tan_x = f->tan_y * aspect;
+    /* far enough that the sphere fits the narrower of the two directions,
+     * with a margin */
+    double half = fmin(yfov * 0.5, atan(tan(yfov * 0.5) * aspect));
+    f->dist = d->radius > 0 ? d->radius : f->r / sin(half) * 1.05;
+    f->radius = d->radius;
+    f->fit_box = d->fit_box;
+    f->margin = d->margin;
+    f->up = d->up;
+}
+
+/* View i of n of the layouts around the centre (all but random's, whose
+ * directions come in dirs): its pose and projection. */
+static void frame_view(const framing *f, const mvr_framing_desc *d, uint32_t i, uint32_t n, double ipd, double el_lo,
+                       double el_hi, const double (*dirs)[3], mvr_view_desc *v)
+{
+    const double up[3] = {0, 1, 0}, pole_up[3] = {0, 0, -1};
+    double dist = f->dist, r = f->r;
+    switch (d->layout) {
+    case MVR_LAYOUT_STEREO: {
+        double offset = ((double)i - (double)(n - 1) * 0.5) * ipd;
+        double eye[3] = {offset, 0, dist}, target[3] = {offset, 0, 0};
+        place(f, v, eye, target, up, false);
+        break;
+    }
+    case MVR_LAYOUT_CUBE: {
+        static const double dirs6[6][6] = {{1, 0, 0, 0, 1, 0}, {-1, 0, 0, 0, 1, 0}, {0, 1, 0, 0, 0, 1},
+                                           {0, -1, 0, 0, 0, -1}, {0, 0, 1, 0, 1, 0}, {0, 0, -1, 0, 1, 0}};
+        const double *q = dirs6[i % 6], at_centre[3] = {0, 0, 0};
+        place(f, v, at_centre, q, q + 3, false);
+        v->projection.type = MVR_PROJECTION_FRUSTUM;
+        v->projection.angle_left = v->projection.angle_down = -PI / 4;
+        v->projection.angle_right = v->projection.angle_up = PI / 4;
+        break;
+    }
+    case MVR_LAYOUT_RING: {
+        double a = 2.0 * PI * (double)i / (double)n;
+        double eye[3] = {dist * sin(a), r * 0.25, dist * cos(a)};
+        place(f, v, eye, NULL, up, true);
+        break;
+    }
+    case MVR_LAYOUT_SPHERE: {
+        /* the Fibonacci lattice: heights evenly spaced over the band (so
+         * evenly by area), each point turned by the golden angle from the
+         * last (Gonzalez 2010, "Measurement of areas on a sphere using
+         * Fibonacci and latitude-longitude lattices") */
+        double h_hi = sin(el_hi), h_lo = sin(el_lo);
+        double y = h_hi - (h_hi - h_lo) * ((double)i + 0.5) / (double)n;
+        double ring = sqrt(fmax(1.0 - y * y, 0.0)), a = (double)i * PI * (3.0 - sqrt(5.0));
+        double eye[3] = {dist * ring * sin(a), dist * y, dist * ring * cos(a)};
+        /* near a pole the world's up is nearly the view axis: -Z instead */
+        place(f, v, eye, NULL, fabs(y) > 0.999 ? pole_up : up, true);
+        break;
+    }
+    case MVR_LAYOUT_RANDOM: {
+        const double *q = dirs[i];
+        double eye[3] = {dist * q[0], dist * q[1], dist * q[2]};
+        place(f, v, eye, NULL, fabs(q[1]) > 0.999 ? pole_up : up, true);
+        break;
+    }
+    case MVR_LAYOUT_ORBIT: {
+        /* ring k of rows holds n / rows views, the first n % rows one more */
+        uint32_t rows = d->rows ? d->rows : 3u;
+        uint32_t per = n / rows, extra = n % rows, k = 0, first = 0;
+        while (i >= first + per + (k < extra ? 1u : 0u)) {
+            first += per + (k < extra ? 1u : 0u);
+            k++;
+        }
+        uint32_t count = per + (k < extra ? 1u : 0u);
+        double el = rows > 1 ? el_lo + (el_hi - el_lo) * (double)k / (double)(rows - 1) : 0.5 * (el_lo + el_hi);
+        double a = 2.0 * PI * ((double)(i - first) + 0.5 * (double)(k % 2)) / (double)count;
+        double eye[3] = {dist * cos(el) * sin(a), dist * sin(el), dist * cos(el) * cos(a)};
+        place(f, v, eye, NULL, up, true);
+        break;
+    }
+    case MVR_LAYOUT_GRID: {
+        /* cameras r/4 apart on a plane in front of the scene, toed in */
+        uint32_t cols = (uint32_t)ceil(sqrt((double)n));
+        double spacing = r * 0.25;
+        double x = ((double)(i % cols) - (double)(cols - 1) * 0.5) * spacing;
+        double y = ((double)(cols - 1) * 0.5 - (double)(i / cols)) * spacing;
+        double eye[3] = {x, y, dist};
+        place(f, v, eye, NULL, up, false);
+        break;
+    }
+    }
 }
 
 mvr_result mvr_view_set_frame_scene(const mvr_scene *scene, const mvr_framing_desc *desc, mvr_view_set **out,
@@ -82,7 +419,7 @@ mvr_result mvr_view_set_frame_scene(const mvr_scene *scene, const mvr_framing_de
     if (!mvr_view_layout_name(d.layout))
         return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_view_set_frame_scene: unknown layout %d",
                              (int)d.layout);
-    static const uint32_t defaults[] = {2, 6, 8, 9, 50, 24};
+    static const uint32_t defaults[] = {2, 6, 8, 9, 50, 24, 50};
     uint32_t n = d.views ? d.views : defaults[d.layout];
     if (n > MVR_VIEW_SET_MAX_VIEWS)
         return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_view_set_frame_scene: %u views (at most %u)", n,
@@ -97,115 +434,69 @@ mvr_result mvr_view_set_frame_scene(const mvr_scene *scene, const mvr_framing_de
                              "mvr_view_set_frame_scene: ipd %g (a distance in [0, %g] scene units; 0 = scaled to the "
                              "scene)",
                              d.ipd, MAX_IPD);
+    mvr_result checked = check_sampling(&d, error);
+    if (checked != MVR_OK)
+        return checked;
     uint32_t rows = d.rows ? d.rows : 3u;
-    double el_lo = d.elevation_min, el_hi = d.elevation_max;
-    if (el_lo == 0.0 && el_hi == 0.0) {
-        el_lo = -15.0 * PI / 180.0;
-        el_hi = 60.0 * PI / 180.0;
-    }
-    if (d.layout == MVR_LAYOUT_ORBIT) {
-        if (rows > n)
-            return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
-                                 "mvr_view_set_frame_scene: %u orbit rings for %u views", rows, n);
-        if (!(el_lo > -PI / 2 && el_lo < PI / 2 && el_hi > -PI / 2 && el_hi < PI / 2 && el_lo <= el_hi))
-            return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
-                                 "mvr_view_set_frame_scene: orbit elevations %g .. %g rad are not an interval inside "
-                                 "(-pi/2, pi/2)",
-                                 el_lo, el_hi);
+    if (d.layout == MVR_LAYOUT_ORBIT && rows > n)
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
+                             "mvr_view_set_frame_scene: %u orbit rings for %u views", rows, n);
+    double el_lo = 0, el_hi = 0;
+    if (d.layout == MVR_LAYOUT_ORBIT || d.layout == MVR_LAYOUT_SPHERE || d.layout == MVR_LAYOUT_RANDOM) {
+        checked = elevation_band(&d, &el_lo, &el_hi, error);
+        if (checked != MVR_OK)
+            return checked;
     }
     double aspect = d.aspect > 0 ? d.aspect : 1.0;
-
-    double c[3], r;
-    bounding_sphere(scene, c, &r);
-    /* vertical field of view 50 degrees; far enough that the sphere fits
-     * the narrower of the two directions, with a margin */
-    double yfov = 50.0 * PI / 180.0;
-    double half = fmin(yfov * 0.5, atan(tan(yfov * 0.5) * aspect));
-    double dist = r / sin(half) * 1.05;
-    double ipd = d.ipd > 0 ? d.ipd : mvr_stereo_default_ipd(dist);
-    double znear = fmax(dist - r, dist * 1e-3) * 0.5;
+    framing f;
+    framing_init(scene, &d, aspect, &f);
+    if (f.fit_box && (d.layout == MVR_LAYOUT_STEREO || d.layout == MVR_LAYOUT_GRID)) {
+        /* one distance for the row or plane: the central view's fit */
+        const double front[3] = {0, 0, 1}, up[3] = {0, 1, 0};
+        double back[3], up_w[3];
+        to_world(f.up, front, back);
+        to_world(f.up, up, up_w);
+        f.dist = box_fit_distance(&f, back, up_w);
+    }
+    double ipd = d.ipd > 0 ? d.ipd : mvr_stereo_default_ipd(f.dist);
+    double znear = fmax(f.dist - f.r, f.dist * 1e-3) * 0.5;
     if (d.layout == MVR_LAYOUT_CUBE)
-        znear = r * 1e-3;
+        znear = f.r * 1e-3;
 
+    double(*dirs)[3] = NULL;
+    if (d.layout == MVR_LAYOUT_RANDOM) {
+        dirs = calloc(n, sizeof *dirs);
+        if (!dirs)
+            return mvr_error_set(error, MVR_ERROR_OUT_OF_MEMORY, "mvr_view_set_frame_scene: out of memory");
+        double h_lo = sin(el_lo), h_hi = sin(el_hi);
+        /* the band's area on the unit sphere is 2 pi (h_hi - h_lo) */
+        double spacing = d.min_spacing > 0 ? d.min_spacing : 0.5 * sqrt(2.0 * PI * (h_hi - h_lo) / (double)n);
+        checked = random_directions(dirs, n, h_lo, h_hi, d.seed, spacing, error);
+        if (checked != MVR_OK) {
+            free(dirs);
+            return checked;
+        }
+    }
     mvr_view_desc *views = calloc(n, sizeof *views);
-    if (!views)
+    if (!views) {
+        free(dirs);
         return mvr_error_set(error, MVR_ERROR_OUT_OF_MEMORY, "mvr_view_set_frame_scene: out of memory");
-    const double up[3] = {0, 1, 0};
-    uint32_t cols = (uint32_t)ceil(sqrt((double)n));
+    }
     for (uint32_t i = 0; i < n; ++i) {
         mvr_view_desc *v = &views[i];
         v->projection.type = MVR_PROJECTION_PERSPECTIVE;
-        v->projection.yfov = yfov;
+        v->projection.yfov = f.yfov;
         v->projection.aspect = aspect;
         v->projection.znear = znear;
-        switch (d.layout) {
-        case MVR_LAYOUT_STEREO: {
-            double offset = ((double)i - (double)(n - 1) * 0.5) * ipd;
-            double eye[3] = {c[0] + offset, c[1], c[2] + dist}, target[3] = {c[0] + offset, c[1], c[2]};
-            look(v, eye, target, up);
-            break;
-        }
-        case MVR_LAYOUT_CUBE: {
-            static const double dirs[6][6] = {{1, 0, 0, 0, 1, 0}, {-1, 0, 0, 0, 1, 0}, {0, 1, 0, 0, 0, 1},
-                                              {0, -1, 0, 0, 0, -1}, {0, 0, 1, 0, 1, 0}, {0, 0, -1, 0, 1, 0}};
-            const double *q = dirs[i % 6];
-            double target[3] = {c[0] + q[0], c[1] + q[1], c[2] + q[2]}, u[3] = {q[3], q[4], q[5]};
-            look(v, c, target, u);
-            v->projection.type = MVR_PROJECTION_FRUSTUM;
-            v->projection.angle_left = v->projection.angle_down = -PI / 4;
-            v->projection.angle_right = v->projection.angle_up = PI / 4;
-            break;
-        }
-        case MVR_LAYOUT_RING: {
-            double a = 2.0 * PI * (double)i / (double)n;
-            double eye[3] = {c[0] + dist * sin(a), c[1] + r * 0.25, c[2] + dist * cos(a)};
-            look(v, eye, c, up);
-            break;
-        }
-        case MVR_LAYOUT_SPHERE: {
-            /* the Fibonacci lattice: heights evenly spaced, each point
-             * turned by the golden angle from the last (Gonzalez 2010,
-             * "Measurement of areas on a sphere using Fibonacci and
-             * latitude-longitude lattices") */
-            double y = 1.0 - 2.0 * ((double)i + 0.5) / (double)n;
-            double ring = sqrt(fmax(1.0 - y * y, 0.0)), a = (double)i * PI * (3.0 - sqrt(5.0));
-            double eye[3] = {c[0] + dist * ring * sin(a), c[1] + dist * y, c[2] + dist * ring * cos(a)};
-            /* near a pole the world's up is nearly the view axis: -Z instead */
-            const double pole_up[3] = {0, 0, -1};
-            look(v, eye, c, fabs(y) > 0.999 ? pole_up : up);
-            break;
-        }
-        case MVR_LAYOUT_ORBIT: {
-            /* ring k of rows holds n / rows views, the first n % rows one more */
-            uint32_t per = n / rows, extra = n % rows, k = 0, first = 0;
-            while (i >= first + per + (k < extra ? 1u : 0u)) {
-                first += per + (k < extra ? 1u : 0u);
-                k++;
-            }
-            uint32_t count = per + (k < extra ? 1u : 0u);
-            double el = rows > 1 ? el_lo + (el_hi - el_lo) * (double)k / (double)(rows - 1) : 0.5 * (el_lo + el_hi);
-            double a = 2.0 * PI * ((double)(i - first) + 0.5 * (double)(k % 2)) / (double)count;
-            double eye[3] = {c[0] + dist * cos(el) * sin(a), c[1] + dist * sin(el), c[2] + dist * cos(el) * cos(a)};
-            look(v, eye, c, up);
-            break;
-        }
-        case MVR_LAYOUT_GRID: {
-            /* cameras r/4 apart on a plane in front of the scene, toed in */
-            double spacing = r * 0.25;
-            double x = ((double)(i % cols) - (double)(cols - 1) * 0.5) * spacing;
-            double y = ((double)(cols - 1) * 0.5 - (double)(i / cols)) * spacing;
-            double eye[3] = {c[0] + x, c[1] + y, c[2] + dist};
-            look(v, eye, c, up);
-            break;
-        }
-        }
+        frame_view(&f, &d, i, n, ipd, el_lo, el_hi, (const double(*)[3])dirs, v);
     }
+    free(dirs);
     mvr_view_set_desc vd;
     memset(&vd, 0, sizeof vd);
     vd.view_count = n;
     vd.views = views;
     vd.origin_set = true; /* the scene's center: every view is near it */
-    memcpy(vd.origin, c, sizeof c);
+    memcpy(vd.origin, f.c, sizeof f.c);
     mvr_result res = mvr_view_set_create(&vd, out, error);
     free(views);
     return res;

@@ -44,8 +44,13 @@ static int load_scene_file(const char *command, const cli_scene_options *o, mvr_
         r = mvr_view_set_from_camera(*scene, node, o->views ? o->views : 2, o->ipd, views, &err);
     } else {
         /* ipd 0: the library's, scaled to the framing distance */
-        mvr_framing_desc fd = {.layout = o->layout, .views = o->views, .ipd = o->ipd,
-                               .aspect = (double)o->width / (double)o->height};
+        mvr_framing_desc fd = {0};
+        if (o->framing)
+            fd = *o->framing;
+        fd.layout = o->layout;
+        fd.views = o->views;
+        fd.ipd = o->ipd;
+        fd.aspect = (double)o->width / (double)o->height;
         r = mvr_view_set_frame_scene(*scene, &fd, views, &err);
     }
     if (r != MVR_OK) {

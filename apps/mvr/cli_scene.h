@@ -16,6 +16,8 @@ typedef struct cli_scene_options {
                                     CLI_CAMERA_IF_ANY: the first camera when the file has one */
     mvr_view_layout layout;
     double ipd;                  /* 0 = mvr_stereo_default_ipd of the viewing distance */
+    const mvr_framing_desc *framing; /* optional: the layout's camera sampling (fov, distance, ...);
+                                        its layout, views, ipd and aspect are the fields here */
     uint32_t gltf_scene;         /* 1-based; 0 = the file's default */
     uint32_t views, width, height;
     mvr_logger logger;

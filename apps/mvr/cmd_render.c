@@ -130,7 +130,7 @@ static int step_load(render_session *s, render_job *j, bool *fatal)
         return MVR_EXIT_FAILURE;
     }
     cli_scene_options so = {.demo = o->demo, .scene_file = o->scene_file, .camera = o->camera, .layout = o->layout,
-                            .ipd = o->ipd, .gltf_scene = o->gltf_scene, .views = o->views, .width = o->width,
+                            .ipd = o->ipd, .framing = &o->framing, .gltf_scene = o->gltf_scene, .views = o->views, .width = o->width,
                             .height = o->height, .logger = o->context.logger, .strict = o->strict,
                             .memory_budget = o->memory_budget, .gltf_info = &j->gltf_info,
                             .given_views = o->camera_views, .given_view_count = o->camera_count};

@@ -16,6 +16,7 @@
 #include "render_options.h"
 #include "render_aovs.h"
 #include "render_output.h"
+#include "render_sampling.h"
 
 enum {
     R_DEMO = 1, R_VIEWS, R_CAMERA, R_LAYOUT, R_IPD, R_SCENE, R_SIZE, R_OUT, R_VIEW_PATH, R_MATERIAL_PATH, R_DEPTH,
@@ -47,11 +48,13 @@ static const cli_option render_table[] = {
      "N views are eyes --ipd apart along its right axis\n"
      "(default: the first camera when the file has one)", NULL, "--layout",
      "--layout frames the scene without a camera"},
-    {CLI_OPT_CHOICE, R_LAYOUT, "--layout", NULL, "L", 0, 0, "stereo|cube|ring|grid|sphere|orbit",
+    {CLI_OPT_CHOICE, R_LAYOUT, "--layout", NULL, "L", 0, 0, "stereo|cube|ring|grid|sphere|orbit|random",
      "SCENE without --camera: stereo | cube | ring | grid around\n"
      "the scene's bounding sphere (default: stereo); sphere: --views\n"
      "spread evenly over a sphere around it (default 50); orbit: a\n"
-     "turntable of 3 rings from -15 to 60 degrees (default 24 views)", NULL, NULL, NULL},
+     "turntable of 3 rings from -15 to 60 degrees (default 24 views);\n"
+     "random: --views at random over the sphere, --min-spacing apart\n"
+     "(default 50; --seed); camera sampling: --fov ... --up below", NULL, NULL, NULL},
     {CLI_OPT_STRING, R_CAMERAS, "--cameras", NULL, "FILE", 0, 0, NULL,
      "the views from a camera file: mvr's cameras.json (the same\n"
      "views again, exactly), NeRF's transforms.json, or CSV with a\n"
@@ -230,9 +233,9 @@ static const cli_option render_table_tail[] = {
     END,
 };
 
-static const cli_option *const render_tables[] = {render_table,       cli_env_option_table, render_table_animation,
-                                                  render_table_tail,  cli_context_options,  cli_help_option,
-                                                  NULL};
+static const cli_option *const render_tables[] = {render_table,       render_sampling_table, cli_env_option_table,
+                                                  render_table_animation, render_table_tail, cli_context_options,
+                                                  cli_help_option,    NULL};
 
 static void render_usage(FILE *out)
 {
@@ -532,6 +535,8 @@ static int parse_args(cli_parser *p, render_options *o, render_inputs *in)
         if (done == 0)
             done = cli_env_apply("mvr render", &arg, &o->env);
         if (done == 0)
+            done = render_sampling_apply(&arg, o);
+        if (done == 0)
             done = apply(&arg, o) ? 1 : -1;
         if (done < 0)
             return MVR_EXIT_USAGE;
@@ -664,6 +669,8 @@ int render_options_parse(int argc, char **argv, render_options *o, render_inputs
     int rc = parse_args(&p, o, in);
     if (rc == MVR_EXIT_OK)
         rc = check_scene(o, in);
+    if (rc == MVR_EXIT_OK)
+        rc = render_sampling_check(&p, o);
     if (rc == MVR_EXIT_OK)
         rc = check_frames(&p, o);
     if (rc == MVR_EXIT_OK)

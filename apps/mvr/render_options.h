@@ -26,6 +26,10 @@ typedef struct render_options {
     int camera;                  /* -1 = frame the scene with layout */
     mvr_view_layout layout;
     double ipd;
+    /* camera sampling of --layout (render_sampling.c: --fov, --radius, --margin,
+     * --hemisphere, --seed, --min-spacing, --elevation, --up); its layout, views,
+     * ipd and aspect are the fields above */
+    mvr_framing_desc framing;
     uint32_t gltf_scene;         /* 1-based; 0 = the file's default */
     const char *variant;         /* --variant NAME|K: a material variant; NULL = the file's own materials */
     uint32_t views, width, height, frames;

@@ -18,7 +18,7 @@ extern "C" {
 /* ------------------------------------------------------------------ framing
  *
  * How a scene is shown by default: views laid out around its bounding
- * sphere, for files without cameras (or when the caller wants a layout
+ * sphere (or box), for files without cameras (or when the caller wants a layout
  * instead of the file's camera); views from a camera of the file; the
  * exposure its lights call for.
  */
@@ -29,8 +29,24 @@ typedef enum mvr_view_layout {
     MVR_LAYOUT_GRID,             /* a light-field grid of cameras on a plane, looking at the center */
     MVR_LAYOUT_SPHERE,           /* N cameras spread evenly over a sphere (a Fibonacci lattice), looking at
                                     the center: the capture of a multi-view reconstruction dataset */
-    MVR_LAYOUT_ORBIT             /* a turntable: rings of cameras at rising elevations, looking at the center */
+    MVR_LAYOUT_ORBIT,            /* a turntable: rings of cameras at rising elevations, looking at the center */
+    MVR_LAYOUT_RANDOM            /* N cameras at random over the sphere (or the elevation band), at least
+                                    min_spacing apart, looking at the center; the same views for the same seed */
 } mvr_view_layout;
+
+/* The world's up axis: the layouts orbit around it and the cameras' up
+ * follows it. glTF's is +Y; a Z-up world (Blender's, its transforms.json)
+ * renders upright with MVR_UP_Z: there the layouts' "front" (the stereo
+ * eyes' side) is -Y, Blender's front view. */
+typedef enum mvr_up_axis {
+    MVR_UP_Y = 0,
+    MVR_UP_Z
+} mvr_up_axis;
+
+typedef enum mvr_hemisphere {
+    MVR_HEMISPHERE_FULL = 0,
+    MVR_HEMISPHERE_UPPER         /* only views at or above the horizon of the scene's centre */
+} mvr_hemisphere;
 
 typedef struct mvr_framing_desc {
     mvr_view_layout layout;
@@ -43,7 +59,28 @@ typedef struct mvr_framing_desc {
     uint32_t rows;               /* orbit: rings (0 = 3), the views shared out among them (the first
                                     rings take the remainder), each ring's azimuths staggered by half a step */
     double elevation_min, elevation_max; /* orbit, radians in (-pi/2, pi/2): the lowest and the highest
-                                    ring, evenly between (both 0 = -15 and 60 degrees; one ring: their mean) */
+                                    ring, evenly between (both 0 = -15 and 60 degrees; one ring: their mean);
+                                    sphere and random, in [-pi/2, pi/2]: the band the views lie in (both 0 =
+                                    the whole sphere); min <= max, NaN refused */
+    /* Camera sampling; each 0 = the default. Angles above the horizon are
+     * measured against the plane through the centre normal to `up`. */
+    double yfov;                 /* vertical field of view in radians, [1e-3, 3.1]; 0 = 50 degrees (cube:
+                                    its faces are 90 degrees, yfov refused) */
+    double radius;               /* camera distance from the centre of the scene's bounds, scene units in
+                                    (0, 1e9]; 0 = fitted (the bounding sphere, or the box with fit_box) */
+    bool fit_box;                /* fit the bounding box, not the sphere: each view's distance is the
+                                    least at which every corner of the bounds projects inside the image
+                                    less `margin` (stereo and grid: as the central view sees it); the
+                                    box then touches that inset on at least one axis. Not with radius */
+    double margin;               /* fit_box: the fraction of the image's half-width and half-height left
+                                    free on each side, [0, 0.9] */
+    mvr_hemisphere hemisphere;   /* sphere, random, orbit: UPPER keeps every view at or above the horizon
+                                    (elevations clipped to >= 0); other layouts refuse it */
+    uint64_t seed;               /* random: the sequence's seed (any value, 0 included) */
+    double min_spacing;          /* random: the least angle in radians between two views' directions from
+                                    the centre, [0, pi]; 0 = 0.5 x sqrt(band area / views) (a loose
+                                    Poisson-disk spacing); one too large to place every view is refused */
+    mvr_up_axis up;              /* the world's up axis (0 = +Y) */
 } mvr_framing_desc;
 
 /* The eye separation for a subject viewing_distance away: 1/30 of it (the

@@ -90,7 +90,9 @@ EXPOSURE_MODE = _seq("mvr_exposure_mode", "MVR_EXPOSURE_", ["linear", "ev100", "
 BACKGROUND = Enum("mvr_background", [("color", "MVR_BACKGROUND_COLOR"), ("environment", "MVR_BACKGROUND_ENVIRONMENT"),
                                      ("blur", "MVR_BACKGROUND_BLUR")])
 READBACK = _seq("mvr_readback_format", "MVR_READBACK_", ["rgba8", "rgba32f"])
-LAYOUT = _seq("mvr_view_layout", "MVR_LAYOUT_", ["stereo", "cube", "ring", "grid", "sphere", "orbit"])
+LAYOUT = _seq("mvr_view_layout", "MVR_LAYOUT_", ["stereo", "cube", "ring", "grid", "sphere", "orbit", "random"])
+UP_AXIS = _seq("mvr_up_axis", "MVR_UP_", ["y", "z"])
+HEMISPHERE = _seq("mvr_hemisphere", "MVR_HEMISPHERE_", ["full", "upper"])
 PIXEL_TYPE = _seq("mvr_pixel_type", "MVR_PIXEL_", ["u8", "f32"])
 # per-view outputs (mvr_target_desc.outputs, mvr_renderer_read_output)
 OUTPUT = _seq("mvr_output", "MVR_OUTPUT_", ["color", "depth", "distance", "normal", "ids", "coverage"])
@@ -99,7 +101,7 @@ NORMAL_SPACE = _seq("mvr_normal_space", "MVR_NORMAL_SPACE_", ["world", "camera"]
 ENUMS = [RESULT, LOG_LEVEL, LOG_ID, PROVIDER, GL_API, ALPHA_MODE, PRIMITIVE_MODE, LIGHT_TYPE, PROJECTION_TYPE, FILTER,
          WRAP, ANIMATION_WRAP, ENV_SOURCE, VIEW_PATH, MATERIAL_PATH, SKINNING_PATH, DEPTH_MODE, TRANSPARENCY, TONE_MAP,
          COLOR_FORMAT, ANTI_ALIASING, SHADOW_MODE, EXPOSURE_MODE, BACKGROUND, READBACK, LAYOUT, PIXEL_TYPE, OUTPUT,
-         NORMAL_SPACE]
+         NORMAL_SPACE, UP_AXIS, HEMISPHERE]
 
 # channels and type of each output as read back (mvr_output_pixel_size bytes a pixel)
 OUTPUT_PIXEL = {"color": (4, "uint8"), "depth": (1, "float32"), "distance": (1, "float32"),
@@ -244,7 +246,9 @@ mvr_view_camera = _struct("mvr_view_camera", [
     ("camera_to_world", c_double * 16)])
 mvr_framing_desc = _struct("mvr_framing_desc", [
     ("layout", c_int), ("views", c_uint32), ("ipd", c_double), ("aspect", c_double), ("rows", c_uint32),
-    ("elevation_min", c_double), ("elevation_max", c_double)])
+    ("elevation_min", c_double), ("elevation_max", c_double), ("yfov", c_double), ("radius", c_double),
+    ("fit_box", c_bool), ("margin", c_double), ("hemisphere", c_int), ("seed", c_uint64), ("min_spacing", c_double),
+    ("up", c_int)])
 
 mvr_environment_desc = _struct("mvr_environment_desc", [
     ("source", c_int), ("pixels", _pf), ("width", c_uint32), ("height", c_uint32), ("color", c_float * 3),

@@ -16,6 +16,9 @@ if TYPE_CHECKING:  # scene.py does not import views.py: no cycle at run time eit
 MAX_VIEWS = 1024          # MVR_VIEW_SET_MAX_VIEWS
 _MAX_ASPECT = 65536.0     # mvr_framing_desc.aspect in [1/65536, 65536]
 _MAX_IPD = 1e9            # mvr_framing_desc.ipd in [0, 1e9]
+_MIN_YFOV, _MAX_YFOV = 1e-3, 3.1  # mvr_framing_desc.yfov: 0 or in [1e-3, 3.1] radians
+_MAX_RADIUS = 1e9         # mvr_framing_desc.radius in [0, 1e9]
+_MAX_MARGIN = 0.9         # mvr_framing_desc.margin in [0, 0.9]
 
 # frustum half-angles the library takes (core/view_set.c: |angle| < 1.5707)
 _MAX_ANGLE = 1.5707
@@ -150,27 +153,65 @@ class Views(Handle):
 
     @classmethod
     def layout(cls, scene: "Scene", layout: str = "stereo", *, count: int = 0, aspect: float = 1.0,
-               ipd: float = 0.0, rows: int = 0, elevation: Optional[Sequence[float]] = None) -> "Views":
-        """Views laid out around the scene's bounding sphere
-        (mvr_view_set_frame_scene): layout "stereo", "cube", "ring", "grid",
-        "sphere" or "orbit"; count 0 = the layout's own (2, 6, 8, 9, 50, 24),
-        at most 1024; aspect = width / height of the images (1/65536 ..
+               ipd: float = 0.0, rows: int = 0, elevation: Optional[Sequence[float]] = None, yfov: float = 0.0,
+               radius: float = 0.0, margin: Optional[float] = None, hemisphere: str = "full", seed: int = 0,
+               min_spacing: float = 0.0, up: str = "y") -> "Views":
+        """Views laid out around the scene (mvr_view_set_frame_scene):
+        layout "stereo", "cube", "ring", "grid", "sphere", "orbit" or
+        "random"; count 0 = the layout's own (2, 6, 8, 9, 50, 24, 50), at
+        most 1024; aspect = width / height of the images (1/65536 ..
         65536); ipd 0 = 1/30 of the framing distance; orbit: rows (rings;
-        0 = 3) and elevation = (lowest, highest) in radians, inside
-        (-pi/2, pi/2) (None = -15 and 60 degrees)."""
+        0 = 3).
+
+        Camera sampling (mvr render's --fov ... --up; 0 and None are the
+        defaults): elevation = (lowest, highest) in radians: orbit's rings,
+        inside (-pi/2, pi/2) (None = -15 and 60 degrees); sphere's and
+        random's band, in [-pi/2, pi/2] (None = the whole sphere). yfov:
+        the vertical field of view in radians, [1e-3, 3.1] (0 = 50
+        degrees; not for cube). radius: the cameras' distance from the
+        centre of the scene's bounds, (0, 1e9] (0 = the bounding sphere
+        fitted). margin: fit the bounding box instead, each view as close
+        as keeps every corner inside the image less `margin` of its
+        half-size, [0, 0.9]; not with radius. hemisphere "upper" (sphere,
+        random, orbit): no view below the centre's horizon. seed and
+        min_spacing (random): the same views for the same seed (any int in
+        [0, 2**64)), none two closer than min_spacing radians seen from
+        the centre, [0, pi] (0 = 0.5 sqrt(band area / count)). up "y"
+        (glTF's) or "z" (a Z-up world, Blender's): the axis the layouts
+        orbit and the cameras' up follows."""
         d = N.desc(N.mvr_framing_desc)
         d.layout = N.LAYOUT(layout, "layout")
+        layout = N.LAYOUT.name(d.layout)  # the canonical name, for the checks below
         d.views, d.rows = c_int(count, "count", 0, MAX_VIEWS), c_int(rows, "rows", 0, U32_MAX)
         d.aspect = c_float(aspect, "aspect", 1.0 / _MAX_ASPECT, _MAX_ASPECT)
         d.ipd = c_float(ipd, "ipd", 0.0, _MAX_IPD)
         if elevation is not None:
             lo, hi = c_floats(elevation, 2, "elevation")
+            band = layout in ("sphere", "random")
             for name, e in (("elevation[0]", lo), ("elevation[1]", hi)):
-                if not abs(e) < math.pi / 2:
-                    raise ValueError("%s: %r radians is not inside (-pi/2, pi/2)" % (name, e))
+                if not (abs(e) <= math.pi / 2 if band else abs(e) < math.pi / 2):
+                    raise ValueError("%s: %r radians is not inside %s" %
+                                     (name, e, "[-pi/2, pi/2]" if band else "(-pi/2, pi/2)"))
             if lo > hi:
                 raise ValueError("elevation: (lowest, highest) expected, got %r" % (tuple(elevation),))
             d.elevation_min, d.elevation_max = lo, hi
+        yfov = c_float(yfov, "yfov", 0.0, _MAX_YFOV)
+        if 0.0 < yfov < _MIN_YFOV:
+            raise ValueError("yfov: %r radians is below %g (0 = 50 degrees)" % (yfov, _MIN_YFOV))
+        d.yfov = yfov
+        d.radius = c_float(radius, "radius", 0.0, _MAX_RADIUS)
+        if margin is not None:
+            if d.radius > 0:
+                raise ValueError("radius and margin: give the distance or fit the box, not both")
+            d.fit_box, d.margin = True, c_float(margin, "margin", 0.0, _MAX_MARGIN)
+        d.hemisphere = N.HEMISPHERE(hemisphere, "hemisphere")
+        d.seed = c_int(seed, "seed", 0, 2 ** 64 - 1)
+        d.min_spacing = c_float(min_spacing, "min_spacing", 0.0, math.pi)
+        d.up = N.UP_AXIS(up, "up")
+        if N.HEMISPHERE.name(d.hemisphere) == "upper" and layout not in ("sphere", "random", "orbit"):
+            raise ValueError("hemisphere: 'upper' is for the sphere, random and orbit layouts, not %r" % (layout,))
+        if layout == "cube" and (d.yfov or d.radius or d.fit_box):
+            raise ValueError("cube: its six 90-degree views stand at the centre: yfov, radius and margin do not apply")
         out = ctypes.c_void_p()
         err = N.mvr_error()
         with scene._lock:

@@ -142,7 +142,9 @@ static void layout_structs(void)
     F(mvr_view_camera, projection); F(mvr_view_camera, world_to_camera); F(mvr_view_camera, camera_to_world);
     S(mvr_framing_desc); F(mvr_framing_desc, layout); F(mvr_framing_desc, views); F(mvr_framing_desc, ipd);
     F(mvr_framing_desc, aspect); F(mvr_framing_desc, rows); F(mvr_framing_desc, elevation_min);
-    F(mvr_framing_desc, elevation_max);
+    F(mvr_framing_desc, elevation_max); F(mvr_framing_desc, yfov); F(mvr_framing_desc, radius);
+    F(mvr_framing_desc, fit_box); F(mvr_framing_desc, margin); F(mvr_framing_desc, hemisphere);
+    F(mvr_framing_desc, seed); F(mvr_framing_desc, min_spacing); F(mvr_framing_desc, up);
     S(mvr_environment_desc); F(mvr_environment_desc, source); F(mvr_environment_desc, pixels);
     F(mvr_environment_desc, width); F(mvr_environment_desc, height); F(mvr_environment_desc, color);
     F(mvr_environment_desc, intensity); F(mvr_environment_desc, rotation); F(mvr_environment_desc, specular_size);
@@ -257,7 +259,8 @@ static void layout_enums(void)
     E(MVR_BACKGROUND_COLOR); E(MVR_BACKGROUND_ENVIRONMENT); E(MVR_BACKGROUND_BLUR);
     E(MVR_READBACK_RGBA8); E(MVR_READBACK_RGBA32F);
     E(MVR_LAYOUT_STEREO); E(MVR_LAYOUT_CUBE); E(MVR_LAYOUT_RING); E(MVR_LAYOUT_GRID); E(MVR_LAYOUT_SPHERE);
-    E(MVR_LAYOUT_ORBIT);
+    E(MVR_LAYOUT_ORBIT); E(MVR_LAYOUT_RANDOM); E(MVR_UP_Y); E(MVR_UP_Z); E(MVR_HEMISPHERE_FULL);
+    E(MVR_HEMISPHERE_UPPER);
     E(MVR_PIXEL_U8); E(MVR_PIXEL_F32);
     E(MVR_ERROR_MESSAGE_SIZE); E(MVR_CAPS_STRING_SIZE); E(MVR_IMAGE_MAX_LEVELS);
     E(MVR_OUTPUT_COLOR); E(MVR_OUTPUT_DEPTH); E(MVR_OUTPUT_DISTANCE); E(MVR_OUTPUT_NORMAL); E(MVR_OUTPUT_IDS);
