@@ -116,11 +116,14 @@ bool render_aovs_parse_files(const char *list, uint32_t *out_bits)
 static bool write_view_npy(const render_options *o, const render_aov_view *v, mvr_output output, char *why,
                            size_t why_size)
 {
+    const char *dir = o->out_dir;
+    uint32_t view = v->view;
+    int64_t frame = v->frame;
+    int frame_digits = v->frame_digits;
     char path[4096];
-    int len = v->frame < 0
-                  ? snprintf(path, sizeof path, "%s/%s_%04u.npy", o->out_dir, mvr_output_name(output), v->view)
-                  : snprintf(path, sizeof path, "%s/%s_%04u_f%0*lld.npy", o->out_dir, mvr_output_name(output),
-                             v->view, v->frame_digits, (long long)v->frame);
+    int len = frame < 0 ? snprintf(path, sizeof path, "%s/%s_%02u.npy", dir, mvr_output_name(output), view)
+                        : snprintf(path, sizeof path, "%s/%s_%02u_f%0*lld.npy", dir, mvr_output_name(output), view,
+                                   frame_digits, (long long)frame);
     if (len < 0 || (size_t)len >= sizeof path) {
         snprintf(why, why_size, "--out is too long");
         return false;
