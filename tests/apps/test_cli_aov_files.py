@@ -122,6 +122,12 @@ def exr_channels(path):
 default_out = os.path.join(OUT, "default")
 render(default_out)
 names = set(os.listdir(default_out))
+want_files = ["%s_%04d.png" % (n, v) for v in range(VIEWS) for n in
+              ("depth", "mask", "ids_node", "ids_mesh", "ids_material", "ids_primitive", "ids_preview")]
+missing = [n for n in want_files if n not in names]
+expect(not missing, "default: the PNGs are written (missing %s)" % missing[:8])
+if missing:
+    sys.exit(1)
 expect(not any(n.endswith(".exr") for n in names), "default: no EXR files: %s" % sorted(names))
 scales = set()
 for v in range(VIEWS):
