@@ -261,6 +261,9 @@ static bool step_render(render_job *j, uint32_t f)
     render_options *o = &j->o;
     int64_t frame = o->frames_set ? (int64_t)f : -1;
     bool ok;
+    /* depth_VVVV.png's step, from the first frame's views (issue 33) */
+    if (f == 0 && (o->outputs & MVR_OUTPUT_BIT(MVR_OUTPUT_DEPTH)))
+        o->depth_png_scale = render_aovs_depth_scale(j->scene, j->views);
     if (j->stream) {
         ok = render_stream_frame(j->stream, j->scene, j->views, &o->render, frame, f == 0);
     } else if (mvr_renderer_render(j->renderer, j->scene, j->views, j->target, &o->render) != MVR_OK) {
@@ -269,7 +272,7 @@ static bool step_render(render_job *j, uint32_t f)
     } else {
         ok = render_output_write_views(o, j->renderer, j->target, j->n, j->layers, j->floats, frame);
         if (ok && o->outputs)
-            ok = render_aovs_write(o->out_dir, j->renderer, j->target, j->n, o->width, o->height, o->outputs, frame,
+            ok = render_aovs_write(o, j->renderer, j->target, j->n, j->layers, frame,
                                    render_output_frame_digits(o->frames));
     }
     if (!ok || f != 0)

@@ -85,9 +85,41 @@ static bool write_npy(const char *path, const char *descr, uint32_t h, uint32_t 
     return cli_write_close(&out, why, why_size); /* a failed fwrite left the error flag set */
 }
 
-bool render_aovs_write_view(const char *dir, mvr_output output, uint32_t view, int64_t frame, int frame_digits,
-                            uint32_t width, uint32_t height, const void *data, char *why, size_t why_size)
+bool render_aovs_parse_files(const char *list, uint32_t *out_bits)
 {
+    static const char *const names[] = {"npy", "png", "exr", "layers"};
+    uint32_t bits = 0;
+    for (const char *p = list; *p;) {
+        size_t len = strcspn(p, ",");
+        size_t k = 0;
+        while (k < 4 && !(strlen(names[k]) == len && strncmp(p, names[k], len) == 0))
+            k++;
+        if (k == 4) {
+            fprintf(stderr, "mvr render: --output-files: unknown kind '%.*s' (npy, png, exr or layers)\n", (int)len,
+                    p);
+            return false;
+        }
+        bits |= 1u << k;
+        p += len;
+        if (*p == ',')
+            p++;
+    }
+    if (!bits) {
+        fprintf(stderr, "mvr render: --output-files takes a list: npy,png,exr,layers\n");
+        return false;
+    }
+    *out_bits = bits;
+    return true;
+}
+
+/* One output's .npy; coverage (float32 0 / 1 as read) stored as uint8. */
+static bool write_view_npy(const render_options *o, const render_aov_view *v, mvr_output output, char *why,
+                           size_t why_size)
+{
+    const char *dir = o->out_dir;
+    uint32_t view = v->view;
+    int64_t frame = v->frame;
+    int frame_digits = v->frame_digits;
     char path[4096];
     int len = frame < 0 ? snprintf(path, sizeof path, "%s/%s_%02u.npy", dir, mvr_output_name(output), view)
                         : snprintf(path, sizeof path, "%s/%s_%02u_f%0*lld.npy", dir, mvr_output_name(output), view,
@@ -99,36 +131,69 @@ bool render_aovs_write_view(const char *dir, mvr_output output, uint32_t view, i
     /* the data in this machine's byte order, which the descr states */
     uint16_t one = 1;
     bool little = *(const uint8_t *)&one == 1;
+    if (output == MVR_OUTPUT_COVERAGE) {
+        size_t pixels = (size_t)v->width * v->height;
+        uint8_t *bytes = malloc(pixels ? pixels : 1);
+        if (!bytes) {
+            snprintf(why, why_size, "%s: out of memory", path);
+            return false;
+        }
+        const float *cov = v->data[output];
+        for (size_t i = 0; i < pixels; ++i)
+            bytes[i] = cov[i] > 0.0f;
+        bool ok = write_npy(path, "|u1", v->height, v->width, 1, bytes, v->width, why, why_size);
+        free(bytes);
+        return ok;
+    }
     const char *descr = output == MVR_OUTPUT_IDS ? (little ? "<u4" : ">u4") : (little ? "<f4" : ">f4");
     size_t px = mvr_output_pixel_size(output);
-    return write_npy(path, descr, height, width, (uint32_t)(px / 4), data, px * width, why, why_size);
+    return write_npy(path, descr, v->height, v->width, (uint32_t)(px / 4), v->data[output], px * v->width, why,
+                     why_size);
 }
 
-bool render_aovs_write(const char *dir, mvr_renderer *r, mvr_target *t, uint32_t views, uint32_t width,
-                       uint32_t height, uint32_t bits, int64_t frame, int frame_digits)
+bool render_aovs_write_view(const render_options *o, const render_aov_view *v, char *why, size_t why_size)
 {
-    size_t pixels = (size_t)width * height;
-    uint8_t *buf = malloc(pixels * 16);
-    bool ok = buf != NULL;
-    if (!ok)
+    uint32_t files = o->output_files ? o->output_files : RENDER_AOV_FILES_DEFAULT;
+    for (int k = MVR_OUTPUT_DEPTH; (files & RENDER_AOV_NPY) && k < MVR_OUTPUT_COUNT; ++k)
+        if (v->data[k] && !write_view_npy(o, v, (mvr_output)k, why, why_size))
+            return false;
+    return render_aov_images_write(o, v, why, why_size);
+}
+
+bool render_aovs_write(const render_options *o, mvr_renderer *r, mvr_target *t, uint32_t views,
+                       uint8_t *const *colors, int64_t frame, int frame_digits)
+{
+    size_t pixels = (size_t)o->width * o->height;
+    size_t offset[MVR_OUTPUT_COUNT] = {0}, bytes = 0;
+    for (int k = MVR_OUTPUT_DEPTH; k < MVR_OUTPUT_COUNT; ++k)
+        if (o->outputs & MVR_OUTPUT_BIT(k)) {
+            offset[k] = bytes;
+            bytes += pixels * mvr_output_pixel_size((mvr_output)k);
+        }
+    uint8_t *buf = malloc(bytes ? bytes : 1);
+    if (!buf) {
         fprintf(stderr, "mvr render: --outputs: out of memory\n");
-    for (int k = MVR_OUTPUT_DEPTH; ok && k < MVR_OUTPUT_COUNT; ++k) {
-        if (!(bits & MVR_OUTPUT_BIT(k)))
-            continue;
-        mvr_output output = (mvr_output)k;
-        size_t px = mvr_output_pixel_size(output);
-        for (uint32_t v = 0; ok && v < views; ++v) {
-            if (mvr_renderer_read_output(r, t, v, output, buf, pixels * px) != MVR_OK) {
-                fprintf(stderr, "mvr render: reading %s of view %u: %s\n", mvr_output_name(output), v,
+        return false;
+    }
+    bool ok = true;
+    for (uint32_t view = 0; ok && view < views; ++view) {
+        render_aov_view v = {.view = view, .frame = frame, .frame_digits = frame_digits, .width = o->width,
+                             .height = o->height, .color = colors ? colors[view] : NULL};
+        for (int k = MVR_OUTPUT_DEPTH; ok && k < MVR_OUTPUT_COUNT; ++k) {
+            if (!(o->outputs & MVR_OUTPUT_BIT(k)))
+                continue;
+            mvr_output output = (mvr_output)k;
+            v.data[k] = buf + offset[k];
+            if (mvr_renderer_read_output(r, t, view, output, buf + offset[k],
+                                         pixels * mvr_output_pixel_size(output)) != MVR_OK) {
+                fprintf(stderr, "mvr render: reading %s of view %u: %s\n", mvr_output_name(output), view,
                         mvr_renderer_last_error(r));
                 ok = false;
-                break;
             }
-            char why[4200];
-            ok = render_aovs_write_view(dir, output, v, frame, frame_digits, width, height, buf, why, sizeof why);
-            if (!ok)
-                fprintf(stderr, "mvr render: %s\n", why);
         }
+        char why[4200];
+        if (ok && !(ok = render_aovs_write_view(o, &v, why, sizeof why)))
+            fprintf(stderr, "mvr render: %s\n", why);
     }
     free(buf);
     return ok;

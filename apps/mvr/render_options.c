@@ -24,7 +24,8 @@ enum {
     R_EXPOSURE, R_EXPOSURE_SCALE, R_CAMERA_EXPOSURE, R_EXPOSURE_PER_VIEW, R_DITHER, R_CLEAR, R_TONE_MAP, R_FRAMES,
     R_STATS, R_STRICT, R_MEMORY_BUDGET, R_PROGRAM_CACHE, R_QUIET, R_PLAN, R_ANIMATION, R_TIME, R_LOOP, R_FPS, R_VIDEO,
     R_SKINNING, R_VARIANT, R_COLMAP, R_OUTPUTS, R_NORMAL_SPACE, R_ALPHA_CUTOFF, R_READBACK, R_NO_PROGRESS, R_ENCODERS,
-    R_CAMERAS, R_LIST, R_KEEP_GOING
+    R_CAMERAS, R_LIST, R_KEEP_GOING,
+    R_OUTPUT_FILES
 };
 
 #define MAX_FRAMES 100000
@@ -183,6 +184,12 @@ static const cli_option render_table_tail[] = {
      "mesh, material, primitive ids); 0 where nothing is; rows top\n"
      "to bottom, as the images", NULL, "--msaa --supersample --aa --reference",
      "extra outputs are not averaged: they need a target without anti-aliasing"},
+    {CLI_OPT_STRING, R_OUTPUT_FILES, "--output-files", NULL, "LIST", 0, 0, NULL,
+     "the files of --outputs, a comma list (default: npy,png): npy;\n"
+     "png: depth_VVVV.png (16-bit, depth / scale), mask_VVVV.png,\n"
+     "ids_<kind>_VVVV.png (16-bit), ids_preview_VVVV.png; exr:\n"
+     "depth_VVVV.exr (float Z); layers: layers_VVVV.exr (R G B A,\n"
+     "Z, N.X N.Y N.Z, id.node ...)", NULL, NULL, NULL},
     {CLI_OPT_CHOICE, R_NORMAL_SPACE, "--normal-space", NULL, "S", 0, 0, "world|camera",
      "world | camera: the space of --outputs normal (default: world;\n"
      "camera: OpenGL's, x right, y up, +Z towards the viewer)", NULL, NULL, NULL},
@@ -463,6 +470,10 @@ static int apply_outputs(const cli_arg *arg, render_options *o)
     case R_COLMAP: o->colmap = true; break;
     case R_OUTPUTS:
         if (!render_aovs_parse(v, &o->outputs))
+            return -1;
+        break;
+    case R_OUTPUT_FILES:
+        if (!render_aovs_parse_files(v, &o->output_files))
             return -1;
         break;
     case R_NORMAL_SPACE: o->render.normal_space = (mvr_normal_space)arg->choice; break;

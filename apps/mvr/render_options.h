@@ -40,6 +40,7 @@ typedef struct render_options {
     uint32_t outputs;            /* --outputs: mvr_target_desc.outputs (0 = colour alone) */
     double depth_png_scale;      /* scene units per step of a 16-bit depth PNG (depth_VVVV.png): set
                                     per run before the first view is written (0 = not yet) */
+    uint32_t output_files;       /* --output-files: RENDER_AOV_* bits (render_aovs.h); 0 = npy,png */
     mvr_view_path view_path;
     mvr_material_path material_path;
     mvr_depth_mode depth_mode;

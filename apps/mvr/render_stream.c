@@ -246,12 +246,16 @@ static bool encode(encoder *e, const job *j, char *why, size_t why_size)
         return false;
     }
     /* the extra outputs, as render_aovs_write writes them */
+    render_aov_view aov = {.view = j->view, .frame = j->frame, .frame_digits = s->frame_digits, .width = s->w,
+                           .height = s->h, .color = bytes};
+    bool any = false;
     for (int k = MVR_OUTPUT_DEPTH; k < MVR_OUTPUT_COUNT; ++k)
-        if (s->output_layer_bytes[k] &&
-            !render_aovs_write_view(o->out_dir, (mvr_output)k, j->view, j->frame, s->frame_digits, s->w, s->h,
-                                    j->buffer->pixels + s->output_offset[k] + s->output_layer_bytes[k] * j->index,
-                                    why, why_size))
-            return false;
+        if (s->output_layer_bytes[k]) {
+            aov.data[k] = j->buffer->pixels + s->output_offset[k] + s->output_layer_bytes[k] * j->index;
+            any = true;
+        }
+    if (any && !render_aovs_write_view(o, &aov, why, why_size))
+        return false;
     if (j->sheet)
         sheet_put(&s->sheet, j->view, bytes, s->w, s->h);
     return true;

@@ -28,7 +28,7 @@ extern "C" {
 
 /* Bumped whenever the table or a function's meaning changes: a module of
  * another build is refused rather than called with the wrong layout. */
-#define MVR_IMAGE_MODULE_ABI 2u
+#define MVR_IMAGE_MODULE_ABI 3u
 #define MVR_IMAGE_MODULE_FILE "libmvr_image_oiio.so"
 #define MVR_IMAGE_MODULE_ENTRY "mvr_image_oiio_backend"
 /* A path: the module to load instead of searching for it (tests point it at
@@ -54,6 +54,8 @@ typedef struct mvr_image_backend {
     mvr_result (*write)(const char *path, const mvr_image_view *image, mvr_error *error);
     mvr_result (*compare)(const mvr_image_view *a, const mvr_image_view *b, double threshold,
                           const char *diff_path, mvr_image_compare_result *out, mvr_error *error);
+    /* EXR only: the front has checked the arguments and the names */
+    mvr_result (*write_channels)(const char *path, const mvr_image_channels *image, mvr_error *error);
 } mvr_image_backend;
 
 /* The module's one exported function: its table, or NULL when abi differs. */
@@ -100,6 +102,11 @@ mvr_png_status mvr_png_decode(const mvr_png_source *src, uint32_t max_dimension,
  * as OpenImageIO's PNG writer does it (the colour of a pixel with alpha a,
  * 0 < a < 255, becomes min(255, c * 255 / a)). */
 mvr_png_status mvr_png_write(const char *path, const mvr_image_view *image, mvr_error *error);
+
+/* One U8 or U16 channel to an 8- or 16-bit grayscale PNG, the values as
+ * given (no sRGB chunk: they are data, not colour). */
+mvr_png_status mvr_png_write_gray(const char *path, const mvr_image_channel *channel, uint32_t width,
+                                  uint32_t height, bool bottom_up, mvr_error *error);
 
 /* The refusal of an image over its memory budget: MVR_ERROR_OUT_OF_MEMORY,
  * naming what, the declared size and both byte counts (inline: the front and

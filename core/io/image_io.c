@@ -536,3 +536,75 @@ mvr_result mvr_image_compare(const mvr_image_view *a, const mvr_image_view *b, d
     const mvr_image_backend *m = mvr_image_module("mvr_image_compare", e);
     return m ? m->compare(a, b, threshold, diff_path, out, e) : e->result;
 }
+
+static size_t channel_type_size(mvr_channel_type t)
+{
+    switch (t) {
+    case MVR_CHANNEL_U8: return 1;
+    case MVR_CHANNEL_U16: return 2;
+    case MVR_CHANNEL_U32:
+    case MVR_CHANNEL_F16:
+    case MVR_CHANNEL_F32: return 4;
+    }
+    return 0;
+}
+
+/* Channel k of the image is readable as described: a known type, strides
+ * that hold a value, names (EXR) given, short and not repeated. */
+static mvr_result check_channel(const char *path, const mvr_image_channels *image, uint32_t k, bool exr,
+                                mvr_error *e)
+{
+    const mvr_image_channel *c = &image->channels[k];
+    size_t size = channel_type_size(c->type);
+    if (!c->first || size == 0 || c->pixel_stride < size)
+        return mvr_image_fail(e, MVR_ERROR_INVALID_ARGUMENT,
+                              "mvr_image_write_channels(%s): channel %u has no pixels, an unknown type or a pixel "
+                              "stride under its value's size", path, k);
+    uint64_t row = mvr_image_add(mvr_image_mul(image->width - 1u, c->pixel_stride), size);
+    if (c->row_stride < row)
+        return mvr_image_fail(e, MVR_ERROR_INVALID_ARGUMENT,
+                              "mvr_image_write_channels(%s): channel %u: a row stride of %zu bytes holds no row of "
+                              "%u pixels", path, k, c->row_stride, image->width);
+    if (!exr)
+        return MVR_OK;
+    if (!c->name || !*c->name || strlen(c->name) > 255)
+        return mvr_image_fail(e, MVR_ERROR_INVALID_ARGUMENT,
+                              "mvr_image_write_channels(%s): channel %u has no name, or one over 255 bytes", path, k);
+    for (uint32_t j = 0; j < k; ++j)
+        if (strcmp(image->channels[j].name, c->name) == 0)
+            return mvr_image_fail(e, MVR_ERROR_INVALID_ARGUMENT,
+                                  "mvr_image_write_channels(%s): channels %u and %u are both named '%s'", path, j, k,
+                                  c->name);
+    return MVR_OK;
+}
+
+mvr_result mvr_image_write_channels(const char *path, const mvr_image_channels *image, mvr_error *error)
+{
+    LOCAL_ERROR(error);
+    if (!path || !image || !image->channels || image->width == 0 || image->height == 0 || image->count == 0 ||
+        image->count > MVR_IMAGE_MAX_CHANNELS)
+        return mvr_image_fail(e, MVR_ERROR_INVALID_ARGUMENT,
+                              "mvr_image_write_channels(%s): NULL, empty, or not 1..%u channels", path ? path : "NULL",
+                              MVR_IMAGE_MAX_CHANNELS);
+    char ext[5];
+    extension_of(path, ext);
+    bool png = strcmp(ext, ".png") == 0;
+    if (!png && strcmp(ext, ".exr") != 0)
+        return mvr_image_fail(e, MVR_ERROR_INVALID_ARGUMENT,
+                              "mvr_image_write_channels(%s): the name must end in .png or .exr", path);
+    for (uint32_t k = 0; k < image->count; ++k)
+        if (check_channel(path, image, k, !png, e) != MVR_OK)
+            return e->result;
+    if (png) {
+        const mvr_image_channel *c = &image->channels[0];
+        if (image->count != 1 || (c->type != MVR_CHANNEL_U8 && c->type != MVR_CHANNEL_U16))
+            return mvr_image_fail(e, MVR_ERROR_INVALID_ARGUMENT,
+                                  "mvr_image_write_channels(%s): a PNG takes one U8 or U16 channel (%u given)", path,
+                                  image->count);
+        return mvr_png_write_gray(path, c, image->width, image->height, image->bottom_up, e) == MVR_PNG_OK
+                   ? MVR_OK
+                   : e->result;
+    }
+    const mvr_image_backend *m = mvr_image_module("mvr_image_write_channels", e);
+    return m ? m->write_channels(path, image, e) : e->result;
+}

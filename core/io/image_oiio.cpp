@@ -5,6 +5,7 @@
 // arguments and, for encoded bytes, the signature, MIME type and PNG framing;
 // the checks here stay so that the module answers alone as mvr_image did.
 #include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/half.h>
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
@@ -15,6 +16,7 @@
 #include <cstring>
 #include <exception>
 #include <string>
+#include <vector>
 
 #include "image_internal.h"
 
@@ -376,6 +378,97 @@ static mvr_result oiio_write(const char *path, const mvr_image_view *image, mvr_
     }
 }
 
+// How a channel type is stored in an EXR (mvr_image.h): OpenEXR has HALF,
+// FLOAT and UINT (32-bit) pixel types, so 16-bit integers go to FLOAT, exact.
+static TypeDesc exr_type(mvr_channel_type t)
+{
+    switch (t) {
+    case MVR_CHANNEL_U8:
+    case MVR_CHANNEL_F16: return TypeDesc::HALF;
+    case MVR_CHANNEL_U16:
+    case MVR_CHANNEL_F32: return TypeDesc::FLOAT;
+    case MVR_CHANNEL_U32: return TypeDesc::UINT;
+    }
+    return TypeDesc::FLOAT;
+}
+
+// One value of channel c at p, stored at to in exr_type(c->type).
+static void put_native(const mvr_image_channel *c, const unsigned char *p, unsigned char *to)
+{
+    float f = 0.0f;
+    switch (c->type) {
+    case MVR_CHANNEL_U8: f = float(*p); break;
+    case MVR_CHANNEL_U16: { uint16_t v; std::memcpy(&v, p, 2); f = float(v); break; }
+    case MVR_CHANNEL_U32: std::memcpy(to, p, 4); return;
+    case MVR_CHANNEL_F16:
+    case MVR_CHANNEL_F32: std::memcpy(&f, p, 4); break;
+    }
+    if (exr_type(c->type) == TypeDesc::HALF) {
+        half h(f);
+        std::memcpy(to, &h, sizeof h);
+    } else {
+        std::memcpy(to, &f, 4);
+    }
+}
+
+// The channels interleaved in their stored types (OpenImageIO's "native"
+// layout for per-channel formats), rows top first, written in one call.
+static mvr_result oiio_write_channels(const char *path, const mvr_image_channels *image, mvr_error *error)
+{
+    if (!path || !image || !image->channels || image->count == 0)
+        return fail(error, MVR_ERROR_INVALID_ARGUMENT, "mvr_image_write_channels: NULL or empty image");
+    try {
+        int n = int(image->count);
+        ImageSpec spec(int(image->width), int(image->height), n, TypeDesc::FLOAT);
+        spec.channelnames.clear();
+        std::vector<size_t> offset(image->count);
+        size_t pixel_bytes = 0;
+        for (uint32_t k = 0; k < image->count; ++k) {
+            TypeDesc t = exr_type(image->channels[k].type);
+            spec.channelnames.emplace_back(image->channels[k].name);
+            spec.channelformats.push_back(t);
+            offset[k] = pixel_bytes;
+            pixel_bytes += t.size();
+        }
+        // channels named nothing special: no alpha or depth roles guessed
+        spec.alpha_channel = -1;
+        spec.z_channel = -1;
+        for (int k = 0; k < n; ++k) {
+            if (spec.channelnames[size_t(k)] == "A")
+                spec.alpha_channel = k;
+            if (spec.channelnames[size_t(k)] == "Z")
+                spec.z_channel = k;
+        }
+        size_t w = image->width, h = image->height;
+        std::vector<unsigned char> native(w * h * pixel_bytes);
+        for (size_t y = 0; y < h; ++y) {
+            size_t row = image->bottom_up ? h - 1 - y : y;
+            for (uint32_t k = 0; k < image->count; ++k) {
+                const mvr_image_channel *c = &image->channels[k];
+                const unsigned char *in = static_cast<const unsigned char *>(c->first) + row * c->row_stride;
+                unsigned char *to = native.data() + y * w * pixel_bytes + offset[k];
+                for (size_t x = 0; x < w; ++x, in += c->pixel_stride, to += pixel_bytes)
+                    put_native(c, in, to);
+            }
+        }
+        auto out = ImageOutput::create("exr");
+        if (!out || !out->open(path, spec))
+            return fail(error, MVR_ERROR_IO,
+                        std::string("mvr_image_write_channels(") + path + "): " +
+                            (out ? out->geterror() : OIIO::geterror()));
+        bool ok = out->write_image(TypeDesc::UNKNOWN, native.data());
+        std::string err = ok ? "" : out->geterror();
+        if (!out->close() || !ok)
+            return fail(error, MVR_ERROR_IO, std::string("mvr_image_write_channels(") + path + "): " + err +
+                                                 out->geterror());
+        return MVR_OK;
+    } catch (const std::exception &e) {
+        return fail(error, MVR_ERROR_IO, std::string("mvr_image_write_channels: ") + e.what());
+    } catch (...) {
+        return fail(error, MVR_ERROR_INTERNAL, "mvr_image_write_channels: unknown exception");
+    }
+}
+
 static mvr_result oiio_compare(const mvr_image_view *a, const mvr_image_view *b, double threshold,
                                         const char *diff_path, mvr_image_compare_result *out, mvr_error *error)
 {
@@ -420,7 +513,7 @@ static mvr_result oiio_compare(const mvr_image_view *a, const mvr_image_view *b,
 // keep everything else, OpenImageIO's templates included, local).
 static const mvr_image_backend oiio_backend = {
     MVR_IMAGE_MODULE_ABI, sizeof(mvr_image_backend), oiio_probe, oiio_decode_cost, oiio_decode, oiio_read, oiio_write,
-    oiio_compare,
+    oiio_compare, oiio_write_channels,
 };
 
 extern "C" __attribute__((visibility("default"))) const mvr_image_backend *mvr_image_oiio_backend(uint32_t abi)

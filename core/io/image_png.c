@@ -414,3 +414,70 @@ mvr_png_status mvr_png_write(const char *path, const mvr_image_view *image, mvr_
     }
     return MVR_PNG_OK;
 }
+
+/* One row of a gray channel as PNG stores it: 16-bit samples most
+ * significant byte first (ISO/IEC 15948, 7.1). */
+static void gray_row(const mvr_image_channel *c, const unsigned char *in, uint32_t width, unsigned char *out)
+{
+    for (uint32_t x = 0; x < width; ++x, in += c->pixel_stride) {
+        if (c->type == MVR_CHANNEL_U8) {
+            out[x] = *in;
+        } else {
+            uint16_t v;
+            memcpy(&v, in, sizeof v);
+            out[2u * x] = (unsigned char)(v >> 8);
+            out[2u * x + 1u] = (unsigned char)(v & 0xFFu);
+        }
+    }
+}
+
+mvr_png_status mvr_png_write_gray(const char *path, const mvr_image_channel *channel, uint32_t width,
+                                  uint32_t height, bool bottom_up, mvr_error *error)
+{
+    int depth = channel->type == MVR_CHANNEL_U16 ? 16 : 8;
+    png_job job = {.out = fopen(path, "wb")};
+    if (!job.out) {
+        mvr_image_fail(error, MVR_ERROR_IO, "mvr_image_write_channels(%s): %s", path, strerror(errno));
+        return MVR_PNG_FAILED;
+    }
+    png_out w = {0};   /* set before setjmp, unchanged after it */
+    w.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &job, on_error, on_warning);
+    w.info = w.png ? png_create_info_struct(w.png) : NULL;
+    w.row = malloc((size_t)width * (size_t)(depth / 8));
+    if (!w.png || !w.info || !w.row) {
+        png_destroy_write_struct(&w.png, &w.info);
+        free(w.row);
+        fclose(job.out);
+        remove(path);
+        mvr_image_fail(error, MVR_ERROR_OUT_OF_MEMORY, "mvr_image_write_channels(%s): out of memory", path);
+        return MVR_PNG_FAILED;
+    }
+    if (setjmp(png_jmpbuf(w.png))) {
+        png_destroy_write_struct(&w.png, &w.info);
+        free(w.row);
+        fclose(job.out);
+        remove(path);
+        mvr_image_fail(error, MVR_ERROR_IO, "mvr_image_write_channels(%s): %s", path, job.message);
+        return MVR_PNG_FAILED;
+    }
+    png_set_write_fn(w.png, &job, on_write, on_flush);
+    png_set_IHDR(w.png, w.info, width, height, depth, PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_set_compression_level(w.png, 6);
+    png_write_info(w.png, w.info);
+    const unsigned char *first = (const unsigned char *)channel->first;
+    for (uint32_t y = 0; y < height; ++y) {
+        size_t at = (size_t)(bottom_up ? height - 1u - y : y) * channel->row_stride;
+        gray_row(channel, first + at, width, w.row);
+        png_write_row(w.png, w.row);
+    }
+    png_write_end(w.png, w.info);
+    png_destroy_write_struct(&w.png, &w.info);
+    free(w.row);
+    if (fclose(job.out) != 0) {
+        remove(path);
+        mvr_image_fail(error, MVR_ERROR_IO, "mvr_image_write_channels(%s): %s", path, strerror(errno));
+        return MVR_PNG_FAILED;
+    }
+    return MVR_PNG_OK;
+}

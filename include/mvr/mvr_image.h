@@ -91,6 +91,43 @@ mvr_result mvr_image_read_within(const char *path, mvr_pixel_type type, uint64_t
  * floats are written as given, 8-bit input is sRGB-decoded first). */
 mvr_result mvr_image_write(const char *path, const mvr_image_view *image, mvr_error *error);
 
+/* Named channels of one type each, for images that are not RGBA colour:
+ * 16-bit depth and ID PNGs, 8-bit masks, and EXRs of many named layers. */
+typedef enum mvr_channel_type {
+    MVR_CHANNEL_U8 = 0,
+    MVR_CHANNEL_U16,
+    MVR_CHANNEL_U32,
+    MVR_CHANNEL_F16,             /* stored as half; given as float32 */
+    MVR_CHANNEL_F32
+} mvr_channel_type;
+
+typedef struct mvr_image_channel {
+    const char *name;            /* EXR channel name ("R", "Z", "N.X", "id.node"); PNG: not used */
+    mvr_channel_type type;       /* as stored; the values given are uint8 / uint16 / uint32 / float32 */
+    const void *first;           /* the value of the first pixel of the first row in memory */
+    size_t pixel_stride;         /* bytes from one pixel's value to the next's */
+    size_t row_stride;           /* bytes from one row's first value to the next row's */
+} mvr_image_channel;
+
+typedef struct mvr_image_channels {
+    uint32_t width, height;
+    bool bottom_up;              /* the first row in memory is the image's bottom (GL order) */
+    uint32_t count;              /* 1..MVR_IMAGE_MAX_CHANNELS */
+    const mvr_image_channel *channels;
+} mvr_image_channels;
+
+#define MVR_IMAGE_MAX_CHANNELS 64u
+
+/* Writes named channels; the format follows the extension:
+ *  - .png: one channel, U8 or U16: an 8- or 16-bit grayscale PNG, the values
+ *    as given (no colour space; libpng, never OpenImageIO);
+ *  - .exr: 1..MVR_IMAGE_MAX_CHANNELS channels, each stored in its own type
+ *    (OpenEXR's UINT for U32, HALF for U8 and F16, FLOAT for U16 and F32:
+ *    every value exact but F16's) under its name, through the OpenImageIO module; names must be distinct.
+ * Anything else (another channel count or type for PNG, an empty or
+ * repeated name for EXR) is MVR_ERROR_INVALID_ARGUMENT naming the file. */
+mvr_result mvr_image_write_channels(const char *path, const mvr_image_channels *image, mvr_error *error);
+
 typedef struct mvr_image_compare_result {
     double rmse;                 /* over all channels, in [0, 1] units */
     double psnr;                 /* dB; infinite for identical images */
