@@ -288,7 +288,7 @@ static bool step_render(render_job *j, uint32_t f)
 }
 
 /* Every frame: frame f at --time + f / --fps; without --frames one frame,
- * written as view_VV.png. */
+ * written as view_VVVV.png. */
 static bool render_frames(render_job *j)
 {
     bool frames_ok = true;

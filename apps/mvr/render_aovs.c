@@ -89,8 +89,8 @@ bool render_aovs_write_view(const char *dir, mvr_output output, uint32_t view, i
                             uint32_t width, uint32_t height, const void *data, char *why, size_t why_size)
 {
     char path[4096];
-    int len = frame < 0 ? snprintf(path, sizeof path, "%s/%s_%02u.npy", dir, mvr_output_name(output), view)
-                        : snprintf(path, sizeof path, "%s/%s_%02u_f%0*lld.npy", dir, mvr_output_name(output), view,
+    int len = frame < 0 ? snprintf(path, sizeof path, "%s/%s_%04u.npy", dir, mvr_output_name(output), view)
+                        : snprintf(path, sizeof path, "%s/%s_%04u_f%0*lld.npy", dir, mvr_output_name(output), view,
                                    frame_digits, (long long)frame);
     if (len < 0 || (size_t)len >= sizeof path) {
         snprintf(why, why_size, "--out is too long");

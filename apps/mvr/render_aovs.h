@@ -11,8 +11,8 @@
 /* "depth,normal,ids" (or "all") -> mvr_target_desc.outputs bits; false with a message on stderr. */
 bool render_aovs_parse(const char *list, uint32_t *out_bits);
 
-/* One view's output from memory: DIR/<output>_VV.npy (or
- * <output>_VV_fNNNN.npy for frame >= 0, NNNN frame_digits wide) from data
+/* One view's output from memory: DIR/<output>_VVVV.npy (or
+ * <output>_VVVV_fNNNN.npy for frame >= 0, NNNN frame_digits wide) from data
  * as the GL reads it (mvr_renderer_read_output's bytes: rows bottom to top),
  * rows top to bottom in the output's own type (float32 H x W, float32
  * H x W x 3, uint32 H x W x 4). Prints nothing (any thread may call it):

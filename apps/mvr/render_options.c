@@ -153,15 +153,15 @@ static const cli_option render_table_animation[] = {
      "its last pose after the end", NULL, NULL, NULL},
     {CLI_OPT_U32, R_FRAMES, "--frames", NULL, "N", 1, MAX_FRAMES, NULL,
      "render N frames at --time T, T + 1/F, T + 2/F, ... and write\n"
-     "each: DIR/view_VV_fFFFF.png (view VV, frame FFFF from 0,\n"
+     "each: DIR/view_VVVV_fFFFF.png (view VVVV, frame FFFF from 0,\n"
      "at least 4 digits); contact_sheet.png shows the first frame\n"
-     "(1..100000; default: one frame, view_VV.png)", NULL, NULL, NULL},
+     "(1..100000; default: one frame, view_VVVV.png)", NULL, NULL, NULL},
     {CLI_OPT_STRING, R_FPS, "--fps", NULL, "F", 0, 0, NULL, "frames per second of --frames and --video, > 0 (default: 30)",
      NULL, NULL, NULL},
     {CLI_OPT_STRING, R_VIDEO, "--video", NULL, "FILE.mp4", 0, 0, NULL,
      "with --frames: also encode each view's sequence at --fps\n"
      "with ffmpeg (on PATH) into FILE.mp4 (one view) or\n"
-     "FILE_view_VV.mp4 (several)", NULL, NULL, NULL},
+     "FILE_view_VVVV.mp4 (several)", NULL, NULL, NULL},
     {CLI_OPT_CHOICE, R_SKINNING, "--skinning", NULL, "S", 0, 0, "auto|vertex|preskin",
      "auto | vertex | preskin: where skinning and morphing run (in\n"
      "each pass's vertex shader, or once per frame by transform\n"
@@ -174,7 +174,7 @@ static const cli_option render_table_tail[] = {
      NULL, NULL},
     {CLI_OPT_STRING, R_OUTPUTS, "--outputs", NULL, "LIST", 0, 0, NULL,
      "also write each view's depth, distance, normal, ids, coverage\n"
-     "(a comma list, or all) as NumPy files DIR/depth_VV.npy ...:\n"
+     "(a comma list, or all) as NumPy files DIR/depth_VVVV.npy ...:\n"
      "float32 H x W (depth along the camera's -Z, ray distance,\n"
      "coverage), float32 H x W x 3 (normal), uint32 H x W x 4 (node,\n"
      "mesh, material, primitive ids); 0 where nothing is; rows top\n"
@@ -240,8 +240,8 @@ static void render_usage(FILE *out)
             "usage: mvr render [--demo NAME | SCENE.gltf|.glb ... | --list FILE] [options]\n"
             "\n"
             "Renders a scene into N views headless and writes one image per view\n"
-            "(view_00.png, ...) and a contact sheet (PNG) of all views side by side;\n"
-            "with --frames N, a numbered sequence per view (view_00_f0000.png, ...).\n"
+            "(view_0000.png, ...) and a contact sheet (PNG) of all views side by side;\n"
+            "with --frames N, a numbered sequence per view (view_0000_f0000.png, ...).\n"
             "Several SCENE files render one after another, each into DIR/<its name>/.\n"
             "\n"
             "options:\n");

@@ -1,6 +1,6 @@
 /* What mvr render writes and the frame sequence it writes: which animation
- * poses the frames, each view's image per frame (view_VV.png or
- * view_VV_fFFFF.png), the contact sheet, the videos through ffmpeg and
+ * poses the frames, each view's image per frame (view_VVVV.png or
+ * view_VVVV_fFFFF.png), the contact sheet, the videos through ffmpeg and
  * the summary's animation and file lines (the stats JSON is
  * render_stats.c's). */
 #define _POSIX_C_SOURCE 200809L
@@ -131,15 +131,15 @@ int render_output_frame_digits(uint32_t frames)
     return digits;
 }
 
-/* DIR/view_VV.EXT, or frame f of a sequence: DIR/view_VV_fFFFF.EXT. */
+/* DIR/view_VVVV.EXT, or frame f of a sequence: DIR/view_VVVV_fFFFF.EXT. */
 void render_output_view_file(char *buf, size_t size, const render_options *o, uint32_t view, int64_t frame)
 {
     const char *ext = o->exr ? "exr" : "png";
     int len;
     if (frame < 0)
-        len = snprintf(buf, size, "%s/view_%02u.%s", o->out_dir, view, ext);
+        len = snprintf(buf, size, "%s/view_%04u.%s", o->out_dir, view, ext);
     else
-        len = snprintf(buf, size, "%s/view_%02u_f%0*lld.%s", o->out_dir, view, render_output_frame_digits(o->frames),
+        len = snprintf(buf, size, "%s/view_%04u_f%0*lld.%s", o->out_dir, view, render_output_frame_digits(o->frames),
                        (long long)frame, ext);
     if (len < 0 || (size_t)len >= size)
         buf[0] = '\0'; /* --out too long: the write fails, naming no file */
@@ -172,7 +172,7 @@ bool render_output_write_views(const render_options *o, mvr_renderer *r, mvr_tar
     return true;
 }
 
-/* --video FILE: FILE itself for one view, else FILE's stem + _view_VV +
+/* --video FILE: FILE itself for one view, else FILE's stem + _view_VVVV +
  * its extension. */
 static void video_file(char *buf, size_t size, const char *video, uint32_t view, uint32_t views)
 {
@@ -182,7 +182,7 @@ static void video_file(char *buf, size_t size, const char *video, uint32_t view,
     if (views == 1)
         snprintf(buf, size, "%s", video);
     else
-        snprintf(buf, size, "%.*s_view_%02u%s", dot ? (int)(dot - video) : (int)strlen(video), video, view,
+        snprintf(buf, size, "%.*s_view_%04u%s", dot ? (int)(dot - video) : (int)strlen(video), video, view,
                  dot ? dot : "");
 }
 
@@ -203,7 +203,7 @@ bool render_output_encode_videos(const render_options *o, uint32_t n)
     }
     dir[d] = '\0';
     for (uint32_t k = 0; k < n; ++k) {
-        snprintf(input, sizeof input, "%s/view_%02u_f%%0%dd.png", dir, k, render_output_frame_digits(o->frames));
+        snprintf(input, sizeof input, "%s/view_%04u_f%%0%dd.png", dir, k, render_output_frame_digits(o->frames));
         video_file(output, sizeof output, o->video, k, n);
         char *args[] = {"ffmpeg", "-hide_banner", "-loglevel", "error", "-nostdin", "-y", "-framerate", rate,
                         "-start_number", "0", "-i", input, "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-pix_fmt",
