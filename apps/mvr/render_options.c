@@ -23,7 +23,7 @@ enum {
     R_EXPOSURE, R_EXPOSURE_SCALE, R_CAMERA_EXPOSURE, R_EXPOSURE_PER_VIEW, R_DITHER, R_CLEAR, R_TONE_MAP, R_FRAMES,
     R_STATS, R_STRICT, R_MEMORY_BUDGET, R_PROGRAM_CACHE, R_QUIET, R_PLAN, R_ANIMATION, R_TIME, R_LOOP, R_FPS, R_VIDEO,
     R_SKINNING, R_VARIANT, R_COLMAP, R_OUTPUTS, R_NORMAL_SPACE, R_ALPHA_CUTOFF, R_READBACK, R_NO_PROGRESS, R_ENCODERS,
-    R_CAMERAS, R_LIST, R_KEEP_GOING
+    R_CAMERAS, R_LIST, R_KEEP_GOING, R_SPLIT, R_NORMALIZE
 };
 
 #define MAX_FRAMES 100000
@@ -189,7 +189,18 @@ static const cli_option render_table_tail[] = {
     {CLI_OPT_FLAG, R_COLMAP, "--colmap", NULL, NULL, 0, 0, NULL,
      "also write COLMAP's text model of the views into DIR/colmap:\n"
      "cameras.txt (PINHOLE), images.txt (world-to-camera poses),\n"
-     "an empty points3D.txt", NULL, NULL, NULL},
+     "points3D.txt (surface points sampled from --outputs depth,\n"
+     "each with its colour and the views that see it; empty without\n"
+     "depth) and their 2D points in images.txt", NULL, NULL, NULL},
+    {CLI_OPT_STRING, R_SPLIT, "--split", NULL, "T,V[,E]", 0, 0, NULL,
+     "train, val[, test] fractions summing to 1 (e.g. 0.9,0.1):\n"
+     "views spread evenly into transforms_train.json,\n"
+     "transforms_val.json, transforms_test.json, and listed in\n"
+     "transforms.json as train_filenames ... (nerfstudio)", NULL, NULL, NULL},
+    {CLI_OPT_FLAG, R_NORMALIZE, "--normalize", NULL, NULL, 0, 0, NULL,
+     "transforms.json's poses, aabb and depth scale moved and scaled\n"
+     "so the scene and every camera lie in [0, 1]^3 (the applied\n"
+     "scale and offset stated in it)", NULL, NULL, NULL},
     {CLI_OPT_FLAG, R_PLAN, "--plan", NULL, NULL, 0, 0, NULL,
      "print the last frame's plan: its passes in order, each with\n"
      "its views and why it runs", NULL, NULL, NULL},
@@ -252,6 +263,36 @@ static void render_usage(FILE *out)
 static bool parse_double(const char *v, double *out)
 {
     return cli_parse_double(v, out);
+}
+
+/* --split T,V[,E]: two or three fractions in [0, 1] summing to 1 */
+static bool parse_split(const char *v, double split[3])
+{
+    char part[64];
+    int count = 0;
+    double sum = 0;
+    split[2] = 0;
+    for (const char *p = v; count < 3; ++count) {
+        size_t len = strcspn(p, ",");
+        if (len == 0 || len >= sizeof part)
+            break;
+        memcpy(part, p, len);
+        part[len] = '\0';
+        if (!parse_double(part, &split[count]) || !(split[count] >= 0.0 && split[count] <= 1.0))
+            break;
+        sum += split[count];
+        p += len;
+        if (*p == '\0') {
+            count++;
+            if (count >= 2 && fabs(sum - 1.0) <= 1e-6)
+                return true;
+            break;
+        }
+        p++;
+    }
+    fprintf(stderr, "mvr render: --split takes train,val[,test] fractions in [0, 1] that sum to 1 (e.g. 0.9,0.1), "
+                    "not '%s'\n", v);
+    return false;
 }
 
 /* What is rendered and from where: the scene, its views and the layers' size.
@@ -458,6 +499,12 @@ static int apply_outputs(const cli_arg *arg, render_options *o)
     case R_STATS: o->stats_file = v; break;
     case R_PLAN: o->plan = true; break;
     case R_COLMAP: o->colmap = true; break;
+    case R_NORMALIZE: o->normalize = true; break;
+    case R_SPLIT:
+        if (!parse_split(v, o->split))
+            return -1;
+        o->split_set = true;
+        break;
     case R_OUTPUTS:
         if (!render_aovs_parse(v, &o->outputs))
             return -1;

@@ -58,9 +58,8 @@ void render_output_print_animation(const render_options *o, const mvr_scene *sce
 void render_output_print_files(const render_options *o, uint32_t n, const char *sheet);
 
 /* The views' camera metadata next to the images (the first frame's poses):
- * cameras.json (mvr_view_set_get_camera's, conventions stated in it) and
- * transforms.json (the NeRF layout instant-ngp and nerfstudio read: OpenGL
- * camera-to-world matrices, row by row, per-frame intrinsics). */
+ * cameras.json (mvr_view_set_get_camera's, conventions stated in it);
+ * transforms.json and COLMAP's model are dataset.h's. */
 bool render_output_write_cameras(const render_options *o, const mvr_view_set *views, uint32_t n);
 
 /* Digits of a sequence's frame numbers (view_0000_fNNNN.png). */
