@@ -44,7 +44,7 @@ oiiotool "$out/sphere/contact_sheet.png" --resize 640x0 -o "$img/example_sphere.
 oiiotool "$out/sphere/depth.pgm" --resize 640x0 -o "$img/example_sphere_depth.png"
 
 # 3. a dataset with COLMAP's model: README's command; views 0, 6, 12, 18 in a row
-build/mvr render tests/data/peers/textured.gltf --layout orbit --views 24 --size 320x240 --colmap \
+build/mvr render tests/data/peers/textured.gltf --layout orbit --views 24 --size 320x240 --outputs depth --split 0.9,0.1 --colmap \
     --out "$out/dataset" --quiet
 oiiotool "$out/dataset/view_0000.png" "$out/dataset/view_0006.png" "$out/dataset/view_0012.png" \
     "$out/dataset/view_0018.png" --mosaic 4x1 --resize 640x0 -o "$img/example_dataset.png"
