@@ -16,7 +16,7 @@
  * infinite far): mvr_view_set_get_camera of the view gives back fx, fy, cx,
  * cy at the file's size, and the same field of view at any other size.
  * Everything in the file is checked: a refusal names the view (0-based, as
- * the images view_VV are numbered), the field and the line. */
+ * the images view_VVVV are numbered), the field and the line. */
 #ifndef MVR_APP_CAMERA_FILE_H
 #define MVR_APP_CAMERA_FILE_H
 

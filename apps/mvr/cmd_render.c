@@ -15,6 +15,7 @@
 #include "cli_scene.h"
 #include "cli_write.h"
 #include "commands.h"
+#include "dataset.h" /* transforms.json, COLMAP */
 #include "mvr/mvr_gltf.h"
 #include "render_files.h" /* SCENE... and --list */
 #include "render_options.h"
@@ -97,6 +98,7 @@ typedef struct render_job {
     mvr_node_id camera_node;     /* a file's camera an animation moves, or 0 */
     char sheet[4096];
     double started;
+    dataset_views dataset;       /* the first frame's cameras, for the run's dataset files */
 } render_job;
 
 /* The job's options: the session's, with file and out_dir (several files:
@@ -283,7 +285,8 @@ static bool step_render(render_job *j, uint32_t f)
         return false;
     }
     /* the camera metadata of the first frame's views (and what the IDs name) */
-    if (!render_output_write_cameras(o, j->views, j->n))
+    if (!render_output_write_cameras(o, j->views, j->n) ||
+        !dataset_views_capture(&j->dataset, o, j->views, j->n, j->scene) || !dataset_write_transforms(o, &j->dataset))
         return false;
     if (o->outputs & MVR_OUTPUT_BIT(MVR_OUTPUT_IDS))
         return render_aovs_write_ids(o->out_dir, j->scene);
@@ -291,7 +294,7 @@ static bool step_render(render_job *j, uint32_t f)
 }
 
 /* Every frame: frame f at --time + f / --fps; without --frames one frame,
- * written as view_VV.png. */
+ * written as view_VVVV.png. */
 static bool render_frames(render_job *j)
 {
     bool frames_ok = true;
@@ -301,6 +304,9 @@ static bool render_frames(render_job *j)
     j->floats = NULL;
     if (frames_ok && j->stream)
         frames_ok = render_stream_finish(j->stream, j->sheet);
+    /* COLMAP's model reads the written views back: after the last one */
+    if (frames_ok && j->o.colmap)
+        frames_ok = dataset_write_colmap(&j->o, &j->dataset);
     return frames_ok;
 }
 
@@ -431,6 +437,7 @@ static void job_release(render_job *j)
     mvr_target_destroy(j->target);
     mvr_view_set_destroy(j->views);
     mvr_scene_destroy(j->scene);
+    dataset_views_free(&j->dataset);
 }
 
 /* Renders one scene (file: a SCENE, NULL: the options' own) into out_dir

@@ -121,8 +121,8 @@ static bool write_view_npy(const render_options *o, const render_aov_view *v, mv
     int64_t frame = v->frame;
     int frame_digits = v->frame_digits;
     char path[4096];
-    int len = frame < 0 ? snprintf(path, sizeof path, "%s/%s_%02u.npy", dir, mvr_output_name(output), view)
-                        : snprintf(path, sizeof path, "%s/%s_%02u_f%0*lld.npy", dir, mvr_output_name(output), view,
+    int len = frame < 0 ? snprintf(path, sizeof path, "%s/%s_%04u.npy", dir, mvr_output_name(output), view)
+                        : snprintf(path, sizeof path, "%s/%s_%04u_f%0*lld.npy", dir, mvr_output_name(output), view,
                                    frame_digits, (long long)frame);
     if (len < 0 || (size_t)len >= sizeof path) {
         snprintf(why, why_size, "--out is too long");

@@ -24,7 +24,7 @@ enum {
     R_EXPOSURE, R_EXPOSURE_SCALE, R_CAMERA_EXPOSURE, R_EXPOSURE_PER_VIEW, R_DITHER, R_CLEAR, R_TONE_MAP, R_FRAMES,
     R_STATS, R_STRICT, R_MEMORY_BUDGET, R_PROGRAM_CACHE, R_QUIET, R_PLAN, R_ANIMATION, R_TIME, R_LOOP, R_FPS, R_VIDEO,
     R_SKINNING, R_VARIANT, R_COLMAP, R_OUTPUTS, R_NORMAL_SPACE, R_ALPHA_CUTOFF, R_READBACK, R_NO_PROGRESS, R_ENCODERS,
-    R_CAMERAS, R_LIST, R_KEEP_GOING,
+    R_CAMERAS, R_LIST, R_KEEP_GOING, R_SPLIT, R_NORMALIZE,
     R_OUTPUT_FILES
 };
 
@@ -157,15 +157,15 @@ static const cli_option render_table_animation[] = {
      "its last pose after the end", NULL, NULL, NULL},
     {CLI_OPT_U32, R_FRAMES, "--frames", NULL, "N", 1, MAX_FRAMES, NULL,
      "render N frames at --time T, T + 1/F, T + 2/F, ... and write\n"
-     "each: DIR/view_VV_fFFFF.png (view VV, frame FFFF from 0,\n"
+     "each: DIR/view_VVVV_fFFFF.png (view VVVV, frame FFFF from 0,\n"
      "at least 4 digits); contact_sheet.png shows the first frame\n"
-     "(1..100000; default: one frame, view_VV.png)", NULL, NULL, NULL},
+     "(1..100000; default: one frame, view_VVVV.png)", NULL, NULL, NULL},
     {CLI_OPT_STRING, R_FPS, "--fps", NULL, "F", 0, 0, NULL, "frames per second of --frames and --video, > 0 (default: 30)",
      NULL, NULL, NULL},
     {CLI_OPT_STRING, R_VIDEO, "--video", NULL, "FILE.mp4", 0, 0, NULL,
      "with --frames: also encode each view's sequence at --fps\n"
      "with ffmpeg (on PATH) into FILE.mp4 (one view) or\n"
-     "FILE_view_VV.mp4 (several)", NULL, NULL, NULL},
+     "FILE_view_VVVV.mp4 (several)", NULL, NULL, NULL},
     {CLI_OPT_CHOICE, R_SKINNING, "--skinning", NULL, "S", 0, 0, "auto|vertex|preskin",
      "auto | vertex | preskin: where skinning and morphing run (in\n"
      "each pass's vertex shader, or once per frame by transform\n"
@@ -178,7 +178,7 @@ static const cli_option render_table_tail[] = {
      NULL, NULL},
     {CLI_OPT_STRING, R_OUTPUTS, "--outputs", NULL, "LIST", 0, 0, NULL,
      "also write each view's depth, distance, normal, ids, coverage\n"
-     "(a comma list, or all) as NumPy files DIR/depth_VV.npy ...:\n"
+     "(a comma list, or all) as NumPy files DIR/depth_VVVV.npy ...:\n"
      "float32 H x W (depth along the camera's -Z, ray distance,\n"
      "coverage), float32 H x W x 3 (normal), uint32 H x W x 4 (node,\n"
      "mesh, material, primitive ids); 0 where nothing is; rows top\n"
@@ -199,7 +199,18 @@ static const cli_option render_table_tail[] = {
     {CLI_OPT_FLAG, R_COLMAP, "--colmap", NULL, NULL, 0, 0, NULL,
      "also write COLMAP's text model of the views into DIR/colmap:\n"
      "cameras.txt (PINHOLE), images.txt (world-to-camera poses),\n"
-     "an empty points3D.txt", NULL, NULL, NULL},
+     "points3D.txt (surface points sampled from --outputs depth,\n"
+     "each with its colour and the views that see it; empty without\n"
+     "depth) and their 2D points in images.txt", NULL, NULL, NULL},
+    {CLI_OPT_STRING, R_SPLIT, "--split", NULL, "T,V[,E]", 0, 0, NULL,
+     "train, val[, test] fractions summing to 1 (e.g. 0.9,0.1):\n"
+     "views spread evenly into transforms_train.json,\n"
+     "transforms_val.json, transforms_test.json, and listed in\n"
+     "transforms.json as train_filenames ... (nerfstudio)", NULL, NULL, NULL},
+    {CLI_OPT_FLAG, R_NORMALIZE, "--normalize", NULL, NULL, 0, 0, NULL,
+     "transforms.json's poses, aabb and depth scale moved and scaled\n"
+     "so the scene and every camera lie in [0, 1]^3 (the applied\n"
+     "scale and offset stated in it)", NULL, NULL, NULL},
     {CLI_OPT_FLAG, R_PLAN, "--plan", NULL, NULL, 0, 0, NULL,
      "print the last frame's plan: its passes in order, each with\n"
      "its views and why it runs", NULL, NULL, NULL},
@@ -250,8 +261,8 @@ static void render_usage(FILE *out)
             "usage: mvr render [--demo NAME | SCENE.gltf|.glb ... | --list FILE] [options]\n"
             "\n"
             "Renders a scene into N views headless and writes one image per view\n"
-            "(view_00.png, ...) and a contact sheet (PNG) of all views side by side;\n"
-            "with --frames N, a numbered sequence per view (view_00_f0000.png, ...).\n"
+            "(view_0000.png, ...) and a contact sheet (PNG) of all views side by side;\n"
+            "with --frames N, a numbered sequence per view (view_0000_f0000.png, ...).\n"
             "Several SCENE files render one after another, each into DIR/<its name>/.\n"
             "\n"
             "options:\n");
@@ -262,6 +273,36 @@ static void render_usage(FILE *out)
 static bool parse_double(const char *v, double *out)
 {
     return cli_parse_double(v, out);
+}
+
+/* --split T,V[,E]: two or three fractions in [0, 1] summing to 1 */
+static bool parse_split(const char *v, double split[3])
+{
+    char part[64];
+    int count = 0;
+    double sum = 0;
+    split[2] = 0;
+    for (const char *p = v; count < 3; ++count) {
+        size_t len = strcspn(p, ",");
+        if (len == 0 || len >= sizeof part)
+            break;
+        memcpy(part, p, len);
+        part[len] = '\0';
+        if (!parse_double(part, &split[count]) || !(split[count] >= 0.0 && split[count] <= 1.0))
+            break;
+        sum += split[count];
+        p += len;
+        if (*p == '\0') {
+            count++;
+            if (count >= 2 && fabs(sum - 1.0) <= 1e-6)
+                return true;
+            break;
+        }
+        p++;
+    }
+    fprintf(stderr, "mvr render: --split takes train,val[,test] fractions in [0, 1] that sum to 1 (e.g. 0.9,0.1), "
+                    "not '%s'\n", v);
+    return false;
 }
 
 /* What is rendered and from where: the scene, its views and the layers' size.
@@ -468,6 +509,12 @@ static int apply_outputs(const cli_arg *arg, render_options *o)
     case R_STATS: o->stats_file = v; break;
     case R_PLAN: o->plan = true; break;
     case R_COLMAP: o->colmap = true; break;
+    case R_NORMALIZE: o->normalize = true; break;
+    case R_SPLIT:
+        if (!parse_split(v, o->split))
+            return -1;
+        o->split_set = true;
+        break;
     case R_OUTPUTS:
         if (!render_aovs_parse(v, &o->outputs))
             return -1;

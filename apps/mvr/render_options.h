@@ -37,6 +37,10 @@ typedef struct render_options {
     const char *stats_file;
     bool plan;                   /* --plan */
     bool colmap;                 /* --colmap */
+    /* the dataset's files (dataset.h): --split TRAIN,VAL[,TEST] fractions
+     * (summing to 1), --normalize (poses into instant-ngp's unit cube) */
+    double split[3];
+    bool split_set, normalize;
     uint32_t outputs;            /* --outputs: mvr_target_desc.outputs (0 = colour alone) */
     double depth_png_scale;      /* scene units per step of a 16-bit depth PNG (depth_VVVV.png): set
                                     per run before the first view is written (0 = not yet) */

@@ -1,6 +1,6 @@
 /* What mvr render writes and the frame sequence it writes: which animation
- * poses the frames, each view's image per frame (view_VV.png or
- * view_VV_fFFFF.png), the contact sheet, the videos through ffmpeg and
+ * poses the frames, each view's image per frame (view_VVVV.png or
+ * view_VVVV_fFFFF.png), the contact sheet, the videos through ffmpeg and
  * the summary's animation and file lines (the stats JSON is
  * render_stats.c's). */
 #define _POSIX_C_SOURCE 200809L
@@ -131,15 +131,15 @@ int render_output_frame_digits(uint32_t frames)
     return digits;
 }
 
-/* DIR/view_VV.EXT, or frame f of a sequence: DIR/view_VV_fFFFF.EXT. */
+/* DIR/view_VVVV.EXT, or frame f of a sequence: DIR/view_VVVV_fFFFF.EXT. */
 void render_output_view_file(char *buf, size_t size, const render_options *o, uint32_t view, int64_t frame)
 {
     const char *ext = o->exr ? "exr" : "png";
     int len;
     if (frame < 0)
-        len = snprintf(buf, size, "%s/view_%02u.%s", o->out_dir, view, ext);
+        len = snprintf(buf, size, "%s/view_%04u.%s", o->out_dir, view, ext);
     else
-        len = snprintf(buf, size, "%s/view_%02u_f%0*lld.%s", o->out_dir, view, render_output_frame_digits(o->frames),
+        len = snprintf(buf, size, "%s/view_%04u_f%0*lld.%s", o->out_dir, view, render_output_frame_digits(o->frames),
                        (long long)frame, ext);
     if (len < 0 || (size_t)len >= size)
         buf[0] = '\0'; /* --out too long: the write fails, naming no file */
@@ -172,7 +172,7 @@ bool render_output_write_views(const render_options *o, mvr_renderer *r, mvr_tar
     return true;
 }
 
-/* --video FILE: FILE itself for one view, else FILE's stem + _view_VV +
+/* --video FILE: FILE itself for one view, else FILE's stem + _view_VVVV +
  * its extension. */
 static void video_file(char *buf, size_t size, const char *video, uint32_t view, uint32_t views)
 {
@@ -182,7 +182,7 @@ static void video_file(char *buf, size_t size, const char *video, uint32_t view,
     if (views == 1)
         snprintf(buf, size, "%s", video);
     else
-        snprintf(buf, size, "%.*s_view_%02u%s", dot ? (int)(dot - video) : (int)strlen(video), video, view,
+        snprintf(buf, size, "%.*s_view_%04u%s", dot ? (int)(dot - video) : (int)strlen(video), video, view,
                  dot ? dot : "");
 }
 
@@ -203,7 +203,7 @@ bool render_output_encode_videos(const render_options *o, uint32_t n)
     }
     dir[d] = '\0';
     for (uint32_t k = 0; k < n; ++k) {
-        snprintf(input, sizeof input, "%s/view_%02u_f%%0%dd.png", dir, k, render_output_frame_digits(o->frames));
+        snprintf(input, sizeof input, "%s/view_%04u_f%%0%dd.png", dir, k, render_output_frame_digits(o->frames));
         video_file(output, sizeof output, o->video, k, n);
         char *args[] = {"ffmpeg", "-hide_banner", "-loglevel", "error", "-nostdin", "-y", "-framerate", rate,
                         "-start_number", "0", "-i", input, "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-pix_fmt",
@@ -330,166 +330,71 @@ static void json_view_desc(json_writer *jw, const mvr_view_desc *v)
     json_end_object(jw);
 }
 
-/* COLMAP's text model (its documentation, "Output Format"): a PINHOLE
- * camera per view (fx fy cx cy, pixel centres at k + 0.5 as mvr's), each
- * image's world-to-camera rotation (Hamilton quaternion, w first) and
- * translation in COLMAP's camera (x right, y down, looking along +Z: the
- * OpenGL camera's y and z negated), no 2D points; an empty points3D.txt. */
-static bool write_colmap(const render_options *o, const mvr_view_set *views, uint32_t n)
+bool render_output_write_cameras(const render_options *o, const mvr_view_set *views, uint32_t n)
 {
-    char dir[4096], path[4096 + 16];
-    snprintf(dir, sizeof dir, "%s/colmap", o->out_dir);
-    if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
-        fprintf(stderr, "mvr render: cannot create %s: %s\n", dir, strerror(errno));
+    char path[4096];
+    snprintf(path, sizeof path, "%s/cameras.json", o->out_dir);
+    cli_write_file out;
+    char why[4200];
+    if (!cli_write_open(&out, path, why, sizeof why)) {
+        fprintf(stderr, "mvr render: %s\n", why);
         return false;
     }
-    /* each file checked, and renamed into place whole or not at all */
-    cli_write_file out[3];
-    FILE *files[3] = {NULL, NULL, NULL};
-    static const char *const names[3] = {"cameras.txt", "images.txt", "points3D.txt"};
-    char why[4200] = "";
     bool ok = true;
-    for (int k = 0; k < 3 && ok; ++k) {
-        snprintf(path, sizeof path, "%s/%s", dir, names[k]);
-        ok = cli_write_open(&out[k], path, why, sizeof why);
-        files[k] = ok ? out[k].f : NULL;
-    }
-    if (ok) {
-        fprintf(files[0], "# Camera list with one line of data per camera:\n#   CAMERA_ID, MODEL, WIDTH, HEIGHT, "
-                          "PARAMS[]\n# Number of cameras: %u\n", n);
-        fprintf(files[1], "# Image list with two lines of data per image:\n#   IMAGE_ID, QW, QX, QY, QZ, TX, TY, TZ, "
-                          "CAMERA_ID, NAME\n#   POINTS2D[] as (X, Y, POINT3D_ID)\n# Number of images: %u\n", n);
-        fprintf(files[2], "# 3D point list (empty: mvr writes no points)\n");
-    }
+    FILE *f = out.f;
+    json_writer jw = {.out = f};
+    json_begin_object(&jw, NULL);
+    json_string(&jw, "world", "glTF: right-handed, +Y up");
+    json_string(&jw, "extrinsics", "world_to_camera, camera_to_world: 4 rows of 4; OpenGL camera: x right, "
+                                   "y up, looking along -Z");
+    json_string(&jw, "intrinsics", "fx, fy, cx, cy in pixels; OpenCV / COLMAP camera: x right, y down, "
+                                   "looking along +Z; u = fx X / Z + cx from the image's left edge, v = fy "
+                                   "Y / Z + cy from its top edge; pixel k covers [k, k + 1) (subtract 0.5 "
+                                   "for integer pixel centres)");
+    json_string(&jw, "projection", "OpenGL clip from camera space, 4 rows of 4, z in [-1, 1]");
+    json_string(&jw, "mvr_view", "the view as mvr was given it (mvr_view_desc; zeros are defaults): mvr "
+                                 "render --cameras of this file renders it again exactly, unless the "
+                                 "matrices or intrinsics above were changed, which then win");
+    json_begin_array(&jw, "frames");
     for (uint32_t k = 0; k < n && ok; ++k) {
         mvr_view_camera cam;
-        ok = mvr_view_set_get_camera(views, k, o->width, o->height, &cam) == MVR_OK;
-        if (!ok || !cam.perspective)
-            continue; /* an orthographic view has no pinhole */
-        fprintf(files[0], "%u PINHOLE %u %u %.17g %.17g %.17g %.17g\n", k + 1, cam.width, cam.height, cam.fx, cam.fy,
-                cam.cx, cam.cy);
-        /* R, t of COLMAP's camera: rows 1 and 2 of the OpenGL world_to_camera negated */
-        double r[3][3], t[3];
-        for (int i = 0; i < 3; ++i) {
-            double sign = i == 0 ? 1.0 : -1.0;
-            for (int j = 0; j < 3; ++j)
-                r[i][j] = sign * cam.world_to_camera[j * 4 + i];
-            t[i] = sign * cam.world_to_camera[3 * 4 + i];
-        }
-        /* the rotation's quaternion (Shepperd's method: the largest of w, x, y, z first) */
-        double tr = r[0][0] + r[1][1] + r[2][2], q[4];
-        if (tr > 0) {
-            double s = 2.0 * sqrt(tr + 1.0);
-            q[0] = 0.25 * s, q[1] = (r[2][1] - r[1][2]) / s, q[2] = (r[0][2] - r[2][0]) / s, q[3] = (r[1][0] - r[0][1]) / s;
-        } else if (r[0][0] > r[1][1] && r[0][0] > r[2][2]) {
-            double s = 2.0 * sqrt(1.0 + r[0][0] - r[1][1] - r[2][2]);
-            q[0] = (r[2][1] - r[1][2]) / s, q[1] = 0.25 * s, q[2] = (r[0][1] + r[1][0]) / s, q[3] = (r[0][2] + r[2][0]) / s;
-        } else if (r[1][1] > r[2][2]) {
-            double s = 2.0 * sqrt(1.0 + r[1][1] - r[0][0] - r[2][2]);
-            q[0] = (r[0][2] - r[2][0]) / s, q[1] = (r[0][1] + r[1][0]) / s, q[2] = 0.25 * s, q[3] = (r[1][2] + r[2][1]) / s;
-        } else {
-            double s = 2.0 * sqrt(1.0 + r[2][2] - r[0][0] - r[1][1]);
-            q[0] = (r[1][0] - r[0][1]) / s, q[1] = (r[0][2] + r[2][0]) / s, q[2] = (r[1][2] + r[2][1]) / s, q[3] = 0.25 * s;
+        if (mvr_view_set_get_camera(views, k, o->width, o->height, &cam) != MVR_OK) {
+            ok = false;
+            break;
         }
         char image[4096];
         render_output_view_file(image, sizeof image, o, k, o->frames_set ? 0 : -1);
         const char *name = strrchr(image, '/') ? strrchr(image, '/') + 1 : image;
-        fprintf(files[1], "%u %.17g %.17g %.17g %.17g %.17g %.17g %.17g %u %s\n\n", k + 1, q[0], q[1], q[2], q[3], t[0],
-                t[1], t[2], k + 1, name);
-    }
-    if (!ok && !why[0])
-        snprintf(why, sizeof why, "cannot write the COLMAP model into %s: a view has no camera", dir);
-    for (int k = 0; k < 3; ++k) {
-        if (!files[k])
-            continue;
-        if (!ok)
-            cli_write_abandon(&out[k]);
-        else
-            ok = cli_write_close(&out[k], why, sizeof why);
-    }
-    if (!ok)
-        fprintf(stderr, "mvr render: %s\n", why);
-    return ok;
-}
-
-bool render_output_write_cameras(const render_options *o, const mvr_view_set *views, uint32_t n)
-{
-    char path[4096];
-    bool ok = true;
-    for (int file = 0; file < 2 && ok; ++file) {
-        snprintf(path, sizeof path, "%s/%s", o->out_dir, file == 0 ? "cameras.json" : "transforms.json");
-        cli_write_file out;
-        char why[4200];
-        if (!cli_write_open(&out, path, why, sizeof why)) {
-            fprintf(stderr, "mvr render: %s\n", why);
-            return false;
-        }
-        FILE *f = out.f;
-        json_writer jw = {.out = f};
         json_begin_object(&jw, NULL);
-        if (file == 0) {
-            json_string(&jw, "world", "glTF: right-handed, +Y up");
-            json_string(&jw, "extrinsics", "world_to_camera, camera_to_world: 4 rows of 4; OpenGL camera: x right, "
-                                           "y up, looking along -Z");
-            json_string(&jw, "intrinsics", "fx, fy, cx, cy in pixels; OpenCV / COLMAP camera: x right, y down, "
-                                           "looking along +Z; u = fx X / Z + cx from the image's left edge, v = fy "
-                                           "Y / Z + cy from its top edge; pixel k covers [k, k + 1) (subtract 0.5 "
-                                           "for integer pixel centres)");
-            json_string(&jw, "projection", "OpenGL clip from camera space, 4 rows of 4, z in [-1, 1]");
-            json_string(&jw, "mvr_view", "the view as mvr was given it (mvr_view_desc; zeros are defaults): mvr "
-                                         "render --cameras of this file renders it again exactly, unless the "
-                                         "matrices or intrinsics above were changed, which then win");
-        } else {
-            json_string(&jw, "convention", "NeRF (instant-ngp, nerfstudio): transform_matrix is camera-to-world "
-                                           "with the OpenGL camera; world glTF (+Y up)");
+        json_string(&jw, "file_path", name);
+        json_int(&jw, "w", cam.width);
+        json_int(&jw, "h", cam.height);
+        if (cam.perspective) {
+            json_double_exact(&jw, "fl_x", cam.fx);
+            json_double_exact(&jw, "fl_y", cam.fy);
+            json_double_exact(&jw, "cx", cam.cx);
+            json_double_exact(&jw, "cy", cam.cy);
+            json_double_exact(&jw, "camera_angle_x", 2.0 * atan(0.5 * cam.width / cam.fx));
         }
-        json_begin_array(&jw, "frames");
-        for (uint32_t k = 0; k < n && ok; ++k) {
-            mvr_view_camera cam;
-            if (mvr_view_set_get_camera(views, k, o->width, o->height, &cam) != MVR_OK) {
-                ok = false;
-                break;
-            }
-            char image[4096];
-            render_output_view_file(image, sizeof image, o, k, o->frames_set ? 0 : -1);
-            const char *name = strrchr(image, '/') ? strrchr(image, '/') + 1 : image;
-            json_begin_object(&jw, NULL);
-            json_string(&jw, "file_path", name);
-            json_int(&jw, "w", cam.width);
-            json_int(&jw, "h", cam.height);
-            if (cam.perspective) {
-                json_double_exact(&jw, "fl_x", cam.fx);
-                json_double_exact(&jw, "fl_y", cam.fy);
-                json_double_exact(&jw, "cx", cam.cx);
-                json_double_exact(&jw, "cy", cam.cy);
-                json_double_exact(&jw, "camera_angle_x", 2.0 * atan(0.5 * cam.width / cam.fx));
-            }
-            if (file == 0) {
-                json_int(&jw, "view", k);
-                json_bool(&jw, "perspective", cam.perspective);
-                json_matrix_rows(&jw, "projection", cam.projection);
-                json_matrix_rows(&jw, "world_to_camera", cam.world_to_camera);
-                json_matrix_rows(&jw, "camera_to_world", cam.camera_to_world);
-                mvr_view_desc desc;
-                if (mvr_view_set_get_view(views, k, &desc) == MVR_OK)
-                    json_view_desc(&jw, &desc);
-            } else {
-                json_matrix_rows(&jw, "transform_matrix", cam.camera_to_world);
-            }
-            json_end_object(&jw);
-        }
-        json_end_array(&jw);
+        json_int(&jw, "view", k);
+        json_bool(&jw, "perspective", cam.perspective);
+        json_matrix_rows(&jw, "projection", cam.projection);
+        json_matrix_rows(&jw, "world_to_camera", cam.world_to_camera);
+        json_matrix_rows(&jw, "camera_to_world", cam.camera_to_world);
+        mvr_view_desc desc;
+        if (mvr_view_set_get_view(views, k, &desc) == MVR_OK)
+            json_view_desc(&jw, &desc);
         json_end_object(&jw);
-        fputc('\n', f);
-        if (!ok) {
-            cli_write_abandon(&out);
-            fprintf(stderr, "mvr render: writing %s failed: a view has no camera\n", path);
-        } else if (!cli_write_close(&out, why, sizeof why)) {
-            fprintf(stderr, "mvr render: %s\n", why);
-            ok = false;
-        }
     }
-    if (ok && o->colmap)
-        ok = write_colmap(o, views, n);
+    json_end_array(&jw);
+    json_end_object(&jw);
+    fputc('\n', f);
+    if (!ok) {
+        cli_write_abandon(&out);
+        fprintf(stderr, "mvr render: writing %s failed: a view has no camera\n", path);
+    } else if (!cli_write_close(&out, why, sizeof why)) {
+        fprintf(stderr, "mvr render: %s\n", why);
+        ok = false;
+    }
     return ok;
 }

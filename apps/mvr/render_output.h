@@ -23,13 +23,13 @@ bool render_output_choose_animation(const render_options *o, const mvr_scene *sc
 
 /* Reads every layer as display bytes into layers[k] (and, for EXR, the
  * linear values into floats) and writes each view's image of the frame:
- * DIR/view_VV.EXT, or with frame >= 0 DIR/view_VV_fFFFF.EXT (frame -1: not
+ * DIR/view_VVVV.EXT, or with frame >= 0 DIR/view_VVVV_fFFFF.EXT (frame -1: not
  * a sequence). */
 bool render_output_write_views(const render_options *o, mvr_renderer *r, mvr_target *t, uint32_t n, uint8_t **layers,
                                float *floats, int64_t frame);
 
 /* The file of view `view` of frame `frame` (-1: not a sequence):
- * DIR/view_VV.EXT or DIR/view_VV_fFFFF.EXT ("" when it does not fit). */
+ * DIR/view_VVVV.EXT or DIR/view_VVVV_fFFFF.EXT ("" when it does not fit). */
 void render_output_view_file(char *buf, size_t size, const render_options *o, uint32_t view, int64_t frame);
 
 /* Lays the n bottom-up w x h layers out in a grid (side by side up to 4,
@@ -58,12 +58,11 @@ void render_output_print_animation(const render_options *o, const mvr_scene *sce
 void render_output_print_files(const render_options *o, uint32_t n, const char *sheet);
 
 /* The views' camera metadata next to the images (the first frame's poses):
- * cameras.json (mvr_view_set_get_camera's, conventions stated in it) and
- * transforms.json (the NeRF layout instant-ngp and nerfstudio read: OpenGL
- * camera-to-world matrices, row by row, per-frame intrinsics). */
+ * cameras.json (mvr_view_set_get_camera's, conventions stated in it);
+ * transforms.json and COLMAP's model are dataset.h's. */
 bool render_output_write_cameras(const render_options *o, const mvr_view_set *views, uint32_t n);
 
-/* Digits of a sequence's frame numbers (view_00_fNNNN.png). */
+/* Digits of a sequence's frame numbers (view_0000_fNNNN.png). */
 int render_output_frame_digits(uint32_t frames);
 
 #endif

@@ -29,9 +29,9 @@ typedef struct render_stream render_stream;
 bool render_stream_create(const render_options *o, mvr_context *ctx, mvr_renderer *r, uint32_t views,
                           uint32_t frames, render_stream **out);
 
-/* One frame of every view: frame -1 writes view_VV.EXT, frame >= 0
- * view_VV_fFFFF.EXT (render_output's names), and each output's
- * <output>_VV[_fFFFF].npy. sheet: this frame's views go
+/* One frame of every view: frame -1 writes view_VVVV.EXT, frame >= 0
+ * view_VVVV_fFFFF.EXT (render_output's names), and each output's
+ * <output>_VVVV[_fFFFF].npy. sheet: this frame's views go
  * into the contact sheet. Returns before the last chunks are written;
  * false (printed) on the first failure, a worker's included. */
 bool render_stream_frame(render_stream *s, mvr_scene *scene, const mvr_view_set *views, const mvr_render_desc *desc,

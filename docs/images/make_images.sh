@@ -27,7 +27,7 @@ build/mvr render tests/data/peers/textured.gltf --layout sphere --views 50 --out
 "$py" - "$out/sphere" <<'EOF'
 import sys, numpy as np
 d = sys.argv[1]
-depth = [np.load("%s/depth_%02d.npy" % (d, k)) for k in range(16)]
+depth = [np.load("%s/depth_%04d.npy" % (d, k)) for k in range(16)]
 rows = []
 for r in range(2):
     tiles = []
@@ -44,10 +44,10 @@ oiiotool "$out/sphere/contact_sheet.png" --resize 640x0 -o "$img/example_sphere.
 oiiotool "$out/sphere/depth.pgm" --resize 640x0 -o "$img/example_sphere_depth.png"
 
 # 3. a dataset with COLMAP's model: README's command; views 0, 6, 12, 18 in a row
-build/mvr render tests/data/peers/textured.gltf --layout orbit --views 24 --size 320x240 --colmap \
+build/mvr render tests/data/peers/textured.gltf --layout orbit --views 24 --size 320x240 --outputs depth --split 0.9,0.1 --colmap \
     --out "$out/dataset" --quiet
-oiiotool "$out/dataset/view_00.png" "$out/dataset/view_06.png" "$out/dataset/view_12.png" \
-    "$out/dataset/view_18.png" --mosaic 4x1 --resize 640x0 -o "$img/example_dataset.png"
+oiiotool "$out/dataset/view_0000.png" "$out/dataset/view_0006.png" "$out/dataset/view_0012.png" \
+    "$out/dataset/view_0018.png" --mosaic 4x1 --resize 640x0 -o "$img/example_dataset.png"
 
 # 4. Python: README's example's arrays of view 0 (colour, depth, node ids)
 PYTHONPATH=python "$py" - "$out" <<'EOF'

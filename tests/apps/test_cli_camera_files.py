@@ -75,10 +75,10 @@ for label, source, extra in (("demo", ["--demo", "stereo", "--views", "3"], []),
     expect(r.returncode == 0, "%s: --cameras render exits %d: %s" % (label, r.returncode, r.stderr))
     expect("(mvr cameras.json)" in r.stdout, "%s: the summary names the format: %s" % (label, r.stdout))
     n = len(cams["frames"])
-    names = ["view_%02d.png" % k for k in range(n)] + ["contact_sheet.png", "cameras.json", "transforms.json"]
+    names = ["view_%04d.png" % k for k in range(n)] + ["contact_sheet.png", "cameras.json", "transforms.json"]
     differ = same_files(first, again, names)
     expect(not differ, "%s: the round trip changed %s" % (label, differ))
-    expect(png_size(os.path.join(again, "view_00.png")) == (96, 72), "%s: the file's size is the layers'" % label)
+    expect(png_size(os.path.join(again, "view_0000.png")) == (96, 72), "%s: the file's size is the layers'" % label)
 
 # 2. CSV: off-centre principal points, fx != fy, exactly
 csv_views = [  # x, y, z, qx, qy, qz, qw, fx, fy, cx, cy
@@ -107,7 +107,7 @@ for size, scale in ((None, 1), ("180x120", 2)):
         continue
     frames = json.load(open(os.path.join(out, "cameras.json")))["frames"]
     expect(len(frames) == 3, "csv x%d: 3 views" % scale)
-    expect(png_size(os.path.join(out, "view_02.png")) == (90 * scale, 60 * scale), "csv x%d: image size" % scale)
+    expect(png_size(os.path.join(out, "view_0002.png")) == (90 * scale, 60 * scale), "csv x%d: image size" % scale)
     worst = worst_pose = 0.0
     for f, v in zip(frames, csv_views):
         for key, want in zip(("fl_x", "fl_y", "cx", "cy"), v[7:11]):
@@ -140,7 +140,7 @@ r = run("render", SCENE, "--cameras", studio, "--out", out, "--quiet")
 expect(r.returncode == 0, "nerfstudio: exits %d: %s" % (r.returncode, r.stderr))
 if r.returncode == 0:
     frames = json.load(open(os.path.join(out, "cameras.json")))["frames"]
-    expect(png_size(os.path.join(out, "view_01.png")) == (72, 48), "nerfstudio: its own size")
+    expect(png_size(os.path.join(out, "view_0001.png")) == (72, 48), "nerfstudio: its own size")
     expect(rel(frames[0]["cy"], 20.25) < 1e-9 and rel(frames[1]["cy"], 27.0) < 1e-9, "nerfstudio: per-frame cy")
 
 # 4. a cameras.json edited by hand: the edited pose wins, with a note

@@ -207,10 +207,10 @@ if run.returncode == 0:
     W, H = 64, 48
     depth, ids, w2c = [], [], []
     for k, n in enumerate(nerf["frames"]):
-        shape, d = load_npy(os.path.join(out, "depth_%02d.npy" % k))
-        expect(shape == (H, W), "depth_%02d: shape %r" % (k, shape))
-        shape, i = load_npy(os.path.join(out, "ids_%02d.npy" % k))
-        expect(shape == (H, W, 4), "ids_%02d: shape %r" % (k, shape))
+        shape, d = load_npy(os.path.join(out, "depth_%04d.npy" % k))
+        expect(shape == (H, W), "depth_%04d: shape %r" % (k, shape))
+        shape, i = load_npy(os.path.join(out, "ids_%04d.npy" % k))
+        expect(shape == (H, W, 4), "ids_%04d: shape %r" % (k, shape))
         depth.append(d)
         ids.append(i)
         c2w = n["transform_matrix"]
@@ -259,8 +259,8 @@ if run.returncode == 0:
     if run.returncode == 0:
         depth_csv = []
         for k in range(len(file_cams)):
-            shape, d = load_npy(os.path.join(out_csv, "depth_%02d.npy" % k))
-            expect(shape == (H, W), "--cameras depth_%02d: shape %r" % (k, shape))
+            shape, d = load_npy(os.path.join(out_csv, "depth_%04d.npy" % k))
+            expect(shape == (H, W), "--cameras depth_%04d: shape %r" % (k, shape))
             depth_csv.append(d)
         agree, checked = cross_view_agreement(file_cams, depth_csv, W, H)
         frac = agree / checked if checked else 0.0

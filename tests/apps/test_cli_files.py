@@ -12,7 +12,7 @@
 - a renderer that cannot be made stops the run even with --keep-going;
 - --list: '#' comments, blank lines, blanks around paths and CRLF ends; files whose names repeat
   get their place in the run (a_1, a_3); one file given by --list keeps the one-file layout
-  (OUT/view_00.png); a list that names nothing, or cannot be read, is refused (exit 2).
+  (OUT/view_0000.png); a list that names nothing, or cannot be read, is refused (exit 2).
 Python's standard library only."""
 import json
 import os
@@ -47,7 +47,7 @@ good_b = os.path.join(PEERS, "textured.gltf")
 broken = os.path.join(OUT, "broken.glb")
 with open(broken, "wb") as f:
     f.write(b"glTF\x02\x00\x00\x00\xff\xff\xff\x7f not a real binary glTF")
-names = ["view_00.png", "view_01.png", "contact_sheet.png", "cameras.json", "transforms.json"]
+names = ["view_0000.png", "view_0001.png", "contact_sheet.png", "cameras.json", "transforms.json"]
 
 # each file alone, as today (one file: the one-file layout)
 alone = {}
@@ -62,7 +62,7 @@ for path in (good_a, good_b):
 out = os.path.join(OUT, "stop")
 r = run(good_a, broken, good_b, "--out", out, "--quiet")
 expect(r.returncode != 0, "stop: a failed file makes the exit non-zero (got %d)" % r.returncode)
-expect(os.path.exists(os.path.join(out, "spheres", "view_00.png")), "stop: the first file is rendered")
+expect(os.path.exists(os.path.join(out, "spheres", "view_0000.png")), "stop: the first file is rendered")
 expect(not os.path.exists(os.path.join(out, "textured")), "stop: the file after the failure is not attempted")
 expect("mvr_gltf" in r.stderr and "broken.glb" in r.stderr, "stop: mvr's message names the file: %s" % r.stderr)
 expect("1 of 3 files rendered, 1 failed: " + broken in r.stderr and "1 not attempted" in r.stderr,
@@ -112,10 +112,10 @@ expect(r.returncode == 0, "list: exit %d: %s" % (r.returncode, r.stderr))
 dirs = sorted(os.listdir(out)) if os.path.isdir(out) else []
 expect(dirs == ["spheres_2", "spheres_4", "textured_1", "textured_3"], "list: directories %s" % dirs)
 if dirs == ["spheres_2", "spheres_4", "textured_1", "textured_3"]:
-    expect(read(os.path.join(out, "spheres_2", "view_00.png")) == read(os.path.join(out, "spheres_4", "view_00.png")),
+    expect(read(os.path.join(out, "spheres_2", "view_0000.png")) == read(os.path.join(out, "spheres_4", "view_0000.png")),
            "list: the copy renders as the original")
-    expect(read(os.path.join(out, "textured_3", "view_01.png")) ==
-           read(os.path.join(alone["textured"], "view_01.png")), "list: textured as alone")
+    expect(read(os.path.join(out, "textured_3", "view_0001.png")) ==
+           read(os.path.join(alone["textured"], "view_0001.png")), "list: textured as alone")
 
 # one file by --list: the one-file layout
 one = os.path.join(OUT, "one.txt")
@@ -123,7 +123,7 @@ with open(one, "w") as f:
     f.write("# just one\n%s\n" % good_a)
 out = os.path.join(OUT, "one")
 r = run("--list", one, "--out", out, "--quiet")
-expect(r.returncode == 0 and os.path.exists(os.path.join(out, "view_00.png")), "one listed file: OUT/view_00.png")
+expect(r.returncode == 0 and os.path.exists(os.path.join(out, "view_0000.png")), "one listed file: OUT/view_0000.png")
 expect(not os.path.exists(os.path.join(out, "spheres")), "one listed file: no subdirectory")
 
 # lists refused

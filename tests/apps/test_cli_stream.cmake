@@ -80,7 +80,7 @@ expect("sync.json: readback sync (${mode} ${e1})" mode STREQUAL "sync")
 
 # --outputs all: depth, distance, normal, ids and coverage come back through the stream too (one
 # more asynchronous readback per output per ring slot), written as the same .npy bytes; and over the
-# 2 frames of an animated file (<output>_VV_fFFFF.npy)
+# 2 frames of an animated file (<output>_VVVV_fFFFF.npy)
 render_into(aov_sync ${SPHERE} --outputs all --readback sync)
 render_into(aov ${SPHERE} --outputs all --stats ${OUT}/aov.json)
 # 14 views x (an image, 5 .npy and the default PNGs: depth, mask, 4 ID kinds, the ID preview), the
@@ -94,14 +94,14 @@ render_into(anim_aov_sync ${ANIM_AOV} --readback sync)
 render_into(anim_aov ${ANIM_AOV} --encoders 3)
 same_files(anim_aov anim_aov_sync 144) # 7 views x 2 frames x (image, 2 .npy, 7 PNGs) + 4
 # an .npy that cannot be written (a folder in its place) fails the streamed run, naming it
-file(MAKE_DIRECTORY ${OUT}/aov_bad/depth_03.npy)
+file(MAKE_DIRECTORY ${OUT}/aov_bad/depth_0003.npy)
 run(rc so se render ${SPHERE} --outputs depth --out ${OUT}/aov_bad --quiet)
-expect("an unwritable depth_03.npy exits 1, naming it (got ${rc}): ${se}"
-       rc EQUAL 1 AND se MATCHES "cannot write [^\n]*depth_03[.]npy")
+expect("an unwritable depth_0003.npy exits 1, naming it (got ${rc}): ${se}"
+       rc EQUAL 1 AND se MATCHES "cannot write [^\n]*depth_0003[.]npy")
 
 # EXR (a float target, linear values; the sheet from the sRGB-encoded floats), supersampling (a
 # float target 2x the size, resolved on the encoder threads), and 7 views of an animated file over
-# 2 frames (view_VV_fFFFF.png)
+# 2 frames (view_VVVV_fFFFF.png)
 render_into(exr_sync ${FILE} --layout ring --views 8 --size 48x48 --format exr --readback sync)
 render_into(exr ${FILE} --layout ring --views 8 --size 48x48 --format exr)
 same_files(exr exr_sync 11)
@@ -139,7 +139,7 @@ endif()
 
 # past 99 views the numbers grow a digit
 render_into(many --demo cube --views 101 --size 8x8)
-expect("view_100.png after view_99.png" EXISTS ${OUT}/many/view_99.png AND EXISTS ${OUT}/many/view_100.png)
+expect("view_0100.png after view_0099.png: names sort in view order" EXISTS ${OUT}/many/view_0099.png AND EXISTS ${OUT}/many/view_0100.png)
 
 # bad values are refused before anything runs
 run(rc so se render --demo stereo --readback fast --out ${OUT}/bad)

@@ -49,29 +49,29 @@ for api in desktop gles; do
     if ! "$viewer" --demo stereo --size 640x240 --api "$api" --frames 3 --screenshot "$out/$api.png"; then
         echo "FAIL: mvr-viewer --api $api did not run"; fail=1; continue
     fi
-    check "$compare" "$out/$api.png" "$out/render/view_00.png" --crop 0,0,320,240 --max 1
-    check "$compare" "$out/$api.png" "$out/render/view_01.png" --crop 320,0,320,240 --max 1
+    check "$compare" "$out/$api.png" "$out/render/view_0000.png" --crop 0,0,320,240 --max 1
+    check "$compare" "$out/$api.png" "$out/render/view_0001.png" --crop 320,0,320,240 --max 1
 done
 "$viewer" --demo stereo --size 320x240 --display anaglyph --frames 2 --screenshot "$out/anaglyph.png" || { echo "FAIL: anaglyph"; fail=1; }
-check "$compare" "$out/anaglyph.png" "$out/render/view_00.png" --channels r --max 1
-check "$compare" "$out/anaglyph.png" "$out/render/view_01.png" --channels gb --max 1
-differs "$out/render/view_00.png" "$out/render/view_01.png" --max 1
+check "$compare" "$out/anaglyph.png" "$out/render/view_0000.png" --channels r --max 1
+check "$compare" "$out/anaglyph.png" "$out/render/view_0001.png" --channels gb --max 1
+differs "$out/render/view_0000.png" "$out/render/view_0001.png" --max 1
 # grid with the stereo demo: 2 tiles side by side (the SIGFPE of issue 18)
 if view --demo stereo --size 640x240 --display grid --frames 2 --screenshot "$out/grid.png"; then
-    check "$compare" "$out/grid.png" "$out/render/view_00.png" --crop 0,0,320,240 --max 1
-    check "$compare" "$out/grid.png" "$out/render/view_01.png" --crop 320,0,320,240 --max 1
+    check "$compare" "$out/grid.png" "$out/render/view_0000.png" --crop 0,0,320,240 --max 1
+    check "$compare" "$out/grid.png" "$out/render/view_0001.png" --crop 320,0,320,240 --max 1
 fi
 # grid with the cube demo's own 6 views: 3 x 2 tiles of 213 x 120
 "$mvr" render --demo cube --size 213x120 --out "$out/cube" --quiet || { echo "FAIL: mvr render cube"; fail=1; }
 if view --demo cube --size 639x240 --display grid --frames 2 --screenshot "$out/cube_grid.png"; then
     for k in 0 1 2 3 4 5; do
-        check "$compare" "$out/cube_grid.png" "$out/cube/view_0$k.png" --crop $((k % 3 * 213)),$((k / 3 * 120)),213,120 --max 1
+        check "$compare" "$out/cube_grid.png" "$out/cube/view_000$k.png" --crop $((k % 3 * 213)),$((k / 3 * 120)),213,120 --max 1
     done
-    differs "$out/cube_grid.png" "$out/cube/view_01.png" --crop 0,0,213,120 --max 1
+    differs "$out/cube_grid.png" "$out/cube/view_0001.png" --crop 0,0,213,120 --max 1
 fi
 # single: the whole window is view K
 if view --demo stereo --size 320x240 --display single --single 1 --frames 2 --screenshot "$out/single.png"; then
-    check "$compare" "$out/single.png" "$out/render/view_01.png" --max 1
+    check "$compare" "$out/single.png" "$out/render/view_0001.png" --max 1
 fi
 if [ -n "$corpus" ]; then
     for f in physical_lights.gltf scene_graph.glb; do
@@ -80,26 +80,26 @@ if [ -n "$corpus" ]; then
             if ! "$viewer" "$corpus/$f" --size 640x240 --api "$api" --frames 3 --screenshot "$out/$f.$api.png"; then
                 echo "FAIL: mvr-viewer $f --api $api did not run"; fail=1; continue
             fi
-            check "$compare" "$out/$f.$api.png" "$out/$f/view_00.png" --crop 0,0,320,240 --max 1
-            check "$compare" "$out/$f.$api.png" "$out/$f/view_01.png" --crop 320,0,320,240 --max 1
+            check "$compare" "$out/$f.$api.png" "$out/$f/view_0000.png" --crop 0,0,320,240 --max 1
+            check "$compare" "$out/$f.$api.png" "$out/$f/view_0001.png" --crop 320,0,320,240 --max 1
         done
     done
     # the other displays with a file: its camera's views as mvr render's
     f=scene_graph.glb
     if view "$corpus/$f" --size 320x240 --display anaglyph --frames 2 --screenshot "$out/$f.anaglyph.png"; then
-        check "$compare" "$out/$f.anaglyph.png" "$out/$f/view_00.png" --channels r --max 1
-        check "$compare" "$out/$f.anaglyph.png" "$out/$f/view_01.png" --channels gb --max 1
+        check "$compare" "$out/$f.anaglyph.png" "$out/$f/view_0000.png" --channels r --max 1
+        check "$compare" "$out/$f.anaglyph.png" "$out/$f/view_0001.png" --channels gb --max 1
     fi
     f=physical_lights.gltf
     "$mvr" render "$corpus/$f" --views 4 --size 320x240 --out "$out/$f.4" --quiet || { echo "FAIL: mvr render $f --views 4"; fail=1; }
-    differs "$out/$f.4/view_00.png" "$out/$f.4/view_01.png" --max 1
+    differs "$out/$f.4/view_0000.png" "$out/$f.4/view_0001.png" --max 1
     if view "$corpus/$f" --views 4 --size 640x480 --display grid --frames 2 --screenshot "$out/$f.grid.png"; then
         for k in 0 1 2 3; do
-            check "$compare" "$out/$f.grid.png" "$out/$f.4/view_0$k.png" --crop $((k % 2 * 320)),$((k / 2 * 240)),320,240 --max 1
+            check "$compare" "$out/$f.grid.png" "$out/$f.4/view_000$k.png" --crop $((k % 2 * 320)),$((k / 2 * 240)),320,240 --max 1
         done
     fi
     if view "$corpus/$f" --views 4 --size 320x240 --display single --single 2 --frames 2 --screenshot "$out/$f.single.png"; then
-        check "$compare" "$out/$f.single.png" "$out/$f.4/view_02.png" --max 1
+        check "$compare" "$out/$f.single.png" "$out/$f.4/view_0002.png" --max 1
     fi
 fi
 # animation playback against mvr render at the same times
@@ -110,24 +110,24 @@ if python3 "$here/make_animated_gltf.py" "$anim"; then
         "$mvr" render "$anim" --views 2 --size 320x240 --animation 0 --time $t --out "$out/anim_$t" --quiet ||
             { echo "FAIL: mvr render $anim --time $t"; fail=1; continue; }
         if view "$anim" --size 640x240 --paused --time $t --frames 2 --screenshot "$out/anim_$t.png"; then
-            check "$compare" "$out/anim_$t.png" "$out/anim_$t/view_00.png" --crop 0,0,320,240 --max 1
-            check "$compare" "$out/anim_$t.png" "$out/anim_$t/view_01.png" --crop 320,0,320,240 --max 1
+            check "$compare" "$out/anim_$t.png" "$out/anim_$t/view_0000.png" --crop 0,0,320,240 --max 1
+            check "$compare" "$out/anim_$t.png" "$out/anim_$t/view_0001.png" --crop 320,0,320,240 --max 1
         fi
     done
-    differs "$out/anim_0.25/view_00.png" "$out/anim_0.75/view_00.png" --max 1
+    differs "$out/anim_0.25/view_0000.png" "$out/anim_0.75/view_0000.png" --max 1
     differs "$out/anim_0.25.png" "$out/anim_0.75.png" --max 1
     # playing: frame k at --time + k/30, so the 4th frame from 0.65 s is 0.75 s
     if view "$anim" --size 640x240 --time 0.65 --frames 4 --screenshot "$out/anim_play.png"; then
-        check "$compare" "$out/anim_play.png" "$out/anim_0.75/view_00.png" --crop 0,0,320,240 --max 1
+        check "$compare" "$out/anim_play.png" "$out/anim_0.75/view_0000.png" --crop 0,0,320,240 --max 1
     fi
     # by name, and every animation at once
     if view "$anim" --size 640x240 --animation slide --paused --time 0.25 --frames 1 --screenshot "$out/anim_name.png"; then
-        check "$compare" "$out/anim_name.png" "$out/anim_0.25/view_00.png" --crop 0,0,320,240 --max 1
+        check "$compare" "$out/anim_name.png" "$out/anim_0.25/view_0000.png" --crop 0,0,320,240 --max 1
     fi
     "$mvr" render "$anim" --views 2 --size 320x240 --animation all --time 0.5 --out "$out/anim_all" --quiet ||
         { echo "FAIL: mvr render $anim --animation all"; fail=1; }
     if view "$anim" --size 640x240 --animation all --paused --time 0.5 --frames 1 --screenshot "$out/anim_all.png"; then
-        check "$compare" "$out/anim_all.png" "$out/anim_all/view_01.png" --crop 320,0,320,240 --max 1
+        check "$compare" "$out/anim_all.png" "$out/anim_all/view_0001.png" --crop 320,0,320,240 --max 1
     fi
     msg=$("$viewer" "$anim" --animation nope --frames 1 2>&1 >/dev/null); rc=$?
     if [ $rc -ne 0 ] && printf '%s' "$msg" | grep -q "no animation named 'nope'; its animations: 0 'slide', 1 'spin'"; then

@@ -4,7 +4,7 @@ and leaves the files it promises.
 
 An example is a fenced code block right after an HTML comment:
 
-    <!-- example: out/x/view_00.png out/x/colmap/cameras.txt -->   files it writes
+    <!-- example: out/x/view_0000.png out/x/colmap/cameras.txt -->   files it writes
     <!-- example -->                                                 no files promised
     <!-- example: viewer -->                                         an mvr-viewer command
 

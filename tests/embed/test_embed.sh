@@ -24,10 +24,10 @@ ok() { echo "ok: $*"; }
 bad() { echo "FAIL: $*"; fail=1; }
 cmp_layers() { # prefix label
     for k in 0 1; do
-        if "$build/tests/compare_images" "${1}_$k.ppm" "$out/render/view_0$k.png" --max 0 > /dev/null; then
+        if "$build/tests/compare_images" "${1}_$k.ppm" "$out/render/view_000$k.png" --max 0 > /dev/null; then
             ok "$2: layer $k equals mvr render's"
         else
-            bad "$2: layer $k differs from mvr render's"; "$build/tests/compare_images" "${1}_$k.ppm" "$out/render/view_0$k.png"
+            bad "$2: layer $k differs from mvr render's"; "$build/tests/compare_images" "${1}_$k.ppm" "$out/render/view_000$k.png"
         fi
     done
 }
