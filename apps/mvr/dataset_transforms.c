@@ -170,9 +170,13 @@ static void write_header(json_writer *jw, const render_options *o, const placeme
 {
     json_string(jw, "convention", "NeRF (instant-ngp, nerfstudio): transform_matrix is camera-to-world with the "
                                   "OpenGL camera (x right, y up, looking along -Z); world glTF's");
-    static const double up[3] = {0, 1, 0};
+    /* the world's up as the views were placed (--up; glTF's own is +Y):
+     * a Z-up world (Blender's) is stated so, not turned */
+    bool z_up = o->framing.up == MVR_UP_Z;
+    const double up[3] = {0, z_up ? 0 : 1, z_up ? 1 : 0};
     json_vec3(jw, "up", up);
-    json_string(jw, "up_axis", "+Y (glTF's world: right-handed, +Y up)");
+    json_string(jw, "up_axis", z_up ? "+Z (--up z: right-handed, +Z up, as Blender's)"
+                                    : "+Y (glTF's world: right-handed, +Y up)");
     if (p->have_aabb) {
         json_begin_array(jw, "aabb");
         json_vec3(jw, NULL, p->aabb_min);

@@ -63,6 +63,10 @@ b = render("random_b", *sampled)
 other = render("random_other", *(sampled[:-3] + ["4"] + sampled[-2:]))
 if a and b and other:
     expect(len(a) == 8, "random: %d views" % len(a))
+    with open(os.path.join(OUT, "random_a", "transforms.json")) as f:
+        t = json.load(f)
+    expect(t.get("up") == [0, 0, 1] and "+Z" in t.get("up_axis", ""),
+           "transforms.json states up %r (%r), not --up z's" % (t.get("up"), t.get("up_axis")))
     expect([f["camera_to_world"] for f in a] == [f["camera_to_world"] for f in b], "random: seed 3 twice differs")
     expect(all(p["camera_to_world"] != q["camera_to_world"] for p, q in zip(a, other)),
            "random: seeds 3 and 4 share a camera")
