@@ -304,9 +304,11 @@ static bool render_frames(render_job *j)
     j->floats = NULL;
     if (frames_ok && j->stream)
         frames_ok = render_stream_finish(j->stream, j->sheet);
-    /* COLMAP's model reads the written views back: after the last one */
+    /* COLMAP's model and the COCO annotations read the written views back: after the last one */
     if (frames_ok && j->o.colmap)
         frames_ok = dataset_write_colmap(&j->o, &j->dataset);
+    if (frames_ok && (j->o.outputs & MVR_OUTPUT_BIT(MVR_OUTPUT_IDS)))
+        frames_ok = dataset_write_coco(&j->o, &j->dataset, j->scene);
     return frames_ok;
 }
 

@@ -1,7 +1,8 @@
 /* mvr render's run-level dataset files, beside the views' images:
  * transforms.json and its splits (dataset_transforms.c) and COLMAP's text
- * model with its 3D points (dataset_colmap.c, a pass after every view is
- * written, reading the views' files back). Messages go to stderr, prefixed
+ * model with its 3D points (dataset_colmap.c) and COCO annotations
+ * (dataset_coco.c), passes after every view is written, reading the
+ * views' files back. Messages go to stderr, prefixed
  * "mvr render". */
 #ifndef MVR_APP_DATASET_H
 #define MVR_APP_DATASET_H
@@ -46,5 +47,12 @@ bool dataset_write_transforms(const render_options *o, const dataset_views *d);
  * (read back one view at a time) and images.txt lists their 2D points;
  * without, points3D.txt is empty and a warning says so. */
 bool dataset_write_colmap(const render_options *o, const dataset_views *d);
+
+/* DIR/annotations/instances.json (one instance per node a view sees, its
+ * mesh as category) and instances_mesh.json (one per mesh), COCO's
+ * detection format with uncompressed column-major RLE masks, read back from
+ * every view's ids_VVVV.npy one view at a time (dataset_coco.c). Without npy
+ * among --output-files it writes nothing and warns. */
+bool dataset_write_coco(const render_options *o, const dataset_views *d, const mvr_scene *scene);
 
 #endif
