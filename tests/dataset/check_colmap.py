@@ -74,8 +74,8 @@ def main():
     work.mkdir(parents=True)
     scene = scene_cube.write(work / "cube")
     out = work / "out"
-    run([a.mvr, "render", scene, "--layout", "ring", "--views", a.views, "--size", a.size, "--colmap", "--quiet",
-         "--out", out], work / "mvr.log")
+    run([a.mvr, "render", scene, "--layout", "ring", "--views", a.views, "--size", a.size, "--colmap", "--outputs",
+         "depth", "--quiet", "--out", out], work / "mvr.log")
     model = out / "colmap"
     cams, imgs = read_model_txt(model)
     assert len(imgs) == a.views and len(cams) >= 1, (len(imgs), len(cams))
@@ -98,7 +98,17 @@ def main():
         m2, w2, h2, params2 = cams2[cid]
         assert (m2, w2, h2) == (m, w, h) and max(abs(x - y) for x, y in zip(params, params2)) < 1e-9, cid
     assert worst < 1e-12, "poses changed through COLMAP's binary model by %g" % worst
-    print("model_converter: %d images, %d cameras read back, poses equal to %.1e" % (len(imgs), len(cams), worst))
+    # mvr's own points (from depth) and their tracks survive COLMAP's reader
+    def points(folder):
+        rows = [ln.split() for ln in (folder / "points3D.txt").read_text().splitlines() if ln and ln[0] != "#"]
+        return {int(r[0]): (tuple(float(x) for x in r[1:4]), len(r[8:]) // 2) for r in rows}
+    mine, theirs = points(model), points(work / "txt")
+    assert len(mine) > 100, "mvr wrote %d points" % len(mine)
+    assert mine.keys() == theirs.keys() and all(
+        mine[k][1] == theirs[k][1] and max(abs(x - y) for x, y in zip(mine[k][0], theirs[k][0])) < 1e-9
+        for k in mine), "COLMAP read mvr's points3D differently"
+    print("model_converter: %d images, %d cameras, %d points read back, poses equal to %.1e" %
+          (len(imgs), len(cams), len(mine), worst))
 
     # 4. COLMAP's features on mvr's images, triangulated with mvr's poses
     params = {tuple(p) for (_, _, _, p) in cams.values()}
