@@ -29,7 +29,7 @@ endfunction()
 # written) with the same pixels, bit for bit (OpenImageIO's idiff; skipped without it)
 find_program(IDIFF idiff)
 function(same_files a b count)
-  file(GLOB files RELATIVE ${OUT}/${b} ${OUT}/${b}/*)
+  file(GLOB_RECURSE files RELATIVE ${OUT}/${b} ${OUT}/${b}/*) # annotations/ too
   list(LENGTH files n)
   set(differ "")
   set(n_differ 0)
@@ -84,15 +84,15 @@ expect("sync.json: readback sync (${mode} ${e1})" mode STREQUAL "sync")
 render_into(aov_sync ${SPHERE} --outputs all --readback sync)
 render_into(aov ${SPHERE} --outputs all --stats ${OUT}/aov.json)
 # 14 views x (an image, 5 .npy and the default PNGs: depth, mask, 4 ID kinds, the ID preview), the
-# contact sheet, cameras.json, transforms.json, ids.json
-same_files(aov aov_sync 186)
+# contact sheet, cameras.json, transforms.json, ids.json, annotations/instances{,_mesh}.json
+same_files(aov aov_sync 188)
 file(READ ${OUT}/aov.json js)
 string(JSON mode ERROR_VARIABLE e1 GET "${js}" readback mode)
 expect("aov.json: --outputs streams (readback ${mode} ${e1})" mode STREQUAL "stream")
 set(ANIM_AOV ${PEERS}/rigged.gltf --layout orbit --views 7 --size 32x32 --frames 2 --outputs depth,ids)
 render_into(anim_aov_sync ${ANIM_AOV} --readback sync)
 render_into(anim_aov ${ANIM_AOV} --encoders 3)
-same_files(anim_aov anim_aov_sync 144) # 7 views x 2 frames x (image, 2 .npy, 7 PNGs) + 4
+same_files(anim_aov anim_aov_sync 146) # 7 views x 2 frames x (image, 2 .npy, 7 PNGs) + 4 + 2 annotations
 # an .npy that cannot be written (a folder in its place) fails the streamed run, naming it
 file(MAKE_DIRECTORY ${OUT}/aov_bad/depth_0003.npy)
 run(rc so se render ${SPHERE} --outputs depth --out ${OUT}/aov_bad --quiet)
