@@ -351,23 +351,38 @@ typedef struct png_out {
     unsigned char *row;
 } png_out;
 
-mvr_png_status mvr_png_write(const char *path, const mvr_image_view *image, mvr_error *error)
+/* What one PNG writer writes: the header's fields, and each row made by
+ * fill_row (row y counted from the top) into row_bytes bytes. */
+typedef struct png_write_layout {
+    const char *what;            /* the public call, for messages */
+    uint32_t width, height;
+    int bit_depth, color_type;
+    bool srgb;                   /* the sRGB chunk (8-bit colour) */
+    size_t row_bytes;
+    void (*fill_row)(const void *source, uint32_t y, unsigned char *row);
+    const void *source;
+} png_write_layout;
+
+/* The one writer behind mvr_png_write and mvr_png_write_gray: opens path,
+ * writes every row, and removes the file on any failure (libpng's errors
+ * come back through on_error's longjmp to the setjmp here). */
+static mvr_png_status write_png(const char *path, const png_write_layout *l, mvr_error *error)
 {
     png_job job = {.out = fopen(path, "wb")};
     if (!job.out) {
-        mvr_image_fail(error, MVR_ERROR_IO, "mvr_image_write(%s): %s", path, strerror(errno));
+        mvr_image_fail(error, MVR_ERROR_IO, "%s(%s): %s", l->what, path, strerror(errno));
         return MVR_PNG_FAILED;
     }
     png_out w = {0};   /* set before setjmp, unchanged after it */
     w.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &job, on_error, on_warning);
     w.info = w.png ? png_create_info_struct(w.png) : NULL;
-    w.row = malloc((size_t)image->width * 4u);
+    w.row = malloc(l->row_bytes);
     if (!w.png || !w.info || !w.row) {
         png_destroy_write_struct(&w.png, &w.info);
         free(w.row);
         fclose(job.out);
         remove(path);
-        mvr_image_fail(error, MVR_ERROR_OUT_OF_MEMORY, "mvr_image_write(%s): out of memory", path);
+        mvr_image_fail(error, MVR_ERROR_OUT_OF_MEMORY, "%s(%s): out of memory", l->what, path);
         return MVR_PNG_FAILED;
     }
     if (setjmp(png_jmpbuf(w.png))) {
@@ -375,33 +390,20 @@ mvr_png_status mvr_png_write(const char *path, const mvr_image_view *image, mvr_
         free(w.row);
         fclose(job.out);
         remove(path);
-        mvr_image_fail(error, MVR_ERROR_IO, "mvr_image_write(%s): %s", path, job.message);
+        mvr_image_fail(error, MVR_ERROR_IO, "%s(%s): %s", l->what, path, job.message);
         return MVR_PNG_FAILED;
     }
     png_set_write_fn(w.png, &job, on_write, on_flush);
-    png_set_IHDR(w.png, w.info, image->width, image->height, 8, PNG_COLOR_TYPE_RGB_ALPHA, PNG_INTERLACE_NONE,
+    png_set_IHDR(w.png, w.info, l->width, l->height, l->bit_depth, l->color_type, PNG_INTERLACE_NONE,
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     /* mvr's 8-bit pixels are sRGB-encoded: the sRGB chunk (with its gAMA
      * and cHRM fallbacks), as OpenImageIO wrote for oiio:ColorSpace sRGB */
-    png_set_sRGB_gAMA_and_cHRM(w.png, w.info, PNG_sRGB_INTENT_PERCEPTUAL);
+    if (l->srgb)
+        png_set_sRGB_gAMA_and_cHRM(w.png, w.info, PNG_sRGB_INTENT_PERCEPTUAL);
     png_set_compression_level(w.png, 6);
     png_write_info(w.png, w.info);
-    const unsigned char *pixels = (const unsigned char *)image->pixels;
-    size_t stride = (size_t)image->width * 4u;
-    for (uint32_t y = 0; y < image->height; ++y) {
-        const unsigned char *in = pixels + stride * (image->bottom_up ? image->height - 1u - y : y);
-        for (uint32_t x = 0; x < image->width; ++x) {
-            const unsigned char *p = in + (size_t)x * 4u;
-            unsigned char *o = w.row + (size_t)x * 4u;
-            uint32_t a = p[3];
-            /* PNG's alpha is unassociated: OpenImageIO's writer divides by
-             * alpha (integers, clamped; alpha 0 keeps the colour) */
-            for (int c = 0; c < 3; ++c) {
-                uint32_t v = a ? (uint32_t)p[c] * 255u / a : p[c];
-                o[c] = (unsigned char)(v > 255u ? 255u : v);
-            }
-            o[3] = (unsigned char)a;
-        }
+    for (uint32_t y = 0; y < l->height; ++y) {
+        l->fill_row(l->source, y, w.row);
         png_write_row(w.png, w.row);
     }
     png_write_end(w.png, w.info);
@@ -409,17 +411,57 @@ mvr_png_status mvr_png_write(const char *path, const mvr_image_view *image, mvr_
     free(w.row);
     if (fclose(job.out) != 0) {
         remove(path);
-        mvr_image_fail(error, MVR_ERROR_IO, "mvr_image_write(%s): %s", path, strerror(errno));
+        mvr_image_fail(error, MVR_ERROR_IO, "%s(%s): %s", l->what, path, strerror(errno));
         return MVR_PNG_FAILED;
     }
     return MVR_PNG_OK;
 }
 
-/* One row of a gray channel as PNG stores it: 16-bit samples most
- * significant byte first (ISO/IEC 15948, 7.1). */
-static void gray_row(const mvr_image_channel *c, const unsigned char *in, uint32_t width, unsigned char *out)
+/* Row y (from the top) of an RGBA8 image as PNG stores it. */
+static void rgba_row(const void *source, uint32_t y, unsigned char *row)
 {
-    for (uint32_t x = 0; x < width; ++x, in += c->pixel_stride) {
+    const mvr_image_view *image = source;
+    const unsigned char *pixels = (const unsigned char *)image->pixels;
+    size_t stride = (size_t)image->width * 4u;
+    const unsigned char *in = pixels + stride * (image->bottom_up ? image->height - 1u - y : y);
+    for (uint32_t x = 0; x < image->width; ++x) {
+        const unsigned char *p = in + (size_t)x * 4u;
+        unsigned char *o = row + (size_t)x * 4u;
+        uint32_t a = p[3];
+        /* PNG's alpha is unassociated: OpenImageIO's writer divides by
+         * alpha (integers, clamped; alpha 0 keeps the colour) */
+        for (int c = 0; c < 3; ++c) {
+            uint32_t v = a ? (uint32_t)p[c] * 255u / a : p[c];
+            o[c] = (unsigned char)(v > 255u ? 255u : v);
+        }
+        o[3] = (unsigned char)a;
+    }
+}
+
+mvr_png_status mvr_png_write(const char *path, const mvr_image_view *image, mvr_error *error)
+{
+    png_write_layout l = {.what = "mvr_image_write", .width = image->width, .height = image->height, .bit_depth = 8,
+                    .color_type = PNG_COLOR_TYPE_RGB_ALPHA, .srgb = true, .row_bytes = (size_t)image->width * 4u,
+                    .fill_row = rgba_row, .source = image};
+    return write_png(path, &l, error);
+}
+
+/* A gray channel to write, and how its rows run. */
+typedef struct gray_source {
+    const mvr_image_channel *channel;
+    uint32_t width, height;
+    bool bottom_up;
+} gray_source;
+
+/* Row y (from the top) of a gray channel as PNG stores it: 16-bit samples
+ * most significant byte first (ISO/IEC 15948, 7.1). */
+static void gray_row(const void *source, uint32_t y, unsigned char *out)
+{
+    const gray_source *g = source;
+    const mvr_image_channel *c = g->channel;
+    const unsigned char *in = (const unsigned char *)c->first +
+                              (size_t)(g->bottom_up ? g->height - 1u - y : y) * c->row_stride;
+    for (uint32_t x = 0; x < g->width; ++x, in += c->pixel_stride) {
         if (c->type == MVR_CHANNEL_U8) {
             out[x] = *in;
         } else {
@@ -435,49 +477,9 @@ mvr_png_status mvr_png_write_gray(const char *path, const mvr_image_channel *cha
                                   uint32_t height, bool bottom_up, mvr_error *error)
 {
     int depth = channel->type == MVR_CHANNEL_U16 ? 16 : 8;
-    png_job job = {.out = fopen(path, "wb")};
-    if (!job.out) {
-        mvr_image_fail(error, MVR_ERROR_IO, "mvr_image_write_channels(%s): %s", path, strerror(errno));
-        return MVR_PNG_FAILED;
-    }
-    png_out w = {0};   /* set before setjmp, unchanged after it */
-    w.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &job, on_error, on_warning);
-    w.info = w.png ? png_create_info_struct(w.png) : NULL;
-    w.row = malloc((size_t)width * (size_t)(depth / 8));
-    if (!w.png || !w.info || !w.row) {
-        png_destroy_write_struct(&w.png, &w.info);
-        free(w.row);
-        fclose(job.out);
-        remove(path);
-        mvr_image_fail(error, MVR_ERROR_OUT_OF_MEMORY, "mvr_image_write_channels(%s): out of memory", path);
-        return MVR_PNG_FAILED;
-    }
-    if (setjmp(png_jmpbuf(w.png))) {
-        png_destroy_write_struct(&w.png, &w.info);
-        free(w.row);
-        fclose(job.out);
-        remove(path);
-        mvr_image_fail(error, MVR_ERROR_IO, "mvr_image_write_channels(%s): %s", path, job.message);
-        return MVR_PNG_FAILED;
-    }
-    png_set_write_fn(w.png, &job, on_write, on_flush);
-    png_set_IHDR(w.png, w.info, width, height, depth, PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE,
-                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-    png_set_compression_level(w.png, 6);
-    png_write_info(w.png, w.info);
-    const unsigned char *first = (const unsigned char *)channel->first;
-    for (uint32_t y = 0; y < height; ++y) {
-        size_t at = (size_t)(bottom_up ? height - 1u - y : y) * channel->row_stride;
-        gray_row(channel, first + at, width, w.row);
-        png_write_row(w.png, w.row);
-    }
-    png_write_end(w.png, w.info);
-    png_destroy_write_struct(&w.png, &w.info);
-    free(w.row);
-    if (fclose(job.out) != 0) {
-        remove(path);
-        mvr_image_fail(error, MVR_ERROR_IO, "mvr_image_write_channels(%s): %s", path, strerror(errno));
-        return MVR_PNG_FAILED;
-    }
-    return MVR_PNG_OK;
+    gray_source g = {channel, width, height, bottom_up};
+    png_write_layout l = {.what = "mvr_image_write_channels", .width = width, .height = height, .bit_depth = depth,
+                    .color_type = PNG_COLOR_TYPE_GRAY, .row_bytes = (size_t)width * (size_t)(depth / 8),
+                    .fill_row = gray_row, .source = &g};
+    return write_png(path, &l, error);
 }
