@@ -270,6 +270,8 @@ mvr_target_desc = _struct("mvr_target_desc", [
     ("width", c_uint32), ("height", c_uint32), ("layers", c_uint32), ("color_format", c_int),
     ("external_color_texture", c_uint32), ("external_level", c_uint32), ("external_base_layer", c_uint32),
     ("samples", c_uint32), ("supersample", c_uint32), ("anti_aliasing", c_int), ("outputs", c_uint32)])
+mvr_read_desc = _struct("mvr_read_desc", [
+    ("first_layer", c_uint32), ("layer_count", c_uint32), ("format", c_int), ("output", c_int)])
 mvr_shadow_desc = _struct("mvr_shadow_desc", [
     ("mode", c_int), ("map_size", c_uint32), ("cascades", c_uint32), ("distance", c_double),
     ("slope_bias", c_float), ("constant_bias", c_float), ("normal_bias", c_float)])
@@ -333,7 +335,7 @@ STRUCTS = [Id, mvr_error, mvr_logger, mvr_context_desc, mvr_caps_ext, mvr_caps_l
            mvr_material_spec_gloss, mvr_material_desc, mvr_primitive_desc, mvr_mesh_desc, mvr_light_desc,
            mvr_projection, mvr_node_desc, mvr_animation_info, mvr_scene_info, mvr_viewport, mvr_view_desc,
            mvr_view_set_desc, mvr_view_camera, mvr_framing_desc, mvr_environment_desc, mvr_renderer_overrides,
-           mvr_renderer_desc, mvr_target_desc, mvr_shadow_desc, mvr_render_desc, mvr_frame_stats,
+           mvr_renderer_desc, mvr_target_desc, mvr_read_desc, mvr_shadow_desc, mvr_render_desc, mvr_frame_stats,
            mvr_gltf_file_access, mvr_gltf_options, mvr_gltf_info, mvr_image_data]
 
 _SLACK = 4096
@@ -437,6 +439,13 @@ _decl(core, "mvr_depth_mode_name", c_char_p, c_int)
 _decl(core, "mvr_renderer_read_output", R, P, P, c_uint32, c_int, c_void_p, c_size_t)
 _decl(core, "mvr_output_name", c_char_p, c_int)
 _decl(core, "mvr_output_pixel_size", c_size_t, c_int)
+# asynchronous readback (Context.render_stream)
+_decl(core, "mvr_view_set_get_view", R, P, c_uint32, POINTER(mvr_view_desc))
+_decl(core, "mvr_view_set_get_origin", R, P, POINTER(c_double))
+_decl(core, "mvr_readback_create", R, P, PP)
+_decl(core, "mvr_readback_destroy", None, P)
+_decl(core, "mvr_renderer_begin_read", R, P, P, POINTER(mvr_read_desc), P)
+_decl(core, "mvr_renderer_finish_read", R, P, P, c_void_p, c_size_t)
 # mvr_gltf.h, mvr_image.h (None when the build has no glTF / image I/O)
 _decl(_lib.gltf, "mvr_gltf_load_file", R, c_char_p, POINTER(mvr_gltf_options), PP, POINTER(mvr_gltf_info), PE)
 _decl(_lib.image, "mvr_image_read", R, c_char_p, c_int, POINTER(mvr_image_data), PE)

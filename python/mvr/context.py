@@ -428,15 +428,13 @@ class Context(Handle):
                    extra: Sequence[str], color_float: bool) -> RenderedView:
         arrays: Dict[str, np.ndarray] = {}
         if "color" in outputs:
-            arr = np.empty((height, width, 4), np.float32 if color_float else np.uint8)  # type: np.ndarray
+            arr = output_array("color", height, width, color_float)
             fmt = N.READBACK("rgba32f" if color_float else "rgba8")
             check(N.C.mvr_renderer_read_layer(self._renderer, target, layer, fmt, arr.ctypes.data, arr.nbytes),
                   self._renderer_error, "mvr_renderer_read_layer(%d)" % layer)
             arrays["color"] = arr
         for o in extra:
-            channels, dtype = N.OUTPUT_PIXEL[o]
-            shape = (height, width, channels) if channels > 1 else (height, width)
-            arr = np.empty(shape, dtype)
+            arr = output_array(o, height, width, color_float)
             check(N.C.mvr_renderer_read_output(self._renderer, target, layer, N.OUTPUT(o), arr.ctypes.data,
                                                arr.nbytes), self._renderer_error,
                   "mvr_renderer_read_output(%d, %s)" % (layer, o))
@@ -500,6 +498,16 @@ class Context(Handle):
             job.close()
             raise
         return iter(stream)
+
+
+def output_array(name: str, height: int, width: int, color_float: bool) -> np.ndarray:
+    """An uninitialised array for one view's output as the library reads it
+    back: colour (H, W, 4) uint8 or float32, the others in their own type
+    (N.OUTPUT_PIXEL: (H, W) or (H, W, channels))."""
+    if name == "color":
+        return np.empty((height, width, 4), np.float32 if color_float else np.uint8)
+    channels, dtype = N.OUTPUT_PIXEL[name]
+    return np.empty((height, width, channels) if channels > 1 else (height, width), dtype)
 
 
 def _checked_outputs(outputs: Union[str, Sequence[str]]) -> Tuple[Tuple[str, ...], List[str]]:

@@ -24,7 +24,6 @@ import ctypes
 
 import numpy as np
 
-from . import _lib
 from . import _native as N
 from ._common import Error, check
 
@@ -32,25 +31,6 @@ VIEW_BLOCK = 64               # the library's view blocks (MVR_VIEWS_PER_BLOCK)
 RING = 2                      # chunks in flight
 SLOT_BUDGET = 64 << 20        # bytes of one chunk's readback before the chunk shrinks
 METER_SIZE = 128              # auto-exposure metering: layers at most this on their long side
-
-_core = _lib.core
-_P, _PP = ctypes.c_void_p, ctypes.POINTER(ctypes.c_void_p)
-
-
-class _read_desc(ctypes.Structure):
-    _fields_ = [("first_layer", ctypes.c_uint32), ("layer_count", ctypes.c_uint32), ("format", ctypes.c_int),
-                ("output", ctypes.c_int)]
-
-
-_get_view = _lib.fn(_core, "mvr_view_set_get_view", ctypes.c_int, _P, ctypes.c_uint32,
-                    ctypes.POINTER(N.mvr_view_desc))
-_get_origin = _lib.fn(_core, "mvr_view_set_get_origin", ctypes.c_int, _P, ctypes.POINTER(ctypes.c_double))
-_readback_create = _lib.fn(_core, "mvr_readback_create", ctypes.c_int, _P, _PP)
-_readback_destroy = _lib.fn(_core, "mvr_readback_destroy", None, _P)
-_begin_read = _lib.fn(_core, "mvr_renderer_begin_read", ctypes.c_int, _P, _P, ctypes.POINTER(_read_desc), _P)
-_read_ready = _lib.fn(_core, "mvr_renderer_read_ready", ctypes.c_int, _P, _P, ctypes.POINTER(ctypes.c_bool))
-_finish_read = _lib.fn(_core, "mvr_renderer_finish_read", ctypes.c_int, _P, _P, ctypes.c_void_p, ctypes.c_size_t)
-
 
 class _Slot:
     """One ring target with a readback per output, and the chunk it holds."""
@@ -121,14 +101,15 @@ class Stream:
                 slot.readbacks.append(per_view)
                 for name in self.job.outputs:
                     rb = ctypes.c_void_p()
-                    check(_readback_create(r, ctypes.byref(rb)), self.ctx._renderer_error, "mvr_readback_create")
+                    check(N.C.mvr_readback_create(r, ctypes.byref(rb)), self.ctx._renderer_error,
+                          "mvr_readback_create")
                     per_view[name] = rb.value
 
     def _release(self):
         for slot in self.slots:
             for per_view in slot.readbacks:
                 for rb in per_view.values():
-                    _readback_destroy(rb)
+                    N.C.mvr_readback_destroy(rb)
             N.C.mvr_target_destroy(slot.target)
         self.slots = []
         if self.meter is not None:
@@ -141,11 +122,11 @@ class Stream:
         vh = self.job.views.handle
         part = (N.mvr_view_desc * count)()
         for k in range(count):
-            check(_get_view(vh, base + k, ctypes.byref(part[k])), lambda: N.text(N.C.mvr_view_set_last_error(vh)),
-                  "mvr_view_set_get_view(%d)" % (base + k))
+            check(N.C.mvr_view_set_get_view(vh, base + k, ctypes.byref(part[k])), lambda: N.text(N.C.mvr_view_set_last_error(vh)),
+                  "mvr_view_setN.C.mvr_view_set_get_view(%d)" % (base + k))
         d = N.desc(N.mvr_view_set_desc)
         d.view_count, d.views, d.origin_set = count, part, True
-        check(_get_origin(vh, d.origin), lambda: N.text(N.C.mvr_view_set_last_error(vh)), "mvr_view_set_get_origin")
+        check(N.C.mvr_view_set_get_origin(vh, d.origin), lambda: N.text(N.C.mvr_view_set_last_error(vh)), "mvr_view_set_get_origin")
         out, err = ctypes.c_void_p(), N.mvr_error()
         check(N.C.mvr_view_set_create(ctypes.byref(d), ctypes.byref(out), ctypes.byref(err)),
               lambda: N.text(err.message), "views %d .. %d" % (base, base + count - 1))
@@ -199,14 +180,15 @@ class Stream:
         r = self.ctx._renderer
         for k in range(count):
             for name, rb in slot.readbacks[k].items():
-                d = _read_desc(k, 1, self.read_format, N.OUTPUT(name))
-                check(_begin_read(r, slot.target, ctypes.byref(d), rb), self.ctx._renderer_error,
+                d = N.desc(N.mvr_read_desc)
+                d.first_layer, d.layer_count, d.format, d.output = k, 1, self.read_format, N.OUTPUT(name)
+                check(N.C.mvr_renderer_begin_read(r, slot.target, ctypes.byref(d), rb), self.ctx._renderer_error,
                       "reading view %d (%s)" % (base + k, name))
         slot.busy, slot.base, slot.count = True, base, count
 
     def _harvest(self, slot):
         """The slot's chunk as RenderedViews (its reads waited for)."""
-        from .context import RenderedView
+        from .context import RenderedView, output_array
         job, r = self.job, self.ctx._renderer
         h, w = job.height, job.width
         out = []
@@ -214,12 +196,8 @@ class Stream:
             index = slot.base + k
             arrays = {}
             for name, rb in slot.readbacks[k].items():
-                if name == "color":
-                    arr = np.empty((h, w, 4), np.float32 if job.color_float else np.uint8)
-                else:
-                    channels, dtype = N.OUTPUT_PIXEL[name]
-                    arr = np.empty((h, w, channels) if channels > 1 else (h, w), dtype)
-                check(_finish_read(r, rb, arr.ctypes.data, arr.nbytes), self.ctx._renderer_error,
+                arr = output_array(name, h, w, job.color_float)
+                check(N.C.mvr_renderer_finish_read(r, rb, arr.ctypes.data, arr.nbytes), self.ctx._renderer_error,
                       "reading view %d (%s)" % (index, name))
                 # GL rows are bottom to top: image order is top to bottom
                 # (numpy copies the overlapping rows through a temporary)

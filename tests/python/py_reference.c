@@ -176,6 +176,8 @@ static void layout_structs(void)
     F(mvr_target_desc, color_format); F(mvr_target_desc, external_color_texture); F(mvr_target_desc, external_level);
     F(mvr_target_desc, external_base_layer); F(mvr_target_desc, samples); F(mvr_target_desc, supersample);
     F(mvr_target_desc, anti_aliasing); F(mvr_target_desc, outputs);
+    S(mvr_read_desc); F(mvr_read_desc, first_layer); F(mvr_read_desc, layer_count); F(mvr_read_desc, format);
+    F(mvr_read_desc, output);
     S(mvr_shadow_desc); F(mvr_shadow_desc, mode); F(mvr_shadow_desc, map_size); F(mvr_shadow_desc, cascades);
     F(mvr_shadow_desc, distance); F(mvr_shadow_desc, slope_bias); F(mvr_shadow_desc, constant_bias);
     F(mvr_shadow_desc, normal_bias);
