@@ -13,16 +13,17 @@
   oiiotool read them);
 - the streamed and synchronous readbacks write the same PNG and .npy bytes;
 - --output-files with an unknown kind is a usage error naming it.
-PNG decoding: a small zlib decoder here (PNG spec, ISO/IEC 15948: chunks, filters 0-4)."""
+PNG decoding: tests/dataset/png_read.py (PNG spec, ISO/IEC 15948: chunks, filters 0-4)."""
 import math
 import os
 import shutil
-import struct
 import subprocess
 import sys
-import zlib
 
 import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "dataset"))
+import png_read  # noqa: E402
 
 MVR, SCENE, OUT = sys.argv[1:4]
 OIIOTOOL = sys.argv[4] if len(sys.argv) > 4 else "oiiotool"
@@ -52,46 +53,9 @@ def render(out, *extra):
 
 
 def read_png(path):
-    """(bit depth, colour type, H x W x channels array) of a non-interlaced PNG."""
-    data = open(path, "rb").read()
-    assert data[:8] == b"\x89PNG\r\n\x1a\n", path
-    at, idat, ihdr = 8, b"", None
-    while at < len(data):
-        n, kind = struct.unpack(">I4s", data[at:at + 8])
-        body = data[at + 8:at + 8 + n]
-        if kind == b"IHDR":
-            ihdr = struct.unpack(">IIBBBBB", body)
-        elif kind == b"IDAT":
-            idat += body
-        at += 12 + n
-    w, h, depth, ctype, _, _, interlace = ihdr
-    assert interlace == 0, path
-    channels = {0: 1, 2: 3, 4: 2, 6: 4}[ctype]
-    bpp = channels * depth // 8
-    raw = zlib.decompress(idat)
-    stride = w * bpp
-    rows, prev = [], bytearray(stride)
-    for y in range(h):
-        f = raw[y * (stride + 1)]
-        line = bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
-        for i in range(stride):
-            a = line[i - bpp] if i >= bpp else 0
-            b = prev[i]
-            c = prev[i - bpp] if i >= bpp else 0
-            if f == 1:
-                line[i] = (line[i] + a) & 255
-            elif f == 2:
-                line[i] = (line[i] + b) & 255
-            elif f == 3:
-                line[i] = (line[i] + (a + b) // 2) & 255
-            elif f == 4:
-                p = a + b - c
-                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-        rows.append(bytes(line))
-        prev = line
-    arr = np.frombuffer(b"".join(rows), dtype=">u2" if depth == 16 else np.uint8)
-    return depth, ctype, arr.reshape(h, w, channels).astype(np.int64)
+    """(bit depth, colour type, H x W x channels int64 array) of a non-interlaced PNG."""
+    depth, ctype, arr = png_read.read_with_header(path)
+    return depth, ctype, (arr if arr.ndim == 3 else arr[..., None]).astype(np.int64)
 
 
 def exr_channels(path):

@@ -13,6 +13,11 @@ CHANNELS = {0: 1, 2: 3, 4: 2, 6: 4}
 
 def read(path):
     """The image as an (H, W) or (H, W, C) uint8 / uint16 array, rows top to bottom."""
+    return read_with_header(path)[2]
+
+
+def read_with_header(path):
+    """(bit depth, colour type, the array read() returns)."""
     data = open(path, "rb").read()
     assert data[:8] == b"\x89PNG\r\n\x1a\n", "%s: not a PNG" % path
     pos, idat, header = 8, [], None
@@ -62,4 +67,4 @@ def read(path):
     else:
         img = out
     channels = CHANNELS[color]
-    return img.reshape(height, width, channels) if channels > 1 else img.reshape(height, width)
+    return depth, color, img.reshape(height, width, channels) if channels > 1 else img.reshape(height, width)
