@@ -65,26 +65,6 @@ typedef struct coco_pass {
     char why[8800];
 } coco_pass;
 
-/* The header render_aovs.c writes for a uint32 h x w x 4 array (NumPy's .npy 1.0: magic, version,
- * little-endian uint16 length, the dict padded with spaces to a multiple of 64 ending in '\n'). */
-static size_t expected_header(char *buf, size_t size, uint32_t w, uint32_t h)
-{
-    uint16_t one = 1;
-    char dict[128];
-    snprintf(dict, sizeof dict, "{'descr': '%s', 'fortran_order': False, 'shape': (%u, %u, 4), }",
-             *(const uint8_t *)&one == 1 ? "<u4" : ">u4", h, w);
-    size_t len = strlen(dict), padded = (10 + len + 1 + 63) / 64 * 64;
-    if (padded > size)
-        return 0;
-    memcpy(buf, "\x93NUMPY\x01\x00", 8);
-    buf[8] = (char)((padded - 10) & 0xFF);
-    buf[9] = (char)((padded - 10) >> 8);
-    memcpy(buf + 10, dict, len);
-    memset(buf + 10 + len, ' ', padded - 11 - len);
-    buf[padded - 1] = '\n';
-    return padded;
-}
-
 /* View k's ids_VVVV.npy into the node and mesh planes; false with why when the file is not the
  * array mvr wrote for this run (header byte for byte, exact length) or names an id the scene
  * does not have. */
@@ -101,7 +81,7 @@ static bool read_ids(coco_pass *s, uint32_t k)
         return false;
     }
     char want[256], got[256];
-    size_t head = expected_header(want, sizeof want, w, h);
+    size_t head = render_aovs_npy_header(want, sizeof want, MVR_OUTPUT_IDS, h, w);
     bool ok = head && fread(got, 1, head, f) == head && memcmp(got, want, head) == 0;
     if (!ok) {
         fclose(f);

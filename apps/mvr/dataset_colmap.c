@@ -26,6 +26,7 @@
 
 #include "cli_write.h"
 #include "mvr/mvr_image.h"
+#include "render_aovs.h"
 #include "render_output.h"
 
 #define POINTS_PER_VIEW 20u
@@ -62,8 +63,8 @@ typedef struct points_pass {
     char why[8800];
 } points_pass;
 
-/* A float32 H x W .npy as render_aovs.c writes it (NumPy format 1.0,
- * this machine's byte order), into a new array; false with why. */
+/* A float32 H x W depth .npy as render_aovs.c writes it (its header byte
+ * for byte: render_aovs_npy_header), into a new array; false with why. */
 static bool read_depth_npy(const char *path, uint32_t w, uint32_t h, float **out, char *why, size_t why_size)
 {
     *out = NULL;
@@ -72,18 +73,9 @@ static bool read_depth_npy(const char *path, uint32_t w, uint32_t h, float **out
         snprintf(why, why_size, "cannot read %s: %s", path, strerror(errno));
         return false;
     }
-    uint8_t head[10];
-    char dict[256];
-    bool ok = fread(head, 1, 10, f) == 10 && memcmp(head, "\x93NUMPY\x01\x00", 8) == 0;
-    size_t dict_len = ok ? (size_t)head[8] | (size_t)head[9] << 8 : 0;
-    ok = ok && dict_len < sizeof dict && fread(dict, 1, dict_len, f) == dict_len;
-    dict[ok ? dict_len : 0] = '\0';
-    uint16_t one = 1;
-    const char *descr = *(const uint8_t *)&one == 1 ? "'descr': '<f4'" : "'descr': '>f4'";
-    const char *shape = strstr(dict, "'shape': (");
-    unsigned long rows = 0, cols = 0;
-    ok = ok && strstr(dict, descr) && strstr(dict, "'fortran_order': False") && shape &&
-         sscanf(shape, "'shape': (%lu, %lu)", &rows, &cols) == 2 && rows == h && cols == w;
+    char want[256], got[256];
+    size_t head = render_aovs_npy_header(want, sizeof want, MVR_OUTPUT_DEPTH, h, w);
+    bool ok = head && fread(got, 1, head, f) == head && memcmp(got, want, head) == 0;
     if (!ok) {
         fclose(f);
         snprintf(why, why_size, "%s is not the float32 %u x %u depth array mvr wrote", path, h, w);

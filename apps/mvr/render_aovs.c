@@ -48,12 +48,15 @@ bool render_aovs_parse(const char *list, uint32_t *out_bits)
     return true;
 }
 
-/* The .npy of an h x w (x channels) array whose rows are given bottom to
- * top (GL order): written top to bottom, as images and arrays run. false
- * with the reason in why. */
-static bool write_npy(const char *path, const char *descr, uint32_t h, uint32_t w, uint32_t channels,
-                      const uint8_t *rows_up, size_t stride, char *why, size_t why_size)
+size_t render_aovs_npy_header(char *buf, size_t size, mvr_output output, uint32_t h, uint32_t w)
 {
+    /* the data in this machine's byte order, which the descr states; coverage as uint8 */
+    uint16_t one = 1;
+    bool little = *(const uint8_t *)&one == 1;
+    const char *descr = output == MVR_OUTPUT_COVERAGE ? "|u1"
+                        : output == MVR_OUTPUT_IDS   ? (little ? "<u4" : ">u4")
+                                                     : (little ? "<f4" : ">f4");
+    uint32_t channels = output == MVR_OUTPUT_COVERAGE ? 1u : (uint32_t)(mvr_output_pixel_size(output) / 4);
     char dict[128];
     if (channels > 1)
         snprintf(dict, sizeof dict, "{'descr': '%s', 'fortran_order': False, 'shape': (%u, %u, %u), }", descr, h, w,
@@ -63,14 +66,30 @@ static bool write_npy(const char *path, const char *descr, uint32_t h, uint32_t 
     size_t len = strlen(dict);
     size_t total = 10 + len + 1;
     size_t padded = (total + 63) / 64 * 64;
-    char header[256];
-    memcpy(header, "\x93NUMPY\x01\x00", 8);
+    if (padded > size)
+        return 0;
+    memcpy(buf, "\x93NUMPY\x01\x00", 8);
     uint16_t hl = (uint16_t)(padded - 10);
-    header[8] = (char)(hl & 0xFF);
-    header[9] = (char)(hl >> 8);
-    memcpy(header + 10, dict, len);
-    memset(header + 10 + len, ' ', padded - total);
-    header[padded - 1] = '\n';
+    buf[8] = (char)(hl & 0xFF);
+    buf[9] = (char)(hl >> 8);
+    memcpy(buf + 10, dict, len);
+    memset(buf + 10 + len, ' ', padded - total);
+    buf[padded - 1] = '\n';
+    return padded;
+}
+
+/* The .npy of output's h x w array whose rows are given bottom to top (GL
+ * order): written top to bottom, as images and arrays run. false with the
+ * reason in why. */
+static bool write_npy(const char *path, mvr_output output, uint32_t h, uint32_t w, const uint8_t *rows_up,
+                      size_t stride, char *why, size_t why_size)
+{
+    char header[256];
+    size_t padded = render_aovs_npy_header(header, sizeof header, output, h, w);
+    if (!padded) {
+        snprintf(why, why_size, "%s: the .npy header does not fit", path);
+        return false;
+    }
     cli_write_file out; /* checked, and renamed into place whole */
     if (!cli_write_open(&out, path, why, why_size))
         return false;
@@ -128,9 +147,6 @@ static bool write_view_npy(const render_options *o, const render_aov_view *v, mv
         snprintf(why, why_size, "--out is too long");
         return false;
     }
-    /* the data in this machine's byte order, which the descr states */
-    uint16_t one = 1;
-    bool little = *(const uint8_t *)&one == 1;
     if (output == MVR_OUTPUT_COVERAGE) {
         size_t pixels = (size_t)v->width * v->height;
         uint8_t *bytes = malloc(pixels ? pixels : 1);
@@ -141,13 +157,12 @@ static bool write_view_npy(const render_options *o, const render_aov_view *v, mv
         const float *cov = v->data[output];
         for (size_t i = 0; i < pixels; ++i)
             bytes[i] = cov[i] > 0.0f;
-        bool ok = write_npy(path, "|u1", v->height, v->width, 1, bytes, v->width, why, why_size);
+        bool ok = write_npy(path, output, v->height, v->width, bytes, v->width, why, why_size);
         free(bytes);
         return ok;
     }
-    const char *descr = output == MVR_OUTPUT_IDS ? (little ? "<u4" : ">u4") : (little ? "<f4" : ">f4");
     size_t px = mvr_output_pixel_size(output);
-    return write_npy(path, descr, v->height, v->width, (uint32_t)(px / 4), v->data[output], px * v->width, why,
+    return write_npy(path, output, v->height, v->width, v->data[output], px * v->width, why,
                      why_size);
 }
 

@@ -50,6 +50,13 @@ bool render_aovs_write_view(const render_options *o, const render_aov_view *v, c
 bool render_aovs_write(const render_options *o, mvr_renderer *r, mvr_target *t, uint32_t views,
                        uint8_t *const *colors, int64_t frame, int frame_digits);
 
+/* The header of output's h x w .npy as mvr writes it (NumPy's .npy 1.0:
+ * magic, version 1 0, little-endian uint16 length, the dict padded with
+ * spaces to a multiple of 64 ending in '\n'; this machine's byte order;
+ * coverage as uint8) into buf; its length, 0 when size is too small. The
+ * dataset passes compare the files they read back with it. */
+size_t render_aovs_npy_header(char *buf, size_t size, mvr_output output, uint32_t h, uint32_t w);
+
 /* DIR/ids.json: what the IDs of --outputs ids name (nodes with their mesh,
  * meshes, materials: id and name). */
 bool render_aovs_write_ids(const char *dir, const mvr_scene *scene);
