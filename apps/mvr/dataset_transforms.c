@@ -63,11 +63,8 @@ void dataset_views_free(dataset_views *d)
 void dataset_file_name(char *buf, size_t size, const render_options *o, const char *prefix, const char *ext,
                        uint32_t view)
 {
-    int len = o->frames_set
-                  ? snprintf(buf, size, "%s_%04u_f%0*d.%s", prefix, view, render_output_frame_digits(o->frames), 0, ext)
-                  : snprintf(buf, size, "%s_%04u.%s", prefix, view, ext);
-    if (len < 0 || (size_t)len >= size)
-        buf[0] = '\0';
+    render_output_file_name(buf, size, NULL, prefix, view, o->frames_set ? 0 : -1,
+                            render_output_frame_digits(o->frames), ext);
 }
 
 /* floor(k * part / n) without overflow (n <= 2^32) */

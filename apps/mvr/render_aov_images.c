@@ -8,6 +8,7 @@
 #include "render_aovs.h"
 
 #include "mvr/mvr_image.h"
+#include "render_output.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -21,10 +22,7 @@ static const char *const id_kinds[4] = {"node", "mesh", "material", "primitive"}
 static bool aov_path(char *buf, size_t size, const render_options *o, const render_aov_view *v, const char *name,
                      const char *ext)
 {
-    int len = v->frame < 0 ? snprintf(buf, size, "%s/%s_%04u.%s", o->out_dir, name, v->view, ext)
-                           : snprintf(buf, size, "%s/%s_%04u_f%0*lld.%s", o->out_dir, name, v->view, v->frame_digits,
-                                      (long long)v->frame, ext);
-    return len > 0 && (size_t)len < size;
+    return render_output_file_name(buf, size, o->out_dir, name, v->view, v->frame, v->frame_digits, ext);
 }
 
 /* One channel of one type into DIR/<name>_VVVV.<ext> (rows bottom to top in memory). */

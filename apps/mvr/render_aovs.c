@@ -7,6 +7,7 @@
 
 #include "cli_write.h"
 #include "json.h"
+#include "render_output.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -135,15 +136,9 @@ bool render_aovs_parse_files(const char *list, uint32_t *out_bits)
 static bool write_view_npy(const render_options *o, const render_aov_view *v, mvr_output output, char *why,
                            size_t why_size)
 {
-    const char *dir = o->out_dir;
-    uint32_t view = v->view;
-    int64_t frame = v->frame;
-    int frame_digits = v->frame_digits;
     char path[4096];
-    int len = frame < 0 ? snprintf(path, sizeof path, "%s/%s_%04u.npy", dir, mvr_output_name(output), view)
-                        : snprintf(path, sizeof path, "%s/%s_%04u_f%0*lld.npy", dir, mvr_output_name(output), view,
-                                   frame_digits, (long long)frame);
-    if (len < 0 || (size_t)len >= sizeof path) {
+    if (!render_output_file_name(path, sizeof path, o->out_dir, mvr_output_name(output), v->view, v->frame,
+                                 v->frame_digits, "npy")) {
         snprintf(why, why_size, "--out is too long");
         return false;
     }

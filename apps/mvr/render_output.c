@@ -131,18 +131,26 @@ int render_output_frame_digits(uint32_t frames)
     return digits;
 }
 
+bool render_output_file_name(char *buf, size_t size, const char *dir, const char *prefix, uint32_t view,
+                             int64_t frame, int frame_digits, const char *ext)
+{
+    const char *slash = dir ? "/" : "";
+    dir = dir ? dir : "";
+    int len = frame < 0 ? snprintf(buf, size, "%s%s%s_%04u.%s", dir, slash, prefix, view, ext)
+                        : snprintf(buf, size, "%s%s%s_%04u_f%0*lld.%s", dir, slash, prefix, view, frame_digits,
+                                   (long long)frame, ext);
+    if (len < 0 || (size_t)len >= size) {
+        buf[0] = '\0'; /* --out too long: the write fails, naming no file */
+        return false;
+    }
+    return true;
+}
+
 /* DIR/view_VVVV.EXT, or frame f of a sequence: DIR/view_VVVV_fFFFF.EXT. */
 void render_output_view_file(char *buf, size_t size, const render_options *o, uint32_t view, int64_t frame)
 {
-    const char *ext = o->exr ? "exr" : "png";
-    int len;
-    if (frame < 0)
-        len = snprintf(buf, size, "%s/view_%04u.%s", o->out_dir, view, ext);
-    else
-        len = snprintf(buf, size, "%s/view_%04u_f%0*lld.%s", o->out_dir, view, render_output_frame_digits(o->frames),
-                       (long long)frame, ext);
-    if (len < 0 || (size_t)len >= size)
-        buf[0] = '\0'; /* --out too long: the write fails, naming no file */
+    render_output_file_name(buf, size, o->out_dir, "view", view, frame, render_output_frame_digits(o->frames),
+                            o->exr ? "exr" : "png");
 }
 
 /* Reads every layer as display bytes into layers[k] and writes each view's

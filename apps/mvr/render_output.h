@@ -31,6 +31,12 @@ bool render_output_write_views(const render_options *o, mvr_renderer *r, mvr_tar
 /* The file of view `view` of frame `frame` (-1: not a sequence):
  * DIR/view_VVVV.EXT or DIR/view_VVVV_fFFFF.EXT ("" when it does not fit). */
 void render_output_view_file(char *buf, size_t size, const render_options *o, uint32_t view, int64_t frame);
+/* Every per-view file's name: DIR/PREFIX_VVVV.EXT (VVVV 4 digits: names sort
+ * in view order up to mvr's 1024 views), or a sequence's frame f:
+ * DIR/PREFIX_VVVV_fFFFF.EXT (FFFF frame_digits wide); dir NULL: the name
+ * alone. false (buf "") when it does not fit. */
+bool render_output_file_name(char *buf, size_t size, const char *dir, const char *prefix, uint32_t view,
+                             int64_t frame, int frame_digits, const char *ext);
 
 /* Lays the n bottom-up w x h layers out in a grid (side by side up to 4,
  * then ~square) and writes them to path as one image. */
