@@ -5,6 +5,7 @@
 #include <EGL/egl.h>
 
 #include "context_internal.h"
+#include "program.h"
 #include "renderer.h"
 
 static const char *const provider_names[MVR_CONTEXT_PROVIDER_COUNT_] = {
@@ -116,7 +117,7 @@ static void delete_now(const mvr_gl_api_table *gl, const mvr_gl_garbage *g)
     case MVR_GL_RENDERBUFFER: gl->DeleteRenderbuffers(1, &name); return;
     case MVR_GL_VERTEX_ARRAY: gl->DeleteVertexArrays(1, &name); return;
     case MVR_GL_SAMPLER: gl->DeleteSamplers(1, &name); return;
-    case MVR_GL_PROGRAM: gl->DeleteProgram(name); return;
+    case MVR_GL_PROGRAM: mvr_gl_delete_program(gl, name); return;
     case MVR_GL_QUERY: gl->DeleteQueries(1, &name); return;
     case MVR_GL_SYNC: gl->DeleteSync(g->sync); return;
     }

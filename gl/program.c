@@ -4,6 +4,24 @@
 #include "program.h"
 #include "program_binary_file.h"
 
+/* Deletes a program, made not current first. A deleted program that is
+ * current stays in use until another replaces it (ES 3.2, 7.3), and an
+ * NVIDIA driver (H100, 580.159) then hands its name to the next program
+ * made while it is still current: glUseProgram of that new program was
+ * taken for the current one, and draws ran the deleted program's code
+ * (seen as renders that differed at random between renderers made one
+ * after another in one context; docs/gpu_check.md). */
+void mvr_gl_delete_program(const mvr_gl_api_table *gl, GLuint program)
+{
+    if (!program)
+        return;
+    GLint current = 0;
+    gl->GetIntegerv(GL_CURRENT_PROGRAM, &current);
+    if ((GLuint)current == program)
+        gl->UseProgram(0);
+    gl->DeleteProgram(program);
+}
+
 static mvr_result compile_stage(mvr_context *ctx, const char *name, mvr_shader_stage stage, const char *text,
                                 GLuint *out)
 {
@@ -64,7 +82,7 @@ static GLuint load_binary(mvr_context *ctx, uint32_t format, const void *data, s
     mvr_gl_clear_errors(gl);
     if (ok && clean)
         return program;
-    gl->DeleteProgram(program);
+    mvr_gl_delete_program(gl, program);
     return 0;
 }
 
@@ -127,7 +145,7 @@ static mvr_result link_sources(mvr_context *ctx, const char *name, const char *v
     if (!ok) {
         char log[MVR_ERROR_MESSAGE_SIZE - 64] = "";
         gl->GetProgramInfoLog(program, (GLsizei)sizeof log, NULL, log);
-        gl->DeleteProgram(program);
+        mvr_gl_delete_program(gl, program);
         mvr_log(&ctx->logger, MVR_LOG_ERROR, MVR_LOG_ID_SHADER, "mvr: linking %s: %s", name, log);
         return mvr_context_fail(ctx, MVR_ERROR_SHADER, "linking %s: %s", name, log);
     }
@@ -235,7 +253,7 @@ mvr_result mvr_gl_program_build_cached(mvr_context *ctx, const mvr_shader_varian
     bind_sampler(gl, program, "mvr_morph_deltas", MVR_UNIT_MORPH_DELTAS);
     r = mvr_gl_check(ctx, "mvr_gl_program_build", false);
     if (r != MVR_OK) {
-        gl->DeleteProgram(program);
+        mvr_gl_delete_program(gl, program);
         return r;
     }
     info->program = program;
@@ -255,6 +273,6 @@ mvr_result mvr_context_check_shader_variant(mvr_context *ctx, const mvr_shader_v
     GLuint program = 0;
     mvr_result r = mvr_gl_program_build(ctx, variant, &program);
     if (r == MVR_OK)
-        ctx->gl.DeleteProgram(program);
+        mvr_gl_delete_program(&ctx->gl, program);
     return r;
 }

@@ -44,6 +44,10 @@ static inline GLint mvr_role_unit(uint32_t role)
     return role < MVR_CORE_ROLE_COUNT ? (GLint)role : (GLint)(MVR_UNIT_EXTENSION_ROLES + role - MVR_CORE_ROLE_COUNT);
 }
 
+/* glDeleteProgram, after glUseProgram(0) where the program is current (a
+ * deleted current program lives on under a name the driver may reuse). */
+void mvr_gl_delete_program(const mvr_gl_api_table *gl, GLuint program);
+
 /* Builds the variant into a linked program with its blocks and samplers bound.
  * On failure ctx's last error holds the compile / link log. On success the
  * new program is left current (callers with a state cache record that). */

@@ -24,6 +24,24 @@ static inline void log_sink_fn(mvr_log_level level, mvr_log_id id, const char *m
     }
 }
 
+/* MVR_TEST_GL_DEBUG=1 (a diagnostic, as scripts/gpu_check's device runs
+ * use it): the context is made with desc.debug (a KHR_debug context, GL
+ * errors checked after mvr's work) and the driver's debug messages above
+ * notification severity and mvr's GL errors go to stderr, each line
+ * prefixed "gl-debug:", beside whatever sink the test gave. */
+typedef struct debug_tee {
+    log_sink *sink;
+} debug_tee;
+
+static inline void debug_tee_fn(mvr_log_level level, mvr_log_id id, const char *message, void *user)
+{
+    debug_tee *tee = user;
+    if ((id == MVR_LOG_ID_GL_DEBUG && level >= MVR_LOG_INFO) || id == MVR_LOG_ID_GL_ERROR)
+        fprintf(stderr, "gl-debug: %s\n", message);
+    if (tee->sink)
+        log_sink_fn(level, id, message, tee->sink);
+}
+
 /* The tests render on the surfaceless provider; MVR_TEST_CONTEXT names
  * another for them (device: a GPU's EGL device, as scripts/gpu_check runs
  * them). Tests that ask for another provider on purpose keep it. */
@@ -43,6 +61,16 @@ static inline mvr_context *create_or_report(mvr_test_state *t, mvr_context_provi
     if (sink) {
         desc.logger.fn = log_sink_fn;
         desc.logger.user_data = sink;
+    }
+    const char *debug = getenv("MVR_TEST_GL_DEBUG");
+    static debug_tee tees[8]; /* tests make a few contexts, one after another */
+    static unsigned tee_next;
+    if (debug && debug[0] == '1') {
+        debug_tee *tee = &tees[tee_next++ % 8];
+        tee->sink = sink;
+        desc.debug = true;
+        desc.logger.fn = debug_tee_fn;
+        desc.logger.user_data = tee;
     }
     mvr_context *ctx = NULL;
     mvr_error err;

@@ -351,4 +351,52 @@ static void external_context_checks(mvr_test_state *t)
     mvr_context_destroy(app);
 }
 
-MVR_TEST_MAIN(TEST(destroy_in_every_order), TEST(wrong_context_changes_nothing), TEST(external_context_checks))
+/* What a destroyed renderer leaves current is no deleted program. A deleted
+ * program that is current stays in use (ES 3.2, 7.3), and NVIDIA's driver
+ * (H100, 580.159) gave its name to the next renderer's programs: that
+ * renderer's glUseProgram of the name was taken for the old program, and its
+ * draws ran the old code, so renders differed at random from renderer to
+ * renderer in one context. Mesa never reuses a name, so this checks the cause. */
+static void no_deleted_program_stays_current(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    const mvr_gl_api_table *gl = &ctx->gl;
+    mvr_scene *s = quad_scene(t, 200, 100, 50);
+    mvr_view_set *vs = stress_front_view_set(t);
+    static const uint8_t want[3] = {200, 100, 50};
+    for (int round = 0; round < 2; ++round) {
+        mvr_renderer *r = make_renderer(t, ctx);
+        mvr_target *target = make_target(t, r);
+        if (target)
+            render_check(t, r, s, vs, target, want, round ? "a second renderer" : "the first renderer");
+        GLint current = 0;
+        gl->GetIntegerv(GL_CURRENT_PROGRAM, &current);
+        CHECK_MSG(t, current != 0, "round %d: the render left no program current (nothing to check)", round);
+        mvr_target_destroy(target);
+        mvr_renderer_destroy(r);
+        gl->GetIntegerv(GL_CURRENT_PROGRAM, &current);
+        GLint deleted = GL_FALSE;
+        if (current)
+            gl->GetProgramiv((GLuint)current, GL_DELETE_STATUS, &deleted);
+        CHECK_MSG(t, deleted == GL_FALSE, "round %d: program %d is current after mvr_renderer_destroy, deleted",
+                  round, current);
+    }
+    /* the context's check of a variant builds a program (left current) and deletes it */
+    mvr_shader_variant v;
+    memset(&v, 0, sizeof v);
+    v.program = MVR_PROGRAM_MESH;
+    CHECK(t, mvr_context_check_shader_variant(ctx, &v) == MVR_OK);
+    GLint current = 0, deleted = GL_FALSE;
+    gl->GetIntegerv(GL_CURRENT_PROGRAM, &current);
+    if (current)
+        gl->GetProgramiv((GLuint)current, GL_DELETE_STATUS, &deleted);
+    CHECK_MSG(t, deleted == GL_FALSE, "program %d is current after mvr_context_check_shader_variant, deleted", current);
+    mvr_view_set_destroy(vs);
+    mvr_scene_destroy(s);
+    mvr_context_destroy(ctx);
+}
+
+MVR_TEST_MAIN(TEST(destroy_in_every_order), TEST(wrong_context_changes_nothing), TEST(external_context_checks),
+              TEST(no_deleted_program_stays_current))

@@ -179,9 +179,14 @@ static void a_material_change_keeps_per_material_textures(mvr_test_state *t)
         mvr_view_set_destroy(views);
         mvr_scene_destroy(scene);
     }
-    /* per-material: blocks only (city's textures are most of the first frame) */
-    CHECK_MSG(t, changed[0] > 0 && changed[0] * 4 < first[0], "per-material: %llu of %llu",
-              (unsigned long long)changed[0], (unsigned long long)first[0]);
+    /* per-material: blocks only, so it re-sends less than arrays (textures
+     * too) by city's textures: at least a quarter of the first frame. Not a
+     * share of per-material's own first frame: that holds the per-draw blocks,
+     * 16 times the bytes at a GPU's 256-byte uniform offset alignment (NVIDIA)
+     * as at llvmpipe's 16 */
+    CHECK_MSG(t, changed[0] > 0 && changed[0] < changed[1] && (changed[1] - changed[0]) * 4 > first[1],
+              "per-material: %llu of %llu, arrays %llu of %llu", (unsigned long long)changed[0],
+              (unsigned long long)first[0], (unsigned long long)changed[1], (unsigned long long)first[1]);
     /* arrays: rebuilt, textures with them */
     CHECK_MSG(t, changed[1] * 2 > first[1], "arrays: %llu of %llu", (unsigned long long)changed[1],
               (unsigned long long)first[1]);

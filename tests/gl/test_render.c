@@ -684,8 +684,18 @@ static void instancing_changes_calls_not_pixels(mvr_test_state *t)
                             CHECK_MSG(t, on.second.draw_calls <= calls_without_culling,
                                       "%s x%u %s: %u calls with culling, %u without", demo, n,
                                       mvr_view_path_name(path), on.second.draw_calls, calls_without_culling);
-                            if (on.second.culled > 0 && on.second.instanced_draw_calls > 0)
-                                CHECK(t, on.second.compacted_bytes > 0);
+                            /* a pass compacts where a chunk's views all cull a draw: on
+                             * the loop path (a view a chunk) any culled draw; a multiview
+                             * chunk may see every draw in some view (NVIDIA: 10 views in
+                             * one chunk, 48 culls, nothing culled by all of them) */
+                            if (path == MVR_VIEW_PATH_LOOP && on.second.culled > 0 &&
+                                on.second.instanced_draw_calls > 0)
+                                CHECK_MSG(t, on.second.compacted_bytes > 0,
+                                          "%s x%u %s: %llu culled, %u instanced of %u calls, %u draws, "
+                                          "material path %s, yet nothing compacted",
+                                          demo, n, mvr_view_path_name(path), (unsigned long long)on.second.culled,
+                                          on.second.instanced_draw_calls, on.second.draw_calls, on.second.draws,
+                                          mvr_material_path_name(on.second.material_path));
                         }
                         if (strcmp(demo, "city") == 0) {
                             CHECK(t, on.second.instanced_draw_calls > 0);
