@@ -777,6 +777,8 @@ int render_options_parse(int argc, char **argv, render_options *o, render_inputs
     p.many_positionals = true;
     int rc = parse_args(&p, o, in);
     if (rc == MVR_EXIT_OK)
+        rc = check_run(o);
+    if (rc == MVR_EXIT_OK)
         rc = check_scene(o, in);
     if (rc == MVR_EXIT_OK)
         rc = render_sampling_check(&p, o);
@@ -784,7 +786,5 @@ int render_options_parse(int argc, char **argv, render_options *o, render_inputs
         rc = check_frames(&p, o);
     if (rc == MVR_EXIT_OK)
         rc = settle(o, in);
-    if (rc == MVR_EXIT_OK)
-        rc = check_run(o);
     return rc;
 }
