@@ -259,6 +259,7 @@ static void render_usage(FILE *out)
 {
     fprintf(out,
             "usage: mvr render [--demo NAME | SCENE.gltf|.glb ... | --list FILE] [options]\n"
+            "       mvr render --merge DIR [--quiet]   (a sharded run's merge: docs/guide.md)\n"
             "\n"
             "Renders a scene into N views headless and writes one image per view\n"
             "(view_0000.png, ...) and a contact sheet (PNG) of all views side by side;\n"
