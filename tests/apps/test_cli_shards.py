@@ -8,6 +8,8 @@
   then --merge: OUT/shards equals one plain run's directory byte for byte (all but .mvr-run/ and
   manifest.jsonl); manifest.jsonl lists every unit of the plan once, in order, and each listed
   file's size and sha256 are the file's (hashlib);
+- frames split too: 3 views x 3 frames of an animated camera in units of 2 views x 2 frames,
+  2 shards + merge == one plain run (frame 0's depth step and cameras in every unit);
 - a shard killed (SIGKILL) once its first record is written, then run again with --resume: the
   killed run's records are unchanged, the resumed run renders exactly the units without one, and
   after --merge the directory equals the plain run's;
@@ -117,6 +119,24 @@ for m in manifest:
         expect(f["path"] not in listed, "manifest: %s listed once" % f["path"])
         listed.add(f["path"])
 expect("spheres/view_0004.png" in listed and "textured/depth_0003.npy" in listed, "the units' files listed")
+
+# ---------------------------------------------------------------- frames split too (--unit-frames)
+anim = os.path.join(OUT, "anim.gltf")
+subprocess.run([sys.executable, os.path.join(os.path.dirname(os.path.abspath(__file__)), "make_animated_gltf.py"),
+                anim, "--dolly"], check=True)
+fargs = [anim, "--size", "64x48", "--views", "3", "--animation", "dolly", "--frames", "3", "--fps", "4",
+         "--outputs", "depth", "--no-progress", "--quiet"]
+r = run(*fargs, "--out", os.path.join(OUT, "frames_plain"))
+expect(r.returncode == 0, "frames, plain: exit %d: %s" % (r.returncode, r.stderr))
+for k in (1, 2):
+    r = run(*fargs, "--unit-views", "2", "--unit-frames", "2", "--shard", "%d/2" % k, "--out",
+            os.path.join(OUT, "frames_shards"))
+    expect(r.returncode == 0, "frames, shard %d/2: exit %d: %s" % (k, r.returncode, r.stderr))
+expect(len(plan_units(os.path.join(OUT, "frames_shards"))) == 4, "2 view ranges x 2 frame ranges: 4 units")
+r = run("--merge", os.path.join(OUT, "frames_shards"), "-q")
+expect(r.returncode == 0, "frames, merge: exit %d: %s" % (r.returncode, r.stderr))
+same_tree(os.path.join(OUT, "frames_plain"), os.path.join(OUT, "frames_shards"),
+          "views x frames units (a camera the animation moves, depth PNG steps of frame 0) == one plain run")
 
 # ---------------------------------------------------------------- SIGKILL, then --resume
 killed = os.path.join(OUT, "killed")
