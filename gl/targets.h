@@ -42,6 +42,7 @@ struct mvr_target {
     GLuint msaa_hdr_color, msaa_hdr_fbo; /* multisampled HDR frames */
     GLuint lum;
     uint32_t lum_levels;
+    float post_clear[4];         /* the post pass's clear colour, as written (encoded for RGBA8) */
     double last_auto_exposure;   /* pre-exposure of the next auto-exposed frame (0 = none yet) */
     /* supersampling (desc.supersample > 1): views are drawn into these (N
      * times the size, linear float) and resolved into the color array */

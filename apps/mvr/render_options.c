@@ -133,7 +133,7 @@ static const cli_option render_table[] = {
      "--exposure-per-view is for auto exposure"},
     {CLI_OPT_FLAG, R_DITHER, "--dither", NULL, NULL, 0, 0, NULL, "+-1 step of noise before 8-bit storage (default: off)",
      NULL, NULL, NULL},
-    {CLI_OPT_STRING, R_CLEAR, "--clear", NULL, "R,G,B[,A]", 0, 0, NULL, "linear clear color (default: a dark opaque sky)",
+    {CLI_OPT_STRING, R_CLEAR, "--clear", NULL, "R,G,B[,A]", 0, 0, NULL, "linear clear color, a display colour (default: a dark opaque sky)",
      NULL, NULL, NULL},
     {CLI_OPT_CHOICE, R_TONE_MAP, "--tone-map", NULL, "T", 0, 0, "none|aces|pbr-neutral",
      "none | aces | pbr-neutral (default: pbr-neutral with auto\n"
