@@ -307,7 +307,9 @@ static mvr_result exec_view_pass(frame_exec *fx, const mvr_plan_record *rec)
     GLuint draw_fbo = 0;
     mvr_result res = mvr_target_framebuffer(t, ch->base, mv_pass ? ch->count : 0, &fx->fbo);
     /* multisampled: the multiview chunk's own framebuffer, or one view's renderbuffers */
-    fx->msaa_fbo = t->hdr_frame ? t->msaa_hdr_fbo : t->msaa_fbo;
+    fx->msaa_fbo = t->msaa_fbo;
+    if (res == MVR_OK && t->hdr_frame && msaa) /* (one view a pass) */
+        res = mvr_target_msaa_hdr_framebuffer(t, ch->base, &fx->msaa_fbo);
     draw_fbo = msaa ? fx->msaa_fbo : fx->fbo;
     if (res == MVR_OK && mv_msaa)
         res = mvr_target_msaa_framebuffer(t, ch->base, ch->count, &draw_fbo);

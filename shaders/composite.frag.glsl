@@ -13,7 +13,8 @@
 //   tone mapped and composited over the clear first, and the display
 //   (sRGB-encoded) values are averaged, as a GL resolve of the peers'
 //   display-encoded framebuffers does: an edge against a blown-out surface
-//   is the mean of what is seen, not the brightest sample's tone map;
+//   is the mean of what is seen, not the brightest sample's tone map.
+//   MVR_POST_MSAA does the same over a multisampled frame's samples;
 // - MVR_LOG_LUMINANCE: log2 of each texel's luminance and whether it has
 //   any (auto-exposure; the GL's mipmap chain then averages both).
 uniform sampler2DArray mvr_source;
@@ -28,6 +29,10 @@ uniform float mvr_clear_depth;
 #define MVR_POST_VIEWS 32
 uniform float mvr_post_exposure[MVR_POST_VIEWS]; // per view of the pass: exposure / pre-exposure
 uniform int mvr_layer_base;                      // the pass's first source layer (as the vertex stage's)
+#endif
+#if defined(MVR_POST) && defined(MVR_POST_MSAA)
+uniform highp sampler2DMSArray mvr_source_ms; // every view's samples (a multisampled HDR frame)
+uniform int mvr_samples;
 #endif
 #if defined(MVR_POST) || defined(MVR_DOWNSAMPLE)
 uniform vec4 mvr_clear_out; // the clear colour as written (encoded for UNORM outputs)
@@ -108,22 +113,28 @@ vec3 mvr_clear_linear()
 
 void main()
 {
-#if defined(MVR_POST) && defined(MVR_DOWNSAMPLE)
+#if defined(MVR_POST) && (defined(MVR_DOWNSAMPLE) || defined(MVR_POST_MSAA))
     // per sample: exposure, tone map, composite over the clear, encode; then the mean
+#ifdef MVR_POST_MSAA
+    int n = mvr_samples;
+#define MVR_SAMPLE(i) texelFetch(mvr_source_ms, ivec3(ivec2(gl_FragCoord.xy), v_layer), i)
+#else
     ivec2 base = ivec2(gl_FragCoord.xy) * mvr_factor;
+    int n = mvr_factor * mvr_factor;
+#define MVR_SAMPLE(i) texelFetch(mvr_source, ivec3(base + ivec2((i) % mvr_factor, (i) / mvr_factor), v_layer), 0)
+#endif
     vec3 clear_e = mvr_linear_to_srgb(mvr_clear_linear());
     vec4 sum = vec4(0.0);
     int covered = 0;
-    for (int y = 0; y < mvr_factor; ++y)
-        for (int x = 0; x < mvr_factor; ++x) {
-            vec4 s = texelFetch(mvr_source, ivec3(base + ivec2(x, y), v_layer), 0);
-            float a = clamp(s.a, 0.0, 1.0);
-            covered += a > 0.0 ? 1 : 0;
-            sum += vec4(mix(clear_e, mvr_linear_to_srgb(mvr_post_display(s)), a), a + mvr_clear_out.a * (1.0 - a));
-        }
+    for (int i = 0; i < n; ++i) {
+        vec4 s = MVR_SAMPLE(i);
+        float a = clamp(s.a, 0.0, 1.0);
+        covered += a > 0.0 ? 1 : 0;
+        sum += vec4(mix(clear_e, mvr_linear_to_srgb(mvr_post_display(s)), a), a + mvr_clear_out.a * (1.0 - a));
+    }
     if (covered == 0)
         discard; // the clear the pass made before: the plain frame's bytes
-    vec4 c = sum / float(mvr_factor * mvr_factor);
+    vec4 c = sum / float(n);
     c.rgb = mvr_srgb_decode(c.rgb); // back to linear (the output encodes again)
 #elif defined(MVR_DOWNSAMPLE) && !defined(MVR_LOG_LUMINANCE)
     // a plain frame's resolve: the mean of linear light; the samples'
@@ -168,7 +179,7 @@ void main()
     o_color = l > 1e-6 && drawn ? vec4(log2(l), 1.0, 0.0, 1.0) : vec4(0.0, 0.0, 0.0, 1.0);
     return;
 #endif
-#if defined(MVR_POST) && !defined(MVR_DOWNSAMPLE)
+#if defined(MVR_POST) && !defined(MVR_DOWNSAMPLE) && !defined(MVR_POST_MSAA)
     {
         float a = clamp(c.a, 0.0, 1.0);
         if (a == 0.0)

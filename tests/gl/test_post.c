@@ -371,6 +371,96 @@ static void clear_colour_is_display_referred(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
+/* A slanted quad of emissive `bright` over a dark one (emissive 0.05), no lights. */
+static mvr_scene *edge_scene(mvr_test_state *t, float bright)
+{
+    mvr_scene *s = stress_scene();
+    mvr_material_id mats[2];
+    for (int k = 0; k < 2; ++k) {
+        mvr_material_desc m = mvr_material_defaults();
+        m.base_color_factor[0] = m.base_color_factor[1] = m.base_color_factor[2] = 0.0f;
+        m.metallic_factor = 0.0f;
+        m.emissive_factor[0] = m.emissive_factor[1] = m.emissive_factor[2] = 1.0f;
+        m.emissive_strength = k ? bright : 0.05f;
+        CHECK(t, mvr_scene_add_material(s, &m, &mats[k]) == MVR_OK);
+    }
+    stress_node(t, s, stress_add_quad(t, s, mats[0]), 0, 0, 0, 10.0);
+    double a = 0.35; /* about 20 degrees: every edge pixel partly covered, at every coverage */
+    mvr_node_desc nd = {.mesh = stress_add_quad(t, s, mats[1]), .translation = {0, 0, 0.5},
+                        .rotation = {0, 0, sin(a / 2), cos(a / 2)}, .scale = {0.55, 0.55, 0.55}};
+    mvr_node_id id;
+    CHECK(t, mvr_scene_add_node(s, &nd, &id) == MVR_OK);
+    return s;
+}
+
+/* The resolve respects HDR: the edge of a blown-out surface (emissive 1000,
+ * tone mapped to white) against a dark one has as many partly covered
+ * pixels as the edge of a surface exactly white (emissive 1, no tone map),
+ * and their mean sits near the mean of the two display values, with MSAA
+ * and with supersampling, the same bytes on both view paths. A resolve of
+ * the HDR values before tone mapping turns most of those pixels white. */
+static void resolve_tone_maps_each_sample(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    mvr_scene *scenes[2] = {edge_scene(t, 1.0f), edge_scene(t, 1000.0f)};
+    mvr_view_desc v;
+    memset(&v, 0, sizeof v);
+    v.position[2] = 5;
+    v.projection.type = MVR_PROJECTION_ORTHOGRAPHIC;
+    v.projection.xmag = v.projection.ymag = 1;
+    v.projection.zfar = 10;
+    mvr_view_desc vv[2] = {v, v};
+    mvr_view_set *vs = stress_view_set(t, vv, 2, NULL);
+    const uint32_t W = 64, H = 64;
+    const mvr_anti_aliasing aas[2] = {MVR_ANTI_ALIASING_MSAA, MVR_ANTI_ALIASING_SUPERSAMPLE};
+    for (int a = 0; a < 2; ++a) {
+        size_t partial[2] = {0, 0};
+        double mean[2] = {0, 0}, mid[2] = {0, 0};
+        for (int k = 0; k < 2; ++k) {
+            /* exposure 1; the blown-out scene tone mapped (PBR Neutral: 1000 -> white) */
+            mvr_render_desc rd = {.exposure_mode = MVR_EXPOSURE_EV100, .ev100 = -log2(1.2),
+                                  .tone_map = k ? MVR_TONE_MAP_KHR_PBR_NEUTRAL : MVR_TONE_MAP_NONE};
+            stress_options o = {.format = MVR_COLOR_FORMAT_DEFAULT, .width = W, .height = H, .render = &rd,
+                                .aa = aas[a], .path = MVR_VIEW_PATH_MULTIVIEW};
+            uint8_t *mv = stress_render(t, ctx, scenes[k], vs, &o, NULL);
+            o.path = MVR_VIEW_PATH_LOOP;
+            uint8_t *loop = stress_render(t, ctx, scenes[k], vs, &o, NULL);
+            if (mv && loop)
+                CHECK_MSG(t, memcmp(mv, loop, (size_t)W * H * 8) == 0, "%s: the paths differ",
+                          mvr_anti_aliasing_name(aas[a]));
+            if (mv) {
+                int dark = mv[1], bright = mv[((H / 2) * W + W / 2) * 4 + 1];
+                mid[k] = (dark + bright) / 2.0;
+                for (size_t i = 0; i < (size_t)W * H; ++i) {
+                    int g = mv[i * 4 + 1];
+                    if (abs(g - dark) > 2 && abs(g - bright) > 2) {
+                        partial[k]++;
+                        mean[k] += g;
+                    }
+                }
+                mean[k] /= partial[k] ? (double)partial[k] : 1.0;
+                printf("  %-11s %-10s dark %d, bright %d: %zu partly covered pixels, mean %.1f (midpoint %.1f)\n",
+                       mvr_anti_aliasing_name(aas[a]), k ? "blown out" : "white", dark, bright, partial[k], mean[k],
+                       mid[k]);
+                CHECK_MSG(t, bright == 255, "%s: the bright surface is %d", mvr_anti_aliasing_name(aas[a]), bright);
+            }
+            free(mv);
+            free(loop);
+        }
+        CHECK_MSG(t, partial[0] > 40, "%zu edge pixels", partial[0]);
+        CHECK_MSG(t, partial[1] >= partial[0] * 8 / 10, "%s: %zu partly covered pixels blown out, %zu white",
+                  mvr_anti_aliasing_name(aas[a]), partial[1], partial[0]);
+        CHECK_MSG(t, fabs(mean[1] - mid[1]) <= 0.15 * 255, "%s: edge mean %.1f, the display values' mean %.1f",
+                  mvr_anti_aliasing_name(aas[a]), mean[1], mid[1]);
+    }
+    mvr_view_set_destroy(vs);
+    mvr_scene_destroy(scenes[0]);
+    mvr_scene_destroy(scenes[1]);
+    mvr_context_destroy(ctx);
+}
+
 /* The stats a caller pools to meter views rendered in parts (mvr render's
  * stream): 4 views, one looking at the black sky alone (not measured); the
  * measured luminances of parts of 2 views, weighted by their measured
@@ -431,4 +521,4 @@ static void auto_exposure_pools_over_parts(mvr_test_state *t)
 
 MVR_TEST_MAIN(TEST(auto_exposure_tames_the_sun), TEST(post_pass_is_the_same_on_both_paths),
               TEST(tone_mappers_match_their_formulas), TEST(auto_exposure_pools_over_parts),
-              TEST(clear_colour_is_display_referred))
+              TEST(clear_colour_is_display_referred), TEST(resolve_tone_maps_each_sample))
