@@ -76,7 +76,14 @@ const char *mvr_anti_aliasing_name(mvr_anti_aliasing aa)
 static bool resolve_anti_aliasing(mvr_renderer *r, mvr_target_desc *d)
 {
     const mvr_caps *c = &r->ctx->caps;
-    switch (d->anti_aliasing) {
+    mvr_anti_aliasing aa = d->anti_aliasing;
+    /* the default: what samples or supersample ask (1: none), else the
+     * AUTO method (mvr_target.h says why); none where extra outputs are
+     * asked (an ID or a depth is not averaged: they stay exact, the colour
+     * is not anti-aliased) */
+    if (aa == MVR_ANTI_ALIASING_DEFAULT && d->samples == 0 && d->supersample == 0 && !d->outputs)
+        aa = MVR_ANTI_ALIASING_AUTO;
+    switch (aa) {
     case MVR_ANTI_ALIASING_DEFAULT:
         return true;
     case MVR_ANTI_ALIASING_NONE:

@@ -99,11 +99,12 @@ static const cli_option render_table[] = {
      "average them (1..4; default: 1)", AA_GROUP, NULL, NULL},
     {CLI_OPT_U32, R_MSAA, "--msaa", NULL, "N", 0, 64, NULL,
      "N samples per pixel (multisampling; resolves view by view,\n"
-     "so it takes the loop path) (default: none)", AA_GROUP, NULL, NULL},
+     "so it takes the loop path) (default: --aa's)", AA_GROUP, NULL, NULL},
     {CLI_OPT_CHOICE, R_AA, "--aa", NULL, "A", 0, 0, "none|msaa|supersample|auto",
      "none | msaa | supersample | auto: the library's anti-aliasing\n"
      "(msaa 4x, supersample 2x2 on the GPU; auto: 4x MSAA, in the\n"
-     "multiview passes where the GL has multisampled multiview)", AA_GROUP, NULL, NULL},
+     "multiview passes where the GL has multisampled multiview)\n"
+     "(default: auto; none with --outputs)", AA_GROUP, NULL, NULL},
     {CLI_OPT_FLAG, R_REFERENCE, "--reference", NULL, NULL, 0, 0, NULL,
      "ground truth, slow: --view-path loop --transparency per_view\n"
      "--supersample 4, and the environment integrated per pixel\n"
