@@ -23,6 +23,7 @@
 #include "render_output.h"
 #include "render_stats.h"
 #include "render_stream.h"
+#include "run_plan.h"
 
 /* The program binary cache directory: --program-cache, else the XDG cache
  * directory; created if missing. NULL (with a warning when the directory
@@ -205,6 +206,8 @@ static int step_setup(render_session *s, render_job *j)
     if (o->readback == RENDER_READBACK_STREAM) {
         if (!render_stream_create(o, s->ctx, j->renderer, j->n, o->frames, &j->stream))
             return MVR_EXIT_FAILURE;
+        if (o->unit) /* a unit of a sharded run: its views of the whole set */
+            render_stream_set_range(j->stream, o->view_first, o->view_end, o->frame_end - o->frame_first);
     } else if (mvr_target_create(j->renderer, &td, &j->target) != MVR_OK) {
         fprintf(stderr, "mvr render: %s\n", mvr_renderer_last_error(j->renderer));
         return MVR_EXIT_FAILURE;
@@ -277,8 +280,8 @@ static bool step_render(render_job *j, uint32_t f)
             ok = render_aovs_write(o, j->renderer, j->target, j->n, j->layers, frame,
                                    render_output_frame_digits(o->frames));
     }
-    if (!ok || f != 0)
-        return ok;
+    if (!ok || f != 0 || o->unit)
+        return ok; /* a unit's file-level files are the merge's (run_merge.c) */
     /* the contact sheet: the first frame (the one --time alone gives) */
     if (!j->stream && !render_output_write_contact_sheet(j->sheet, j->layers, j->n, o->width, o->height)) {
         fprintf(stderr, "mvr render: cannot write %s\n", j->sheet);
@@ -298,12 +301,20 @@ static bool step_render(render_job *j, uint32_t f)
 static bool render_frames(render_job *j)
 {
     bool frames_ok = true;
-    for (uint32_t f = 0; f < j->o.frames && frames_ok; ++f)
+    uint32_t first = j->o.unit ? j->o.frame_first : 0, end = j->o.unit ? j->o.frame_end : j->o.frames;
+    /* a unit of later frames: depth_VVVV.png's step from the first frame's views, as a whole run's */
+    if (first > 0 && (j->o.outputs & MVR_OUTPUT_BIT(MVR_OUTPUT_DEPTH))) {
+        frames_ok = step_frame(j, j->o.time);
+        j->o.depth_png_scale = render_aovs_depth_scale(j->scene, j->views);
+    }
+    for (uint32_t f = first; f < end && frames_ok; ++f)
         frames_ok = step_frame(j, j->o.time + (double)f / j->o.fps) && step_render(j, f);
     free(j->floats);
     j->floats = NULL;
     if (frames_ok && j->stream)
-        frames_ok = render_stream_finish(j->stream, j->sheet);
+        frames_ok = render_stream_finish(j->stream, j->o.unit ? NULL : j->sheet);
+    if (j->o.unit)
+        return frames_ok;
     /* COLMAP's model and the COCO annotations read the written views back: after the last one */
     if (frames_ok && j->o.colmap)
         frames_ok = dataset_write_colmap(&j->o, &j->dataset);
@@ -458,7 +469,7 @@ static int render_one(render_session *s, const char *file, const char *out_dir, 
     if (rc == MVR_EXIT_OK)
         rc = step_setup(s, &j);
     if (rc == MVR_EXIT_OK)
-        rc = render_frames(&j) ? step_write(s, &j) : MVR_EXIT_FAILURE;
+        rc = !render_frames(&j) ? MVR_EXIT_FAILURE : j.o.unit ? MVR_EXIT_OK : step_write(s, &j);
     job_release(&j);
     return rc;
 }
@@ -469,8 +480,20 @@ static int render_file_cb(void *user, const char *file, const char *out_dir, boo
     return render_one(user, file, out_dir, fatal);
 }
 
+/* One unit of a sharded run (run_units.c): base is the unit's options. */
+static int render_unit_cb(void *user, const render_options *base, const char *file, const char *out_dir,
+                          bool *fatal)
+{
+    render_session *s = user;
+    s->base = base;
+    return render_one(s, file, out_dir, fatal);
+}
+
 int mvr_cmd_render(int argc, char **argv)
 {
+    for (int k = 1; k < argc; ++k)
+        if (strcmp(argv[k], "--merge") == 0)
+            return run_merge_main(argc, argv);
     render_options o;
     render_inputs in;
     memset(&in, 0, sizeof in);
@@ -478,7 +501,9 @@ int mvr_cmd_render(int argc, char **argv)
     if (rc == MVR_EXIT_OK) {
         render_session s = {.base = &o};
         bool fatal = false;
-        if (in.files.count > 1) /* DIR/<stem>/ each */
+        if (render_run_active(&o.run)) /* --shard, --resume, --serve, --run-plan */
+            rc = run_units_main(&o, &in, render_unit_cb, &s);
+        else if (in.files.count > 1) /* DIR/<stem>/ each */
             rc = render_files_run(&in.files, o.out_dir, o.keep_going, o.quiet, render_file_cb, &s);
         else
             rc = render_one(&s, NULL, NULL, &fatal);
@@ -487,6 +512,7 @@ int mvr_cmd_render(int argc, char **argv)
         mvr_context_destroy(s.ctx);
     }
     render_files_free(&in.files);
+    free(in.plan_args);
     camera_file_free(&in.cameras);
     return rc < 0 ? MVR_EXIT_OK : rc;
 }

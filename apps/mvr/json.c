@@ -21,6 +21,11 @@ static void write_escaped(FILE *out, const char *s)
     fputc('"', out);
 }
 
+void json_escaped(FILE *out, const char *s)
+{
+    write_escaped(out, s);
+}
+
 static void key_prefix(json_writer *w, const char *key)
 {
     if (w->depth > 0 && w->need_comma[w->depth])

@@ -12,6 +12,8 @@ typedef struct json_writer {
     char closer[32];             /* '}' or ']' per depth */
 } json_writer;
 
+/* s as a JSON string (quoted, escaped), for hand-written one-line JSON. */
+void json_escaped(FILE *out, const char *s);
 void json_begin_object(json_writer *w, const char *key); /* key NULL: top level or array element */
 void json_end_object(json_writer *w);
 void json_begin_array(json_writer *w, const char *key);

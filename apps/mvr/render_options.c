@@ -252,8 +252,8 @@ static const cli_option render_table_tail[] = {
 };
 
 static const cli_option *const render_tables[] = {render_table,       render_sampling_table, cli_env_option_table,
-                                                  render_table_animation, render_table_tail, cli_context_options,
-                                                  cli_help_option,    NULL};
+                                                  render_table_animation, render_table_tail, render_run_table,
+                                                  cli_context_options, cli_help_option,    NULL};
 
 static void render_usage(FILE *out)
 {
@@ -574,12 +574,35 @@ static int load_cameras(render_options *o, render_inputs *in)
     return MVR_EXIT_OK;
 }
 
+/* Keeps an argument that decides what the run writes for plan.json: all
+ * but the run's control, where it writes and how it reports. */
+static bool keep_plan_arg(const cli_arg *arg, render_inputs *in)
+{
+    if (arg->opt && (render_run_option_is_control(arg->opt->id) || arg->opt->id == R_OUT ||
+                     arg->opt->id == R_QUIET || arg->opt->id == R_NO_PROGRESS || arg->opt->id == R_ENCODERS ||
+                     arg->opt->id == R_PROGRAM_CACHE))
+        return true;
+    const char **args = realloc(in->plan_args, (in->plan_arg_count + 2) * sizeof *args);
+    if (!args) {
+        fprintf(stderr, "mvr render: out of memory\n");
+        return false;
+    }
+    in->plan_args = args;
+    if (arg->opt)
+        args[in->plan_arg_count++] = arg->opt->name;
+    if (!arg->opt || arg->value)
+        args[in->plan_arg_count++] = arg->value;
+    return true;
+}
+
 /* The arguments into o (SCENE files into in); -1 after --help (printed). */
 static int parse_args(cli_parser *p, render_options *o, render_inputs *in)
 {
     cli_arg arg;
     int c;
     while ((c = cli_next(p, &arg)) > 0) {
+        if (!keep_plan_arg(&arg, in))
+            return MVR_EXIT_USAGE;
         if (!arg.opt) { /* a SCENE */
             if (!render_files_add(&in->files, arg.value))
                 return MVR_EXIT_USAGE;
@@ -594,6 +617,8 @@ static int parse_args(cli_parser *p, render_options *o, render_inputs *in)
             done = cli_env_apply("mvr render", &arg, &o->env);
         if (done == 0)
             done = render_sampling_apply(&arg, o);
+        if (done == 0)
+            done = render_run_apply(&arg, &o->run);
         if (done == 0)
             done = apply(&arg, o) ? 1 : -1;
         if (done < 0)
@@ -633,6 +658,32 @@ static int check_scene(render_options *o, render_inputs *in)
     }
     if (!o->scene_file && o->variant) {
         fprintf(stderr, "mvr render: --variant is for a SCENE file (the demos have no material variants)\n");
+        return MVR_EXIT_USAGE;
+    }
+    return MVR_EXIT_OK;
+}
+
+/* What a sharded run cannot do (each unit writes only its views' files):
+ * refused with the option named. */
+static int check_run(const render_options *o)
+{
+    const render_run_options *run = &o->run;
+    if (!render_run_active(run)) {
+        if (run->unit_views || run->unit_frames || run->worker) {
+            fprintf(stderr, "mvr render: --unit-views, --unit-frames and --worker are for --shard, --resume, "
+                            "--serve or --run-plan\n");
+            return MVR_EXIT_USAGE;
+        }
+        return MVR_EXIT_OK;
+    }
+    const char *refused = o->video ? "--video (a view's sequence spans units)"
+                          : o->stats_file ? "--stats (timings are per process, not per unit)"
+                          : o->readback == RENDER_READBACK_SYNC ? "--readback sync (it renders every view at once)"
+                          : o->exr ? "--format exr (the merge builds contact sheets from PNG views)"
+                          : o->plan ? "--plan (its text would go between the records)"
+                                    : NULL;
+    if (refused) {
+        fprintf(stderr, "mvr render: --shard, --resume, --serve and --run-plan cannot take %s\n", refused);
         return MVR_EXIT_USAGE;
     }
     return MVR_EXIT_OK;
@@ -733,5 +784,7 @@ int render_options_parse(int argc, char **argv, render_options *o, render_inputs
         rc = check_frames(&p, o);
     if (rc == MVR_EXIT_OK)
         rc = settle(o, in);
+    if (rc == MVR_EXIT_OK)
+        rc = check_run(o);
     return rc;
 }

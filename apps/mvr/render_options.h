@@ -10,6 +10,7 @@
 #include "camera_file.h"
 #include "cli_env.h"
 #include "render_files.h"
+#include "run_options.h"
 #include "mvr/mvr.h"
 
 /* --readback: how the views come back from the GL and go to files. */
@@ -86,12 +87,22 @@ typedef struct render_options {
      * that fails instead of stopping there */
     const char *list_file;
     bool keep_going;
+    render_run_options run;      /* --shard, --resume, --serve, ... (run_options.h) */
+    /* one unit of a sharded run (run_units.c): only views [view_first,
+     * view_end) of frames [frame_first, frame_end) are written, and none
+     * of the file's own files (contact sheet, cameras, dataset files) */
+    bool unit;
+    uint32_t view_first, view_end, frame_first, frame_end;
 } render_options;
 
 /* The SCENE arguments and --list's, and the --cameras file's views. */
 typedef struct render_inputs {
     render_file_list files;
     camera_file cameras;
+    /* the arguments that decide what the run writes (all but --out, --quiet,
+     * --shard, --resume, ...): plan.json's "args"; pointers into argv */
+    const char **plan_args;
+    uint32_t plan_arg_count;
 } render_inputs;
 
 /* argv (after "render") into o and in, checked: MVR_EXIT_OK, -1 after

@@ -33,6 +33,7 @@
 #include "mvr/mvr_image.h"
 #include "render_aovs.h"
 #include "render_output.h"
+#include "render_sheet.h"
 
 #define RING 2                   /* targets (and readbacks) in flight (fewer for fewer chunks) */
 #define SPARE_BUFFERS 1          /* chunk buffers beyond the ring's, for the encoders to work from */
@@ -40,8 +41,6 @@
 #define VIEW_BLOCK 64            /* the library's view blocks (MVR_VIEWS_PER_BLOCK): its multiview
                                     chunks never cross one, and neither do the stream's */
 #define SLOT_BUDGET ((size_t)64 << 20) /* bytes of one chunk's readback before the chunk shrinks */
-#define SHEET_MAX 4096           /* contact sheet side, pixels */
-#define SHEET_PIXELS (2048u * 2048u) /* and area: 16 MiB */
 #define METER_SIZE 128           /* auto-exposure metering: layers at most this on their long side */
 
 typedef struct chunk_buffer {
@@ -79,15 +78,11 @@ typedef struct encoder {
     float *floats;               /* w x h x 4: linear values (EXR, supersampling) */
 } encoder;
 
-typedef struct contact_sheet {
-    uint8_t *pixels;             /* W x H RGBA, top row first */
-    uint32_t width, height, cols, tile_w, tile_h, factor;
-} contact_sheet;
-
 struct render_stream {
     const render_options *o;
     mvr_renderer *r;
     uint32_t views, chunk, w, h, ss;
+    uint32_t first, end;         /* the views written: [first, end) (a unit's range; else all) */
     bool float_target;           /* the ring's layers are floats (RGBA16F / RGBA32F) */
     mvr_readback_format read_format;
     size_t layer_bytes;          /* one layer as read back */
@@ -117,7 +112,7 @@ struct render_stream {
     uint64_t images_done;
     encoder encoders[MAX_ENCODERS];
     uint32_t encoder_count;
-    contact_sheet sheet;
+    render_sheet sheet;
     /* what the summary and the stats show */
     mvr_frame_stats stats;       /* the last frame's, summed over its chunks */
     uint32_t *culled;            /* per view, the last frame's */
@@ -126,65 +121,6 @@ struct render_stream {
     double start;                /* first render */
     double seconds;
 };
-
-/* ------------------------------------------------------------------ the contact sheet */
-
-/* The synchronous path's layout (render_output_write_contact_sheet): side
- * by side up to 4 views, then about square, 4 pixels apart; tiles shrunk
- * by the smallest integer factor that keeps the sheet within SHEET_MAX on
- * each side and SHEET_PIXELS in all (1 = full size, the same image as the
- * synchronous path's). */
-static bool sheet_create(contact_sheet *c, uint32_t n, uint32_t w, uint32_t h)
-{
-    uint32_t cols = n <= 4 ? n : 1;
-    while (n > 4 && cols * cols < n)
-        cols++;
-    uint32_t rows = (n + cols - 1) / cols, gap = 4;
-    uint32_t f = 1;
-    for (;; ++f) {
-        uint32_t tw = w / f ? w / f : 1, th = h / f ? h / f : 1;
-        uint64_t W = (uint64_t)cols * tw + (cols - 1) * gap, H = (uint64_t)rows * th + (rows - 1) * gap;
-        if ((W <= SHEET_MAX && H <= SHEET_MAX && W * H <= SHEET_PIXELS) || (tw == 1 && th == 1)) {
-            c->tile_w = tw;
-            c->tile_h = th;
-            c->width = (uint32_t)W;
-            c->height = (uint32_t)H;
-            break;
-        }
-    }
-    c->factor = f;
-    c->cols = cols;
-    c->pixels = calloc((size_t)c->width * c->height, 4);
-    if (!c->pixels)
-        return false;
-    for (size_t i = 0; i < (size_t)c->width * c->height; ++i)
-        c->pixels[i * 4 + 3] = 255;
-    return true;
-}
-
-/* View k's display bytes (w x h, rows bottom-up) into its tile: each tile
- * pixel the rounded mean of its factor x factor pixels. Tiles do not
- * overlap, so encoders put theirs at once without a lock. */
-static void sheet_put(contact_sheet *c, uint32_t k, const uint8_t *px, uint32_t w, uint32_t h)
-{
-    uint32_t f = c->factor, gap = 4;
-    uint32_t cx = (k % c->cols) * (c->tile_w + gap), cy = (k / c->cols) * (c->tile_h + gap);
-    for (uint32_t y = 0; y < c->tile_h; ++y) {
-        uint8_t *dst = c->pixels + ((size_t)(cy + y) * c->width + cx) * 4;
-        if (f == 1) {
-            memcpy(dst, px + (size_t)(h - 1 - y) * w * 4, (size_t)w * 4);
-            continue;
-        }
-        for (uint32_t x = 0; x < c->tile_w; ++x)
-            for (uint32_t ch = 0; ch < 4; ++ch) {
-                uint32_t sum = 0, count = 0;
-                for (uint32_t j = 0; j < f && y * f + j < h; ++j)
-                    for (uint32_t i = 0; i < f && x * f + i < w; ++i, ++count)
-                        sum += px[((size_t)(h - 1 - (y * f + j)) * w + x * f + i) * 4 + ch];
-                dst[x * 4 + ch] = (uint8_t)(count ? (sum + count / 2) / count : 0);
-            }
-    }
-}
 
 /* ------------------------------------------------------------------ encoders */
 
@@ -257,7 +193,7 @@ static bool encode(encoder *e, const job *j, char *why, size_t why_size)
     if (any && !render_aovs_write_view(o, &aov, why, why_size))
         return false;
     if (j->sheet)
-        sheet_put(&s->sheet, j->view, bytes, s->w, s->h);
+        render_sheet_put(&s->sheet, j->view, bytes, s->w, s->h);
     return true;
 }
 
@@ -350,8 +286,12 @@ static bool harvest(render_stream *s, ring_slot *slot)
         return false;
     }
     pthread_mutex_lock(&s->lock);
-    b->pending = slot->count;
+    b->pending = 0;
+    for (uint32_t k = 0; k < slot->count; ++k)
+        b->pending += slot->base + k >= s->first && slot->base + k < s->end;
     for (uint32_t k = 0; k < slot->count; ++k) {
+        if (slot->base + k < s->first || slot->base + k >= s->end)
+            continue; /* rendered with its chunk, written by another unit */
         job *j = &s->queue[(s->queue_head + s->queue_count++) % s->queue_cap];
         *j = (job){.buffer = b, .pixels = b->pixels + s->layer_bytes * k, .index = k, .view = slot->base + k,
                    .frame = slot->frame, .sheet = slot->sheet};
@@ -518,6 +458,10 @@ bool render_stream_frame(render_stream *s, mvr_scene *scene, const mvr_view_set 
     bool first = true;
     for (uint32_t base = 0; base < s->views;) {
         uint32_t count = chunk_count(s, base);
+        if (base + count <= s->first || base >= s->end) {
+            base += count; /* no view of the range: another unit's chunk */
+            continue;
+        }
         /* the target the oldest read came from: read it out first */
         ring_slot *slot = &s->ring[s->serial % s->ring_count];
         if (slot->busy && !harvest(s, slot))
@@ -671,6 +615,8 @@ bool render_stream_create(const render_options *o, mvr_context *ctx, mvr_rendere
     s->o = o;
     s->r = r;
     s->views = views;
+    s->first = 0;
+    s->end = views;
     s->w = o->width;
     s->h = o->height;
     s->ss = o->supersample > 1 ? o->supersample : 1;
@@ -718,7 +664,7 @@ bool render_stream_create(const render_options *o, mvr_context *ctx, mvr_rendere
         s->buffers[i].next = s->free_buffers;
         s->free_buffers = &s->buffers[i];
     }
-    ok = ok && sheet_create(&s->sheet, views, s->w, s->h);
+    ok = ok && render_sheet_create(&s->sheet, views, s->w, s->h);
     if (!ok) {
         fprintf(stderr, "mvr render: out of memory for the stream's buffers\n");
         render_stream_destroy(s);
@@ -775,6 +721,14 @@ bool render_stream_create(const render_options *o, mvr_context *ctx, mvr_rendere
     cli_progress_start(&s->progress, !o->quiet && !o->no_progress, s->total_images, "views");
     *out = s;
     return true;
+}
+
+void render_stream_set_range(render_stream *s, uint32_t first, uint32_t end, uint32_t frames)
+{
+    s->first = first < s->views ? first : s->views;
+    s->end = end < s->views ? end : s->views;
+    s->total_images = (uint64_t)(s->end > s->first ? s->end - s->first : 0) * frames;
+    cli_progress_start(&s->progress, !s->o->quiet && !s->o->no_progress, s->total_images, "views");
 }
 
 void render_stream_get_stats(const render_stream *s, mvr_frame_stats *out)

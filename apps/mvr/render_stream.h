@@ -29,6 +29,12 @@ typedef struct render_stream render_stream;
 bool render_stream_create(const render_options *o, mvr_context *ctx, mvr_renderer *r, uint32_t views,
                           uint32_t frames, render_stream **out);
 
+/* Writes only views [first, end) of each frame, of `frames` frames (a
+ * unit of a sharded run): the chunks are the whole set's, so the bytes are
+ * those a run of every view writes; chunks without a view of the range are
+ * not rendered. Call before the first frame. */
+void render_stream_set_range(render_stream *s, uint32_t first, uint32_t end, uint32_t frames);
+
 /* One frame of every view: frame -1 writes view_VVVV.EXT, frame >= 0
  * view_VVVV_fFFFF.EXT (render_output's names), and each output's
  * <output>_VVVV[_fFFFF].npy. sheet: this frame's views go
