@@ -1,7 +1,7 @@
 """Render a dataset on a Dask cluster: mvr.dask.render_dataset(files, out, ...).
 
 The run is the `mvr render` CLI's: the client asks `mvr render ARGS --out DIR
---plan` for the run's units (file x view range x frame range, decided up
+--run-plan` for the run's units (file x view range x frame range, decided up
 front), submits one Dask task per unit, gathers the units' records as they
 complete, then runs `mvr render --merge DIR`, which checks every unit and
 writes the run-level files (cameras.json, transforms.json, ids.json, ...)
@@ -290,7 +290,7 @@ class RunResult:
     """What render_dataset did: every unit's record (in unit order; a unit
     whose task itself failed gets a failed record with Dask's error), the run
     directory, the manifest (None when the merge refused: a failed unit),
-    the merge's exit status and messages, the plan (`--plan`'s JSON), and
+    the merge's exit status and messages, the plan (`--run-plan`'s JSON), and
     by Dask worker address the serve processes its worker process ran for
     the run (pid, units answered, how many times it was started: 1 unless
     one died), which the run ends."""
@@ -319,15 +319,15 @@ class RunResult:
 
 
 def _plan(cli: str, args: Sequence[str], out: str) -> Dict[str, Any]:
-    p = subprocess.run([cli] + list(args) + ["--out", out, "--plan"], capture_output=True, text=True)
+    p = subprocess.run([cli] + list(args) + ["--out", out, "--run-plan"], capture_output=True, text=True)
     if p.returncode != 0:
-        raise Error("mvr render --plan failed (exit %d): %s" % (p.returncode, (p.stderr or p.stdout).strip()))
+        raise Error("mvr render --run-plan failed (exit %d): %s" % (p.returncode, (p.stderr or p.stdout).strip()))
     try:
         plan = json.loads(p.stdout)
     except ValueError as e:
-        raise Error("mvr render --plan printed no JSON plan: %r" % p.stdout[:200]) from e
+        raise Error("mvr render --run-plan printed no JSON plan: %r" % p.stdout[:200]) from e
     if not isinstance(plan, dict) or not isinstance(plan.get("units"), list):
-        raise Error("mvr render --plan printed a plan with no unit list")
+        raise Error("mvr render --run-plan printed a plan with no unit list")
     return plan
 
 
