@@ -259,6 +259,7 @@ static void render_usage(FILE *out)
 {
     fprintf(out,
             "usage: mvr render [--demo NAME | SCENE.gltf|.glb ... | --list FILE] [options]\n"
+            "       mvr render --merge DIR [--quiet]   (a sharded run's merge: docs/guide.md)\n"
             "\n"
             "Renders a scene into N views headless and writes one image per view\n"
             "(view_0000.png, ...) and a contact sheet (PNG) of all views side by side;\n"
@@ -777,6 +778,8 @@ int render_options_parse(int argc, char **argv, render_options *o, render_inputs
     p.many_positionals = true;
     int rc = parse_args(&p, o, in);
     if (rc == MVR_EXIT_OK)
+        rc = check_run(o);
+    if (rc == MVR_EXIT_OK)
         rc = check_scene(o, in);
     if (rc == MVR_EXIT_OK)
         rc = render_sampling_check(&p, o);
@@ -784,7 +787,5 @@ int render_options_parse(int argc, char **argv, render_options *o, render_inputs
         rc = check_frames(&p, o);
     if (rc == MVR_EXIT_OK)
         rc = settle(o, in);
-    if (rc == MVR_EXIT_OK)
-        rc = check_run(o);
     return rc;
 }

@@ -230,7 +230,7 @@ static const char *merge_args(int argc, char **argv, bool *quiet)
     for (int k = 1; k < argc; ++k) {
         if (strcmp(argv[k], "--merge") == 0 && k + 1 < argc && !dir) {
             dir = argv[++k];
-        } else if (strcmp(argv[k], "--quiet") == 0) {
+        } else if (strcmp(argv[k], "--quiet") == 0 || strcmp(argv[k], "-q") == 0) {
             *quiet = true;
         } else {
             fprintf(stderr, "mvr render: --merge DIR takes no other option but --quiet (got '%s'): the run's "
