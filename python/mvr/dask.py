@@ -289,8 +289,9 @@ def _render_unit(cli: str, args: Tuple[str, ...], out: str, unit: int, timeout: 
 class RunResult:
     """What render_dataset did: every unit's record (in unit order; a unit
     whose task itself failed gets a failed record with Dask's error), the run
-    directory, the manifest (None when the merge refused: a failed unit),
-    the merge's exit status and messages, the plan (`--run-plan`'s JSON), and
+    directory, the manifest DIR/manifest.jsonl (failed units' records in
+    it too; None when the merge wrote none), the merge's exit status (1
+    when a unit failed) and messages, the plan (`--run-plan`'s JSON), and
     by Dask worker address the serve processes its worker process ran for
     the run (pid, units answered, how many times it was started: 1 unless
     one died), which the run ends."""
@@ -400,10 +401,11 @@ def render_dataset(files: Iterable[PathLike], out: PathLike, *, layout: Optional
             client.close()
             cluster.close()
 
-    merge = subprocess.run([cli, "render", "--merge", str(out_dir), "--quiet"], capture_output=True, text=True)
     manifest = out_dir / "manifest.jsonl"
-    return RunResult(out=out_dir, records=records,
-                     manifest=manifest if merge.returncode == 0 and manifest.is_file() else None,
+    if manifest.is_file():  # an earlier call's: the merge writes it again
+        manifest.unlink()
+    merge = subprocess.run([cli, "render", "--merge", str(out_dir), "--quiet"], capture_output=True, text=True)
+    return RunResult(out=out_dir, records=records, manifest=manifest if manifest.is_file() else None,
                      merge_returncode=merge.returncode, merge_message=(merge.stderr + merge.stdout).strip(),
                      plan=plan, servers=servers)
 

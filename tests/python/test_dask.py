@@ -4,8 +4,8 @@ manifest.jsonl, every file byte-identical to one `mvr render --list` process;
 a hostile file fails alone, recorded failed with mvr's message; a worker's
 later units go to the serve process it started for its first.
 
-Dask (Debian's python3-distributed) is optional: without it these tests are
-skipped, except under CI=true, where that is a failure. ctest python_dask
+Dask (Debian's python3-distributed) is optional: without it the cluster's
+tests are skipped, except under CI=true, where that is a failure. ctest python_dask
 runs this file (python_mvr leaves it out)."""
 import importlib.util
 import json
@@ -21,18 +21,46 @@ import time
 import pytest
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from dask_scenes import scene, write_scenes  # noqa: E402
+from dask_scenes import write_scenes  # noqa: E402
 
-if importlib.util.find_spec("distributed") is None:
+HAVE_DASK = importlib.util.find_spec("distributed") is not None
+if HAVE_DASK:
+    import distributed
+
+    import mvr.dask
+
+
+def need_dask():
+    if HAVE_DASK:
+        return
+    why = "%s has no Dask (distributed): install python3-distributed (scripts/setup does)" % sys.executable
     if os.environ.get("CI") == "true":
-        pytest.fail("%s has no Dask (distributed): install python3-distributed (scripts/setup does)"
-                    % sys.executable, pytrace=False)
-    pytest.skip("%s has no Dask (distributed): install python3-distributed" % sys.executable,
-                allow_module_level=True)
+        pytest.fail(why, pytrace=False)
+    pytest.skip(why)
 
-import distributed  # noqa: E402
 
-import mvr.dask  # noqa: E402
+def test_dask_is_optional():
+    """`import mvr` imports no Dask; `import mvr.dask` without it says what to install."""
+    blocker = """
+import sys
+class Block:
+    def find_spec(self, name, path=None, target=None):
+        if name.split(".")[0] in ("dask", "distributed"):
+            raise ImportError("No module named %r" % name)
+sys.meta_path.insert(0, Block())
+import mvr
+assert not [m for m in sys.modules if m.split(".")[0] in ("dask", "distributed")]
+try:
+    import mvr.dask
+except ImportError as e:
+    print(e)
+else:
+    raise SystemExit("mvr.dask imported without Dask")
+"""
+    p = subprocess.run([sys.executable, "-c", blocker], capture_output=True, text=True)
+    assert p.returncode == 0, p.stdout + p.stderr
+    assert "install python3-distributed" in p.stdout, p.stdout
+
 
 # the issue's "done when": 50 files x 20 views, depth and ids, small layers
 FILES, VIEWS, SIZE, UNIT_VIEWS = 50, 20, (48, 48), 5
@@ -42,6 +70,7 @@ EXCLUDED = (".mvr-run", "manifest.jsonl")
 
 @pytest.fixture(scope="module")
 def client():
+    need_dask()
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                                   dashboard_address=None) as cluster, distributed.Client(cluster) as c:
         c.wait_for_workers(2)
@@ -148,6 +177,11 @@ def test_hostile_file_fails_alone(client, out_dir):
     assert sorted(by_file) == sorted(f.name for f in files if f != files[2])
     assert all(r["status"] == "done" for rs in by_file.values() for r in rs)
     assert result.failed == bad and not result.ok
+    # --merge names it, and the manifest holds every unit once, the failed one with its message
+    assert result.merge_returncode == 1 and files[2].name in result.merge_message, result.merge_message
+    manifest = manifest_units(result)
+    assert [r["unit"] for r in manifest] == [u["unit"] for u in result.plan["units"]]
+    assert [r for r in manifest if r["status"] != "done"] == bad
     # the good files' views are all there
     for f in files:
         if f != files[2]:
