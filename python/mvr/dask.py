@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import collections
 import ctypes
+import hashlib
 import json
 import os
 import pathlib
@@ -343,7 +344,9 @@ def _unit_number(unit: Any) -> int:
 
 def _write_list(out: pathlib.Path, files: Iterable[PathLike]) -> str:
     """The run's file list (absolute paths: workers elsewhere have another
-    working directory), DIR/.mvr-run/files.txt, rewritten atomically."""
+    working directory) as DIR/.mvr-run/files-<its sha256>.txt: another
+    list is another file, so a directory of another run keeps its own (and
+    the CLI refuses the new run's plan there)."""
     lines = [os.path.abspath(os.fspath(f)) for f in files]
     if not lines:
         raise ValueError("render_dataset: no files")
@@ -352,10 +355,12 @@ def _write_list(out: pathlib.Path, files: Iterable[PathLike]) -> str:
             raise ValueError("render_dataset: %r cannot be a line of a --list file" % f)
     run_dir = out / ".mvr-run"
     run_dir.mkdir(parents=True, exist_ok=True)
-    path = run_dir / "files.txt"
-    tmp = run_dir / ("files.txt.%d" % os.getpid())
-    tmp.write_text("".join(f + "\n" for f in lines), encoding="utf-8")
-    os.replace(tmp, path)
+    text = "".join(f + "\n" for f in lines)
+    path = run_dir / ("files-%s.txt" % hashlib.sha256(text.encode("utf-8")).hexdigest()[:16])
+    if not path.is_file():
+        tmp = run_dir / ("%s.%d" % (path.name, os.getpid()))
+        tmp.write_text(text, encoding="utf-8")
+        os.replace(tmp, path)
     return str(path)
 
 
@@ -376,8 +381,11 @@ def render_dataset(files: Iterable[PathLike], out: PathLike, *, layout: Optional
     process per core (one thread each) for the call and closes it after.
     mvr_cli: the `mvr` executable (default: find_cli()).
     timeout: seconds one unit may take before it is recorded failed.
-    retries: how many times Dask reruns a unit's task whose worker process
-    died (a unit that fails in mvr is recorded failed, not retried).
+    retries: Dask's retries of a unit's task that raised (the serve process
+    could not be started there); a task whose worker process died is given
+    to another worker by Dask's scheduler (distributed.scheduler.allowed-
+    failures times, default 3). A unit that fails in mvr is recorded
+    failed, not retried.
 
     Returns a RunResult; raises mvr.Error when the run cannot be planned
     (a bad option, or OUT holds another run's plan)."""
@@ -422,6 +430,6 @@ def _gather(client: Any, cli: str, args: Tuple[str, ...], out: str, units: List[
         u = futures[fut]
         try:
             records[u] = fut.result()
-        except Exception as e:  # the task itself failed (its workers died `retries` times)
+        except Exception as e:  # the task itself failed (KilledWorker: its workers kept dying)
             records[u] = _failed(u, "Dask: %s: %s" % (type(e).__name__, e), "")
     return [records[u] for u in units]

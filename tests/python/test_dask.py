@@ -27,6 +27,7 @@ HAVE_DASK = importlib.util.find_spec("distributed") is not None
 if HAVE_DASK:
     import distributed
 
+    import mvr
     import mvr.dask
 
 
@@ -182,6 +183,9 @@ def test_hostile_file_fails_alone(client, out_dir):
     manifest = manifest_units(result)
     assert [r["unit"] for r in manifest] == [u["unit"] for u in result.plan["units"]]
     assert [r for r in manifest if r["status"] != "done"] == bad
+    # another file list into the same directory is another run's: refused before any task
+    with pytest.raises(mvr.Error, match="another run"):
+        mvr.dask.render_dataset(files[:2], out_dir / "dask", client=client, **OPTIONS)
     # the good files' views are all there
     for f in files:
         if f != files[2]:
