@@ -224,18 +224,11 @@ class _Server:
             self.proc.wait()
 
 
-# the worker process's servers, by the run's command line; how many each
-# key has started (test_dask.py reads both through client.run)
+# the worker process's servers, by the run's command line, and how many
+# times each was started (render_dataset reports both: RunResult.servers)
 _SERVERS: Dict[Tuple[str, ...], _Server] = {}
 _STARTS: Dict[Tuple[str, ...], int] = {}
 _LOCK = threading.Lock()
-
-
-def _serve_info() -> List[Dict[str, Any]]:
-    """This process's serve processes: pid, alive, units answered, starts."""
-    with _LOCK:
-        return [{"cmd": list(k), "pid": s.proc.pid, "alive": s.alive(), "units": s.units, "starts": _STARTS[k]}
-                for k, s in _SERVERS.items()]
 
 
 def _close_run(out: str) -> List[Dict[str, Any]]:

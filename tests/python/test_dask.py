@@ -118,6 +118,20 @@ def reference(files, out):
     return tree(out)
 
 
+def serve_pids():
+    """On a worker: its serve processes' pids."""
+    return [s.proc.pid for s in mvr.dask._SERVERS.values()]
+
+
+def alive(pid):
+    """pid runs (a zombie, dead but not yet reaped, does not count)."""
+    try:
+        status = pathlib.Path("/proc/%d/status" % pid).read_text()
+    except OSError:
+        return False
+    return "\nState:\tZ" not in status
+
+
 def manifest_units(result):
     assert result.manifest is not None, result.merge_message
     lines = result.manifest.read_text().splitlines()
@@ -129,7 +143,7 @@ def test_worker_killed_mid_run_same_bytes_as_one_process(client, out_dir):
     run_dir = out_dir / "dask"
     units_dir = run_dir / ".mvr-run" / "units"
     pids = client.run(os.getpid)  # {worker address: pid}
-    victim = sorted(pids.values())[0]
+    address, victim = sorted(pids.items())[0]
     state = {}
 
     def kill_when_records_exist():
@@ -137,6 +151,7 @@ def test_worker_killed_mid_run_same_bytes_as_one_process(client, out_dir):
         while time.monotonic() < deadline and "result" not in state:
             n = len(list(units_dir.glob("*.json"))) if units_dir.is_dir() else 0
             if n >= 4:
+                state["serve_pids"] = client.run(serve_pids, workers=[address])[address]
                 os.kill(victim, signal.SIGKILL)
                 state["records_at_kill"] = n
                 return
@@ -155,6 +170,10 @@ def test_worker_killed_mid_run_same_bytes_as_one_process(client, out_dir):
     # the kill happened while units were left to do
     assert "records_at_kill" in state and state["records_at_kill"] < len(units), state
     assert victim not in client.run(os.getpid).values()
+    # the killed worker's serve process died with it (PR_SET_PDEATHSIG; stdin EOF)
+    assert state["serve_pids"], "the killed worker had no serve process yet"
+    for pid in state["serve_pids"]:
+        assert not alive(pid), "serve process %d outlived its worker" % pid
     assert result.ok, (result.failed[:3], result.merge_message)
     manifest = manifest_units(result)
     assert [r["unit"] for r in manifest] == units  # each unit once, in unit order
