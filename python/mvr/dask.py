@@ -115,7 +115,7 @@ def _run_args(list_file: str, layout: Optional[str], views: Optional[int], size:
 
 def _set_parent_death_signal() -> None:
     """preexec_fn: the server gets SIGKILL when the thread that started it
-    (which lives exactly as long as the server: _Server._keeper) dies with
+    (which lives exactly as long as the server: _Server's keeper) dies with
     its process; Linux only, silently skipped elsewhere."""
     try:
         libc = ctypes.CDLL(None, use_errno=True)
@@ -161,7 +161,8 @@ class _Server:
         if isinstance(box[0], BaseException):
             raise box[0]
         self.proc: subprocess.Popen[bytes] = box[0]
-        threading.Thread(target=self._drain_stderr, name="mvr-serve-stderr", daemon=True).start()
+        self.drain = threading.Thread(target=self._drain_stderr, name="mvr-serve-stderr", daemon=True)
+        self.drain.start()
 
     def _drain_stderr(self) -> None:
         assert self.proc.stderr is not None
@@ -199,6 +200,7 @@ class _Server:
                 chunk = os.read(fd, 65536)
                 if not chunk:
                     self.proc.wait()
+                    self.drain.join(timeout=5)  # its last words, for the message
                     raise _ServerDied(self.message())
                 self.buffer += chunk
         line, _, self.buffer = self.buffer.partition(b"\n")

@@ -224,3 +224,36 @@ def test_worker_keeps_one_serve_process(client, out_dir):
     assert max(s["units"] for s in servers) >= 2
     workers = {r["worker"] for r in result.records}
     assert len(workers) <= 2
+
+
+def test_serve_process_killed_is_started_again(client, out_dir):
+    """A worker's serve process that dies (SIGKILL) is started again for the
+    unit it was given; the run completes, each unit once."""
+    files = write_scenes(out_dir / "scenes", 8)
+    units_dir = out_dir / "dask" / ".mvr-run" / "units"
+    state = {}
+
+    def kill_a_serve_process():
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline and "result" not in state:
+            if units_dir.is_dir() and len(list(units_dir.glob("*.json"))) >= 4:
+                pids = [p for ps in client.run(serve_pids).values() for p in ps]
+                if pids:
+                    os.kill(pids[0], signal.SIGKILL)
+                    state["killed"] = pids[0]
+                    return
+            time.sleep(0.01)
+
+    killer = threading.Thread(target=kill_a_serve_process)
+    killer.start()
+    try:
+        state["result"] = result = mvr.dask.render_dataset(files, out_dir / "dask", client=client,
+                                                           unit_views=UNIT_VIEWS, **OPTIONS)
+    finally:
+        state.setdefault("result", None)
+        killer.join()
+    assert "killed" in state
+    assert result.ok, (result.failed[:3], result.merge_message)
+    assert [r["unit"] for r in manifest_units(result)] == [u["unit"] for u in result.plan["units"]]
+    starts = sorted(s["starts"] for infos in result.servers.values() for s in infos)
+    assert starts[-1] == 2 and starts.count(2) == 1, result.servers
