@@ -1,12 +1,14 @@
 """mvr.dask.render_dataset on a LocalCluster of 2 worker processes (issue 34):
 a worker killed mid-run (SIGKILL) -> the run completes, each unit once in
-manifest.jsonl, every file byte-identical to one `mvr render --list` process;
-a hostile file fails alone, recorded failed with mvr's message; a worker's
-later units go to the serve process it started for its first.
+manifest.jsonl, every file byte-identical to one `mvr render --list` process
+(the issue's 50 files x 20 views with depth and ids, at 48x48, 200 units of
+5 views); a hostile file fails alone, recorded failed with mvr's message; a
+worker's later units go to the serve process it started for its first; a
+serve process killed mid-run is started again; `import mvr` needs no Dask.
 
 Dask (Debian's python3-distributed) is optional: without it the cluster's
-tests are skipped, except under CI=true, where that is a failure. ctest python_dask
-runs this file (python_mvr leaves it out)."""
+tests are skipped, except under CI=true, where that is a failure. ctest
+python_dask runs this file (python_mvr leaves it out)."""
 import importlib.util
 import json
 import os
