@@ -80,18 +80,6 @@ def client():
         yield c
 
 
-@pytest.fixture
-def out_dir(request, tmp_path):
-    """MVR_PY_OUT/<test> emptied (ctest), else a temporary folder."""
-    base = os.environ.get("MVR_PY_OUT")
-    if not base:
-        return tmp_path
-    d = pathlib.Path(base) / request.node.name
-    shutil.rmtree(d, ignore_errors=True)
-    d.mkdir(parents=True)
-    return d
-
-
 def tree(root):
     """{relative path: bytes} of every file under root but the run's own."""
     root = pathlib.Path(root)
