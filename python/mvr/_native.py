@@ -248,7 +248,7 @@ mvr_framing_desc = _struct("mvr_framing_desc", [
     ("layout", c_int), ("views", c_uint32), ("ipd", c_double), ("aspect", c_double), ("rows", c_uint32),
     ("elevation_min", c_double), ("elevation_max", c_double), ("yfov", c_double), ("radius", c_double),
     ("fit_box", c_bool), ("margin", c_double), ("hemisphere", c_int), ("seed", c_uint64), ("min_spacing", c_double),
-    ("up", c_int)])
+    ("up", c_int), ("elevation", c_double), ("level", c_bool), ("fit_sphere", c_bool)])
 
 mvr_environment_desc = _struct("mvr_environment_desc", [
     ("source", c_int), ("pixels", _pf), ("width", c_uint32), ("height", c_uint32), ("color", c_float * 3),

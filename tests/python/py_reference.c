@@ -145,6 +145,7 @@ static void layout_structs(void)
     F(mvr_framing_desc, elevation_max); F(mvr_framing_desc, yfov); F(mvr_framing_desc, radius);
     F(mvr_framing_desc, fit_box); F(mvr_framing_desc, margin); F(mvr_framing_desc, hemisphere);
     F(mvr_framing_desc, seed); F(mvr_framing_desc, min_spacing); F(mvr_framing_desc, up);
+    F(mvr_framing_desc, elevation); F(mvr_framing_desc, level); F(mvr_framing_desc, fit_sphere);
     S(mvr_environment_desc); F(mvr_environment_desc, source); F(mvr_environment_desc, pixels);
     F(mvr_environment_desc, width); F(mvr_environment_desc, height); F(mvr_environment_desc, color);
     F(mvr_environment_desc, intensity); F(mvr_environment_desc, rotation); F(mvr_environment_desc, specular_size);
