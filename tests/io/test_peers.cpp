@@ -275,6 +275,27 @@ void mvr_agrees_with_the_khronos_sample_renderer(mvr_test_state *t)
                     file.c_str(), c.rmse, c.mean_abs, c.mean_signed, c.worst, c.pixels, bound);
         CHECK_MSG(t, c.pixels > 5000, "%s: only %zu interior pixels", file.c_str(), c.pixels);
         CHECK_MSG(t, c.rmse <= bound, "%s: RMSE %.2f / 255 over the bound %.1f", file.c_str(), c.rmse, bound);
+        if (asset == "textured.gltf") {
+            // Blender's normal-mapped export: the Khronos renderer samples its
+            // mipmapped textures with 16x anisotropic filtering, and so does
+            // mvr (measured uniform / sky: 0.64 / 1.57; 1.30 / 1.79 with
+            // trilinear filtering, the error on creases and rims)
+            const double tight = env == "uniform.hdr" ? 1.0 : 1.7;
+            CHECK_MSG(t, c.rmse <= tight, "%s: RMSE %.2f / 255 over %.1f (anisotropic filtering?)", file.c_str(), c.rmse,
+                      tight);
+            // the same file without TANGENT: glTF asks for MikkTSpace tangents,
+            // which the Khronos renderer computes and mvr's loader generates
+            // (measured 0.88 / 1.65; 2.00 / 2.32 with the per-pixel frame from
+            // screen-space derivatives mvr used before)
+            nlohmann::json bare_entry = entry;
+            bare_entry["asset"] = "textured_no_tangents.gltf";
+            std::vector<uint8_t> bare = render_mvr(t, ctx, bare_entry, dir);
+            comparison nt = bare.empty() ? comparison{} : compare(bare, theirs, w, h);
+            std::printf("  %-28s without TANGENT: RMSE %.2f, mean d %+.2f\n", "", nt.rmse, nt.mean_signed);
+            const double nt_bound = env == "uniform.hdr" ? 1.2 : 1.8;
+            CHECK_MSG(t, !bare.empty() && nt.rmse <= nt_bound, "%s without TANGENT: RMSE %.2f / 255 over %.1f",
+                      file.c_str(), nt.rmse, nt_bound);
+        }
         if (asset == "sheen.gltf") {
             // the sheen brings mvr nearer the reference than no sheen does
             // (measured 40.56 and 26.83 without it: 0.27 and 0.34 of that with it)
