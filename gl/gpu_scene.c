@@ -70,8 +70,9 @@ static GLuint sampler_for(mvr_renderer *r, const mvr_sampler_desc *d)
     /* anisotropic filtering (up to 16x) on linear, mipmapped samplers: at
      * grazing angles (rims, creases) trilinear filtering picks the mip of
      * the footprint's long axis and blurs across the short one; the Khronos
-     * glTF Sample Renderer sets 16x on the same samplers */
-    if (r->ctx->caps.ext.ext_texture_filter_anisotropic && r->ctx->caps.limits.max_anisotropy > 1.0f &&
+     * glTF Sample Renderer sets 16x on the same samplers (overrides.anisotropic) */
+    if (!r->anisotropic_off && r->ctx->caps.ext.ext_texture_filter_anisotropic &&
+        r->ctx->caps.limits.max_anisotropy > 1.0f &&
         gl_filter(d->mag_filter, false) == GL_LINEAR && mvr_sampler_uses_mipmaps(d))
         gl->SamplerParameterf(s, GL_TEXTURE_MAX_ANISOTROPY_EXT, fminf(16.0f, r->ctx->caps.limits.max_anisotropy));
     g->samplers[g->sampler_count].desc = *d;
