@@ -67,11 +67,12 @@ static GLuint sampler_for(mvr_renderer *r, const mvr_sampler_desc *d)
     gl->SamplerParameteri(s, GL_TEXTURE_MIN_FILTER, (GLint)gl_filter(d->min_filter, true));
     gl->SamplerParameteri(s, GL_TEXTURE_WRAP_S, (GLint)gl_wrap(d->wrap_s));
     gl->SamplerParameteri(s, GL_TEXTURE_WRAP_T, (GLint)gl_wrap(d->wrap_t));
-    /* anisotropic filtering (up to 16x) on linear, mipmapped samplers: at
-     * grazing angles (rims, creases) trilinear filtering picks the mip of
-     * the footprint's long axis and blurs across the short one; the Khronos
-     * glTF Sample Renderer sets 16x on the same samplers (overrides.anisotropic) */
-    if (!r->anisotropic_off && r->ctx->caps.ext.ext_texture_filter_anisotropic &&
+    /* overrides.anisotropic on: anisotropic filtering (up to 16x) on linear,
+     * mipmapped samplers, as the Khronos glTF Sample Renderer sets: at grazing
+     * angles (rims, creases) trilinear filtering picks the mip of the
+     * footprint's long axis and blurs across the short one. Not the default:
+     * llvmpipe (Mesa 25) samples black where the UV derivatives are zero */
+    if (r->anisotropic_on && r->ctx->caps.ext.ext_texture_filter_anisotropic &&
         r->ctx->caps.limits.max_anisotropy > 1.0f &&
         gl_filter(d->mag_filter, false) == GL_LINEAR && mvr_sampler_uses_mipmaps(d))
         gl->SamplerParameterf(s, GL_TEXTURE_MAX_ANISOTROPY_EXT, fminf(16.0f, r->ctx->caps.limits.max_anisotropy));

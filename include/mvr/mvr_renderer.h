@@ -235,10 +235,12 @@ typedef struct mvr_renderer_overrides {
     uint32_t disable_image_formats;
     /* MVR_TUNING=on|off: the online tuner behind auto (mvr_tuning_desc) */
     mvr_override_switch tuning;
-    /* MVR_ANISOTROPIC=on|off: material textures whose sampler is linear and
-     * mipmapped are filtered anisotropically (up to 16x) where the GL has
-     * EXT_texture_filter_anisotropic, as the Khronos Sample Renderer does;
-     * on is the default, off is trilinear */
+    /* MVR_ANISOTROPIC=on|off: on filters material textures whose sampler is
+     * linear and mipmapped anisotropically (up to 16x) where the GL has
+     * EXT_texture_filter_anisotropic, as the Khronos Sample Renderer does
+     * (sharper at grazing angles: docs/peers.md). Off (trilinear) is the
+     * default: Mesa's llvmpipe returns black where a triangle's UVs are
+     * constant (zero derivatives) under anisotropic filtering */
     mvr_override_switch anisotropic;
 } mvr_renderer_overrides;
 
