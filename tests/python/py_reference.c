@@ -155,7 +155,7 @@ static void layout_structs(void)
     F(mvr_renderer_overrides, msaa_multiview); F(mvr_renderer_overrides, force_inert_features);
     F(mvr_renderer_overrides, ubo_alignment); F(mvr_renderer_overrides, skinning_path);
     F(mvr_renderer_overrides, disable_features); F(mvr_renderer_overrides, disable_image_formats);
-    F(mvr_renderer_overrides, tuning);
+    F(mvr_renderer_overrides, tuning); F(mvr_renderer_overrides, anisotropic);
     S(mvr_tuning_desc); F(mvr_tuning_desc, mode); F(mvr_tuning_desc, frame_cost); F(mvr_tuning_desc, user);
     S(mvr_auto_choice); F(mvr_auto_choice, state); F(mvr_auto_choice, prior); F(mvr_auto_choice, chosen);
     F(mvr_auto_choice, candidates); F(mvr_auto_choice, samples); F(mvr_auto_choice, cost_ms);
