@@ -1,5 +1,7 @@
-/* Views laid out around a scene's bounding sphere (mvr_view_set_frame_scene),
- * or a row of eyes on a camera node of the scene (mvr_view_set_from_camera). */
+/* Views laid out around a scene's bounds (mvr_view_set_frame_scene): by
+ * default from above, each as close as keeps the bounding box's corners
+ * inside it; or a row of eyes on a camera node of the scene
+ * (mvr_view_set_from_camera). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -83,9 +85,10 @@ typedef struct framing {
     double lo[3], hi[3];         /* the bounding box */
     double yfov;                 /* radians */
     double tan_x, tan_y;         /* tangents of the half fields of view */
-    double dist;                 /* the sphere fit's distance, or desc.radius */
-    double radius, margin;       /* desc's */
-    bool fit_box;
+    double dist;                 /* the sphere fit's distance, or desc.radius (stereo, grid: their fit's) */
+    double radius, margin;       /* desc's (margin: the default's when the box fit is the default) */
+    bool fit_box;                /* the box fit: the default, unless radius, fit_sphere or cube */
+    double elevation;            /* stereo, ring, grid: radians above the horizon */
     mvr_up_axis up;
 } framing;
 
@@ -133,8 +136,14 @@ static bool normalize3(double v[3])
  * (relative to the centre) at x, y in the camera's right and up axes and
  * `along` on back is inside where |x| <= k_x (d - along), likewise y. The
  * largest of these bounds is met with equality, so the box touches the
- * inset on that axis. */
-static double box_fit_distance(const framing *f, const double back[3], const double up[3])
+ * inset on that axis. A stereo row of parallel eyes shifted up to
+ * `shift` + `spread` d along the right axis moves x by as much: the worst
+ * eye's bound is (k_x d - shift - spread d >= k_x along + |x|), solved
+ * for d; where the eyes spread faster than the view widens (spread >=
+ * k_x, hundreds of eyes) no distance fits them all and the central view's
+ * fit is taken. */
+static double row_fit_distance(const framing *f, const double back[3], const double up[3], double shift,
+                               double spread)
 {
     double fwd[3] = {-back[0], -back[1], -back[2]}, right[3], cam_up[3];
     cross3(fwd, up, right);
@@ -142,18 +151,25 @@ static double box_fit_distance(const framing *f, const double back[3], const dou
         return f->dist;
     cross3(right, fwd, cam_up);
     double kx = (1.0 - f->margin) * f->tan_x, ky = (1.0 - f->margin) * f->tan_y;
+    if (!(kx - spread > kx * 1e-3))
+        shift = spread = 0;
     double d = 0, along_max = -INFINITY;
     for (int corner = 0; corner < 8; ++corner) {
         double q[3];
         for (int k = 0; k < 3; ++k)
             q[k] = ((corner >> k) & 1 ? f->hi[k] : f->lo[k]) - f->c[k];
         double along = dot3(q, back);
-        d = fmax(d, along + fabs(dot3(q, right)) / kx);
+        d = fmax(d, (kx * along + fabs(dot3(q, right)) + shift) / (kx - spread));
         d = fmax(d, along + fabs(dot3(q, cam_up)) / ky);
         along_max = fmax(along_max, along);
     }
     /* a box seen end-on along the axis: keep its nearest corner in front */
     return fmax(d, along_max + f->r * 1e-3);
+}
+
+static double box_fit_distance(const framing *f, const double back[3], const double up[3])
+{
+    return row_fit_distance(f, back, up, 0, 0);
 }
 
 /* View v at the centre plus offset (the layout's frame), looking at the
@@ -250,8 +266,25 @@ static mvr_result check_sampling(const mvr_framing_desc *d, mvr_error *error)
     if (d->radius > 0 && d->fit_box)
         return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
                              "%s: radius %g and fit_box: give the distance or fit the box, not both", fn, d->radius);
-    if (d->margin > 0 && !d->fit_box)
-        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "%s: margin %g is for fit_box", fn, d->margin);
+    if (d->radius > 0 && d->margin > 0)
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
+                             "%s: radius %g and margin %g: give the distance or fit the box, not both", fn, d->radius,
+                             d->margin);
+    if (d->fit_sphere && (d->fit_box || d->margin > 0 || d->radius > 0))
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
+                             "%s: fit_sphere fits the bounding sphere: not with fit_box, margin or radius", fn);
+    bool elevated = d->layout == MVR_LAYOUT_STEREO || d->layout == MVR_LAYOUT_RING || d->layout == MVR_LAYOUT_GRID;
+    if (!(fabs(d->elevation) < PI / 2))
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "%s: elevation %g (radians in (-pi/2, pi/2))", fn,
+                             d->elevation);
+    if ((d->elevation != 0 || d->level) && !elevated)
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
+                             "%s: %s is for the stereo, ring and grid layouts (not %s; sphere, random and orbit take "
+                             "elevation_min and elevation_max)",
+                             fn, d->level ? "level" : "elevation", mvr_view_layout_name(d->layout));
+    if (d->level && d->elevation != 0)
+        return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "%s: level and elevation %g: one or the other", fn,
+                             d->elevation);
     if (!(d->min_spacing >= 0 && d->min_spacing <= PI))
         return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT, "%s: min_spacing %g (radians in [0, pi])", fn,
                              d->min_spacing);
@@ -265,10 +298,11 @@ static mvr_result check_sampling(const mvr_framing_desc *d, mvr_error *error)
         return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
                              "%s: hemisphere UPPER is for the sphere, random and orbit layouts (not %s)", fn,
                              mvr_view_layout_name(d->layout));
-    if (d->layout == MVR_LAYOUT_CUBE && (d->yfov != 0 || d->radius > 0 || d->fit_box))
+    if (d->layout == MVR_LAYOUT_CUBE && (d->yfov != 0 || d->radius > 0 || d->fit_box || d->margin > 0 ||
+                                         d->fit_sphere))
         return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
-                             "%s: the cube layout's six 90-degree views stand at the centre: yfov, radius and "
-                             "fit_box do not apply", fn);
+                             "%s: the cube layout's six 90-degree views stand at the centre: yfov, radius, fit_box, "
+                             "margin and fit_sphere do not apply", fn);
     return MVR_OK;
 }
 
@@ -323,9 +357,25 @@ static void framing_init(const mvr_scene *scene, const mvr_framing_desc *d, doub
     double half = fmin(yfov * 0.5, atan(tan(yfov * 0.5) * aspect));
     f->dist = d->radius > 0 ? d->radius : f->r / sin(half) * 1.05;
     f->radius = d->radius;
-    f->fit_box = d->fit_box;
-    f->margin = d->margin;
+    f->fit_box = d->layout != MVR_LAYOUT_CUBE && !d->fit_sphere && !(d->radius > 0);
+    f->margin = d->fit_box || d->margin > 0 ? d->margin : MVR_FRAMING_DEFAULT_MARGIN;
+    f->elevation = d->level ? 0.0 : d->elevation != 0 ? d->elevation : MVR_FRAMING_DEFAULT_ELEVATION;
     f->up = d->up;
+}
+
+/* The stereo, ring and grid views' axes (the layouts' frame) at an
+ * elevation: back (from the centre toward the camera) and the camera's up,
+ * both normal to the horizontal right axis +X, so up is never along the
+ * view whatever the elevation. */
+static void elevated_axes(double elevation, double back[3], double cam_up[3])
+{
+    double s = sin(elevation), c = cos(elevation);
+    back[0] = 0;
+    back[1] = s;
+    back[2] = c;
+    cam_up[0] = 0;
+    cam_up[1] = c;
+    cam_up[2] = -s;
 }
 
 /* View i of n of the layouts around the centre (all but random's, whose
@@ -337,9 +387,12 @@ static void frame_view(const framing *f, const mvr_framing_desc *d, uint32_t i, 
     double dist = f->dist, r = f->r;
     switch (d->layout) {
     case MVR_LAYOUT_STEREO: {
-        double offset = ((double)i - (double)(n - 1) * 0.5) * ipd;
-        double eye[3] = {offset, 0, dist}, target[3] = {offset, 0, 0};
-        place(f, v, eye, target, up, false);
+        /* the row along the horizontal right axis, each eye looking down
+         * the elevation's axis: parallel axes */
+        double back[3], cam_up[3], offset = ((double)i - (double)(n - 1) * 0.5) * ipd;
+        elevated_axes(f->elevation, back, cam_up);
+        double eye[3] = {offset, back[1] * dist, back[2] * dist}, target[3] = {offset, 0, 0};
+        place(f, v, eye, target, cam_up, false);
         break;
     }
     case MVR_LAYOUT_CUBE: {
@@ -353,9 +406,12 @@ static void frame_view(const framing *f, const mvr_framing_desc *d, uint32_t i, 
         break;
     }
     case MVR_LAYOUT_RING: {
-        double a = 2.0 * PI * (double)i / (double)n;
-        double eye[3] = {dist * sin(a), r * 0.25, dist * cos(a)};
-        place(f, v, eye, NULL, up, true);
+        /* the elevation's axes turned by a about the up axis */
+        double a = 2.0 * PI * (double)i / (double)n, back[3], cam_up[3];
+        elevated_axes(f->elevation, back, cam_up);
+        double eye[3] = {dist * back[2] * sin(a), dist * back[1], dist * back[2] * cos(a)};
+        double view_up[3] = {cam_up[2] * sin(a), cam_up[1], cam_up[2] * cos(a)};
+        place(f, v, eye, NULL, view_up, true);
         break;
     }
     case MVR_LAYOUT_SPHERE: {
@@ -393,16 +449,82 @@ static void frame_view(const framing *f, const mvr_framing_desc *d, uint32_t i, 
         break;
     }
     case MVR_LAYOUT_GRID: {
-        /* cameras r/4 apart on a plane in front of the scene, toed in */
+        /* cameras r/4 apart on a plane in front of the scene (normal to the
+         * elevation's axis), toed in */
         uint32_t cols = (uint32_t)ceil(sqrt((double)n));
-        double spacing = r * 0.25;
+        double spacing = r * 0.25, back[3], cam_up[3];
+        elevated_axes(f->elevation, back, cam_up);
         double x = ((double)(i % cols) - (double)(cols - 1) * 0.5) * spacing;
         double y = ((double)(cols - 1) * 0.5 - (double)(i / cols)) * spacing;
-        double eye[3] = {x, y, dist};
-        place(f, v, eye, NULL, up, false);
+        double eye[3] = {x, back[1] * dist + cam_up[1] * y, back[2] * dist + cam_up[2] * y};
+        place(f, v, eye, NULL, cam_up, false);
         break;
     }
     }
+}
+
+/* Whether every corner of the bounding box lies in front of the posed
+ * view v and inside its image less the margin. */
+static bool corners_inside(const framing *f, const mvr_view_desc *v)
+{
+    double x = v->orientation[0], y = v->orientation[1], z = v->orientation[2], w = v->orientation[3];
+    const double right[3] = {1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y)};
+    const double up[3] = {2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x)};
+    const double fwd[3] = {-2 * (x * z + w * y), -2 * (y * z - w * x), -(1 - 2 * (x * x + y * y))};
+    double kx = (1.0 - f->margin) * f->tan_x, ky = (1.0 - f->margin) * f->tan_y;
+    for (int corner = 0; corner < 8; ++corner) {
+        double p[3];
+        for (int k = 0; k < 3; ++k)
+            p[k] = ((corner >> k) & 1 ? f->hi[k] : f->lo[k]) - v->position[k];
+        double depth = dot3(p, fwd);
+        if (!(depth > 0 && fabs(dot3(p, right)) <= kx * depth && fabs(dot3(p, up)) <= ky * depth))
+            return false;
+    }
+    return true;
+}
+
+/* Whether every view of the grid at plane distance dist keeps the box. */
+static bool grid_fits(const framing *f, const mvr_framing_desc *d, uint32_t n, double dist)
+{
+    framing at = *f;
+    at.dist = dist;
+    for (uint32_t i = 0; i < n; ++i) {
+        mvr_view_desc v;
+        memset(&v, 0, sizeof v);
+        frame_view(&at, d, i, n, 0, 0, 0, NULL, &v);
+        if (!corners_inside(&at, &v))
+            return false;
+    }
+    return true;
+}
+
+/* The grid's plane distance: its toed-in cameras have no closed form, so
+ * the least distance that keeps the box in every view is searched, from
+ * the central view's fit growing by 1/4 until every view fits, then
+ * bisected to 1e-12 of it; where none fits (not in 60 steps) the central
+ * view's fit is kept. */
+static double grid_fit_distance(const framing *f, const mvr_framing_desc *d, uint32_t n, double central)
+{
+    double lo = central, hi = central;
+    int steps = 0;
+    while (!grid_fits(f, d, n, hi)) {
+        if (++steps > 60)
+            return central;
+        lo = hi;
+        hi *= 1.25;
+    }
+    if (steps == 0)
+        return hi;
+    while (hi - lo > hi * 1e-12) {
+        double mid = 0.5 * (lo + hi);
+        if (mid <= lo || mid >= hi)
+            break;
+        if (grid_fits(f, d, n, mid))
+            hi = mid;
+        else
+            lo = mid;
+    }
+    return hi;
 }
 
 mvr_result mvr_view_set_frame_scene(const mvr_scene *scene, const mvr_framing_desc *desc, mvr_view_set **out,
@@ -451,12 +573,19 @@ mvr_result mvr_view_set_frame_scene(const mvr_scene *scene, const mvr_framing_de
     framing f;
     framing_init(scene, &d, aspect, &f);
     if (f.fit_box && (d.layout == MVR_LAYOUT_STEREO || d.layout == MVR_LAYOUT_GRID)) {
-        /* one distance for the row or plane: the central view's fit */
-        const double front[3] = {0, 0, 1}, up[3] = {0, 1, 0};
-        double back[3], up_w[3];
-        to_world(f.up, front, back);
-        to_world(f.up, up, up_w);
-        f.dist = box_fit_distance(&f, back, up_w);
+        /* one distance for the row or plane: the least at which every view
+         * keeps every corner (the row's eyes reach (n - 1) / 2 ipd out;
+         * the default ipd is d / 30) */
+        double back_l[3], up_l[3], back[3], up_w[3];
+        elevated_axes(f.elevation, back_l, up_l);
+        to_world(f.up, back_l, back);
+        to_world(f.up, up_l, up_w);
+        double reach = (double)(n - 1) * 0.5;
+        if (d.layout == MVR_LAYOUT_STEREO)
+            f.dist = d.ipd > 0 ? row_fit_distance(&f, back, up_w, reach * d.ipd, 0)
+                               : row_fit_distance(&f, back, up_w, 0, reach / 30.0);
+        else
+            f.dist = grid_fit_distance(&f, &d, n, box_fit_distance(&f, back, up_w));
     }
     double ipd = d.ipd > 0 ? d.ipd : mvr_stereo_default_ipd(f.dist);
     double znear = fmax(f.dist - f.r, f.dist * 1e-3) * 0.5;

@@ -10,6 +10,10 @@
 #include "renderer.h"
 #include "skinning.h"
 
+#ifndef GL_TEXTURE_MAX_ANISOTROPY_EXT
+#define GL_TEXTURE_MAX_ANISOTROPY_EXT 0x84FE
+#endif
+
 static GLenum gl_filter(mvr_filter f, bool min)
 {
     switch (f) {
@@ -63,6 +67,15 @@ static GLuint sampler_for(mvr_renderer *r, const mvr_sampler_desc *d)
     gl->SamplerParameteri(s, GL_TEXTURE_MIN_FILTER, (GLint)gl_filter(d->min_filter, true));
     gl->SamplerParameteri(s, GL_TEXTURE_WRAP_S, (GLint)gl_wrap(d->wrap_s));
     gl->SamplerParameteri(s, GL_TEXTURE_WRAP_T, (GLint)gl_wrap(d->wrap_t));
+    /* overrides.anisotropic on: anisotropic filtering (up to 16x) on linear,
+     * mipmapped samplers, as the Khronos glTF Sample Renderer sets: at grazing
+     * angles (rims, creases) trilinear filtering picks the mip of the
+     * footprint's long axis and blurs across the short one. Not the default:
+     * llvmpipe (Mesa 25) samples black where the UV derivatives are zero */
+    if (r->anisotropic_on && r->ctx->caps.ext.ext_texture_filter_anisotropic &&
+        r->ctx->caps.limits.max_anisotropy > 1.0f &&
+        gl_filter(d->mag_filter, false) == GL_LINEAR && mvr_sampler_uses_mipmaps(d))
+        gl->SamplerParameterf(s, GL_TEXTURE_MAX_ANISOTROPY_EXT, fminf(16.0f, r->ctx->caps.limits.max_anisotropy));
     g->samplers[g->sampler_count].desc = *d;
     g->samplers[g->sampler_count++].sampler = s;
     return s;

@@ -76,11 +76,11 @@ mvr_result mvr_renderer_overrides_from_env(mvr_renderer_overrides *out, mvr_erro
     static const char *const features[] = {"inert"};
     static const char *const skinning_paths[] = {"auto", "vertex", "preskin"};
     enum { VIEW_PATH, MATERIAL_PATH, DEPTH, CULLING, INSTANCING, MSAA_MULTIVIEW, FORCE_FEATURES, UBO_ALIGNMENT,
-           SKINNING_PATH, DISABLE_FEATURES, TUNING, COUNT };
+           SKINNING_PATH, DISABLE_FEATURES, TUNING, ANISOTROPIC, COUNT };
     static const char *const names[COUNT] = {"MVR_VIEW_PATH",      "MVR_MATERIAL_PATH", "MVR_DEPTH",
                                              "MVR_CULLING",        "MVR_INSTANCING",    "MVR_MSAA_MULTIVIEW",
                                              "MVR_FORCE_FEATURES", "MVR_UBO_ALIGNMENT", "MVR_SKINNING_PATH",
-                                             "MVR_DISABLE_FEATURES", "MVR_TUNING"};
+                                             "MVR_DISABLE_FEATURES", "MVR_TUNING", "MVR_ANISOTROPIC"};
     mvr_renderer_overrides o;
     memset(&o, 0, sizeof o);
     for (int v = 0; v < COUNT; ++v) {
@@ -106,10 +106,12 @@ mvr_result mvr_renderer_overrides_from_env(mvr_renderer_overrides *out, mvr_erro
         case INSTANCING:
         case MSAA_MULTIVIEW:
         case TUNING:
+        case ANISOTROPIC:
             res = parse_choice(names[v], value, switches, 2, &k, error);
-            *(v == CULLING      ? &o.culling
-              : v == INSTANCING ? &o.instancing
-              : v == TUNING     ? &o.tuning
+            *(v == CULLING       ? &o.culling
+              : v == INSTANCING  ? &o.instancing
+              : v == TUNING      ? &o.tuning
+              : v == ANISOTROPIC ? &o.anisotropic
                                 : &o.msaa_multiview) = (mvr_override_switch)k;
             break;
         case SKINNING_PATH:
@@ -162,6 +164,8 @@ mvr_result mvr_overrides_check(const mvr_renderer_overrides *o, mvr_error *error
         field = "msaa_multiview", value = (int)o->msaa_multiview;
     else if ((unsigned)o->tuning > MVR_OVERRIDE_ON)
         field = "tuning", value = (int)o->tuning;
+    else if ((unsigned)o->anisotropic > MVR_OVERRIDE_ON)
+        field = "anisotropic", value = (int)o->anisotropic;
     if (field)
         return mvr_error_set(error, MVR_ERROR_INVALID_ARGUMENT,
                              "mvr_renderer_create: overrides.%s %d is out of its enum's range", field, value);

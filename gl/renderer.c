@@ -87,6 +87,7 @@ static void apply_settings(mvr_renderer *r, const mvr_renderer_desc *desc)
     r->tuning = ov->tuning ? ov->tuning == MVR_OVERRIDE_ON : desc->tuning.mode != MVR_TUNING_OFF;
     r->tuning_desc = desc->tuning;
     r->msaa_multiview_off = ov->msaa_multiview == MVR_OVERRIDE_OFF;
+    r->anisotropic_on = ov->anisotropic == MVR_OVERRIDE_ON;
     r->blend_policy = desc->transparency_order;
     r->oversized_images = desc->oversized_images == MVR_OVERSIZED_IMAGE_DEFAULT ? MVR_OVERSIZED_IMAGE_DOWNSCALE
                                                                                 : desc->oversized_images;

@@ -81,6 +81,7 @@ struct mvr_renderer {
      * that cannot change its pixels (tests: skipping changes cost, not pixels) */
     bool force_inert_features;
     bool msaa_multiview_off;     /* overrides.msaa_multiview: MSAA targets take the loop path */
+    bool anisotropic_on;         /* overrides.anisotropic: anisotropic material samplers */
     uint64_t upload_bytes, view_upload_bytes;
     /* per-pass compaction: the visible draws' blocks of each culled pass,
      * consecutive, so culling does not cut instanced runs apart */

@@ -51,11 +51,14 @@ static const cli_option render_table[] = {
      "--layout frames the scene without a camera"},
     {CLI_OPT_CHOICE, R_LAYOUT, "--layout", NULL, "L", 0, 0, "stereo|cube|ring|grid|sphere|orbit|random",
      "SCENE without --camera: stereo | cube | ring | grid around\n"
-     "the scene's bounding sphere (default: stereo); sphere: --views\n"
-     "spread evenly over a sphere around it (default 50); orbit: a\n"
-     "turntable of 3 rings from -15 to 60 degrees (default 24 views);\n"
-     "random: --views at random over the sphere, --min-spacing apart\n"
-     "(default 50; --seed); camera sampling: --fov ... --up below", NULL, NULL, NULL},
+     "the scene, looking down from 30 degrees (--elevation) with\n"
+     "its bounding box fitted (--margin) (default: stereo); sphere:\n"
+     "--views spread evenly over a sphere around it (default 50);\n"
+     "orbit: a turntable of 3 rings from -15 to 60 degrees (default\n"
+     "24 views); random: --views at random over the sphere,\n"
+     "--min-spacing apart (default 50; --seed); sphere, orbit,\n"
+     "random fit the bounding box too; camera sampling: --fov ...\n"
+     "--up below", NULL, NULL, NULL},
     {CLI_OPT_STRING, R_CAMERAS, "--cameras", NULL, "FILE", 0, 0, NULL,
      "the views from a camera file: mvr's cameras.json (the same\n"
      "views again, exactly), NeRF's transforms.json, or CSV with a\n"

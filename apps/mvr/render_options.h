@@ -31,6 +31,7 @@ typedef struct render_options {
      * --hemisphere, --seed, --min-spacing, --elevation, --up); its layout, views,
      * ipd and aspect are the fields above */
     mvr_framing_desc framing;
+    bool elevation_single;       /* --elevation DEG (stereo, ring, grid), not MIN,MAX */
     uint32_t gltf_scene;         /* 1-based; 0 = the file's default */
     const char *variant;         /* --variant NAME|K: a material variant; NULL = the file's own materials */
     uint32_t views, width, height, frames;

@@ -25,13 +25,13 @@ const cli_option render_sampling_table[] = {
     {CLI_OPT_STRING, S_RADIUS, "--radius", NULL, "R", 0, 0, NULL,
      "--layout: the cameras' distance from the centre of the\n"
      "scene's bounds, in scene units, (0, 1e9] (default: the\n"
-     "bounding sphere fitted; stereo, grid: of their plane)", DISTANCE_GROUP, NULL, NULL},
+     "bounding box fitted; stereo, grid: of their plane)", DISTANCE_GROUP, NULL, NULL},
     {CLI_OPT_STRING, S_MARGIN, "--margin", NULL, "M", 0, 0, NULL,
-     "--layout: fit the scene's bounding box, not its sphere: each\n"
-     "view as close as keeps every corner inside the image less M\n"
-     "of its half-size on each side, 0..0.9 (e.g. 0.05); the box\n"
-     "touches that inset on one axis (stereo, grid: as their\n"
-     "central view sees it)", DISTANCE_GROUP, NULL, NULL},
+     "--layout: the fit of the scene's bounding box: each view as\n"
+     "close as keeps every corner inside the image less M of its\n"
+     "half-size on each side, 0..0.9; the box touches that inset\n"
+     "on one axis (stereo, grid: in one of their views)\n"
+     "(default: 0.05)", DISTANCE_GROUP, NULL, NULL},
     {CLI_OPT_CHOICE, S_HEMISPHERE, "--hemisphere", NULL, "H", 0, 0, "full|upper",
      "--layout sphere, random, orbit: full | upper: upper keeps\n"
      "every view at or above the scene centre's horizon (default:\n"
@@ -44,10 +44,13 @@ const cli_option render_sampling_table[] = {
      "from the centre, 0..180 degrees (default: half the mean\n"
      "spacing, 0.5 sqrt(area / views)); too large for --views is\n"
      "refused", NULL, NULL, NULL},
-    {CLI_OPT_STRING, S_ELEVATION, "--elevation", NULL, "MIN,MAX", 0, 0, NULL,
-     "--layout sphere, random: the band of elevations the views lie\n"
-     "in, degrees in -90..90 (default: all); orbit: its lowest and\n"
-     "highest ring, inside (-90, 90) (default: -15,60)", NULL, NULL, NULL},
+    {CLI_OPT_STRING, S_ELEVATION, "--elevation", NULL, "DEG|MIN,MAX", 0, 0, NULL,
+     "--layout stereo, ring, grid: DEG, the angle the views look\n"
+     "down at the scene from, inside (-90, 90), 0 level (default:\n"
+     "30); sphere, random: MIN,MAX, the band of elevations the\n"
+     "views lie in, degrees in -90..90 (default: all); orbit:\n"
+     "MIN,MAX, its lowest and highest ring, inside (-90, 90)\n"
+     "(default: -15,60)", NULL, NULL, NULL},
     {CLI_OPT_CHOICE, S_UP, "--up", NULL, "A", 0, 0, "y|z",
      "--layout: the world's up axis: the layouts orbit it and the\n"
      "cameras' up follows it; z for a Z-up world (Blender's),\n"
@@ -98,6 +101,16 @@ int render_sampling_apply(const cli_arg *arg, render_options *o)
     case S_ELEVATION: {
         double lo = 0, hi = 0;
         char extra = 0;
+        if (!strchr(v, ',')) { /* stereo, ring, grid: one angle; 0 is level */
+            if (!cli_parse_double(v, &x) || !(x > -90.0 && x < 90.0)) {
+                fprintf(stderr, "mvr render: --elevation takes DEG inside (-90, 90) or MIN,MAX (got '%s')\n", v);
+                return -1;
+            }
+            f->elevation = x * PI / 180.0;
+            f->level = x == 0;
+            o->elevation_single = true;
+            break;
+        }
         if (sscanf(v, "%lf,%lf%c", &lo, &hi, &extra) != 2 || !(lo >= -90.0 && hi <= 90.0 && lo <= hi)) {
             fprintf(stderr, "mvr render: --elevation takes MIN,MAX in degrees, -90 <= MIN <= MAX <= 90 (got '%s')\n",
                     v);
@@ -136,9 +149,15 @@ int render_sampling_check(const cli_parser *p, const render_options *o)
         return MVR_EXIT_USAGE;
     }
     bool around = l == MVR_LAYOUT_SPHERE || l == MVR_LAYOUT_RANDOM || l == MVR_LAYOUT_ORBIT;
-    if ((cli_given(p, "--elevation") || cli_given(p, "--hemisphere")) && !around) {
-        fprintf(stderr, "mvr render: %s is for --layout sphere, random or orbit (not %s)\n",
-                cli_given(p, "--elevation") ? "--elevation" : "--hemisphere", layout);
+    bool elevated = l == MVR_LAYOUT_STEREO || l == MVR_LAYOUT_RING || l == MVR_LAYOUT_GRID;
+    if (cli_given(p, "--elevation") && elevated != o->elevation_single) {
+        fprintf(stderr, "mvr render: --elevation %s is for --layout %s (not %s)\n",
+                o->elevation_single ? "DEG" : "MIN,MAX", o->elevation_single ? "stereo, ring or grid"
+                                                                           : "sphere, random or orbit", layout);
+        return MVR_EXIT_USAGE;
+    }
+    if (cli_given(p, "--hemisphere") && !around) {
+        fprintf(stderr, "mvr render: --hemisphere is for --layout sphere, random or orbit (not %s)\n", layout);
         return MVR_EXIT_USAGE;
     }
     if (l == MVR_LAYOUT_CUBE && (cli_given(p, "--fov") || cli_given(p, "--radius") || cli_given(p, "--margin"))) {

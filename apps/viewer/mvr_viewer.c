@@ -272,11 +272,11 @@ static void go_home(viewer *v)
 }
 
 /* The orbit starts where the scene's own views are, so the first drag
- * moves on from the picture shown: a file's camera (cli_load_scene took its
- * first one) gives the orbit's eye, direction and field of view, its target
- * where the view axis passes the scene's centre; a file without one is
- * framed straight along -Z at the distance mvr_view_set_frame_scene takes
- * (50 degrees, the bounding sphere filling the narrower side). A demo's
+ * moves on from the picture shown: a file's row of eyes (cli_load_scene:
+ * on its first camera, else the library's default framing, from above with
+ * the bounding box fitted) gives the orbit's eye (the row's centre),
+ * direction and field of view, its target where the view axis passes the
+ * scene's centre. A demo's
  * views may look anywhere (the cube's six from the centre): the orbit looks
  * at its bounds from above. Eyes ipd apart: mvr_stereo_default_ipd of the
  * distance, as the library's views have. */
@@ -297,9 +297,14 @@ static void set_home(viewer *v, bool file)
     }
     double distance = radius * 2.5, yaw = 0.0, pitch = 0.25, yfov = 0.9, ipd = 0;
     double center[3] = {c[0], c[1], c[2]};
-    mvr_view_desc cam;
-    if (file && mvr_scene_camera_node_count(v->scene) > 0 &&
-        mvr_scene_camera_view(v->scene, mvr_scene_camera_node(v->scene, 0), &cam) == MVR_OK) {
+    mvr_view_desc cam, last;
+    uint32_t n = v->views ? mvr_view_set_count(v->views) : 0;
+    /* a file's row of parallel eyes (on its camera, or framed): its centre */
+    bool posed = file && n > 0 && mvr_view_set_get_view(v->views, 0, &cam) == MVR_OK &&
+                 mvr_view_set_get_view(v->views, n - 1, &last) == MVR_OK;
+    for (int k = 0; posed && k < 3; ++k)
+        cam.position[k] = 0.5 * (cam.position[k] + last.position[k]);
+    if (posed) {
         double x = cam.orientation[0], y = cam.orientation[1], z = cam.orientation[2], w = cam.orientation[3];
         double f[3] = {-2 * (x * z + w * y), -2 * (y * z - w * x), -(1 - 2 * (x * x + y * y))}; /* its -Z */
         double along = 0, d2 = 0;
@@ -315,11 +320,6 @@ static void set_home(viewer *v, bool file)
         ipd = mvr_stereo_default_ipd(sqrt(d2)); /* as mvr_view_set_from_camera's */
         if (cam.projection.type == MVR_PROJECTION_PERSPECTIVE && cam.projection.yfov > 0)
             yfov = cam.projection.yfov;
-    } else if (file) {
-        double aspect = (double)v->layer_w / (double)v->layer_h;
-        yfov = 50.0 * 3.14159265358979323846 / 180.0;
-        distance = radius / sin(fmin(yfov * 0.5, atan(tan(yfov * 0.5) * aspect))) * 1.05;
-        pitch = 0.0;
     }
     v->yfov = yfov;
     memcpy(v->home.center, center, sizeof center);

@@ -116,6 +116,11 @@ struct converter {
     mvr_mesh_id mesh(int index);
     void node(int index, mvr_node_id parent, std::vector<char> &state, uint32_t depth);
 
+    // gltf_tangents.cpp
+    // Tangents for d where p has a normal map, NORMAL and the map's TEXCOORD
+    // but no TANGENT (glTF 2.0 3.7.2.1: MikkTSpace), else nothing.
+    void generated_tangents(const tinygltf::Primitive &p, const std::string &pw, prim_data &d);
+
     // gltf_animation.cpp
     // JOINTS_n / WEIGHTS_n of primitive p (vcount vertices) into d; facts
     // records the largest joint index.

@@ -150,7 +150,6 @@ std::string short_message(std::string m)
 
 // ---- conversions ----
 
-
 // Index list of a primitive in list form: strips, fans and loops converted.
 // Lists are moved through, not copied (the budget counted them once).
 std::vector<uint32_t> to_list(int mode, std::vector<uint32_t> in, mvr_primitive_mode *out_mode)
@@ -388,6 +387,7 @@ mvr_mesh_id converter::mesh(int index)
             continue;
         }
         d.material = p.material >= 0 ? material(p.material) : mvr_material_id{0};
+        generated_tangents(p, pw, d);
         data.push_back(std::move(d));
     }
     mesh_info[index] = facts;

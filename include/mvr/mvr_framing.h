@@ -18,7 +18,7 @@ extern "C" {
 /* ------------------------------------------------------------------ framing
  *
  * How a scene is shown by default: views laid out around its bounding
- * sphere (or box), for files without cameras (or when the caller wants a layout
+ * box (or sphere), for files without cameras (or when the caller wants a layout
  * instead of the file's camera); views from a camera of the file; the
  * exposure its lights call for.
  */
@@ -67,13 +67,17 @@ typedef struct mvr_framing_desc {
     double yfov;                 /* vertical field of view in radians, [1e-3, 3.1]; 0 = 50 degrees (cube:
                                     its faces are 90 degrees, yfov refused) */
     double radius;               /* camera distance from the centre of the scene's bounds, scene units in
-                                    (0, 1e9]; 0 = fitted (the bounding sphere, or the box with fit_box) */
-    bool fit_box;                /* fit the bounding box, not the sphere: each view's distance is the
-                                    least at which every corner of the bounds projects inside the image
-                                    less `margin` (stereo and grid: as the central view sees it); the
-                                    box then touches that inset on at least one axis. Not with radius */
-    double margin;               /* fit_box: the fraction of the image's half-width and half-height left
-                                    free on each side, [0, 0.9] */
+                                    (0, 1e9]; 0 = fitted (the bounding box; the sphere with fit_sphere) */
+    bool fit_box;                /* fit the bounding box with `margin` as given, 0 included (the box fit is
+                                    the default; without fit_box a margin of 0 means
+                                    MVR_FRAMING_DEFAULT_MARGIN): each view's distance is the least at
+                                    which every corner of the bounds projects inside the image less
+                                    `margin` (stereo and grid: one distance for the row or plane, the
+                                    least that keeps every corner inside every view); the box then
+                                    touches that inset on at least one axis. Not with radius */
+    double margin;               /* the box fit: the fraction of the image's half-width and half-height
+                                    left free on each side, [0, 0.9]; 0 = MVR_FRAMING_DEFAULT_MARGIN
+                                    unless fit_box. Not with radius or fit_sphere */
     mvr_hemisphere hemisphere;   /* sphere, random, orbit: UPPER keeps every view at or above the horizon
                                     (elevations clipped to >= 0); other layouts refuse it */
     uint64_t seed;               /* random: the sequence's seed (any value, 0 included) */
@@ -81,7 +85,25 @@ typedef struct mvr_framing_desc {
                                     the centre, [0, pi]; 0 = 0.5 x sqrt(band area / views) (a loose
                                     Poisson-disk spacing); one too large to place every view is refused */
     mvr_up_axis up;              /* the world's up axis (0 = +Y) */
+    double elevation;            /* stereo, ring, grid: the angle above the centre's horizon the views look
+                                    down from, radians in (-pi/2, pi/2) (negative: from below); 0 =
+                                    MVR_FRAMING_DEFAULT_ELEVATION unless level */
+    bool level;                  /* stereo, ring, grid: views at the centre's height (elevation exactly 0),
+                                    looking along the horizon; not with elevation */
+    bool fit_sphere;             /* fit the bounding sphere (5% spare in the narrower direction), not the
+                                    box; not with fit_box, margin or radius. fit_sphere with level is
+                                    mvr's framing before issue 35 */
 } mvr_framing_desc;
+
+/* The default framing (every field 0) of every layout but cube: the views
+ * look down at the scene from MVR_FRAMING_DEFAULT_ELEVATION (stereo, ring,
+ * grid; the others keep their own directions) and stand as close as keeps
+ * the 8 corners of its bounding box inside each view less
+ * MVR_FRAMING_DEFAULT_MARGIN of the image's half-size on each side, so a
+ * ground plane with small objects on it fills the view instead of being
+ * seen edge-on. */
+#define MVR_FRAMING_DEFAULT_ELEVATION 0.52359877559829887 /* 30 degrees */
+#define MVR_FRAMING_DEFAULT_MARGIN 0.05
 
 /* The eye separation for a subject viewing_distance away: 1/30 of it (the
  * stereographers' 1/30 rule), so a 2 cm model and a 100 m scene get the same

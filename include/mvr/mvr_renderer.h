@@ -235,13 +235,21 @@ typedef struct mvr_renderer_overrides {
     uint32_t disable_image_formats;
     /* MVR_TUNING=on|off: the online tuner behind auto (mvr_tuning_desc) */
     mvr_override_switch tuning;
+    /* MVR_ANISOTROPIC=on|off: on filters material textures whose sampler is
+     * linear and mipmapped anisotropically (up to 16x) where the GL has
+     * EXT_texture_filter_anisotropic, as the Khronos Sample Renderer does
+     * (sharper at grazing angles: docs/peers.md). Off (trilinear) is the
+     * default: Mesa's llvmpipe returns black where a triangle's UVs are
+     * constant (zero derivatives) under anisotropic filtering */
+    mvr_override_switch anisotropic;
 } mvr_renderer_overrides;
 
 /* The one place mvr reads the environment, and only when an application
  * calls it: fills *out (all of it; unset or empty variables = no override)
  * from MVR_VIEW_PATH, MVR_MATERIAL_PATH, MVR_DEPTH, MVR_CULLING,
- * MVR_INSTANCING, MVR_MSAA_MULTIVIEW, MVR_FORCE_FEATURES and
- * MVR_UBO_ALIGNMENT (values as mvr_renderer_overrides lists them). A value
+ * MVR_INSTANCING, MVR_MSAA_MULTIVIEW, MVR_FORCE_FEATURES,
+ * MVR_UBO_ALIGNMENT, MVR_SKINNING_PATH, MVR_DISABLE_FEATURES, MVR_TUNING and
+ * MVR_ANISOTROPIC (values as mvr_renderer_overrides lists them). A value
  * outside those fails with MVR_ERROR_INVALID_ARGUMENT and a message naming
  * the variable, *out left all zero. Put the result in
  * mvr_renderer_desc.overrides. */

@@ -11,6 +11,10 @@ What a wheel holds:
   mvr/_libs/libmvr_image.so.0     each under its soname, RUNPATH $ORIGIN
   mvr/_libs/libmvr_gltf.so.0      (the package loads them from there:
   mvr/_libs/libmvr_image_oiio.so   mvr/_lib.py)
+  mvr/_bin/mvr                    the `mvr` CLI (mvr's libraries linked in
+                                  statically; RUNPATH $ORIGIN/../_libs, where
+                                  it finds the image module), which
+                                  mvr.dask runs (mvr/dask.py: find_cli)
   mvr-<version>.dist-info/        METADATA, WHEEL, RECORD, top_level.txt
 It is tagged py3-none-<platform>: no compiled Python extension (ctypes),
 so one wheel serves every Python 3 of the platform it was built on. What
@@ -45,6 +49,8 @@ LIBRARIES = (
     ("mvr_gltf_shared", "libmvr_gltf.so.0"),
     ("mvr_image_oiio", "libmvr_image_oiio.so"),
 )
+# the CLI's CMake target, which is also its file name: mvr/_bin/mvr
+CLI = "mvr"
 # what an sdist leaves out: build folders, VCS data, the GL packages a
 # session may keep in .gl/
 SDIST_SKIP = re.compile(r"^(build[^/]*|\.git|\.gl|out|__pycache__)(/|$)|/__pycache__(/|$)|\.pyc$")
@@ -117,7 +123,8 @@ def _setting(config_settings, key, default=None):
 
 
 def _build_libraries(config_settings):
-    """Configures and builds the shared libraries; returns {soname: path}."""
+    """Configures and builds the shared libraries and the CLI; returns
+    {soname: path}, and {"mvr": path} for the CLI."""
     build_dir = pathlib.Path(_setting(config_settings, "build-dir", ROOT / "build-wheel")).resolve()
     extra = shlex.split(_setting(config_settings, "cmake-args", "") or "")
     jobs = str(_setting(config_settings, "jobs", os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL") or os.cpu_count() or 1))
@@ -125,9 +132,13 @@ def _build_libraries(config_settings):
     # build tree's RUNPATH would name this machine's build folder
     _run(["cmake", "-S", ROOT, "-B", build_dir, "-DCMAKE_BUILD_TYPE=Release", "-DMVR_BUILD_TESTS=OFF",
           "-DMVR_WITH_VIEWER=OFF", "-DMVR_WITH_PYTHON=OFF", "-DCMAKE_BUILD_WITH_INSTALL_RPATH=ON",
-          "-DCMAKE_INSTALL_RPATH=$ORIGIN"] + extra, "CMake's configure step")
-    _run(["cmake", "--build", build_dir, "-j", jobs, "--target"] + [t for t, _ in LIBRARIES], "CMake's build")
+          "-DCMAKE_INSTALL_RPATH=$ORIGIN", "-DMVR_CLI_INSTALL_RPATH=$ORIGIN/../_libs"] + extra,
+         "CMake's configure step")
+    _run(["cmake", "--build", build_dir, "-j", jobs, "--target"] + [t for t, _ in LIBRARIES] + [CLI],
+         "CMake's build")
     found = {}
+    if (build_dir / CLI).exists():
+        found[CLI] = (build_dir / CLI).resolve()
     for target, soname in LIBRARIES:
         path = build_dir / soname
         if not path.exists():
@@ -216,7 +227,7 @@ def build_wheel(wheel_directory, config_settings=None, metadata_directory=None):
         for p in _package_files():
             w.add("mvr/" + p.name, p.read_bytes())
         for soname, path in libraries.items():
-            w.add("mvr/_libs/" + soname, path.read_bytes(), executable=True)
+            w.add(("mvr/_bin/" if soname == CLI else "mvr/_libs/") + soname, path.read_bytes(), executable=True)
         info = _write_dist_info(w.add, project, tag)
         w.close(info + "/RECORD")
         os.replace(tmp, out)
@@ -224,7 +235,8 @@ def build_wheel(wheel_directory, config_settings=None, metadata_directory=None):
         w.zip.close()
         tmp.unlink(missing_ok=True)
         raise
-    print("mvr_build: wrote %s (%d libraries)" % (out, len(libraries)), flush=True)
+    print("mvr_build: wrote %s (%d libraries%s)" % (out, len(set(libraries) - {CLI}),
+                                                  " and the CLI" if CLI in libraries else ""), flush=True)
     return name
 
 

@@ -248,7 +248,7 @@ mvr_framing_desc = _struct("mvr_framing_desc", [
     ("layout", c_int), ("views", c_uint32), ("ipd", c_double), ("aspect", c_double), ("rows", c_uint32),
     ("elevation_min", c_double), ("elevation_max", c_double), ("yfov", c_double), ("radius", c_double),
     ("fit_box", c_bool), ("margin", c_double), ("hemisphere", c_int), ("seed", c_uint64), ("min_spacing", c_double),
-    ("up", c_int)])
+    ("up", c_int), ("elevation", c_double), ("level", c_bool), ("fit_sphere", c_bool)])
 
 mvr_environment_desc = _struct("mvr_environment_desc", [
     ("source", c_int), ("pixels", _pf), ("width", c_uint32), ("height", c_uint32), ("color", c_float * 3),
@@ -259,7 +259,7 @@ mvr_renderer_overrides = _struct("mvr_renderer_overrides", [
     ("view_path", c_int), ("material_path", c_int), ("depth_mode", c_int), ("culling", c_int),
     ("instancing", c_int), ("msaa_multiview", c_int), ("force_inert_features", c_bool),
     ("ubo_alignment", c_uint32), ("skinning_path", c_int), ("disable_features", c_uint32),
-    ("disable_image_formats", c_uint32), ("tuning", c_int)])
+    ("disable_image_formats", c_uint32), ("tuning", c_int), ("anisotropic", c_int)])
 mvr_tuning_desc = _struct("mvr_tuning_desc", [("mode", c_int), ("frame_cost", c_void_p), ("user", c_void_p)])
 mvr_renderer_desc = _struct("mvr_renderer_desc", [
     ("context", c_void_p), ("view_path", c_int), ("logger", mvr_logger), ("material_path", c_int),

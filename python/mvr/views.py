@@ -153,9 +153,9 @@ class Views(Handle):
 
     @classmethod
     def layout(cls, scene: "Scene", layout: str = "stereo", *, count: int = 0, aspect: float = 1.0,
-               ipd: float = 0.0, rows: int = 0, elevation: Optional[Sequence[float]] = None, yfov: float = 0.0,
+               ipd: float = 0.0, rows: int = 0, elevation: Any = None, yfov: float = 0.0,
                radius: float = 0.0, margin: Optional[float] = None, hemisphere: str = "full", seed: int = 0,
-               min_spacing: float = 0.0, up: str = "y") -> "Views":
+               min_spacing: float = 0.0, up: str = "y", fit: str = "box") -> "Views":
         """Views laid out around the scene (mvr_view_set_frame_scene):
         layout "stereo", "cube", "ring", "grid", "sphere", "orbit" or
         "random"; count 0 = the layout's own (2, 6, 8, 9, 50, 24, 50), at
@@ -164,15 +164,20 @@ class Views(Handle):
         0 = 3).
 
         Camera sampling (mvr render's --fov ... --up; 0 and None are the
-        defaults): elevation = (lowest, highest) in radians: orbit's rings,
-        inside (-pi/2, pi/2) (None = -15 and 60 degrees); sphere's and
-        random's band, in [-pi/2, pi/2] (None = the whole sphere). yfov:
-        the vertical field of view in radians, [1e-3, 3.1] (0 = 50
-        degrees; not for cube). radius: the cameras' distance from the
-        centre of the scene's bounds, (0, 1e9] (0 = the bounding sphere
-        fitted). margin: fit the bounding box instead, each view as close
-        as keeps every corner inside the image less `margin` of its
-        half-size, [0, 0.9]; not with radius. hemisphere "upper" (sphere,
+        defaults): elevation: stereo, ring and grid: one angle in radians,
+        inside (-pi/2, pi/2), the views look down at the scene from (None =
+        30 degrees, MVR_FRAMING_DEFAULT_ELEVATION; 0.0 = level); orbit's
+        rings (lowest, highest), inside (-pi/2, pi/2) (None = -15 and 60
+        degrees); sphere's and random's band, in [-pi/2, pi/2] (None = the
+        whole sphere). yfov: the vertical field of view in radians, [1e-3,
+        3.1] (0 = 50 degrees; not for cube). radius: the cameras' distance
+        from the centre of the scene's bounds, (0, 1e9] (0 = fitted).
+        margin: the box fit (the default), each view as close as keeps
+        every corner of the bounding box inside the image less `margin` of
+        its half-size, [0, 0.9] (None = 0.05); not with radius. fit "box"
+        (the default) or "sphere" (the bounding sphere, 5% spare: with
+        elevation=0.0 mvr's framing before issue 35; not with margin or
+        radius). Cube takes none of these. hemisphere "upper" (sphere,
         random, orbit): no view below the centre's horizon. seed and
         min_spacing (random): the same views for the same seed (any int in
         [0, 2**64)), none two closer than min_spacing radians seen from
@@ -185,7 +190,14 @@ class Views(Handle):
         d.views, d.rows = c_int(count, "count", 0, MAX_VIEWS), c_int(rows, "rows", 0, U32_MAX)
         d.aspect = c_float(aspect, "aspect", 1.0 / _MAX_ASPECT, _MAX_ASPECT)
         d.ipd = c_float(ipd, "ipd", 0.0, _MAX_IPD)
-        if elevation is not None:
+        if elevation is not None and layout == "cube":
+            raise ValueError("cube: its six 90-degree views stand at the centre: elevation does not apply")
+        if elevation is not None and layout in ("stereo", "ring", "grid"):
+            e = c_float(elevation, "elevation", -math.pi / 2, math.pi / 2)
+            if not abs(e) < math.pi / 2:
+                raise ValueError("elevation: %r radians is not inside (-pi/2, pi/2)" % (e,))
+            d.elevation, d.level = e, e == 0.0
+        elif elevation is not None:
             lo, hi = c_floats(elevation, 2, "elevation")
             band = layout in ("sphere", "random")
             for name, e in (("elevation[0]", lo), ("elevation[1]", hi)):
@@ -204,14 +216,21 @@ class Views(Handle):
             if d.radius > 0:
                 raise ValueError("radius and margin: give the distance or fit the box, not both")
             d.fit_box, d.margin = True, c_float(margin, "margin", 0.0, _MAX_MARGIN)
+        if fit not in ("box", "sphere"):
+            raise ValueError("fit: 'box' or 'sphere', not %r" % (fit,))
+        if fit == "sphere":
+            if d.fit_box or d.radius > 0:
+                raise ValueError("fit 'sphere': not with margin or radius")
+            d.fit_sphere = True
         d.hemisphere = N.HEMISPHERE(hemisphere, "hemisphere")
         d.seed = c_int(seed, "seed", 0, 2 ** 64 - 1)
         d.min_spacing = c_float(min_spacing, "min_spacing", 0.0, math.pi)
         d.up = N.UP_AXIS(up, "up")
         if N.HEMISPHERE.name(d.hemisphere) == "upper" and layout not in ("sphere", "random", "orbit"):
             raise ValueError("hemisphere: 'upper' is for the sphere, random and orbit layouts, not %r" % (layout,))
-        if layout == "cube" and (d.yfov or d.radius or d.fit_box):
-            raise ValueError("cube: its six 90-degree views stand at the centre: yfov, radius and margin do not apply")
+        if layout == "cube" and (d.yfov or d.radius or d.fit_box or d.fit_sphere or elevation is not None):
+            raise ValueError("cube: its six 90-degree views stand at the centre: yfov, radius, margin, fit and "
+                             "elevation do not apply")
         out = ctypes.c_void_p()
         err = N.mvr_error()
         with scene._lock:
@@ -224,7 +243,8 @@ class Views(Handle):
         """The views `mvr render FILE` (and mvr-viewer) show a scene from at
         size = (width, height): its first camera node as a stereo pair
         (Views.from_camera(scene, 0, count=2)) when it has one, else the
-        stereo framing at the size's aspect. Context.render(views=None)
+        stereo framing at the size's aspect (the library's default: from 30
+        degrees above, the bounding box fitted with a 5% margin). Context.render(views=None)
         renders these."""
         try:
             width, height = size

@@ -8,7 +8,8 @@ render writes shows them.
 the centre of the bounds (mvr info --json); --hemisphere upper with --up z: none below the centre
 along +Z, each camera's right axis level and its up leaning to +Z; --layout random --seed: the
 same seed writes the same cameras, another seed others, no two closer than --min-spacing;
---margin: every bounds corner inside the image less the margin, touching it on one axis. Usage
+--margin: every bounds corner inside the image less the margin, touching it on one axis;
+--elevation DEG (issue 35): stereo and ring views look down that many degrees, 30 by default. Usage
 errors name the option. Python's standard library only."""
 import json
 import math
@@ -95,6 +96,17 @@ for i, f in enumerate(fitted or []):
         extent = max(extent, abs(u - f["cx"]) / (0.5 * W), abs(v - f["cy"]) / (0.5 * H))
     expect(abs(extent - 0.9) < 1e-4, "--margin 0.1 view %d: the box reaches %.6f of the half-image" % (i, extent))
 
+# --elevation DEG (stereo, ring, grid): the views look down that many degrees; 0 is level;
+# none given: 30 (issue 35)
+for args, want in ((["--elevation", "20"], 20.0), (["--elevation", "0"], 0.0), ([], 30.0)):
+    for layout in ("stereo", "ring"):
+        frames = render("elevation_%s_%s" % (layout, "_".join(args) or "default"), "--layout", layout, *args)
+        for i, f in enumerate(frames or []):
+            back_y = f["camera_to_world"][1][2]  # the camera's +Z, from the scene toward it
+            got = math.degrees(math.asin(max(-1.0, min(1.0, back_y))))
+            expect(abs(got - want) < 1e-9, "--layout %s %s view %d: looks down %.9f degrees, not %g" % (
+                layout, " ".join(args), i, got, want))
+
 # usage errors, each naming the option
 for args, needle in ((["--layout", "ring", "--seed", "1"], "--seed"),
                      (["--layout", "ring", "--hemisphere", "upper"], "--hemisphere"),
@@ -106,6 +118,9 @@ for args, needle in ((["--layout", "ring", "--seed", "1"], "--seed"),
                      (["--layout", "sphere", "--margin", "0.95"], "--margin"),
                      (["--layout", "random", "--min-spacing", "200"], "--min-spacing"),
                      (["--layout", "sphere", "--elevation", "10"], "--elevation"),
+                     (["--layout", "ring", "--elevation", "10,20"], "--elevation"),
+                     (["--layout", "stereo", "--elevation", "90"], "--elevation"),
+                     (["--layout", "cube", "--elevation", "20"], "--elevation"),
                      (["--layout", "sphere", "--elevation", "40,10"], "--elevation"),
                      (["--layout", "sphere", "--up", "x"], "--up"),
                      (["--layout", "cube", "--fov", "40"], "--fov")):

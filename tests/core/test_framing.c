@@ -56,7 +56,9 @@ static void eyes_scale_with_the_scene(mvr_test_state *t)
             CHECK(t, s != NULL);
             if (!s)
                 return;
-            mvr_framing_desc fd = {.layout = MVR_LAYOUT_STEREO, .views = 2, .aspect = aspects[a]};
+            /* the sphere fit, level: the framing this test was written for */
+            mvr_framing_desc fd = {.layout = MVR_LAYOUT_STEREO, .views = 2, .aspect = aspects[a], .level = true,
+                                   .fit_sphere = true};
             mvr_view_set *vs = NULL;
             mvr_error err;
             CHECK_MSG(t, mvr_view_set_frame_scene(s, &fd, &vs, &err) == MVR_OK, "%s", err.message);
@@ -274,7 +276,8 @@ static void sphere_and_orbit_layouts(mvr_test_state *t)
     if (!s)
         return;
     const double c[3] = {5.0, 0, 0}, PI_ = 3.14159265358979323846;
-    mvr_framing_desc fd = {.layout = MVR_LAYOUT_SPHERE, .views = 200};
+    /* the sphere fit: every view as far from the centre */
+    mvr_framing_desc fd = {.layout = MVR_LAYOUT_SPHERE, .views = 200, .fit_sphere = true};
     mvr_view_set *vs = NULL;
     mvr_error err;
     CHECK_MSG(t, mvr_view_set_frame_scene(s, &fd, &vs, &err) == MVR_OK, "%s", err.message);
@@ -303,7 +306,7 @@ static void sphere_and_orbit_layouts(mvr_test_state *t)
         CHECK(t, sqrt(mean[0] * mean[0] + mean[1] * mean[1] + mean[2] * mean[2]) < 0.01);
         mvr_view_set_destroy(vs);
     }
-    fd = (mvr_framing_desc){.layout = MVR_LAYOUT_ORBIT};
+    fd = (mvr_framing_desc){.layout = MVR_LAYOUT_ORBIT, .fit_sphere = true};
     CHECK_MSG(t, mvr_view_set_frame_scene(s, &fd, &vs, &err) == MVR_OK, "%s", err.message);
     if (vs) {
         double dist;
@@ -321,7 +324,7 @@ static void sphere_and_orbit_layouts(mvr_test_state *t)
         }
         mvr_view_set_destroy(vs);
     }
-    fd = (mvr_framing_desc){.layout = MVR_LAYOUT_ORBIT, .views = 5, .rows = 2};
+    fd = (mvr_framing_desc){.layout = MVR_LAYOUT_ORBIT, .views = 5, .rows = 2, .fit_sphere = true};
     CHECK(t, mvr_view_set_frame_scene(s, &fd, &vs, &err) == MVR_OK);
     if (vs) {
         double y0 = vs->views[0].position[1];

@@ -143,6 +143,7 @@ static void margin_fits_the_box(mvr_test_state *t)
                 mvr_view_set *vs = frame(t, s, &fd);
                 fd.fit_box = false;
                 fd.margin = 0;
+                fd.fit_sphere = true;
                 mvr_view_set *sphere_fit = frame(t, s, &fd);
                 for (uint32_t i = 0; vs && sphere_fit && i < 16; ++i) {
                     double e = 0, e_sphere = 0;
@@ -298,7 +299,7 @@ static void up_z_is_upright(mvr_test_state *t)
 {
     mvr_scene *s = box_scene();
     CHECK(t, s != NULL);
-    mvr_framing_desc fd = {.layout = MVR_LAYOUT_STEREO, .up = MVR_UP_Z};
+    mvr_framing_desc fd = {.layout = MVR_LAYOUT_STEREO, .up = MVR_UP_Z, .level = true};
     mvr_view_set *vs = s ? frame(t, s, &fd) : NULL;
     for (uint32_t i = 0; vs && i < 2; ++i) {
         mvr_view_camera c = camera(vs, i);
@@ -347,7 +348,15 @@ static void bad_fields_are_named(mvr_test_state *t)
         {{.layout = MVR_LAYOUT_RING, .radius = 2, .fit_box = true}, "radius"},
         {{.layout = MVR_LAYOUT_RING, .fit_box = true, .margin = 0.95}, "margin"},
         {{.layout = MVR_LAYOUT_RING, .fit_box = true, .margin = NAN}, "margin"},
-        {{.layout = MVR_LAYOUT_RING, .margin = 0.1}, "margin"},
+        {{.layout = MVR_LAYOUT_RING, .margin = 0.1, .radius = 2}, "margin"},
+        {{.layout = MVR_LAYOUT_RING, .elevation = NAN}, "elevation"},
+        {{.layout = MVR_LAYOUT_STEREO, .elevation = -1.6}, "elevation"},
+        {{.layout = MVR_LAYOUT_ORBIT, .elevation = 0.3}, "elevation"},
+        {{.layout = MVR_LAYOUT_SPHERE, .level = true}, "level"},
+        {{.layout = MVR_LAYOUT_GRID, .level = true, .elevation = 0.2}, "level"},
+        {{.layout = MVR_LAYOUT_RING, .fit_sphere = true, .margin = 0.1}, "fit_sphere"},
+        {{.layout = MVR_LAYOUT_STEREO, .fit_sphere = true, .radius = 2}, "fit_sphere"},
+        {{.layout = MVR_LAYOUT_CUBE, .fit_sphere = true}, "fit_sphere"},
         {{.layout = MVR_LAYOUT_RANDOM, .min_spacing = -0.1}, "min_spacing"},
         {{.layout = MVR_LAYOUT_RANDOM, .min_spacing = NAN}, "min_spacing"},
         {{.layout = MVR_LAYOUT_RANDOM, .min_spacing = 4.0}, "min_spacing"},

@@ -461,6 +461,63 @@ static void spec_gloss_is_a_dielectric(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
+/* KHR_materials_pbrSpecularGlossiness: diffuseTexture and the RGB of
+ * specularGlossinessTexture are sRGB-encoded (the extension's text), so a
+ * texel of 128 is the factor 0.2158 (pixels within 1/255 of that twin's),
+ * not 0.502. The Khronos glTF Sample Renderer 1.1.0 uploads both as linear
+ * (docs/peers.md): its BoomBox is brighter than mvr's for that reason. */
+static void spec_gloss_textures_are_srgb(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    enum { TW = 4, TH = 4 };
+    static uint8_t diffuse[TW * TH * 4], specgloss[TW * TH * 4];
+    for (int i = 0; i < TW * TH; ++i) {
+        diffuse[i * 4] = diffuse[i * 4 + 1] = diffuse[i * 4 + 2] = 128;
+        specgloss[i * 4] = specgloss[i * 4 + 1] = specgloss[i * 4 + 2] = 128;
+        diffuse[i * 4 + 3] = specgloss[i * 4 + 3] = 255;
+    }
+    const float lin = 0.21586050f, raw = 128.0f / 255.0f; /* sRGB 128 decoded, and read as linear */
+    mvr_view_set *vs = front_views(t, 1);
+    mvr_material_desc textured = mvr_material_defaults();
+    textured.spec_gloss.enabled = true;
+    textured.spec_gloss.glossiness_factor = 0.5f;
+    mvr_material_desc as_srgb = textured, as_linear = textured;
+    for (int c = 0; c < 3; ++c) {
+        as_srgb.base_color_factor[c] = as_srgb.spec_gloss.specular_factor[c] = lin;
+        as_linear.base_color_factor[c] = as_linear.spec_gloss.specular_factor[c] = raw;
+    }
+    const mvr_material_desc *mats[3] = {&textured, &as_srgb, &as_linear};
+    mvr_scene *scenes[3] = {NULL, NULL, NULL};
+    uint8_t *px[3];
+    for (int k = 0; k < 3; ++k) {
+        CHECK(t, mvr_scene_create(NULL, &scenes[k], NULL) == MVR_OK);
+        mvr_material_desc md = *mats[k];
+        if (k == 0) {
+            mvr_image_desc d = {.width = TW, .height = TH, .rgba8 = diffuse, .name = "diffuse"};
+            mvr_image_desc g = {.width = TW, .height = TH, .rgba8 = specgloss, .name = "specular-glossiness"};
+            CHECK(t, mvr_scene_add_image(scenes[k], &d, &md.base_color.image) == MVR_OK);
+            CHECK(t, mvr_scene_add_image(scenes[k], &g, &md.spec_gloss.texture.image) == MVR_OK);
+        }
+        sphere_in(t, scenes[k], &md, true);
+        uint32_t features = 0;
+        px[k] = render(t, ctx, scenes[k], vs, MVR_VIEW_PATH_LOOP, MVR_COLOR_FORMAT_DEFAULT, &features);
+    }
+    if (px[0] && px[1] && px[2]) {
+        uint32_t srgb = count_diff(px[0], px[1], (size_t)W * H, 1), linear = count_diff(px[0], px[2], (size_t)W * H, 1);
+        printf("  spec-gloss textures: %u pixels off the sRGB-decoded factors, %u off the raw ones\n", srgb, linear);
+        CHECK_EQ_INT(t, srgb, 0);
+        CHECK(t, linear > 1000);
+    }
+    for (int k = 0; k < 3; ++k) {
+        free(px[k]);
+        mvr_scene_destroy(scenes[k]);
+    }
+    mvr_view_set_destroy(vs);
+    mvr_context_destroy(ctx);
+}
+
 /* Multiview and loop give the same bytes for a lit sphere of material md. */
 static void multiview_equals_loop(mvr_test_state *t, mvr_context *ctx, const mvr_material_desc *md)
 {
@@ -628,4 +685,4 @@ static void anisotropy_direction(mvr_test_state *t)
 
 MVR_TEST_MAIN(TEST(demos_compile_no_extension_code), TEST(core_values_give_the_core_pixels),
               TEST(clearcoat_mixes_by_its_fresnel), TEST(extension_textures_are_sampled),
-              TEST(spec_gloss_is_a_dielectric), TEST(iridescence_film), TEST(anisotropy_direction))
+              TEST(spec_gloss_is_a_dielectric), TEST(spec_gloss_textures_are_srgb), TEST(iridescence_film), TEST(anisotropy_direction))

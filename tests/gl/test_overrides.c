@@ -17,7 +17,7 @@
 static const char *const variables[] = {"MVR_VIEW_PATH",   "MVR_MATERIAL_PATH",  "MVR_DEPTH",
                                         "MVR_CULLING",     "MVR_INSTANCING",     "MVR_MSAA_MULTIVIEW",
                                         "MVR_FORCE_FEATURES", "MVR_UBO_ALIGNMENT", "MVR_SKINNING_PATH",
-                                        "MVR_DISABLE_FEATURES"};
+                                        "MVR_DISABLE_FEATURES", "MVR_ANISOTROPIC"};
 
 static void clear_variables(void)
 {
@@ -51,7 +51,9 @@ static void from_env_parses_every_variable(mvr_test_state *t)
     setenv("MVR_UBO_ALIGNMENT", "256", 1);
     setenv("MVR_SKINNING_PATH", "preskin", 1);
     setenv("MVR_DISABLE_FEATURES", "CLEARCOAT,SPECULAR", 1);
+    setenv("MVR_ANISOTROPIC", "off", 1);
     CHECK(t, mvr_renderer_overrides_from_env(&o, &err) == MVR_OK);
+    CHECK_EQ_INT(t, o.anisotropic, MVR_OVERRIDE_OFF);
     CHECK_EQ_INT(t, o.skinning_path, MVR_SKINNING_PATH_OVERRIDE_PRESKIN);
     CHECK_EQ_INT(t, o.disable_features, MVR_FEATURE_CLEARCOAT | MVR_FEATURE_SPECULAR);
     CHECK_EQ_INT(t, o.view_path, MVR_VIEW_PATH_OVERRIDE_LOOP);
@@ -71,7 +73,9 @@ static void from_env_parses_every_variable(mvr_test_state *t)
     setenv("MVR_UBO_ALIGNMENT", "4096", 1);
     setenv("MVR_SKINNING_PATH", "vertex", 1);
     setenv("MVR_DISABLE_FEATURES", "CLEARCOAT", 1);
+    setenv("MVR_ANISOTROPIC", "on", 1);
     CHECK(t, mvr_renderer_overrides_from_env(&o, &err) == MVR_OK);
+    CHECK_EQ_INT(t, o.anisotropic, MVR_OVERRIDE_ON);
     CHECK_EQ_INT(t, o.skinning_path, MVR_SKINNING_PATH_OVERRIDE_VERTEX);
     CHECK_EQ_INT(t, o.disable_features, MVR_FEATURE_CLEARCOAT);
     CHECK_EQ_INT(t, o.view_path, MVR_VIEW_PATH_OVERRIDE_AUTO);
@@ -91,7 +95,7 @@ static void from_env_refuses_bad_values(mvr_test_state *t)
     static const struct {
         const char *name, *value;
     } bad[] = {{"MVR_VIEW_PATH", "bogus"},       {"MVR_MATERIAL_PATH", "bogus"}, {"MVR_DEPTH", "reversed"},
-               {"MVR_CULLING", "0"},             {"MVR_INSTANCING", "OFF"},      {"MVR_MSAA_MULTIVIEW", "no"},
+               {"MVR_CULLING", "0"},             {"MVR_INSTANCING", "OFF"},      {"MVR_MSAA_MULTIVIEW", "no"}, {"MVR_ANISOTROPIC", "16"},
                {"MVR_FORCE_FEATURES", "all"},    {"MVR_UBO_ALIGNMENT", "100"},   {"MVR_UBO_ALIGNMENT", "8192"},
                {"MVR_UBO_ALIGNMENT", "256x"},    {"MVR_UBO_ALIGNMENT", "-256"},  {"MVR_UBO_ALIGNMENT", "0"},
                {"MVR_SKINNING_PATH", "gpu"},     {"MVR_DISABLE_FEATURES", "NORMALS"},

@@ -259,6 +259,10 @@ frame render(mvr_test_state *t, mvr_scene *scene, const std::string &what, paths
         return out;
     const int W = gltf_render::frame_width, H = gltf_render::frame_height;
     mvr_framing_desc fd = {MVR_LAYOUT_STEREO, 2, 0.2, double(W) / H, 0, 0.0, 0.0};
+    // the level, sphere-fitted view these checks were sized for (the mip
+    // level a minified quad reads depends on its size on screen)
+    fd.level = true;
+    fd.fit_sphere = true;
     mvr_view_set *views = nullptr;
     mvr_error err;
     if (mvr_view_set_frame_scene(scene, &fd, &views, &err) != MVR_OK) {

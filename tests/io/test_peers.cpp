@@ -40,7 +40,7 @@ struct comparison {
 
 // RGB bytes (rows top first) of mvr's render of one manifest entry.
 std::vector<uint8_t> render_mvr(mvr_test_state *t, mvr_context *ctx, const nlohmann::json &entry,
-                                const std::string &dir, uint32_t disable_features = 0)
+                                const std::string &dir, uint32_t disable_features = 0, bool anisotropic = false)
 {
     std::vector<uint8_t> out;
     std::string asset = dir + "/" + entry.at("asset").get<std::string>();
@@ -81,6 +81,7 @@ std::vector<uint8_t> render_mvr(mvr_test_state *t, mvr_context *ctx, const nlohm
         std::memset(&rd, 0, sizeof rd);
         rd.context = ctx;
         rd.overrides.disable_features = disable_features;
+        rd.overrides.anisotropic = anisotropic ? MVR_OVERRIDE_ON : MVR_OVERRIDE_NONE;
         ok = mvr_renderer_create(&rd, &renderer, &err) == MVR_OK;
         CHECK_MSG(t, ok, "renderer: %s", err.message);
     }
@@ -276,6 +277,32 @@ void mvr_agrees_with_the_khronos_sample_renderer(mvr_test_state *t)
                     file.c_str(), c.rmse, c.mean_abs, c.mean_signed, c.worst, c.pixels, bound);
         CHECK_MSG(t, c.pixels > 5000, "%s: only %zu interior pixels", file.c_str(), c.pixels);
         CHECK_MSG(t, c.rmse <= bound, "%s: RMSE %.2f / 255 over the bound %.1f", file.c_str(), c.rmse, bound);
+        if (asset == "textured.gltf") {
+            // Blender's normal-mapped export. The Khronos renderer samples its
+            // mipmapped textures with 16x anisotropic filtering; mvr does with
+            // overrides.anisotropic on (not its default: docs/peers.md), and
+            // then agrees better on creases and rims (measured uniform / sky:
+            // 0.64 / 1.57 with it, 1.30 / 1.79 trilinear)
+            std::vector<uint8_t> af = render_mvr(t, ctx, entry, dir, 0, true);
+            comparison ca = af.empty() ? comparison{} : compare(af, theirs, w, h);
+            std::printf("  %-28s anisotropic: RMSE %.2f, mean d %+.2f\n", "", ca.rmse, ca.mean_signed);
+            const double tight = env == "uniform.hdr" ? 1.0 : 1.7;
+            CHECK_MSG(t, !af.empty() && ca.rmse <= tight, "%s, anisotropic: RMSE %.2f / 255 over %.1f", file.c_str(),
+                      ca.rmse, tight);
+            // the same file without TANGENT: glTF asks for MikkTSpace tangents,
+            // which the Khronos renderer computes and mvr's loader generates
+            // (measured 1.43 / 1.86; 2.00 / 2.32 with the per-pixel frame from
+            // screen-space derivatives mvr used before; 1.30 / 1.79 with the
+            // file's own tangents)
+            nlohmann::json bare_entry = entry;
+            bare_entry["asset"] = "textured_no_tangents.gltf";
+            std::vector<uint8_t> bare = render_mvr(t, ctx, bare_entry, dir);
+            comparison nt = bare.empty() ? comparison{} : compare(bare, theirs, w, h);
+            std::printf("  %-28s without TANGENT: RMSE %.2f, mean d %+.2f\n", "", nt.rmse, nt.mean_signed);
+            const double nt_bound = env == "uniform.hdr" ? 1.6 : 2.0;
+            CHECK_MSG(t, !bare.empty() && nt.rmse <= nt_bound, "%s without TANGENT: RMSE %.2f / 255 over %.1f",
+                      file.c_str(), nt.rmse, nt_bound);
+        }
         if (asset == "sheen.gltf") {
             // the sheen brings mvr nearer the reference than no sheen does
             // (measured 40.56 and 26.83 without it: 0.27 and 0.34 of that with it)

@@ -6,6 +6,7 @@ build/tests/py_reference); MVR_PY_OUT: where the tests write (default: a
 temporary folder per test)."""
 import os
 import pathlib
+import shutil
 import subprocess
 
 import pytest
@@ -59,8 +60,6 @@ def out_dir(request, tmp_path):
     if not base:
         return tmp_path
     d = pathlib.Path(base) / request.node.name.replace("[", "_").replace("]", "")
-    if d.exists():
-        for f in d.iterdir():
-            f.unlink()
-    d.mkdir(parents=True, exist_ok=True)
+    shutil.rmtree(d, ignore_errors=True)  # a run's directory holds folders too (test_dask)
+    d.mkdir(parents=True)
     return d

@@ -145,6 +145,7 @@ static void layout_structs(void)
     F(mvr_framing_desc, elevation_max); F(mvr_framing_desc, yfov); F(mvr_framing_desc, radius);
     F(mvr_framing_desc, fit_box); F(mvr_framing_desc, margin); F(mvr_framing_desc, hemisphere);
     F(mvr_framing_desc, seed); F(mvr_framing_desc, min_spacing); F(mvr_framing_desc, up);
+    F(mvr_framing_desc, elevation); F(mvr_framing_desc, level); F(mvr_framing_desc, fit_sphere);
     S(mvr_environment_desc); F(mvr_environment_desc, source); F(mvr_environment_desc, pixels);
     F(mvr_environment_desc, width); F(mvr_environment_desc, height); F(mvr_environment_desc, color);
     F(mvr_environment_desc, intensity); F(mvr_environment_desc, rotation); F(mvr_environment_desc, specular_size);
@@ -154,7 +155,7 @@ static void layout_structs(void)
     F(mvr_renderer_overrides, msaa_multiview); F(mvr_renderer_overrides, force_inert_features);
     F(mvr_renderer_overrides, ubo_alignment); F(mvr_renderer_overrides, skinning_path);
     F(mvr_renderer_overrides, disable_features); F(mvr_renderer_overrides, disable_image_formats);
-    F(mvr_renderer_overrides, tuning);
+    F(mvr_renderer_overrides, tuning); F(mvr_renderer_overrides, anisotropic);
     S(mvr_tuning_desc); F(mvr_tuning_desc, mode); F(mvr_tuning_desc, frame_cost); F(mvr_tuning_desc, user);
     S(mvr_auto_choice); F(mvr_auto_choice, state); F(mvr_auto_choice, prior); F(mvr_auto_choice, chosen);
     F(mvr_auto_choice, candidates); F(mvr_auto_choice, samples); F(mvr_auto_choice, cost_ms);

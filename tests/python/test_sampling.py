@@ -44,6 +44,35 @@ def test_margin_fits_the_bounding_box(scene):
                 assert extent == pytest.approx(0.9, abs=1e-9)
 
 
+def test_default_looks_from_above_and_fits_the_box(scene):
+    """Issue 35: stereo, ring and grid look down from 30 degrees (or the
+    elevation given; 0.0 level) and every layout but cube keeps every corner
+    of the bounding box inside 0.95 of the half-image, touching it."""
+    _, corners = bounds(scene)
+    cases = (("stereo", None, math.radians(30)), ("ring", 0.3, 0.3), ("grid", 0.0, 0.0), ("sphere", None, None),
+             ("orbit", None, None), ("random", None, None))
+    for layout, elevation, want in cases:
+        with mvr.Views.layout(scene, layout, aspect=W / H, elevation=elevation) as views:
+            cams = views.cameras(W, H)
+            reach = 0.0
+            for i, cam in enumerate(cams):
+                uv, z = cam.project(corners)
+                assert np.all(z > 0)
+                extent = np.max(np.abs(uv - (cam.cx, cam.cy)) / (0.5 * W, 0.5 * H))
+                assert extent <= 0.95 + 1e-9, (layout, i)
+                reach = max(reach, extent)
+                if want is not None and (layout != "grid" or i == len(cams) // 2):
+                    back = cam.camera_to_world[:3, 2]  # the camera's +Z: from the scene toward it
+                    assert math.asin(back[1]) == pytest.approx(want, abs=1e-9), (layout, i)
+            assert reach == pytest.approx(0.95, abs=1e-6), layout
+    # the sphere fit, level: the framing before issue 35 stays reachable
+    with mvr.Views.layout(scene, "stereo", aspect=W / H, elevation=0.0, fit="sphere") as views, \
+            mvr.Views.layout(scene, "stereo", aspect=W / H, elevation=0.0) as boxed:
+        far = np.linalg.norm(views.cameras(W, H)[0].position - bounds(scene)[0])
+        near = np.linalg.norm(boxed.cameras(W, H)[0].position - bounds(scene)[0])
+        assert far > near
+
+
 def test_radius_hemisphere_and_up(scene):
     centre, _ = bounds(scene)
     with mvr.Views.layout(scene, "random", count=30, radius=3.5, hemisphere="upper", up="z", seed=5) as views:
@@ -82,6 +111,8 @@ def test_random_is_seeded_and_spaced(scene):
     (dict(min_spacing=4.0), "min_spacing"), (dict(min_spacing=float("nan")), "min_spacing"),
     (dict(up="x"), "up"), (dict(layout="cube", yfov=1.0), "cube"),
     (dict(elevation=(0.0, 1.6)), "elevation"), (dict(layout="orbit", elevation=(-1.0, math.pi / 2)), "elevation"),
+    (dict(layout="stereo", elevation=math.pi / 2), "elevation"), (dict(layout="ring", elevation=(0.1, 0.2)), "elevation"),
+    (dict(fit="cone"), "fit"), (dict(fit="sphere", margin=0.1), "fit"), (dict(layout="cube", elevation=0.2), "cube"),
 ])
 def test_bad_sampling_is_refused_in_python(scene, kwargs, match):
     kwargs = dict(kwargs)

@@ -10,8 +10,9 @@
 3. `python3 -m build --wheel --no-isolation` (the same CMake build folder,
    so nothing is compiled again), the wheel checked (RECORD hashes, the
    libraries' RUNPATH $ORIGIN, every library they need is one the guide
-   names as the system's), installed into a second fresh venv and
-   rendering from there;
+   names as the system's; the CLI mvr/_bin/mvr's RUNPATH $ORIGIN/../_libs),
+   installed into a second fresh venv and rendering from there (the
+   package and the CLI);
 4. `python3 -m build --sdist`: the source without build folders.
 The venvs see the system's site-packages (--system-site-packages) for
 numpy and pytest (Debian's python3-numpy, python3-pytest): nothing is
@@ -105,7 +106,10 @@ def check_wheel(wheel):
         assert "mvr/_libs/libmvr.so.0" in libs and "mvr/py.typed" in names and "mvr/stream.py" in names, names
         out = WORK / "wheel-libs"
         shutil.rmtree(out, ignore_errors=True)
-        z.extractall(out, members=libs)
+        z.extractall(out, members=libs + ["mvr/_bin/mvr"])
+    # the CLI (mvr.dask runs it) finds the package's libraries in ../_libs
+    dyn = run(["readelf", "-d", out / "mvr/_bin/mvr"]).stdout
+    assert re.findall(r"\((?:RUNPATH|RPATH)\).*\[(.*)\]", dyn) == ["$ORIGIN/../_libs"], dyn
     allowed = RUNTIME | guide_libraries()
     for lib in libs:
         dyn = run(["readelf", "-d", out / lib]).stdout
@@ -162,6 +166,10 @@ def main():
     py2 = make_venv(WORK / "venv-wheel")
     run([py2, "-m", "pip", "install", "--no-index", wheels[0]])
     print(run([py2, "-c", PROBE, scene]).stdout.strip())
+    # the wheel's CLI, as mvr.dask finds it, renders from the venv
+    cli = run([py2, "-c", "import mvr, pathlib; print(pathlib.Path(mvr.__file__).parent / '_bin' / 'mvr')"])
+    run([cli.stdout.strip(), "render", scene, "--size", "64x48", "--out", WORK / "wheel-cli-out", "--quiet"])
+    print("wheel's CLI: rendered from %s" % cli.stdout.strip())
     # 4. an sdist: the source, no build folders, PKG-INFO
     run([sys.executable, "-m", "build", "--sdist", "--no-isolation", "--outdir", dist, SOURCE])
     sdists = list(dist.glob("mvr-*.tar.gz"))
