@@ -68,6 +68,7 @@ static const feature_define composite_defines[] = {
     {MVR_FEATURE_POST_PBR_NEUTRAL, "MVR_TONEMAP_PBR_NEUTRAL"},
     {MVR_FEATURE_DITHER, "MVR_DITHER"},
     {MVR_FEATURE_LOG_LUMINANCE, "MVR_LOG_LUMINANCE"},
+    {MVR_FEATURE_POST_MSAA, "MVR_POST_MSAA"},
 };
 
 static const feature_define environment_defines[] = {
@@ -366,7 +367,9 @@ bool mvr_shader_source(const mvr_shader_variant *v, mvr_shader_stage stage, mvr_
         return false;
     }
 
-    mvr_sb_append(out, "#version 300 es\n");
+    /* multisampled arrays are sampled from GLSL ES 3.20 on */
+    bool es32 = v->program == MVR_PROGRAM_COMPOSITE && (v->features & MVR_FEATURE_POST_MSAA);
+    mvr_sb_append(out, es32 ? "#version 320 es\n" : "#version 300 es\n");
     if (v->num_views > 0) {
         /* OVR_multiview2 lets gl_ViewID_OVR reach more than gl_Position. */
         mvr_sb_append(out, "#extension GL_OVR_multiview2 : require\n");

@@ -83,7 +83,8 @@ typedef enum mvr_composite_feature {
     MVR_FEATURE_POST_PBR_NEUTRAL = 1u << 4, /* tone mapper: Khronos PBR Neutral */
     MVR_FEATURE_DITHER = 1u << 5,
     MVR_FEATURE_LOG_LUMINANCE = 1u << 6,    /* log2 luminance (auto-exposure reduction) */
-    MVR_COMPOSITE_FEATURE_ALL_ = (1u << 7) - 1u
+    MVR_FEATURE_POST_MSAA = 1u << 7,        /* the post pass reads a multisampled array (GLSL ES 3.20) */
+    MVR_COMPOSITE_FEATURE_ALL_ = (1u << 8) - 1u
 } mvr_composite_feature;
 
 /* Feature bits of the environment program (none: equirectangular image ->

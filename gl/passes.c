@@ -233,9 +233,19 @@ static void setup_frame_state(frame_exec *fx)
     if (fx->plan->encode_in_mesh)
         for (int c = 0; c < 3; ++c)
             fx->clear[c] = srgb_encode(fx->clear[c]);
-    if (fx->plan->post) /* scene-referred in an HDR frame: exposed and tone mapped as the rest */
-        for (int c = 0; c < 3; ++c)
+    if (fx->plan->post || fx->plan->factor > 1) {
+        /* an HDR or supersampled frame: the clear colour is a display
+         * colour, which the final pass clears the output to and keeps where
+         * the alpha stays 0 (no surface); the colour under it is what
+         * transmission sees behind glass */
+        mvr_target *t = fx->t;
+        memcpy(t->post_clear, desc->clear_color, sizeof t->post_clear);
+        for (int c = 0; c < 3 && t->internal_format == GL_RGBA8; ++c)
+            t->post_clear[c] = srgb_encode(t->post_clear[c]);
+        for (int c = 0; c < 3 && fx->plan->post; ++c)
             fx->clear[c] = (float)(fx->clear[c] * fx->pre_exposure);
+        fx->clear[3] = 0.0f;
+    }
     fx->clear_depth = r->reversed_z ? 0.0f : 1.0f;
     fx->view_block_stride = mvr_align_up(VIEW_BLOCK_SIZE, (GLsizeiptr)r->ubo_alignment);
     fx->light_total = r->frame.light_counts[0] + r->frame.light_counts[1] + r->frame.light_counts[2];
@@ -297,7 +307,9 @@ static mvr_result exec_view_pass(frame_exec *fx, const mvr_plan_record *rec)
     GLuint draw_fbo = 0;
     mvr_result res = mvr_target_framebuffer(t, ch->base, mv_pass ? ch->count : 0, &fx->fbo);
     /* multisampled: the multiview chunk's own framebuffer, or one view's renderbuffers */
-    fx->msaa_fbo = t->hdr_frame ? t->msaa_hdr_fbo : t->msaa_fbo;
+    fx->msaa_fbo = t->msaa_fbo;
+    if (res == MVR_OK && t->hdr_frame && msaa) /* (one view a pass) */
+        res = mvr_target_msaa_hdr_framebuffer(t, ch->base, &fx->msaa_fbo);
     draw_fbo = msaa ? fx->msaa_fbo : fx->fbo;
     if (res == MVR_OK && mv_msaa)
         res = mvr_target_msaa_framebuffer(t, ch->base, ch->count, &draw_fbo);

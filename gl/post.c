@@ -91,6 +91,8 @@ static uint32_t post_features(const mvr_target *t, const mvr_render_desc *d)
         f |= MVR_FEATURE_POST_PBR_NEUTRAL;
     if (d->dither && (t->internal_format == GL_RGBA8 || t->internal_format == GL_SRGB8_ALPHA8))
         f |= MVR_FEATURE_DITHER;
+    if (t->hdr_frame && t->msaa_hdr_array)
+        f |= MVR_FEATURE_POST_MSAA;
     return f;
 }
 
@@ -149,6 +151,12 @@ mvr_result mvr_full_screen_passes(mvr_renderer *r, mvr_target *t, GLuint source,
                 gl->Uniform1i(e->loc_factor, (GLint)mvr_target_factor(t));
             if (e->loc_clear_depth >= 0)
                 gl->Uniform1f(e->loc_clear_depth, r->reversed_z ? 0.0f : 1.0f);
+            if (features & MVR_FEATURE_POST_MSAA) {
+                mvr_state_texture(st, MVR_UNIT_COMPOSITE_DEPTH, GL_TEXTURE_2D_MULTISAMPLE_ARRAY, t->msaa_hdr_array);
+                gl->Uniform1i(e->loc_samples, (GLint)t->desc.samples);
+            }
+            if (e->loc_clear_out >= 0)
+                gl->Uniform4fv(e->loc_clear_out, 1, t->post_clear);
             if (e->loc_post_exposure >= 0)
                 gl->Uniform1fv(e->loc_post_exposure, (GLsizei)(count ? count : 1), post_mul + base);
             mvr_state_draw_framebuffer(st, fbo);
@@ -158,6 +166,13 @@ mvr_result mvr_full_screen_passes(mvr_renderer *r, mvr_target *t, GLuint source,
             else
                 mvr_state_viewport(st, ch->viewport.x, ch->viewport.y, (GLsizei)ch->viewport.width,
                                    (GLsizei)ch->viewport.height);
+            if (!luminance && (features & (MVR_FEATURE_POST | MVR_FEATURE_DOWNSAMPLE))) {
+                /* the display clear colour, which the pass keeps where no surface was drawn */
+                mvr_state_scissor_test(st, true);
+                gl->Scissor(ch->viewport.x, ch->viewport.y, (GLsizei)ch->viewport.width, (GLsizei)ch->viewport.height);
+                gl->ClearBufferfv(GL_COLOR, 0, t->post_clear);
+                mvr_state_scissor_test(st, false);
+            }
             gl->DrawArrays(GL_TRIANGLES, 0, 3);
             (*passes)++;
         }

@@ -242,6 +242,7 @@ mvr_result mvr_gl_program_build_cached(mvr_context *ctx, const mvr_shader_varian
     bind_sampler(gl, program, "mvr_shadow_map", MVR_UNIT_SHADOW_MAP);
     bind_sampler(gl, program, "mvr_source", MVR_UNIT_COMPOSITE_SOURCE);
     bind_sampler(gl, program, "mvr_depth", MVR_UNIT_COMPOSITE_DEPTH);
+    bind_sampler(gl, program, "mvr_source_ms", MVR_UNIT_COMPOSITE_DEPTH); /* the post pass reads no depth */
     bind_sampler(gl, program, "mvr_env_specular", MVR_UNIT_ENV_SPECULAR);
     bind_sampler(gl, program, "mvr_env_dfg", MVR_UNIT_ENV_DFG);
     bind_sampler(gl, program, "mvr_env_charlie", MVR_UNIT_ENV_CHARLIE);

@@ -67,6 +67,7 @@ mvr_result mvr_program_cache_get(mvr_renderer *r, const mvr_shader_variant *v, m
     e->loc_factor = r->gl->GetUniformLocation(program, "mvr_factor");
     e->loc_post_exposure = r->gl->GetUniformLocation(program, "mvr_post_exposure");
     e->loc_clear_depth = r->gl->GetUniformLocation(program, "mvr_clear_depth");
+    e->loc_clear_out = r->gl->GetUniformLocation(program, "mvr_clear_out");
     e->loc_transmission_base = r->gl->GetUniformLocation(program, "mvr_transmission_base");
     e->loc_transmission_rect = r->gl->GetUniformLocation(program, "mvr_transmission_rect");
     e->loc_transmission_lod = r->gl->GetUniformLocation(program, "mvr_transmission_lod");

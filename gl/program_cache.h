@@ -12,7 +12,7 @@ typedef struct mvr_program_entry {
     GLint loc_view_base, loc_ambient, loc_exposure;
     GLint loc_output_alpha_cutoff;   /* outputs-only variants */
     float output_alpha_cutoff;       /* its value set (NaN: none yet) */
-    GLint loc_layer_base, loc_factor, loc_post_exposure, loc_clear_depth;  /* composite programs */
+    GLint loc_layer_base, loc_factor, loc_post_exposure, loc_clear_depth, loc_clear_out;  /* composite programs */
     GLint loc_env_sh, loc_env_rotation, loc_env_intensity, loc_env_max_lod; /* mesh (IBL), background */
     GLint loc_face_base, loc_face_size, loc_equirect_lod, loc_roughness, loc_samples, loc_source_size,
         loc_source_max_lod;      /* environment programs */

@@ -76,7 +76,14 @@ const char *mvr_anti_aliasing_name(mvr_anti_aliasing aa)
 static bool resolve_anti_aliasing(mvr_renderer *r, mvr_target_desc *d)
 {
     const mvr_caps *c = &r->ctx->caps;
-    switch (d->anti_aliasing) {
+    mvr_anti_aliasing aa = d->anti_aliasing;
+    /* the default: what samples or supersample ask (1: none), else the
+     * AUTO method (mvr_target.h says why); none where extra outputs are
+     * asked (an ID or a depth is not averaged: they stay exact, the colour
+     * is not anti-aliased) */
+    if (aa == MVR_ANTI_ALIASING_DEFAULT && d->samples == 0 && d->supersample == 0 && !d->outputs)
+        aa = MVR_ANTI_ALIASING_AUTO;
+    switch (aa) {
     case MVR_ANTI_ALIASING_DEFAULT:
         return true;
     case MVR_ANTI_ALIASING_NONE:
@@ -337,6 +344,7 @@ void mvr_target_release_gl(mvr_target *t)
     if (t->owns_color)
         mvr_gl_delete(r, MVR_GL_TEXTURE, &t->color);
     GLuint *textures[] = {&t->depth,     &t->ss_color, &t->msaa_array_color,  &t->msaa_array_depth,  &t->hdr_color,
+                          &t->msaa_hdr_array,
                           &t->lum,       &t->output_arrays[0], &t->output_arrays[1], &t->output_arrays[2]};
     _Static_assert(MVR_TARGET_OUTPUT_ARRAYS == 3, "every output array released");
     for (size_t i = 0; i < MVR_ARRAY_COUNT(textures); ++i)
@@ -565,7 +573,24 @@ mvr_result mvr_target_ensure_hdr(mvr_target *t)
             return res;
         }
     }
-    if (t->desc.samples > 1 && !t->msaa_hdr_fbo) {
+    const mvr_caps *c = &r->ctx->caps;
+    bool ms_arrays = gl->TexStorage3DMultisample &&
+                     (c->api == MVR_GL_API_GLES ? c->gl_major > 3 || (c->gl_major == 3 && c->gl_minor >= 2)
+                                                : c->gl_major > 4 || (c->gl_major == 4 && c->gl_minor >= 2));
+    if (t->desc.samples > 1 && ms_arrays && !t->msaa_hdr_array && !t->msaa_hdr_fbo) {
+        gl->GenTextures(1, &t->msaa_hdr_array);
+        mvr_state_texture(&r->state, 0, GL_TEXTURE_2D_MULTISAMPLE_ARRAY, t->msaa_hdr_array);
+        gl->TexStorage3DMultisample(GL_TEXTURE_2D_MULTISAMPLE_ARRAY, (GLsizei)t->desc.samples, GL_RGBA16F, w, h,
+                                    (GLsizei)t->desc.layers, GL_TRUE);
+        mvr_result res = mvr_gl_check(r->ctx, "multisampled HDR array", true);
+        if (res != MVR_OK) { /* one renderbuffer instead, resolved before the post pass */
+            mvr_log(&r->logger, MVR_LOG_INFO, MVR_LOG_ID_GENERAL,
+                    "mvr: no multisampled rgba16f array here (%s): the HDR frame resolves before tone mapping",
+                    mvr_context_last_error(r->ctx));
+            mvr_gl_delete(r, MVR_GL_TEXTURE, &t->msaa_hdr_array);
+        }
+    }
+    if (t->desc.samples > 1 && !t->msaa_hdr_array && !t->msaa_hdr_fbo) {
         if (!t->msaa_hdr_color) {
             gl->GenRenderbuffers(1, &t->msaa_hdr_color);
             gl->BindRenderbuffer(GL_RENDERBUFFER, t->msaa_hdr_color);
@@ -591,6 +616,23 @@ mvr_result mvr_target_ensure_hdr(mvr_target *t)
         }
     }
     return MVR_OK;
+}
+
+mvr_result mvr_target_msaa_hdr_framebuffer(mvr_target *t, uint32_t layer, GLuint *out)
+{
+    if (!t->msaa_hdr_array) {
+        *out = t->msaa_hdr_fbo;
+        return MVR_OK;
+    }
+    mvr_fbo_entry key = {.base = layer, .count = 0, .msaa = true, .aux = MVR_FBO_MSAA_HDR};
+    bool created = false;
+    mvr_result res = fbo_find_or_create(t, key, out, &created);
+    if (res != MVR_OK || !created)
+        return res;
+    const mvr_gl_api_table *gl = t->renderer->gl;
+    gl->FramebufferTextureLayer(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, t->msaa_hdr_array, 0, (GLint)layer);
+    gl->FramebufferRenderbuffer(GL_DRAW_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, t->msaa_depth);
+    return fbo_check(t, "multisampled HDR framebuffer");
 }
 
 mvr_result mvr_target_luminance_framebuffer(mvr_target *t, int kind, uint32_t base, uint32_t count, GLuint *out)

@@ -40,8 +40,13 @@ struct mvr_target {
     bool hdr_frame;
     GLuint hdr_color;
     GLuint msaa_hdr_color, msaa_hdr_fbo; /* multisampled HDR frames */
+    /* where the GL samples multisampled arrays (GLES 3.2, GL 4.2): every
+     * view's samples kept, one layer each (drawn view by view, resolved
+     * for metering, read per sample by the post pass); else msaa_hdr_color */
+    GLuint msaa_hdr_array;
     GLuint lum;
     uint32_t lum_levels;
+    float post_clear[4];         /* the post pass's clear colour, as written (encoded for RGBA8) */
     double last_auto_exposure;   /* pre-exposure of the next auto-exposed frame (0 = none yet) */
     /* supersampling (desc.supersample > 1): views are drawn into these (N
      * times the size, linear float) and resolved into the color array */
@@ -60,7 +65,11 @@ struct mvr_target {
  * supersample resolve writes). */
 mvr_result mvr_target_framebuffer(mvr_target *t, uint32_t base, uint32_t count, GLuint *out);
 mvr_result mvr_target_output_framebuffer(mvr_target *t, uint32_t base, uint32_t count, GLuint *out);
-enum { MVR_FBO_HDR = 1, MVR_FBO_LUMINANCE = 2, MVR_FBO_LUMINANCE_TOP = 3, MVR_FBO_OUTPUT_ARRAY = 4 /* + k */ };
+enum { MVR_FBO_HDR = 1, MVR_FBO_LUMINANCE = 2, MVR_FBO_LUMINANCE_TOP = 3, MVR_FBO_MSAA_HDR = 4,
+       MVR_FBO_OUTPUT_ARRAY = 5 /* + k */ };
+/* Multisampled HDR frames: the framebuffer view `layer` is drawn into
+ * (layer of msaa_hdr_array, or the one renderbuffer). */
+mvr_result mvr_target_msaa_hdr_framebuffer(mvr_target *t, uint32_t layer, GLuint *out);
 /* Extra outputs: one layer of output array k alone (what read_output reads). */
 mvr_result mvr_target_output_array_framebuffer(mvr_target *t, uint32_t k, uint32_t layer, GLuint *out);
 /* Which colour attachments of the bound view framebuffer are drawn: the

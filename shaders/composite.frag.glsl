@@ -5,7 +5,16 @@
 //   factor x factor source texels (linear values; summed in a fixed order,
 //   so every path gives the same bytes);
 // - MVR_POST: the final resolve of an HDR target: exposure, tone mapping,
-//   dithering, then the sRGB encode (MVR_SRGB_ENCODE, for UNORM outputs);
+//   dithering, then the sRGB encode (MVR_SRGB_ENCODE, for UNORM outputs).
+//   Where no surface was drawn (the HDR alpha, cleared to 0, stays 0) the
+//   pixel keeps the display clear colour the pass cleared the output to
+//   (the GL's clear, as a plain frame's: the same bytes): a clear colour is
+//   a display colour, never exposed. With MVR_DOWNSAMPLE each supersample is exposed,
+//   tone mapped and composited over the clear first, and the display
+//   (sRGB-encoded) values are averaged, as a GL resolve of the peers'
+//   display-encoded framebuffers does: an edge against a blown-out surface
+//   is the mean of what is seen, not the brightest sample's tone map.
+//   MVR_POST_MSAA does the same over a multisampled frame's samples;
 // - MVR_LOG_LUMINANCE: log2 of each texel's luminance and whether it has
 //   any (auto-exposure; the GL's mipmap chain then averages both).
 uniform sampler2DArray mvr_source;
@@ -20,6 +29,13 @@ uniform float mvr_clear_depth;
 #define MVR_POST_VIEWS 32
 uniform float mvr_post_exposure[MVR_POST_VIEWS]; // per view of the pass: exposure / pre-exposure
 uniform int mvr_layer_base;                      // the pass's first source layer (as the vertex stage's)
+#endif
+#if defined(MVR_POST) && defined(MVR_POST_MSAA)
+uniform highp sampler2DMSArray mvr_source_ms; // every view's samples (a multisampled HDR frame)
+uniform int mvr_samples;
+#endif
+#if defined(MVR_POST) || defined(MVR_DOWNSAMPLE)
+uniform vec4 mvr_clear_out; // the clear colour as written (encoded for UNORM outputs)
 #endif
 
 flat in int v_layer;
@@ -70,9 +86,73 @@ vec3 mvr_tone_map(vec3 c)
 }
 #endif
 
+#ifdef MVR_POST
+// One HDR sample's display value (linear, before any encode): exposed and
+// tone mapped; its alpha says how much surface covers it (0: the clear).
+vec3 mvr_post_display(vec4 c)
+{
+    return mvr_tone_map(max(c.rgb, vec3(0.0)) * mvr_post_exposure[v_layer - mvr_layer_base]);
+}
+
+// The sRGB decode (the inverse of mvr_linear_to_srgb).
+vec3 mvr_srgb_decode(vec3 e)
+{
+    return mix(pow((e + 0.055) / 1.055, vec3(2.4)), e / 12.92, vec3(lessThanEqual(e, vec3(0.04045))));
+}
+
+// The clear colour, linear (what an sRGB output encodes to its bytes).
+vec3 mvr_clear_linear()
+{
+#ifdef MVR_SRGB_ENCODE
+    return mvr_srgb_decode(mvr_clear_out.rgb);
+#else
+    return mvr_clear_out.rgb;
+#endif
+}
+#endif
+
 void main()
 {
-#ifdef MVR_DOWNSAMPLE
+#if defined(MVR_POST) && (defined(MVR_DOWNSAMPLE) || defined(MVR_POST_MSAA))
+    // per sample: exposure, tone map, composite over the clear, encode; then the mean
+#ifdef MVR_POST_MSAA
+    int n = mvr_samples;
+#define MVR_SAMPLE(i) texelFetch(mvr_source_ms, ivec3(ivec2(gl_FragCoord.xy), v_layer), i)
+#else
+    ivec2 base = ivec2(gl_FragCoord.xy) * mvr_factor;
+    int n = mvr_factor * mvr_factor;
+#define MVR_SAMPLE(i) texelFetch(mvr_source, ivec3(base + ivec2((i) % mvr_factor, (i) / mvr_factor), v_layer), 0)
+#endif
+    vec3 clear_e = mvr_linear_to_srgb(mvr_clear_linear());
+    vec4 sum = vec4(0.0);
+    int covered = 0;
+    for (int i = 0; i < n; ++i) {
+        vec4 s = MVR_SAMPLE(i);
+        float a = clamp(s.a, 0.0, 1.0);
+        covered += a > 0.0 ? 1 : 0;
+        sum += vec4(mix(clear_e, mvr_linear_to_srgb(mvr_post_display(s)), a), a + mvr_clear_out.a * (1.0 - a));
+    }
+    if (covered == 0)
+        discard; // the clear the pass made before: the plain frame's bytes
+    vec4 c = sum / float(n);
+    c.rgb = mvr_srgb_decode(c.rgb); // back to linear (the output encodes again)
+#elif defined(MVR_DOWNSAMPLE) && !defined(MVR_LOG_LUMINANCE)
+    // a plain frame's resolve: the mean of linear light; the samples'
+    // alpha says where a surface is (0: the clear, which the pass keeps)
+    ivec2 base = ivec2(gl_FragCoord.xy) * mvr_factor;
+    vec4 sum = vec4(0.0);
+    int covered = 0;
+    for (int y = 0; y < mvr_factor; ++y)
+        for (int x = 0; x < mvr_factor; ++x) {
+            vec4 s = texelFetch(mvr_source, ivec3(base + ivec2(x, y), v_layer), 0);
+            float a = clamp(s.a, 0.0, 1.0);
+            covered += a > 0.0 ? 1 : 0;
+            sum += vec4(s.rgb, a + mvr_clear_out.a * (1.0 - a));
+        }
+    if (covered == 0)
+        discard;
+    vec4 c = sum / float(mvr_factor * mvr_factor);
+#elif defined(MVR_DOWNSAMPLE) // metering: the mean of the linear samples
     ivec2 base = ivec2(gl_FragCoord.xy) * mvr_factor;
     vec4 sum = vec4(0.0);
     for (int y = 0; y < mvr_factor; ++y)
@@ -87,7 +167,8 @@ void main()
 #ifdef MVR_LOG_LUMINANCE
     // Rec. 709 luminance: r = log2 of it, g = 1 where a surface was drawn
     // and lit (the mean of r over the mean of g is the average over those:
-    // the clear color, an arbitrary backdrop, does not move the exposure)
+    // the clear color and the environment background, which leave the
+    // depth cleared, do not move the exposure)
     float l = dot(max(c.rgb, vec3(0.0)), vec3(0.2126, 0.7152, 0.0722));
 #ifdef MVR_DOWNSAMPLE
     float depth = texelFetch(mvr_depth, ivec3(ivec2(gl_FragCoord.xy) * mvr_factor, v_layer), 0).r;
@@ -98,9 +179,16 @@ void main()
     o_color = l > 1e-6 && drawn ? vec4(log2(l), 1.0, 0.0, 1.0) : vec4(0.0, 0.0, 0.0, 1.0);
     return;
 #endif
-#ifdef MVR_POST
-    c.rgb = mvr_tone_map(max(c.rgb, vec3(0.0)) * mvr_post_exposure[v_layer - mvr_layer_base]);
-    c.a = clamp(c.a, 0.0, 1.0);
+#if defined(MVR_POST) && !defined(MVR_DOWNSAMPLE) && !defined(MVR_POST_MSAA)
+    {
+        float a = clamp(c.a, 0.0, 1.0);
+        if (a == 0.0)
+            discard; // the clear the pass made before: exact, no exposure, tone map, encode or dither
+        c.rgb = mvr_post_display(c);
+        if (a < 1.0) // a translucent surface over the clear: composited in display values
+            c.rgb = mvr_srgb_decode(mix(mvr_linear_to_srgb(mvr_clear_linear()), mvr_linear_to_srgb(c.rgb), a));
+        c.a = a + mvr_clear_out.a * (1.0 - a);
+    }
 #endif
 #ifdef MVR_SRGB_ENCODE
     c.rgb = mvr_linear_to_srgb(c.rgb);

@@ -236,7 +236,9 @@ static bool setup_config(const bench_options *o, mvr_context *ctx, mvr_scene *sc
     cr->cpu_ss = c->reference ? ss : 1;
     mvr_target_desc td = {w * cr->cpu_ss, h * cr->cpu_ss, n,
                           cr->cpu_ss > 1 ? MVR_COLOR_FORMAT_RGBA32F : MVR_COLOR_FORMAT_DEFAULT,
-                          0, 0, 0, c->msaa, c->reference ? 0 : (ss > 1 ? ss : 0), MVR_ANTI_ALIASING_DEFAULT, 0};
+                          0, 0, 0, c->msaa, c->reference ? 0 : (ss > 1 ? ss : 0),
+                          /* noaa (and the CPU-resolved reference) pin none: the default anti-aliases */
+                          c->msaa > 1 || (!c->reference && ss > 1) ? MVR_ANTI_ALIASING_DEFAULT : MVR_ANTI_ALIASING_NONE, 0};
     cr->times = calloc((size_t)o->frames * 3, sizeof *cr->times);
     bool ok = cr->times && mvr_target_create(cr->r, &td, &cr->t) == MVR_OK;
     for (uint32_t f = 0; ok && f < o->warmup; ++f) {
@@ -517,7 +519,7 @@ static bool probe_scene(const bench_options *o, mvr_context *ctx, mvr_scene *sce
     mvr_renderer *r = NULL;
     mvr_target *t = NULL;
     mvr_target_desc td = {16, 16, mvr_view_set_count(vs), MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0,
-                          MVR_ANTI_ALIASING_DEFAULT, 0};
+                          MVR_ANTI_ALIASING_NONE, 0};
     mvr_frame_stats st;
     memset(&st, 0, sizeof st);
     if (mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &t) == MVR_OK &&

@@ -102,11 +102,12 @@ static const cli_option render_table[] = {
      "average them (1..4; default: 1)", AA_GROUP, NULL, NULL},
     {CLI_OPT_U32, R_MSAA, "--msaa", NULL, "N", 0, 64, NULL,
      "N samples per pixel (multisampling; resolves view by view,\n"
-     "so it takes the loop path) (default: none)", AA_GROUP, NULL, NULL},
+     "so it takes the loop path) (default: --aa's)", AA_GROUP, NULL, NULL},
     {CLI_OPT_CHOICE, R_AA, "--aa", NULL, "A", 0, 0, "none|msaa|supersample|auto",
      "none | msaa | supersample | auto: the library's anti-aliasing\n"
      "(msaa 4x, supersample 2x2 on the GPU; auto: 4x MSAA, in the\n"
-     "multiview passes where the GL has multisampled multiview)", AA_GROUP, NULL, NULL},
+     "multiview passes where the GL has multisampled multiview)\n"
+     "(default: auto; none with --outputs)", AA_GROUP, NULL, NULL},
     {CLI_OPT_FLAG, R_REFERENCE, "--reference", NULL, NULL, 0, 0, NULL,
      "ground truth, slow: --view-path loop --transparency per_view\n"
      "--supersample 4, and the environment integrated per pixel\n"
@@ -136,7 +137,7 @@ static const cli_option render_table[] = {
      "--exposure-per-view is for auto exposure"},
     {CLI_OPT_FLAG, R_DITHER, "--dither", NULL, NULL, 0, 0, NULL, "+-1 step of noise before 8-bit storage (default: off)",
      NULL, NULL, NULL},
-    {CLI_OPT_STRING, R_CLEAR, "--clear", NULL, "R,G,B[,A]", 0, 0, NULL, "linear clear color (default: a dark opaque sky)",
+    {CLI_OPT_STRING, R_CLEAR, "--clear", NULL, "R,G,B[,A]", 0, 0, NULL, "linear clear color, a display colour (default: a dark opaque sky)",
      NULL, NULL, NULL},
     {CLI_OPT_CHOICE, R_TONE_MAP, "--tone-map", NULL, "T", 0, 0, "none|aces|pbr-neutral",
      "none | aces | pbr-neutral (default: pbr-neutral with auto\n"

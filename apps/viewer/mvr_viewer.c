@@ -92,6 +92,7 @@ typedef struct viewer {
     uint32_t view_count, single;
     display_mode display;
     mvr_view_path view_path;
+    mvr_anti_aliasing aa; /* --aa */
     mvr_material_path material_path;
     int fb_width, fb_height;
     uint32_t layer_w, layer_h;
@@ -254,7 +255,7 @@ static bool make_renderer(viewer *v)
     layer_size(v, v->view_count, &v->layer_w, &v->layer_h);
     /* the sRGB target mvr render uses (blending in linear light); its bytes
      * are copied to the window as they are */
-    mvr_target_desc td = {v->layer_w, v->layer_h, v->view_count, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+    mvr_target_desc td = {v->layer_w, v->layer_h, v->view_count, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, v->aa, 0};
     if (mvr_target_create(v->renderer, &td, &v->target) != MVR_OK) {
         fprintf(stderr, "mvr-viewer: %s\n", mvr_renderer_last_error(v->renderer));
         return false;
@@ -690,7 +691,7 @@ int main(int argc, char **argv)
     v.display = o.display;
     v.view_count = o.views;
     v.single = o.single;
-    v.view_path = o.view_path;
+    v.view_path = o.view_path, v.aa = o.aa;
     v.env_options = o.env;
     v.clear = o.clear;
     v.start_animation = o.animation;

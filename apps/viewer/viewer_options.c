@@ -16,7 +16,7 @@ const char *viewer_display_name(display_mode display)
 }
 
 enum {
-    V_DEMO = 1, V_VIEWS, V_DISPLAY, V_SINGLE, V_SIZE, V_API, V_VIEW_PATH, V_FRAMES, V_SCREENSHOT, V_ANIMATION, V_TIME,
+    V_DEMO = 1, V_VIEWS, V_DISPLAY, V_SINGLE, V_SIZE, V_API, V_VIEW_PATH, V_AA, V_FRAMES, V_SCREENSHOT, V_ANIMATION, V_TIME,
     V_PAUSED, V_CLEAR
 };
 
@@ -36,6 +36,9 @@ static const cli_option viewer_table[] = {
      "gles | desktop: the context GLFW makes (default desktop)", NULL, NULL, NULL},
     {CLI_OPT_CHOICE, V_VIEW_PATH, "--view-path", NULL, "P", 0, 0, "auto|multiview|loop",
      "auto | multiview | loop (default auto)", NULL, NULL, NULL},
+    {CLI_OPT_CHOICE, V_AA, "--aa", NULL, "A", 0, 0, "none|msaa|supersample|auto",
+     "none | msaa | supersample | auto: anti-aliasing, as mvr render\n"
+     "takes it (default: auto)", NULL, NULL, NULL},
     {CLI_OPT_STRING, V_ANIMATION, "--animation", NULL, "A", 0, 0, NULL,
      "SCENE: play animation A: its name, its index (0-based) or\n"
      "all, as mvr render takes them (default: 0 when the file has\n"
@@ -133,6 +136,7 @@ int viewer_options_parse(int argc, char **argv, viewer_options *o)
             break;
         case V_API: o->gles = arg.choice == 0; break;
         case V_VIEW_PATH: o->view_path = (mvr_view_path)(MVR_VIEW_PATH_AUTO + arg.choice); break;
+        case V_AA: o->aa = (mvr_anti_aliasing)(MVR_ANTI_ALIASING_NONE + arg.choice); break;
         case V_DISPLAY: o->display = (display_mode)arg.choice; break;
         case V_SIZE:
             if (!cli_parse_size(arg.value, 1, 16384, &o->width, &o->height)) {

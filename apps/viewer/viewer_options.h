@@ -34,6 +34,7 @@ typedef struct viewer_options {
     uint32_t single;             /* --single K */
     display_mode display;        /* --display */
     mvr_view_path view_path;     /* --view-path */
+    mvr_anti_aliasing aa;        /* --aa; DEFAULT: the library's (auto) */
     cli_env_options env;         /* --env ... */
     const char *animation;       /* --animation; NULL: 0 when there is one */
     double time;                 /* --time; < 0: the clip's start */

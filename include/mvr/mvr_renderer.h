@@ -384,7 +384,7 @@ typedef enum mvr_normal_space {
 const char *mvr_normal_space_name(mvr_normal_space space);
 
 typedef struct mvr_render_desc {
-    float clear_color[4];        /* linear RGBA */
+    float clear_color[4];        /* linear RGBA, a display colour: written as given, never exposed or tone mapped */
     float exposure;              /* LINEAR: multiplies the lit color; 0 = 1 */
     mvr_tone_map tone_map;
     mvr_shadow_desc shadows;

@@ -25,7 +25,9 @@ const char *mvr_color_format_name(mvr_color_format format);
 
 /* Anti-aliasing of a target. */
 typedef enum mvr_anti_aliasing {
-    MVR_ANTI_ALIASING_DEFAULT = 0, /* what samples and supersample ask (none when both are 0) */
+    /* what samples and supersample ask (1 = none); both 0: AUTO, or none
+     * where extra outputs are asked (they stay exact, never averaged) */
+    MVR_ANTI_ALIASING_DEFAULT = 0,
     MVR_ANTI_ALIASING_NONE,
     MVR_ANTI_ALIASING_MSAA,        /* samples per pixel (0 = 4) */
     MVR_ANTI_ALIASING_SUPERSAMPLE, /* supersample per side (0 = 2) */
@@ -34,7 +36,10 @@ typedef enum mvr_anti_aliasing {
      * texture), else view by view on the loop path; 2x2 supersampling where
      * the format cannot be multisampled 4 times. Measured by `mvr bench`
      * (docs/benchmarks.md): per-view 4x MSAA costs 1.9-2.3x the frame time
-     * without AA, 2x2 supersampling 3.0-3.6x, on every demo. */
+     * without AA, 2x2 supersampling 3.0-3.6x, on every demo; on stereo and
+     * city 4x MSAA is cheaper than 2x2 supersampling and on city closer to
+     * the reference (RMSE 0.017 against 0.025; none 0.051): the default.
+     * An HDR frame tone maps each sample before the average (GLES 3.2). */
     MVR_ANTI_ALIASING_AUTO
 } mvr_anti_aliasing;
 const char *mvr_anti_aliasing_name(mvr_anti_aliasing aa);
@@ -50,7 +55,8 @@ typedef struct mvr_target_desc {
     uint32_t external_color_texture;
     uint32_t external_level;
     uint32_t external_base_layer;
-    /* Multisampling: samples per pixel (0 or 1 = none). Where the GL has
+    /* Multisampling: samples per pixel (1 = none; 0 = the default, see
+     * MVR_ANTI_ALIASING_DEFAULT). Where the GL has
      * multisampled multiview (OVR_multiview_multisampled_render_to_texture:
      * resolved by the GL; or multisampled 2D arrays that attach with
      * multiview: resolved layer by layer with glBlitFramebuffer), views
@@ -74,7 +80,7 @@ typedef struct mvr_target_desc {
      * Depth, distance and coverage share one RGBA32F array, normals take
      * one RGBA32F array, IDs one RGBA32UI array. Not with anti-aliasing
      * (samples, supersample or MSAA / SUPERSAMPLE / AUTO): an ID or a depth
-     * is not averaged. Needs float colour buffers (OpenGL ES 3.2, or
+     * is not averaged; the default then draws without anti-aliasing. Needs float colour buffers (OpenGL ES 3.2, or
      * EXT_color_buffer_float) for depth, distance, normal and coverage. */
     uint32_t outputs;
 } mvr_target_desc;

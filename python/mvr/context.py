@@ -301,9 +301,11 @@ class Context(Handle):
         color_dtype "uint8" reads the stored bytes, "float32" floats
         (normalized for 8-bit formats); color_format "default" (sRGB
         storage), "rgba8", "rgba16f" or "rgba32f" (linear); samples: MSAA
-        samples per pixel, 0 or 1 (none) or a power of two up to the GL's
-        GL_MAX_SAMPLES. clear_color: linear RGB or RGBA (alpha 1) of what no
-        geometry covers. environment: an mvr.Environment, "neutral" (the
+        samples per pixel: 0 the library's default anti-aliasing (4x MSAA,
+        as mvr render; none with extra outputs), 1 none, or a power of two
+        up to the GL's GL_MAX_SAMPLES. clear_color: linear RGB or RGBA
+        (alpha 1) of what no geometry covers, a display colour (never
+        exposed or tone mapped). environment: an mvr.Environment, "neutral" (the
         built-in studio), "uniform" (radiance 1 from everywhere), or None
         (no image-based lighting: the scene's own lights alone); background
         "color", "environment" or "blur" (background_blur: its roughness,
@@ -381,7 +383,7 @@ class Context(Handle):
                           samples, color_format_value, outputs, extra, mask, color_float)
 
     def _checked_samples(self, samples: Any) -> int:
-        """0 or 1 (none), or a power of two up to GL_MAX_SAMPLES: the GL
+        """0 (the default), 1 (none), or a power of two up to GL_MAX_SAMPLES: the GL
         would round another count up to one it has, silently."""
         n = c_int(samples, "samples", 0, U32_MAX)
         if n <= 1:
@@ -390,7 +392,7 @@ class Context(Handle):
             most = N.C.mvr_context_caps(self.handle).contents.limits.max_samples
         if n & (n - 1) or n > most:
             counts = ", ".join(str(1 << k) for k in range(1, 31) if (1 << k) <= most)
-            raise ValueError("samples: %d is not an MSAA count this GL has (0 or 1 = none, or %s)" %
+            raise ValueError("samples: %d is not an MSAA count this GL has (0 = default, 1 = none, or %s)" %
                              (n, counts or "none: GL_MAX_SAMPLES is %d" % most))
         return n
 

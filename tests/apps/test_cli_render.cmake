@@ -42,7 +42,7 @@ if(EXISTS ${OUT}/stereo/stats.json)
 endif()
 
 # multiview forced: 2 views in one pass (CI has GL_OVR_multiview2)
-run(rc so se render --demo stereo --views 2 --size 160x120 --view-path multiview --out ${OUT}/mv
+run(rc so se render --demo stereo --views 2 --size 160x120 --view-path multiview --aa none --out ${OUT}/mv
     --stats ${OUT}/mv/stats.json --quiet)
 if(REQUIRE_MULTIVIEW OR rc EQUAL 0)
   expect("multiview render exits 0 (got ${rc}): ${se}" rc EQUAL 0)

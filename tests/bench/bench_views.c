@@ -125,7 +125,7 @@ int main(int argc, char **argv)
             mvr_target *t = NULL;
             mvr_demo_desc dd = {counts[k], w, h, {0}};
             mvr_renderer_desc rd = {.context = ctx, .view_path = paths[p], .material_path = material_path};
-            mvr_target_desc td = {w, h, counts[k], MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+            mvr_target_desc td = {w, h, counts[k], MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_NONE, 0};
             if (mvr_demo_create(demo, &dd, &scene, &views, &err) != MVR_OK ||
                 mvr_renderer_create(&rd, &r, &err) != MVR_OK || mvr_target_create(r, &td, &t) != MVR_OK) {
                 fprintf(stderr, "bench_views: %s\n", err.message);

@@ -35,7 +35,8 @@ static inline render_views_out render_views(mvr_test_state *t, mvr_context *ctx,
     mvr_target *tg = NULL;
     mvr_environment *env = NULL;
     mvr_environment_desc ed = {.source = o->environment_source};
-    mvr_target_desc td = {.width = o->width, .height = o->height, .layers = n, .color_format = o->format};
+    mvr_target_desc td = {.width = o->width, .height = o->height, .layers = n, .color_format = o->format,
+                          .anti_aliasing = MVR_ANTI_ALIASING_NONE};
     bool ok = mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &tg) == MVR_OK &&
               (!o->environment || mvr_environment_create(&ed, &env, NULL) == MVR_OK);
     CHECK(t, ok);

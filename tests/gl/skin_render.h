@@ -29,7 +29,7 @@ static inline bool render_shot(mvr_test_state *t, mvr_context *ctx, mvr_scene *s
     mvr_renderer *r = NULL;
     mvr_target *target = NULL;
     mvr_error err;
-    mvr_target_desc td = {.width = width, .height = height, .layers = views};
+    mvr_target_desc td = {.width = width, .height = height, .layers = views, .anti_aliasing = MVR_ANTI_ALIASING_NONE};
     bool ok = mvr_renderer_create(&rd, &r, &err) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK;
     CHECK_MSG(t, ok, "renderer / target: %s", r ? mvr_renderer_last_error(r) : err.message);
     mvr_render_desc desc = {.clear_color = {0.05f, 0.05f, 0.05f, 1.0f}, .exposure = 1.0f};

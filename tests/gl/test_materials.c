@@ -60,7 +60,7 @@ static bool render_city(mvr_test_state *t, mvr_context *ctx, mvr_view_path vp, m
     mvr_renderer_desc rd = {.context = ctx, .view_path = vp, .material_path = mp};
     mvr_renderer *r = NULL;
     mvr_target *target = NULL;
-    mvr_target_desc td = {W, H, VIEWS, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+    mvr_target_desc td = {W, H, VIEWS, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_NONE, 0};
     mvr_error err;
     bool ok = mvr_demo_create("city", &dd, &scene, &views, &err) == MVR_OK &&
               mvr_renderer_create(&rd, &r, &err) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK &&

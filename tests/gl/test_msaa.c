@@ -24,7 +24,7 @@ static uint8_t *render_stereo(mvr_test_state *t, mvr_context *ctx, mvr_view_path
     mvr_target *target = NULL;
     uint32_t w = MW * supersample, h = MH * supersample;
     mvr_target_desc td = {w, h, 2, supersample > 1 ? MVR_COLOR_FORMAT_RGBA32F : MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0,
-                          samples, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+                          samples, 0, samples > 1 ? MVR_ANTI_ALIASING_DEFAULT : MVR_ANTI_ALIASING_NONE, 0};
     bool ok = mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK &&
               mvr_renderer_render(r, s, vs, target, NULL) == MVR_OK;
     CHECK_MSG(t, ok, "%s", r ? mvr_renderer_last_error(r) : "renderer");
@@ -201,7 +201,7 @@ static void supersampling_on_every_path(mvr_test_state *t)
     /* closer to the 4x4 reference than plain; an RGBA8 target (the resolve
      * encodes) within one step of the sRGB one (the GL encodes) */
     const size_t pixels = (size_t)MW * MH * 2;
-    mvr_target_desc plain_td = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+    mvr_target_desc plain_td = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_NONE, 0};
     mvr_target_desc ss_td = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 2, MVR_ANTI_ALIASING_DEFAULT, 0};
     mvr_target_desc ss8_td = {MW, MH, 2, MVR_COLOR_FORMAT_RGBA8, 0, 0, 0, 0, 2, MVR_ANTI_ALIASING_DEFAULT, 0};
     uint8_t *plain = render_demo_target(t, ctx, "stereo", 2, MVR_VIEW_PATH_AUTO, &plain_td, NULL);
@@ -251,7 +251,7 @@ static void anti_aliasing_choices(mvr_test_state *t)
     mvr_target_desc autod = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_AUTO, 0};
     mvr_target_desc ss = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_SUPERSAMPLE, 0};
     mvr_target_desc none = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 4, 2, MVR_ANTI_ALIASING_NONE, 0};
-    mvr_target_desc plain = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+    mvr_target_desc plain = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_NONE, 0};
     mvr_frame_stats st_four, st_auto, st_ss, st_none, st_plain;
     uint8_t *a = render_demo_target(t, ctx, "stereo", 2, MVR_VIEW_PATH_MULTIVIEW, &four, &st_four);
     uint8_t *b = render_demo_target(t, ctx, "stereo", 2, MVR_VIEW_PATH_MULTIVIEW, &autod, &st_auto);
@@ -274,6 +274,13 @@ static void anti_aliasing_choices(mvr_test_state *t)
             CHECK_EQ_INT(t, st_auto.view_path, MVR_VIEW_PATH_MULTIVIEW);
         }
         CHECK_MSG(t, memcmp(a, b, bytes) == 0, "auto and 4 samples differ by %u", max_abs_diff8(a, b, bytes));
+        /* the default (nothing asked) is AUTO: anti-aliased */
+        mvr_target_desc deflt = {MW, MH, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+        mvr_frame_stats st_default;
+        uint8_t *f = render_demo_target(t, ctx, "stereo", 2, MVR_VIEW_PATH_MULTIVIEW, &deflt, &st_default);
+        CHECK_EQ_INT(t, st_default.anti_aliasing, MVR_ANTI_ALIASING_MSAA);
+        CHECK_MSG(t, f && memcmp(f, b, bytes) == 0, "the default and auto differ");
+        free(f);
         CHECK_EQ_INT(t, st_ss.anti_aliasing, MVR_ANTI_ALIASING_SUPERSAMPLE);
         CHECK_EQ_INT(t, st_ss.supersample, 2);
         CHECK_EQ_INT(t, st_ss.view_path, MVR_VIEW_PATH_MULTIVIEW);

@@ -56,7 +56,8 @@ static bool render(mvr_test_state *t, mvr_context *ctx, mvr_scene *s, const mvr_
     mvr_renderer_desc rd = {.context = ctx, .view_path = ro->path};
     mvr_renderer *r = NULL;
     mvr_target *tg = NULL;
-    mvr_target_desc td = {.width = ro->w, .height = ro->h, .layers = n, .outputs = ro->outputs};
+    mvr_target_desc td = {.width = ro->w, .height = ro->h, .layers = n, .anti_aliasing = MVR_ANTI_ALIASING_NONE,
+                          .outputs = ro->outputs};
     bool ok = mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &tg) == MVR_OK;
     mvr_render_desc desc = {.exposure = 1.0f, .normal_space = ro->normal_space, .output_alpha_cutoff = ro->cutoff,
                             .clear_color = {0.1f, 0.2f, 0.3f, 1.0f}};

@@ -69,10 +69,9 @@ static void auto_exposure_tames_the_sun(mvr_test_state *t)
     v[1].position[0] += 0.064;
     mvr_view_set *vs = stress_view_set(t, v, 2, NULL);
     const uint32_t W = 96, H = 64;
-    /* the clear color of an HDR frame is scene-referred: a blue sky of
-     * about 5000 cd/m2 */
-    mvr_render_desc linear = {.clear_color = {3000, 4500, 8000, 1}};
-    mvr_render_desc autod = {.clear_color = {3000, 4500, 8000, 1}, .exposure_mode = MVR_EXPOSURE_AUTO,
+    /* the clear color is a display colour (never exposed): a pale blue sky */
+    mvr_render_desc linear = {.clear_color = {0.3f, 0.45f, 0.8f, 1}};
+    mvr_render_desc autod = {.clear_color = {0.3f, 0.45f, 0.8f, 1}, .exposure_mode = MVR_EXPOSURE_AUTO,
                              .tone_map = MVR_TONE_MAP_KHR_PBR_NEUTRAL};
     mvr_frame_stats st_lin, st_auto;
     uint8_t *white = render_desc(t, ctx, s, vs, MVR_VIEW_PATH_AUTO, MVR_COLOR_FORMAT_DEFAULT, W, H, &linear, &st_lin);
@@ -276,6 +275,192 @@ static void tone_mappers_match_their_formulas(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
+/* A clear colour is a display colour: where nothing is drawn the output
+ * holds the clear bytes of the plain frame (no post pass) whatever the
+ * exposure and tone map, on both view paths and both 8-bit formats, with
+ * and without anti-aliasing; the dark sky the CLI clears to stays itself
+ * under auto exposure of a sunlit scene. */
+static void clear_colour_is_display_referred(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    mvr_scene *s = sunny_scene(t);
+    const double eye[3] = {0, 2.5, 6}, target[3] = {0, 1.5, -1}; /* the horizon mid-view: sky above */
+    mvr_projection proj = {.yfov = 0.9, .znear = 0.1};
+    mvr_view_desc v[2] = {stress_view(eye, target, proj), stress_view(eye, target, proj)};
+    v[1].position[0] += 0.064;
+    mvr_view_set *vs = stress_view_set(t, v, 2, NULL);
+    const uint32_t W = 48, H = 32;
+    const size_t n = (size_t)W * H * 2;
+    const float clears[3][4] = {{1, 0, 1, 1}, {0.02f, 0.025f, 0.035f, 1}, {0.5f, 0.2f, 0.05f, 0.5f}};
+    const mvr_color_format formats[2] = {MVR_COLOR_FORMAT_DEFAULT, MVR_COLOR_FORMAT_RGBA8};
+    const mvr_tone_map maps[3] = {MVR_TONE_MAP_NONE, MVR_TONE_MAP_ACES, MVR_TONE_MAP_KHR_PBR_NEUTRAL};
+    const mvr_anti_aliasing aas[3] = {MVR_ANTI_ALIASING_NONE, MVR_ANTI_ALIASING_SUPERSAMPLE, MVR_ANTI_ALIASING_MSAA};
+    for (int f = 0; f < 2; ++f)
+        for (int c = 0; c < 3; ++c) {
+            /* the plain frame: its clear pixels (those another clear changes) hold the clear bytes */
+            mvr_render_desc plain = {.exposure = 1.0f};
+            memcpy(plain.clear_color, clears[c], sizeof plain.clear_color);
+            mvr_render_desc other = plain;
+            other.clear_color[0] = 0.25f;
+            stress_options o = {.format = formats[f], .width = W, .height = H, .render = &plain};
+            uint8_t *ref = stress_render(t, ctx, s, vs, &o, NULL);
+            o.render = &other;
+            uint8_t *mask = stress_render(t, ctx, s, vs, &o, NULL);
+            if (!ref || !mask) {
+                free(ref);
+                free(mask);
+                continue;
+            }
+            /* sky: a clear pixel whose neighbours are clear too (an anti-aliased edge pixel is not) */
+            size_t sky = 0;
+            uint8_t *deep = calloc(n, 1);
+            for (size_t i = 0; deep && i < n; ++i) {
+                int x = (int)(i % W), y = (int)(i / W % H);
+                deep[i] = 1;
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dx = -1; dx <= 1; ++dx) {
+                        int nx = x + dx < 0 ? 0 : x + dx >= (int)W ? (int)W - 1 : x + dx;
+                        int ny = y + dy < 0 ? 0 : y + dy >= (int)H ? (int)H - 1 : y + dy;
+                        size_t j = i - (size_t)x - (size_t)y * W + (size_t)nx + (size_t)ny * W;
+                        deep[i] &= ref[j * 4] != mask[j * 4];
+                    }
+                sky += deep[i];
+            }
+            CHECK_MSG(t, sky > n / 8 && sky < n * 7 / 8, "%zu of %zu pixels are sky", sky, n);
+            for (int m = 0; m < 9; ++m)
+                for (int a = 0; a < 3; ++a) {
+                    mvr_render_desc rd = plain;
+                    rd.tone_map = maps[m % 3];
+                    rd.exposure_mode = m < 3 ? MVR_EXPOSURE_LINEAR : m < 6 ? MVR_EXPOSURE_AUTO : MVR_EXPOSURE_EV100;
+                    rd.exposure = 0.001f;
+                    rd.ev100 = 16.0;
+                    o.render = &rd;
+                    o.aa = aas[a];
+                    for (int p = 0; p < 2; ++p) {
+                        o.path = p ? MVR_VIEW_PATH_LOOP : MVR_VIEW_PATH_MULTIVIEW;
+                        uint8_t *img = stress_render(t, ctx, s, vs, &o, NULL);
+                        size_t bad = 0, first = n;
+                        for (size_t i = 0; img && i < n; ++i)
+                            if (deep[i] && memcmp(img + i * 4, ref + i * 4, 4) != 0) {
+                                bad++;
+                                first = first < n ? first : i;
+                            }
+                        CHECK_MSG(t, img && bad == 0,
+                                  "clear %d on %s, tone map %s, exposure %d, aa %s, %s path: %zu of %zu sky "
+                                  "pixels differ (first %zu: %d,%d,%d,%d for %d,%d,%d,%d)",
+                                  c, mvr_color_format_name(formats[f]), mvr_tone_map_name(rd.tone_map),
+                                  (int)rd.exposure_mode, mvr_anti_aliasing_name(o.aa), p ? "loop" : "multiview",
+                                  bad, sky, first, img && first < n ? img[first * 4] : -1,
+                                  img && first < n ? img[first * 4 + 1] : -1, img && first < n ? img[first * 4 + 2] : -1,
+                                  img && first < n ? img[first * 4 + 3] : -1, first < n ? ref[first * 4] : -1,
+                                  first < n ? ref[first * 4 + 1] : -1, first < n ? ref[first * 4 + 2] : -1,
+                                  first < n ? ref[first * 4 + 3] : -1);
+                        free(img);
+                    }
+                }
+            if (c == 1) /* the dark sky: its own bytes, not black */
+                CHECK_MSG(t, ref[0] > 30 || ref[(n - 1) * 4] > 30, "dark sky %d,%d,%d", ref[0], ref[1], ref[2]);
+            free(deep);
+            free(ref);
+            free(mask);
+        }
+    mvr_view_set_destroy(vs);
+    mvr_scene_destroy(s);
+    mvr_context_destroy(ctx);
+}
+
+/* A slanted quad of emissive `bright` over a dark one (emissive 0.05), no lights. */
+static mvr_scene *edge_scene(mvr_test_state *t, float bright)
+{
+    mvr_scene *s = stress_scene();
+    mvr_material_id mats[2];
+    for (int k = 0; k < 2; ++k) {
+        mvr_material_desc m = mvr_material_defaults();
+        m.base_color_factor[0] = m.base_color_factor[1] = m.base_color_factor[2] = 0.0f;
+        m.metallic_factor = 0.0f;
+        m.emissive_factor[0] = m.emissive_factor[1] = m.emissive_factor[2] = 1.0f;
+        m.emissive_strength = k ? bright : 0.05f;
+        CHECK(t, mvr_scene_add_material(s, &m, &mats[k]) == MVR_OK);
+    }
+    stress_node(t, s, stress_add_quad(t, s, mats[0]), 0, 0, 0, 10.0);
+    double a = 0.35; /* about 20 degrees: every edge pixel partly covered, at every coverage */
+    mvr_node_desc nd = {.mesh = stress_add_quad(t, s, mats[1]), .translation = {0, 0, 0.5},
+                        .rotation = {0, 0, sin(a / 2), cos(a / 2)}, .scale = {0.55, 0.55, 0.55}};
+    mvr_node_id id;
+    CHECK(t, mvr_scene_add_node(s, &nd, &id) == MVR_OK);
+    return s;
+}
+
+/* The resolve respects HDR: the edge of a blown-out surface (emissive 1000,
+ * tone mapped to white) against a dark one has as many partly covered
+ * pixels as the edge of a surface exactly white (emissive 1, no tone map),
+ * and their mean sits near the mean of the two display values, with MSAA
+ * and with supersampling, the same bytes on both view paths. A resolve of
+ * the HDR values before tone mapping turns most of those pixels white. */
+static void resolve_tone_maps_each_sample(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    mvr_scene *scenes[2] = {edge_scene(t, 1.0f), edge_scene(t, 1000.0f)};
+    mvr_view_desc v;
+    memset(&v, 0, sizeof v);
+    v.position[2] = 5;
+    v.projection.type = MVR_PROJECTION_ORTHOGRAPHIC;
+    v.projection.xmag = v.projection.ymag = 1;
+    v.projection.zfar = 10;
+    mvr_view_desc vv[2] = {v, v};
+    mvr_view_set *vs = stress_view_set(t, vv, 2, NULL);
+    const uint32_t W = 64, H = 64;
+    const mvr_anti_aliasing aas[2] = {MVR_ANTI_ALIASING_MSAA, MVR_ANTI_ALIASING_SUPERSAMPLE};
+    for (int a = 0; a < 2; ++a) {
+        size_t partial[2] = {0, 0};
+        double mean[2] = {0, 0}, mid[2] = {0, 0};
+        for (int k = 0; k < 2; ++k) {
+            /* exposure 1; the blown-out scene tone mapped (PBR Neutral: 1000 -> white) */
+            mvr_render_desc rd = {.exposure_mode = MVR_EXPOSURE_EV100, .ev100 = -log2(1.2),
+                                  .tone_map = k ? MVR_TONE_MAP_KHR_PBR_NEUTRAL : MVR_TONE_MAP_NONE};
+            stress_options o = {.format = MVR_COLOR_FORMAT_DEFAULT, .width = W, .height = H, .render = &rd,
+                                .aa = aas[a], .path = MVR_VIEW_PATH_MULTIVIEW};
+            uint8_t *mv = stress_render(t, ctx, scenes[k], vs, &o, NULL);
+            o.path = MVR_VIEW_PATH_LOOP;
+            uint8_t *loop = stress_render(t, ctx, scenes[k], vs, &o, NULL);
+            if (mv && loop)
+                CHECK_MSG(t, memcmp(mv, loop, (size_t)W * H * 8) == 0, "%s: the paths differ",
+                          mvr_anti_aliasing_name(aas[a]));
+            if (mv) {
+                int dark = mv[1], bright = mv[((H / 2) * W + W / 2) * 4 + 1];
+                mid[k] = (dark + bright) / 2.0;
+                for (size_t i = 0; i < (size_t)W * H; ++i) {
+                    int g = mv[i * 4 + 1];
+                    if (abs(g - dark) > 2 && abs(g - bright) > 2) {
+                        partial[k]++;
+                        mean[k] += g;
+                    }
+                }
+                mean[k] /= partial[k] ? (double)partial[k] : 1.0;
+                printf("  %-11s %-10s dark %d, bright %d: %zu partly covered pixels, mean %.1f (midpoint %.1f)\n",
+                       mvr_anti_aliasing_name(aas[a]), k ? "blown out" : "white", dark, bright, partial[k], mean[k],
+                       mid[k]);
+                CHECK_MSG(t, bright == 255, "%s: the bright surface is %d", mvr_anti_aliasing_name(aas[a]), bright);
+            }
+            free(mv);
+            free(loop);
+        }
+        CHECK_MSG(t, partial[0] > 40, "%zu edge pixels", partial[0]);
+        CHECK_MSG(t, partial[1] >= partial[0] * 8 / 10, "%s: %zu partly covered pixels blown out, %zu white",
+                  mvr_anti_aliasing_name(aas[a]), partial[1], partial[0]);
+        CHECK_MSG(t, fabs(mean[1] - mid[1]) <= 0.15 * 255, "%s: edge mean %.1f, the display values' mean %.1f",
+                  mvr_anti_aliasing_name(aas[a]), mean[1], mid[1]);
+    }
+    mvr_view_set_destroy(vs);
+    mvr_scene_destroy(scenes[0]);
+    mvr_scene_destroy(scenes[1]);
+    mvr_context_destroy(ctx);
+}
+
 /* The stats a caller pools to meter views rendered in parts (mvr render's
  * stream): 4 views, one looking at the black sky alone (not measured); the
  * measured luminances of parts of 2 views, weighted by their measured
@@ -335,4 +520,5 @@ static void auto_exposure_pools_over_parts(mvr_test_state *t)
 }
 
 MVR_TEST_MAIN(TEST(auto_exposure_tames_the_sun), TEST(post_pass_is_the_same_on_both_paths),
-              TEST(tone_mappers_match_their_formulas), TEST(auto_exposure_pools_over_parts))
+              TEST(tone_mappers_match_their_formulas), TEST(auto_exposure_pools_over_parts),
+              TEST(clear_colour_is_display_referred), TEST(resolve_tone_maps_each_sample))

@@ -57,7 +57,7 @@ static bool render_run(mvr_test_state *t, mvr_context *ctx, const char *dir, tru
     }
     mvr_renderer *r = NULL;
     mvr_target *target = NULL;
-    mvr_target_desc td = {W, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+    mvr_target_desc td = {W, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_NONE, 0};
     bool ok = mvr_renderer_create(&rd, &r, &err) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK &&
               mvr_renderer_render(r, scene, vs, target, NULL) == MVR_OK;
     CHECK_MSG(t, ok, "%s", r ? mvr_renderer_last_error(r) : err.message);

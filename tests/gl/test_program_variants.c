@@ -79,7 +79,7 @@ static void variants_follow_the_scene(mvr_test_state *t)
         mvr_renderer_desc rd = {.context = ctx, .material_path = paths[pi], .tuning = {.mode = MVR_TUNING_OFF}};
         mvr_renderer *r = NULL;
         mvr_target *target = NULL;
-        mvr_target_desc td = {W, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+        mvr_target_desc td = {W, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_NONE, 0};
         bool ok = mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK &&
                   mvr_renderer_render(r, scene, vs, target, NULL) == MVR_OK;
         CHECK_MSG(t, ok, "%s", r ? mvr_renderer_last_error(r) : "no renderer");
@@ -164,7 +164,7 @@ static bool render_demo_run(mvr_test_state *t, mvr_context *ctx, const char *dem
     rd.context = ctx;
     mvr_renderer *r = NULL;
     mvr_target *target = NULL;
-    mvr_target_desc td = {W, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+    mvr_target_desc td = {W, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_NONE, 0};
     bool ok = mvr_renderer_create(&rd, &r, &err) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK &&
               mvr_renderer_render(r, scene, vs, target, NULL) == MVR_OK;
     CHECK_MSG(t, ok, "%s: %s", demo, r ? mvr_renderer_last_error(r) : err.message);

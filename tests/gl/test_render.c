@@ -54,7 +54,7 @@ static bool render_demo_with(mvr_test_state *t, mvr_context *ctx, const char *de
     }
     mvr_renderer *r = make_renderer_with(t, ctx, path, overrides);
     mvr_target *target = NULL;
-    mvr_target_desc td = {W, H, views, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+    mvr_target_desc td = {W, H, views, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_NONE, 0};
     if (external)
         td = *external;
     bool ok = r && mvr_target_create(r, &td, &target) == MVR_OK;
@@ -242,7 +242,7 @@ static void application_texture_array(mvr_test_state *t)
     for (size_t i = 0; have_own && i < MVR_ARRAY_COUNT(cases); ++i) {
         if (cases[i].path == MVR_VIEW_PATH_MULTIVIEW && !caps->ext.ovr_multiview2)
             continue;
-        mvr_target_desc ext = {W, H, 2, MVR_COLOR_FORMAT_DEFAULT, cases[i].tex, cases[i].level, 1, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+        mvr_target_desc ext = {W, H, 2, MVR_COLOR_FORMAT_DEFAULT, cases[i].tex, cases[i].level, 1, 0, 0, MVR_ANTI_ALIASING_NONE, 0};
         rendered app;
         memset(&app, 0, sizeof app);
         if (render_demo(t, ctx, "stereo", 2, cases[i].path, &ext, &app)) {
@@ -276,9 +276,9 @@ static void bad_targets_are_refused(mvr_test_state *t)
         return;
     mvr_renderer *r = make_renderer(t, ctx, MVR_VIEW_PATH_AUTO);
     mvr_target *target = NULL;
-    mvr_target_desc d = {0, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+    mvr_target_desc d = {0, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_NONE, 0};
     CHECK(t, mvr_target_create(r, &d, &target) == MVR_ERROR_INVALID_ARGUMENT && !target);
-    d = (mvr_target_desc){W, H, 100000, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+    d = (mvr_target_desc){W, H, 100000, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_NONE, 0};
     CHECK(t, mvr_target_create(r, &d, &target) == MVR_ERROR_INVALID_ARGUMENT);
     CHECK(t, strstr(mvr_renderer_last_error(r), "GL_MAX_ARRAY_TEXTURE_LAYERS") != NULL);
     /* a 2D texture is not a 2D array */
@@ -286,7 +286,7 @@ static void bad_targets_are_refused(mvr_test_state *t)
     ctx->gl.GenTextures(1, &tex);
     ctx->gl.BindTexture(GL_TEXTURE_2D, tex);
     ctx->gl.TexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, W, H);
-    d = (mvr_target_desc){W, H, 2, MVR_COLOR_FORMAT_RGBA8, tex, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+    d = (mvr_target_desc){W, H, 2, MVR_COLOR_FORMAT_RGBA8, tex, 0, 0, 0, 0, MVR_ANTI_ALIASING_NONE, 0};
     mvr_result res = mvr_target_create(r, &d, &target);
     CHECK_MSG(t, res == MVR_ERROR_GL || res == MVR_ERROR_FRAMEBUFFER, "%s", mvr_result_name(res));
     CHECK(t, target == NULL);
@@ -296,7 +296,7 @@ static void bad_targets_are_refused(mvr_test_state *t)
     mvr_view_set *vs = NULL;
     mvr_demo_desc dd = {3, W, H, {0}};
     CHECK(t, mvr_demo_create("ring", &dd, &scene, &vs, NULL) == MVR_OK);
-    d = (mvr_target_desc){W, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+    d = (mvr_target_desc){W, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_NONE, 0};
     CHECK(t, mvr_target_create(r, &d, &target) == MVR_OK);
     CHECK(t, mvr_renderer_render(r, scene, vs, target, NULL) == MVR_ERROR_INVALID_ARGUMENT);
     CHECK(t, strstr(mvr_renderer_last_error(r), "3 views") != NULL);
@@ -327,7 +327,7 @@ static void disabled_views_are_skipped(mvr_test_state *t)
     CHECK(t, mvr_view_set_update(vs, 2, &v) == MVR_OK);
     mvr_renderer *r = make_renderer(t, ctx, MVR_VIEW_PATH_AUTO);
     mvr_target *target = NULL;
-    mvr_target_desc d = {W, H, 4, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+    mvr_target_desc d = {W, H, 4, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_NONE, 0};
     CHECK(t, mvr_target_create(r, &d, &target) == MVR_OK);
     CHECK(t, mvr_renderer_render(r, scene, vs, target, NULL) == MVR_OK);
     mvr_frame_stats st;
@@ -354,7 +354,7 @@ static float *render_format(mvr_test_state *t, mvr_context *ctx, mvr_color_forma
     CHECK(t, mvr_demo_create("ring", &dd, &scene, &vs, NULL) == MVR_OK);
     mvr_renderer *r = make_renderer(t, ctx, MVR_VIEW_PATH_AUTO);
     mvr_target *target = NULL;
-    mvr_target_desc td = {W, H, 1, format, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+    mvr_target_desc td = {W, H, 1, format, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_NONE, 0};
     mvr_render_desc rd = {.clear_color = {0.2f, 0.1f, 0.05f, 1.0f}, .exposure = 1.0f, .tone_map = tone};
     float *px = malloc((size_t)W * H * 4 * sizeof *px);
     bool ok = mvr_target_create(r, &td, &target) == MVR_OK && mvr_renderer_render(r, scene, vs, target, &rd) == MVR_OK &&
@@ -469,7 +469,7 @@ static void culling_changes_cost_not_pixels(mvr_test_state *t)
             mvr_renderer_desc rd = {.context = ctx, .view_path = paths[pi], .disable_culling = !cull};
             mvr_renderer *r = NULL;
             mvr_target *target = NULL;
-            mvr_target_desc td = {W, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+            mvr_target_desc td = {W, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_NONE, 0};
             mvr_render_desc desc = {.clear_color = {0.1f, 0.1f, 0.1f, 1.0f}, .exposure = 1.0f, .tone_map = MVR_TONE_MAP_NONE};
             bool ok = mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK &&
                       mvr_renderer_render(r, scene, vs, target, &desc) == MVR_OK;
@@ -529,7 +529,7 @@ static void dirty_tracking_sends_only_changes(mvr_test_state *t)
     mvr_renderer_desc rd = {.context = ctx, .tuning = {.mode = MVR_TUNING_OFF}}; /* steady-state uploads */
     mvr_renderer *r = NULL;
     mvr_target *target = NULL;
-    mvr_target_desc td = {W, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+    mvr_target_desc td = {W, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_NONE, 0};
     CHECK(t, mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK);
     uint64_t up[5];
     uint8_t before[W * H * 4], after[W * H * 4];
@@ -603,7 +603,7 @@ static void blend_pass_only_where_needed(mvr_test_state *t)
     for (int pi = 0; pi < 2; ++pi) {
         mvr_renderer *r = make_renderer(t, ctx, paths[pi]);
         mvr_target *target = NULL;
-        mvr_target_desc td = {W, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+        mvr_target_desc td = {W, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_NONE, 0};
         CHECK(t, r && mvr_target_create(r, &td, &target) == MVR_OK);
         if (!target) {
             mvr_renderer_destroy(r);

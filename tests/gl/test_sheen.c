@@ -120,7 +120,7 @@ static void *render(mvr_test_state *t, mvr_context *ctx, mvr_scene *s, mvr_view_
     mvr_target *tg = NULL;
     mvr_environment *env = NULL;
     mvr_environment_desc ed = {.source = MVR_ENVIRONMENT_UNIFORM};
-    mvr_target_desc td = {.width = W, .height = H, .layers = n,
+    mvr_target_desc td = {.width = W, .height = H, .layers = n, .anti_aliasing = MVR_ANTI_ALIASING_NONE,
                           .color_format = o.f32 ? MVR_COLOR_FORMAT_RGBA32F : MVR_COLOR_FORMAT_DEFAULT};
     bool ok = mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &tg) == MVR_OK &&
               (!o.environment || mvr_environment_create(&ed, &env, NULL) == MVR_OK);
@@ -399,7 +399,7 @@ static void charlie_chain_only_for_sheen(mvr_test_state *t)
         mvr_renderer_desc rd = {.context = ctx, .view_path = MVR_VIEW_PATH_LOOP};
         mvr_renderer *r = NULL;
         mvr_target *tg = NULL;
-        mvr_target_desc td = {.width = W, .height = H, .layers = 1};
+        mvr_target_desc td = {.width = W, .height = H, .layers = 1, .anti_aliasing = MVR_ANTI_ALIASING_NONE};
         bool ok = mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &tg) == MVR_OK;
         CHECK(t, ok);
         mvr_scene *order[2][3] = {{a, b, b}, {b, NULL, NULL}};

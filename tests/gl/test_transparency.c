@@ -54,7 +54,7 @@ static void per_view_order_is_each_views_own(mvr_test_state *t)
         {
             mvr_renderer *cr = NULL;
             mvr_target *ct = NULL;
-            mvr_target_desc ctd = {32, 32, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+            mvr_target_desc ctd = {32, 32, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_NONE, 0};
             mvr_render_desc cdesc = {.clear_color = {0, 0, 0, 1}, .exposure = 1.0f, .tone_map = MVR_TONE_MAP_NONE};
             bool cok = mvr_renderer_create(&cd, &cr, NULL) == MVR_OK && mvr_target_create(cr, &ctd, &ct) == MVR_OK &&
                        mvr_renderer_render(cr, s, both, ct, &cdesc) == MVR_OK;
@@ -75,7 +75,7 @@ static void per_view_order_is_each_views_own(mvr_test_state *t)
             rd.view_path = path;
         mvr_renderer *r = NULL;
         mvr_target *target = NULL;
-        mvr_target_desc td = {32, 32, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+        mvr_target_desc td = {32, 32, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_NONE, 0};
         mvr_render_desc desc = {.clear_color = {0, 0, 0, 1}, .exposure = 1.0f, .tone_map = MVR_TONE_MAP_NONE};
         bool ok = mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK &&
                   mvr_renderer_render(r, s, both, target, &desc) == MVR_OK;
@@ -147,7 +147,7 @@ static void multiview_with_fallback_equals_loop(mvr_test_state *t)
                                         .transparency_order = k == 2 ? orders[1] : orders[0]};
                 mvr_renderer *r = NULL;
                 mvr_target *tg = NULL;
-                mvr_target_desc td = {48, 48, counts[c], MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+                mvr_target_desc td = {48, 48, counts[c], MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_NONE, 0};
                 bool ok = mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &tg) == MVR_OK &&
                           mvr_renderer_render(r, s, vs, tg, NULL) == MVR_OK;
                 CHECK(t, ok);
@@ -187,7 +187,7 @@ static void multiview_with_fallback_equals_loop(mvr_test_state *t)
                                 .transparency_order = k ? MVR_TRANSPARENCY_ORDER_CENTROID : MVR_TRANSPARENCY_ORDER_PER_VIEW};
         mvr_renderer *r = NULL;
         mvr_target *tg = NULL;
-        mvr_target_desc td = {160, 120, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+        mvr_target_desc td = {160, 120, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_NONE, 0};
         bool ok = mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &tg) == MVR_OK &&
                   mvr_renderer_render(r, s, vs, tg, NULL) == MVR_OK;
         img[k] = ok ? malloc((size_t)160 * 120 * 8) : NULL;

@@ -42,7 +42,7 @@ static bool rig_make(mvr_test_state *t, const mvr_renderer_desc *rd, uint32_t vi
 {
     memset(g, 0, sizeof *g);
     mvr_demo_desc dd = {.views = views, .width = W, .height = H};
-    mvr_target_desc td = {.width = W, .height = H, .layers = 16};
+    mvr_target_desc td = {.width = W, .height = H, .layers = 16, .anti_aliasing = MVR_ANTI_ALIASING_NONE};
     bool ok = mvr_demo_create("ring", &dd, &g->scene, &g->views, NULL) == MVR_OK &&
               mvr_renderer_create(rd, &g->r, NULL) == MVR_OK && mvr_target_create(g->r, &td, &g->tg) == MVR_OK;
     CHECK(t, ok);
@@ -232,7 +232,7 @@ static mvr_view_set *strip_views(uint32_t count)
 static bool skin_rig_make(mvr_test_state *t, const mvr_renderer_desc *rd, skin_scene *k, rig *g)
 {
     memset(g, 0, sizeof *g);
-    mvr_target_desc td = {.width = W, .height = H, .layers = 4};
+    mvr_target_desc td = {.width = W, .height = H, .layers = 4, .anti_aliasing = MVR_ANTI_ALIASING_NONE};
     bool ok = mvr_scene_create(NULL, &g->scene, NULL) == MVR_OK && build_skin_scene(g->scene, k, true, true) == MVR_OK &&
               (g->views = strip_views(4)) != NULL && mvr_renderer_create(rd, &g->r, NULL) == MVR_OK &&
               mvr_target_create(g->r, &td, &g->tg) == MVR_OK;

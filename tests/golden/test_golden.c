@@ -75,7 +75,7 @@ static void golden(mvr_test_state *t, const char *demo, uint32_t views)
     mvr_target *target = NULL;
     mvr_demo_desc dd = {views, W, H, {0}};
     mvr_renderer_desc rd = {.context = ctx};
-    mvr_target_desc td = {W, H, views, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+    mvr_target_desc td = {W, H, views, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_NONE, 0};
     mvr_render_desc desc = {.clear_color = {0.02f, 0.025f, 0.035f, 1.0f}, .exposure = 1.0f, .tone_map = MVR_TONE_MAP_NONE};
     bool ok = mvr_demo_create(demo, &dd, &scene, &vs, &err) == MVR_OK &&
               mvr_renderer_create(&rd, &r, &err) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK &&

@@ -20,7 +20,7 @@ std::vector<uint8_t> two_layers(mvr_test_state *t, mvr_context *ctx, mvr_scene *
     rd.program_cache_dir = program_cache_dir;
     mvr_renderer *r = nullptr;
     mvr_target *target = nullptr;
-    mvr_target_desc td = {W, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+    mvr_target_desc td = {W, H, 2, MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_NONE, 0};
     mvr_render_desc desc = {{0.05f, 0.05f, 0.08f, 1.0f}, 1.0f, MVR_TONE_MAP_NONE};
     bool ok = mvr_renderer_create(&rd, &r, &err) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK &&
               mvr_renderer_render(r, scene, views, target, &desc) == MVR_OK;

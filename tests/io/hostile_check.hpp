@@ -28,7 +28,7 @@ struct outcome {
     mvr_scene *scene = nullptr;
     mvr_gltf_info info = {};
     std::vector<std::string> warnings, all_logged;
-    double ms = 0;
+    double ms = 0; /* CPU time of the load, all threads */
     long rss_growth_kb = 0;
     bool warned(const std::string &part) const
     {

@@ -323,7 +323,8 @@ static void physical_lights_are_exposed_by_default(mvr_test_state *t)
     bool ok = mvr_renderer_create(&rd, &r, &err) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK;
     for (int k = 0; ok && k < 2; ++k) {
         mvr_render_desc desc = {};
-        desc.clear_color[0] = 2000.0f, desc.clear_color[1] = 3000.0f, desc.clear_color[2] = 5000.0f; /* sky, cd/m2 */
+        /* a pale sky: a display colour (never exposed), about 40% of the view */
+        desc.clear_color[0] = 0.3f, desc.clear_color[1] = 0.45f, desc.clear_color[2] = 0.8f;
         desc.clear_color[3] = 1.0f;
         if (k == 1) {
             desc.exposure_mode = MVR_EXPOSURE_AUTO;
@@ -350,7 +351,7 @@ static void physical_lights_are_exposed_by_default(mvr_test_state *t)
         std::printf("  %s: mean luminance %.3f, %.1f%% clipped, EV100 %.2f\n", k ? "auto + PBR Neutral" : "exposure 1",
                     mean, 100.0 * clip, st.exposure_ev100);
         if (k == 0) {
-            CHECK_MSG(t, clip > 0.9, "exposure 1: only %.1f%% clipped", 100.0 * clip);
+            CHECK_MSG(t, clip > 0.5, "exposure 1: only %.1f%% clipped", 100.0 * clip);
         } else {
             CHECK_MSG(t, mean >= 0.1 && mean <= 0.6 && clip <= 0.03, "auto: mean %.3f, %.1f%% clipped", mean,
                       100.0 * clip);

@@ -91,6 +91,7 @@ std::vector<uint8_t> render_mvr(mvr_test_state *t, mvr_context *ctx, const nlohm
         td.width = w;
         td.height = h;
         td.color_format = MVR_COLOR_FORMAT_RGBA32F;
+        td.anti_aliasing = MVR_ANTI_ALIASING_NONE; /* the comparisons' thresholds were set without AA */
         mvr_render_desc desc;
         std::memset(&desc, 0, sizeof desc);
         desc.clear_color[3] = 1.0f;

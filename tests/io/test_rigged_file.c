@@ -361,7 +361,7 @@ static void one_renderer_plays_the_clip(mvr_test_state *t)
                                     .tuning = {.mode = MVR_TUNING_OFF}};
             mvr_renderer *r = NULL;
             mvr_target *target = NULL;
-            mvr_target_desc td = {.width = W, .height = H, .layers = VIEWS};
+            mvr_target_desc td = {.width = W, .height = H, .layers = VIEWS, .anti_aliasing = MVR_ANTI_ALIASING_NONE};
             mvr_render_desc desc = {.clear_color = {0.05f, 0.05f, 0.05f, 1.0f}, .exposure = 1.0f};
             bool ok = mvr_renderer_create(&rd, &r, NULL) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK;
             CHECK(t, ok);

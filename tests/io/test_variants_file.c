@@ -200,7 +200,7 @@ static void selections_render_their_materials(mvr_test_state *t)
             mvr_renderer_desc rd = {.context = ctx, .view_path = vpaths[vp], .material_path = mpaths[mp]};
             mvr_renderer *r = NULL;
             mvr_target *target = NULL;
-            mvr_target_desc td = {.width = W, .height = H, .layers = VIEWS};
+            mvr_target_desc td = {.width = W, .height = H, .layers = VIEWS, .anti_aliasing = MVR_ANTI_ALIASING_NONE};
             bool ok = mvr_renderer_create(&rd, &r, &err) == MVR_OK && mvr_target_create(r, &td, &target) == MVR_OK;
             CHECK_MSG(t, ok, "renderer / target: %s", r ? mvr_renderer_last_error(r) : err.message);
             mvr_render_desc desc = {.clear_color = {0.05f, 0.05f, 0.05f, 1.0f}, .exposure = 1.0f};

@@ -336,7 +336,7 @@ static int render(int argc, char **argv)
     mvr_renderer_desc rd = {.view_path = strcmp(path, "loop") == 0        ? MVR_VIEW_PATH_LOOP
                                          : strcmp(path, "multiview") == 0 ? MVR_VIEW_PATH_MULTIVIEW
                                                                           : MVR_VIEW_PATH_AUTO};
-    mvr_target_desc td = {.width = w, .height = h};
+    mvr_target_desc td = {.width = w, .height = h, .anti_aliasing = MVR_ANTI_ALIASING_NONE}; /* as test_render.py asks (samples=1) */
     mvr_output outputs[8];
     uint32_t output_count = 0;
     if (argc > 9) {

@@ -28,8 +28,9 @@ def c_matrix(cols):
 def python_render(file, layout, count, view_path, outputs=("color",)):
     with mvr.Context(view_path=view_path) as ctx, mvr.Scene.load(PEERS / file) as scene, \
             mvr.Views.layout(scene, layout, count=count, aspect=W / H) as views, mvr.Environment("neutral") as env:
+        # samples=1: no anti-aliasing (the view path asked must run; py_reference pins none too)
         got = ctx.render(scene, views, (W, H), outputs=outputs, environment=env, choose_exposure=True,
-                         clear_color=CLEAR)
+                         clear_color=CLEAR, samples=1)
         return got, ctx.stats
 
 

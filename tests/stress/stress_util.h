@@ -151,6 +151,9 @@ typedef struct stress_options {
     float clear[4];
     mvr_shadow_desc shadows;
     const mvr_render_desc *render; /* the whole render desc (clear and shadows above unused); NULL = those */
+    /* anti-aliasing: 0 (MVR_ANTI_ALIASING_DEFAULT) pins none, as these
+     * renders compare bytes of other things; MSAA / SUPERSAMPLE / AUTO ask it */
+    mvr_anti_aliasing aa;
 } stress_options;
 
 /* Renders every view of vs into its layer and reads them all back, layer
@@ -170,7 +173,8 @@ static inline void *stress_render(mvr_test_state *t, mvr_context *ctx, mvr_scene
         CHECK_MSG(t, 0, "renderer: %s", err.message);
         return NULL;
     }
-    mvr_target_desc td = {o->width, o->height, n, o->format, 0, 0, 0, 0, 0, MVR_ANTI_ALIASING_DEFAULT, 0};
+    mvr_target_desc td = {o->width, o->height, n, o->format, 0, 0, 0, 0, 0,
+                          o->aa == MVR_ANTI_ALIASING_DEFAULT ? MVR_ANTI_ALIASING_NONE : o->aa, 0};
     mvr_render_desc desc = {.clear_color = {o->clear[0], o->clear[1], o->clear[2], o->clear[3]},
                             .exposure = 1.0f,
                             .tone_map = MVR_TONE_MAP_NONE,
