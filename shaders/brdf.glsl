@@ -20,7 +20,7 @@ vec3 mvr_brdf(vec3 n, vec3 v, vec3 l, vec3 base, float metallic, float alpha)
     float n_dot_h = clamp(dot(n, h), 0.0, 1.0);
     float v_dot_h = clamp(dot(v, h), 0.0, 1.0);
     vec3 f0 = mix(vec3(0.04), base, metallic);
-    vec3 f = f0 + (1.0 - f0) * pow(1.0 - v_dot_h, 5.0);
+    vec3 f = f0 + (1.0 - f0) * mvr_pow5(1.0 - v_dot_h);
     vec3 diffuse = (1.0 - f) * (1.0 - metallic) * base / MVR_PI;
     vec3 specular = f * mvr_d_ggx(n_dot_h, alpha) * mvr_v_smith_ggx_correlated(n_dot_l, n_dot_v, alpha);
     return (diffuse + specular) * n_dot_l;

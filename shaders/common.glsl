@@ -23,6 +23,14 @@ vec3 mvr_safe_normalize(vec3 v, vec3 fallback)
     return v * inversesqrt(len2);
 }
 
+// x^5 (Schlick's Fresnel) as three multiplications: llvmpipe evaluates pow()
+// as exp2(y log2 x), two polynomial approximations per lane, and is less exact.
+float mvr_pow5(float x)
+{
+    float x2 = x * x;
+    return x2 * x2 * x;
+}
+
 // Exact piecewise sRGB encode (IEC 61966-2-1), not a gamma approximation.
 vec3 mvr_linear_to_srgb(vec3 c)
 {

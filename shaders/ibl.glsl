@@ -29,18 +29,30 @@ vec3 mvr_env_diffuse(vec3 e)
     return max(c, vec3(0.0));
 }
 
+// What the split-sum Fresnel of one pixel shares between its lobes (the
+// dielectric's and the metal's): the DFG table's scale and bias at (n.v,
+// roughness), one fetch, and Schlick's (1 - n.v)^5.
+struct mvr_dfg {
+    vec2 ab;
+    float x5;
+};
+
+mvr_dfg mvr_dfg_at(float n_dot_v, float roughness)
+{
+    return mvr_dfg(texture(mvr_env_dfg, clamp(vec2(n_dot_v, roughness), 0.0, 1.0)).rg, mvr_pow5(1.0 - n_dot_v));
+}
+
 // Single- plus multiple-scattering specular albedo of GGX for F0: the
 // roughness-dependent Fresnel and energy compensation of Fdez-Aguera, "A
 // Multiple-Scattering Microfacet Model for Real-Time Image-based Lighting"
 // (JCGT 8(1), 2019), as the Khronos glTF Sample Renderer's getIBLGGXFresnel.
-vec3 mvr_ibl_fresnel(float n_dot_v, float roughness, vec3 f0)
+vec3 mvr_ibl_fresnel(mvr_dfg g, float roughness, vec3 f0)
 {
-    vec2 ab = texture(mvr_env_dfg, clamp(vec2(n_dot_v, roughness), 0.0, 1.0)).rg;
     vec3 fr = max(vec3(1.0 - roughness), f0) - f0;
-    vec3 k_s = f0 + fr * pow(1.0 - n_dot_v, 5.0);
-    vec3 fss_ess = k_s * ab.x + ab.y;
-    float ems = 1.0 - (ab.x + ab.y);
-    vec3 f_avg = f0 + (1.0 - f0) / 21.0;
+    vec3 k_s = f0 + fr * g.x5;
+    vec3 fss_ess = k_s * g.ab.x + g.ab.y;
+    float ems = 1.0 - (g.ab.x + g.ab.y);
+    vec3 f_avg = f0 + (1.0 - f0) * (1.0 / 21.0);
     vec3 fms_ems = ems * fss_ess * f_avg / (1.0 - f_avg * ems);
     return fss_ess + fms_ems;
 }
@@ -48,14 +60,13 @@ vec3 mvr_ibl_fresnel(float n_dot_v, float roughness, vec3 f0)
 #ifdef MVR_SPECULAR
 // The same with the specular weight w of KHR_materials_specular (the
 // Khronos renderer's getIBLGGXFresnel with specularWeight).
-vec3 mvr_ibl_fresnel_weighted(float n_dot_v, float roughness, vec3 f0, float w)
+vec3 mvr_ibl_fresnel_weighted(mvr_dfg g, float roughness, vec3 f0, float w)
 {
-    vec2 ab = texture(mvr_env_dfg, clamp(vec2(n_dot_v, roughness), 0.0, 1.0)).rg;
     vec3 fr = max(vec3(1.0 - roughness), f0) - f0;
-    vec3 k_s = f0 + fr * pow(1.0 - n_dot_v, 5.0);
-    vec3 fss_ess = w * (k_s * ab.x + ab.y);
-    float ems = 1.0 - (ab.x + ab.y);
-    vec3 f_avg = w * (f0 + (1.0 - f0) / 21.0);
+    vec3 k_s = f0 + fr * g.x5;
+    vec3 fss_ess = w * (k_s * g.ab.x + g.ab.y);
+    float ems = 1.0 - (g.ab.x + g.ab.y);
+    vec3 f_avg = w * (f0 + (1.0 - f0) * (1.0 / 21.0));
     vec3 fms_ems = ems * fss_ess * f_avg / (1.0 - f_avg * ems);
     return fss_ess + fms_ems;
 }
@@ -98,7 +109,7 @@ vec3 mvr_ibl(vec3 n, vec3 v, vec3 base, float metallic, float roughness)
         vec3 l = t * (r * cos(phi)) + b * (r * sin(phi)) + n * sqrt(max(1.0 - xi.y, 0.0));
         vec3 h = mvr_safe_normalize(l + v, n);
         vec3 radiance = textureLod(mvr_env_specular, mvr_env_rotation * l, 0.0).rgb;
-        vec3 f = f0 + (1.0 - f0) * pow(1.0 - clamp(dot(v, h), 0.0, 1.0), 5.0);
+        vec3 f = f0 + (1.0 - f0) * mvr_pow5(1.0 - clamp(dot(v, h), 0.0, 1.0));
         diffuse += (1.0 - f) * radiance;
         cosine += radiance;
         // specular: pdf(l) = D(h) (n.h) / (4 v.h), so each sample weighs
@@ -110,7 +121,7 @@ vec3 mvr_ibl(vec3 n, vec3 v, vec3 base, float metallic, float roughness)
         float n_dot_l = dot(n, l);
         if (n_dot_l > 0.0 && v_dot_h > 0.0) {
             // (v.h may round above 1: pow of a negative base is undefined)
-            f = f0 + (1.0 - f0) * pow(clamp(1.0 - v_dot_h, 0.0, 1.0), 5.0);
+            f = f0 + (1.0 - f0) * mvr_pow5(clamp(1.0 - v_dot_h, 0.0, 1.0));
             float vis = mvr_v_smith_ggx_correlated(n_dot_l, n_dot_v, alpha);
             specular += f * (vis * 4.0 * v_dot_h * n_dot_l / max(hs.z, 1e-6)) *
                         textureLod(mvr_env_specular, mvr_env_rotation * l, 0.0).rgb;
@@ -137,8 +148,9 @@ vec3 mvr_ibl(vec3 n, vec3 v, vec3 base, float metallic, float roughness)
     vec3 r = reflect(-v, n);
     vec3 diffuse = mvr_env_diffuse(mvr_env_rotation * n) * base;
     vec3 specular = textureLod(mvr_env_specular, mvr_env_rotation * r, roughness * mvr_env_max_lod).rgb;
-    vec3 dielectric = mix(diffuse, specular, mvr_ibl_fresnel(n_dot_v, roughness, vec3(0.04)));
-    vec3 metal = specular * mvr_ibl_fresnel(n_dot_v, roughness, base);
+    mvr_dfg g = mvr_dfg_at(n_dot_v, roughness);
+    vec3 dielectric = mix(diffuse, specular, mvr_ibl_fresnel(g, roughness, vec3(0.04)));
+    vec3 metal = specular * mvr_ibl_fresnel(g, roughness, base);
     return mix(dielectric, metal, metallic) * mvr_env_intensity;
 }
 
@@ -166,8 +178,9 @@ vec3 mvr_ibl_specular(vec3 n, vec3 v, vec3 base, float metallic, float roughness
     }
 #endif
     vec3 specular = textureLod(mvr_env_specular, mvr_env_rotation * r, roughness * mvr_env_max_lod).rgb;
-    vec3 dielectric = mix(diffuse, specular, mvr_ibl_fresnel_weighted(n_dot_v, roughness, f0, w));
-    vec3 metal = specular * mvr_ibl_fresnel(n_dot_v, roughness, base);
+    mvr_dfg g = mvr_dfg_at(n_dot_v, roughness);
+    vec3 dielectric = mix(diffuse, specular, mvr_ibl_fresnel_weighted(g, roughness, f0, w));
+    vec3 metal = specular * mvr_ibl_fresnel(g, roughness, base);
 #ifdef MVR_IRIDESCENCE
     dielectric = mix(dielectric, mvr_rgb_mix(diffuse, specular, irid.rgb), irid.a);
     metal = mix(metal, specular * irid_metal, irid.a);

@@ -56,7 +56,7 @@ vec3 mvr_brdf_specular(vec3 n, vec3 v, vec3 l, vec3 base, float metallic, float 
     float n_dot_v = clamp(abs(dot(n, v)), 1e-4, 1.0);
     float n_dot_h = clamp(dot(n, h), 0.0, 1.0);
     float v_dot_h = clamp(dot(v, h), 0.0, 1.0);
-    float x5 = pow(1.0 - v_dot_h, 5.0);
+    float x5 = mvr_pow5(1.0 - v_dot_h);
     vec3 f_dielectric = f0 * w + (w - f0 * w) * x5;
     vec3 f_metal = base + (1.0 - base) * x5;
     vec3 diffuse = (1.0 - f_dielectric) * base / MVR_PI;

@@ -48,7 +48,7 @@ vec3 mvr_light_transmission(vec3 n, vec3 v, vec3 l, float alpha, vec3 f0, vec3 b
     vec3 l_mirror = mvr_safe_normalize(l + 2.0 * n * dot(-l, n), n);
     vec3 h = mvr_safe_normalize(l_mirror + v, n);
     float d = mvr_d_ggx(clamp(dot(n, h), 0.0, 1.0), a);
-    vec3 f = f0 + (1.0 - f0) * pow(1.0 - clamp(dot(v, h), 0.0, 1.0), 5.0);
+    vec3 f = f0 + (1.0 - f0) * mvr_pow5(1.0 - clamp(dot(v, h), 0.0, 1.0));
     float vis = mvr_v_smith_ggx_correlated(clamp(dot(n, l_mirror), 0.0, 1.0), clamp(dot(n, v), 0.0, 1.0), a);
     return (1.0 - f) * base * d * vis;
 }

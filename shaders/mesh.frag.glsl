@@ -61,7 +61,7 @@ void mvr_write_outputs()
 // nothing is lit, the colour attachment is not a draw buffer.
 void main()
 {
-    mvr_material m = mvr_material_table[v_material];
+    mvr_material m = mvr_material_fetch();
     float alpha = 1.0;
 #ifdef MVR_ALPHA_BLEND
     alpha = mvr_material_alpha(m);
@@ -77,7 +77,7 @@ void main()
 void main()
 {
 #ifdef MVR_ALPHA_MASK
-    mvr_material m = mvr_material_table[v_material];
+    mvr_material m = mvr_material_fetch();
     float alpha = mvr_material_alpha(m);
     if (alpha < m.emissive.a)
         discard;
@@ -87,7 +87,7 @@ void main()
 #else
 void main()
 {
-    mvr_material m = mvr_material_table[v_material];
+    mvr_material m = mvr_material_fetch();
     vec4 base = m.base_color_factor;
 #ifdef MVR_COLOR0
     base *= v_color0;
@@ -270,7 +270,7 @@ void main()
 #endif
 #ifdef MVR_CLEARCOAT
     // the coat's Fresnel at n.v: how much of what lies under it shows
-    float cf = m.clearcoat.z + (1.0 - m.clearcoat.z) * pow(1.0 - clamp(dot(n_coat, v), 0.0, 1.0), 5.0);
+    float cf = m.clearcoat.z + (1.0 - m.clearcoat.z) * mvr_pow5(1.0 - clamp(dot(n_coat, v), 0.0, 1.0));
     float coat_mix = coat * cf;
 #endif
 #if MVR_LIGHT_COUNT > 0
@@ -314,7 +314,7 @@ void main()
             vec3 through = mvr_volume_attenuation(mvr_light_transmission(n, v, lt, alpha, spec_f0, base.rgb, ior),
                                                   length(tray), absorption);
             vec3 h = mvr_safe_normalize(l + v, n);
-            float x5 = pow(1.0 - clamp(dot(v, h), 0.0, 1.0), 5.0);
+            float x5 = mvr_pow5(1.0 - clamp(dot(v, h), 0.0, 1.0));
             vec3 f_dielectric = spec_f0 * spec_w + (spec_w - spec_f0 * spec_w) * x5;
             vec3 diffuse = base.rgb / MVR_PI * clamp(dot(n, l), 0.0, 1.0);
             lit += (1.0 - metallic) * (1.0 - f_dielectric) * transmission * (through - diffuse);

@@ -10,6 +10,8 @@
 // struct mvr_draw_data and the mvr_draw block of MVR_DRAW_CAPACITY of them,
 // from the std140 layout table (core/block_layout.c)
 #mvr_block mvr_draw
+// struct mvr_material and the mvr_materials block (the fragment stage's, surface.glsl)
+#mvr_block mvr_materials
 
 // locations 0-2 (position, normal, tangent) and 6-9 (joints, weights):
 // deform.glsl
@@ -26,6 +28,11 @@ layout(location = 5) in vec4 a_color0;
 out vec3 v_position;         // world, relative to the view origin
 out vec3 v_to_eye;           // eye - position: linear, so interpolation is exact
 flat out int v_material;
+// the material's most read fields, once per vertex rather than per fragment (surface.glsl)
+flat out vec4 v_material_base;
+flat out vec4 v_material_emissive;
+flat out vec4 v_material_params;
+flat out ivec4 v_material_uv;
 #if defined(MVR_LIGHT_MASKS) || defined(MVR_TRANSMISSION) || defined(MVR_OUTPUTS)
 flat out int v_view;         // within the view block
 #endif
@@ -62,6 +69,10 @@ void main()
     v_position = world.xyz;
     v_to_eye = mvr_eye_position[view].xyz - world.xyz;
     v_material = mvr_draws[gl_InstanceID].info.x;
+    v_material_base = mvr_material_table[v_material].base_color_factor;
+    v_material_emissive = mvr_material_table[v_material].emissive;
+    v_material_params = mvr_material_table[v_material].params;
+    v_material_uv = mvr_material_table[v_material].uv;
 #if defined(MVR_LIGHT_MASKS) || defined(MVR_TRANSMISSION) || defined(MVR_OUTPUTS)
     v_view = view;
 #endif

@@ -56,6 +56,11 @@ uniform MVR_SAMPLER mvr_emissive_tex;
 in vec3 v_position;
 in vec3 v_to_eye;
 flat in int v_material;
+// the material's most read fields, fetched per vertex (mesh.vert.glsl)
+flat in vec4 v_material_base;
+flat in vec4 v_material_emissive;
+flat in vec4 v_material_params;
+flat in ivec4 v_material_uv;
 #if defined(MVR_LIGHT_MASKS) || defined(MVR_TRANSMISSION) || defined(MVR_OUTPUTS)
 flat in int v_view;
 #endif
@@ -80,6 +85,22 @@ in vec2 v_uv1;
 #ifdef MVR_COLOR0
 in vec4 v_color0;
 #endif
+
+// This fragment's material. Its most read fields come from the vertex stage
+// as flat varyings, the same bits: on llvmpipe a uniform block read at an
+// index that varies by fragment (v_material, flat, but not known to be the
+// same across a block of fragments) is a gather per lane and per field, a
+// flat varying a constant of the triangle. What is overwritten here is never
+// read from the block.
+mvr_material mvr_material_fetch()
+{
+    mvr_material m = mvr_material_table[v_material];
+    m.base_color_factor = v_material_base;
+    m.emissive = v_material_emissive;
+    m.params = v_material_params;
+    m.uv = v_material_uv;
+    return m;
+}
 
 // The array layer of texture role `role` (0 on the per-material path).
 int mvr_layer(mvr_material m, int role)
