@@ -301,59 +301,114 @@ static const lobe studio_lobes[] = {
 #define STUDIO_WALL 0.5
 #define STUDIO_CEILING 0.56
 
-/* The radiance of a softbox seen along unit direction d. The box's frame:
- * forward f = its direction, right r = horizontal (perpendicular to f and to
- * +Y, so boxes stand upright; world x for a box straight above or below),
- * up u = r x f. */
-static double softbox_radiance(const softbox *b, const double d[3])
+/* A softbox's frame: forward f = its direction, right r = horizontal
+ * (perpendicular to f and to +Y, so boxes stand upright; world x for a box
+ * straight above or below), up u = r x f; made once per image, not per
+ * texel (the same values: the same arithmetic on the same inputs). */
+typedef struct softbox_frame {
+    bool valid;
+    double f[3], r[3], u[3];
+    double tan_w, tan_h;         /* beyond these |d.r| / (d.f), |d.u| / (d.f): no light at all */
+} softbox_frame;
+
+static void softbox_frame_make(const softbox *b, softbox_frame *fr)
 {
-    double f[3];
+    memset(fr, 0, sizeof *fr);
+    double *f = fr->f, *r = fr->r;
     if (!unit(b->dir, f))
+        return;
+    fr->valid = true;
+    r[0] = f[2], r[1] = 0.0, r[2] = -f[0];
+    if (!unit(r, r))
+        r[0] = 1.0, r[1] = r[2] = 0.0;
+    fr->u[0] = r[1] * f[2] - r[2] * f[1];
+    fr->u[1] = r[2] * f[0] - r[0] * f[2];
+    fr->u[2] = r[0] * f[1] - r[1] * f[0];
+    /* where the smoothstep has surely reached 1 (a tenth of a degree past
+     * its edge, far beyond atan2's rounding), the box adds exactly 0 */
+    fr->tan_w = tan((b->half_w + b->soft + 0.1) * (PI / 180.0));
+    fr->tan_h = tan((b->half_h + b->soft + 0.1) * (PI / 180.0));
+}
+
+/* The radiance of a softbox seen along unit direction d. */
+static double softbox_radiance(const softbox *b, const softbox_frame *fr, const double d[3])
+{
+    if (!fr->valid)
         return 0.0;
+    const double *f = fr->f, *r = fr->r, *u = fr->u;
     double fd = d[0] * f[0] + d[1] * f[1] + d[2] * f[2];
     if (fd <= 0)
         return 0.0;
-    double r[3] = {f[2], 0.0, -f[0]};
-    if (!unit(r, r))
-        r[0] = 1.0, r[1] = r[2] = 0.0;
-    double u[3] = {r[1] * f[2] - r[2] * f[1], r[2] * f[0] - r[0] * f[2], r[0] * f[1] - r[1] * f[0]};
-    double a = fabs(atan2(d[0] * r[0] + d[1] * r[1] + d[2] * r[2], fd)) * (180.0 / PI);
-    double e = fabs(atan2(d[0] * u[0] + d[1] * u[1] + d[2] * u[2], fd)) * (180.0 / PI);
+    double dr = d[0] * r[0] + d[1] * r[1] + d[2] * r[2], du = d[0] * u[0] + d[1] * u[1] + d[2] * u[2];
+    /* outside the box and its soft edge: mw or mh is exactly 0, so is the result */
+    if (fabs(dr) > fd * fr->tan_w || fabs(du) > fd * fr->tan_h)
+        return 0.0;
+    double a = fabs(atan2(dr, fd)) * (180.0 / PI);
+    double e = fabs(atan2(du, fd)) * (180.0 / PI);
     double mw = 1.0 - smoothstep(b->half_w - b->soft, b->half_w + b->soft, a);
     double mh = 1.0 - smoothstep(b->half_h - b->soft, b->half_h + b->soft, e);
     return b->radiance * mw * mh;
 }
 
-static double studio_radiance(const double d[3])
+/* The studio's lights, made once per image. */
+typedef struct studio_frames {
+    softbox_frame boxes[MVR_ARRAY_COUNT(studio_boxes)];
+    bool lobe_valid[MVR_ARRAY_COUNT(studio_lobes)];
+    double lobe_dir[MVR_ARRAY_COUNT(studio_lobes)][3];
+} studio_frames;
+
+static double studio_radiance(const studio_frames *sf, const double d[3])
 {
     double y = d[1];
     double upper = STUDIO_WALL + (STUDIO_CEILING - STUDIO_WALL) * smoothstep(0.0, 1.0, y);
     double l = STUDIO_FLOOR + (upper - STUDIO_FLOOR) * smoothstep(-0.08, 0.03, y);
     for (size_t k = 0; k < MVR_ARRAY_COUNT(studio_lobes); ++k) {
-        double f[3];
-        if (unit(studio_lobes[k].dir, f)) {
+        const double *f = sf->lobe_dir[k];
+        if (sf->lobe_valid[k]) {
             double c = 0.5 * (1.0 + d[0] * f[0] + d[1] * f[1] + d[2] * f[2]);
             l += studio_lobes[k].radiance * c * c;
         }
     }
     for (size_t k = 0; k < MVR_ARRAY_COUNT(studio_boxes); ++k)
-        l += softbox_radiance(&studio_boxes[k], d);
+        l += softbox_radiance(&studio_boxes[k], &sf->boxes[k], d);
     return l;
 }
 
-static void fill_studio(float *px, uint32_t w, uint32_t h)
+/* The sines and cosines of each row's theta and each column's phi are
+ * computed once (w + h of each, not w * h). */
+static bool fill_studio(float *px, uint32_t w, uint32_t h)
 {
+    double *trig = malloc(((size_t)w + h) * 2 * sizeof *trig);
+    if (!trig)
+        return false;
+    double *col = trig, *row = trig + (size_t)w * 2;
+    for (uint32_t i = 0; i < w; ++i) {
+        double phi = 2.0 * PI * ((double)i + 0.5) / (double)w - PI;
+        col[i * 2] = sin(phi);
+        col[i * 2 + 1] = cos(phi);
+    }
     for (uint32_t j = 0; j < h; ++j) {
         double theta = PI * ((double)j + 0.5) / (double)h;
+        row[j * 2] = sin(theta);
+        row[j * 2 + 1] = cos(theta);
+    }
+    studio_frames sf;
+    for (size_t k = 0; k < MVR_ARRAY_COUNT(studio_boxes); ++k)
+        softbox_frame_make(&studio_boxes[k], &sf.boxes[k]);
+    for (size_t k = 0; k < MVR_ARRAY_COUNT(studio_lobes); ++k)
+        sf.lobe_valid[k] = unit(studio_lobes[k].dir, sf.lobe_dir[k]);
+    for (uint32_t j = 0; j < h; ++j) {
+        double st = row[j * 2], ct = row[j * 2 + 1];
         for (uint32_t i = 0; i < w; ++i) {
-            double phi = 2.0 * PI * ((double)i + 0.5) / (double)w - PI;
-            double d[3] = {sin(theta) * sin(phi), cos(theta), -sin(theta) * cos(phi)};
-            float l = (float)studio_radiance(d);
+            double d[3] = {st * col[i * 2], ct, -st * col[i * 2 + 1]};
+            float l = (float)studio_radiance(&sf, d);
             float *p = px + ((size_t)j * w + i) * 4;
             p[0] = p[1] = p[2] = l;
             p[3] = 1.0f;
         }
     }
+    free(trig);
+    return true;
 }
 
 /* ------------------------------------------------------------------ caller's pixels */
@@ -525,7 +580,10 @@ mvr_result mvr_environment_create(const mvr_environment_desc *desc, mvr_environm
 
     switch (d.source) {
     case MVR_ENVIRONMENT_NEUTRAL:
-        fill_studio(px, w, h);
+        if (!fill_studio(px, w, h)) {
+            mvr_environment_destroy(env);
+            return fail(error, log, MVR_ERROR_OUT_OF_MEMORY, "%s: out of memory (neutral studio)", fn);
+        }
         break;
     case MVR_ENVIRONMENT_UNIFORM:
         for (size_t t = 0; t < (size_t)w * h; ++t) {

@@ -31,6 +31,7 @@
 #include <time.h>
 
 #include "environment.h"
+#include "environment_cache.h"
 #include "environment_gl.h"
 #include "errors.h"
 #include "post.h"
@@ -184,10 +185,13 @@ static mvr_result make_dfg(mvr_renderer *r)
     if (g->dfg)
         return MVR_OK;
     float *table = malloc((size_t)ENV_DFG_SIZE * ENV_DFG_SIZE * 2 * sizeof *table);
-    if (!table || !mvr_ibl_dfg_lut(ENV_DFG_SIZE, ENV_DFG_SAMPLES, table)) {
+    bool cached = table && mvr_env_cache_load_dfg(r, ENV_DFG_SIZE, ENV_DFG_SAMPLES, table);
+    if (!table || (!cached && !mvr_ibl_dfg_lut(ENV_DFG_SIZE, ENV_DFG_SAMPLES, table))) {
         free(table);
         return mvr_gl_fail(r, MVR_ERROR_OUT_OF_MEMORY, "environment: DFG table: out of memory");
     }
+    if (!cached)
+        mvr_env_cache_store_dfg(r, ENV_DFG_SIZE, ENV_DFG_SAMPLES, table);
     const mvr_gl_api_table *gl = r->gl;
     mvr_result res = make_texture(r, GL_TEXTURE_2D, &g->dfg, 1, GL_RG16F, ENV_DFG_SIZE, ENV_DFG_SIZE, 1,
                                   "environment DFG table (rg16f)");
@@ -261,7 +265,83 @@ static void scratch_release(mvr_renderer *r, prefilter_scratch *sc)
         mvr_gl_delete(r, MVR_GL_TEXTURE, &sc->faces[k]);
 }
 
-/* Steps 1 and 2 for a new environment. */
+/* Step 2: the GGX chain from the source cube. */
+static mvr_result filter_specular(mvr_renderer *r, const mvr_env_cache_maps *m, const prefilter_scratch *sc)
+{
+    const mvr_gl_api_table *gl = r->gl;
+    mvr_program_entry *e = NULL;
+    mvr_result res = environment_program(r, MVR_FEATURE_ENV_GGX, m->multiview, &e);
+    if (res != MVR_OK)
+        return res;
+    mvr_state_texture(&r->state, MVR_UNIT_ENV_INPUT, GL_TEXTURE_CUBE_MAP, r->env.source);
+    gl->Uniform1i(e->loc_samples, (GLint)m->env->specular_samples);
+    gl->Uniform1f(e->loc_source_size, (GLfloat)m->source_size);
+    gl->Uniform1f(e->loc_source_max_lod, (GLfloat)(m->source_levels - 1u));
+    for (uint32_t k = 0; k < m->levels && res == MVR_OK; ++k) {
+        uint32_t size = m->size >> k;
+        gl->Uniform1f(e->loc_roughness, m->levels > 1 ? (GLfloat)k / (GLfloat)(m->levels - 1u) : 0.0f);
+        level_job j = {r->env.specular, k, size, sc->faces[log2_floor(m->source_size / size)], sc->fbo,
+                       sc->read_fbo, sc->copy_fbo};
+        res = draw_level(r, &j, e);
+    }
+    return res;
+}
+
+/* Steps 1 and 2 into the allocated cubes: the image, the source cube's
+ * level 0 from it, the GL's mips, the specular chain. */
+static mvr_result filter_maps(mvr_renderer *r, const mvr_env_cache_maps *m)
+{
+    const mvr_environment *env = m->env;
+    const mvr_gl_api_table *gl = r->gl;
+    gl->PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    GLuint equirect = 0;
+    prefilter_scratch sc;
+    memset(&sc, 0, sizeof sc);
+    uint32_t eq_levels = log2_floor(env->width > env->height ? env->width : env->height) + 1u;
+    mvr_result res = make_texture(r, GL_TEXTURE_2D, &equirect, eq_levels, GL_RGBA16F, env->width, env->height, 1,
+                                  "environment image (rgba16f)");
+    if (res == MVR_OK) {
+        gl->TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, (GLsizei)env->width, (GLsizei)env->height, GL_RGBA, GL_FLOAT,
+                          env->pixels);
+        gl->GenerateMipmap(GL_TEXTURE_2D);
+        /* u wraps around the horizon; v stops at the poles */
+        gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+        gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+        gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        r->upload_bytes += (uint64_t)env->width * env->height * 8u;
+        res = scratch_create(r, &sc, m->multiview, m->source_size,
+                             log2_floor(m->source_size / ENV_LOWEST_FACE) + 1u);
+    }
+    /* the source cube's level 0 from the image: the image level whose texel
+     * angle (2 pi / width) matches a face texel's at its centre (pi/2 / size) */
+    mvr_program_entry *e = NULL;
+    if (res == MVR_OK) {
+        mvr_full_screen_state(r);
+        res = environment_program(r, 0u, m->multiview, &e);
+    }
+    if (res == MVR_OK) {
+        mvr_state_texture(&r->state, MVR_UNIT_ENV_INPUT, GL_TEXTURE_2D, equirect);
+        mvr_state_sampler(&r->state, MVR_UNIT_ENV_INPUT, 0);
+        double lod = log2((double)env->width / (4.0 * (double)m->source_size));
+        gl->Uniform1f(e->loc_equirect_lod, (GLfloat)(lod > 0.0 ? lod : 0.0));
+        level_job j = {r->env.source, 0, m->source_size, sc.faces[0], sc.fbo, sc.read_fbo, sc.copy_fbo};
+        res = draw_level(r, &j, e);
+    }
+    if (res == MVR_OK) {
+        mvr_state_texture(&r->state, MVR_UNIT_ENV_INPUT, GL_TEXTURE_CUBE_MAP, r->env.source);
+        gl->GenerateMipmap(GL_TEXTURE_CUBE_MAP);
+        gl->TexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+        gl->TexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        res = filter_specular(r, m, &sc);
+    }
+    scratch_release(r, &sc);
+    mvr_gl_delete(r, MVR_GL_TEXTURE, &equirect);
+    return res;
+}
+
+/* Steps 1 and 2 for a new environment: from the disk cache when it holds
+ * these exact inputs' bytes, else filtered here and stored. */
 static mvr_result prefilter(mvr_renderer *r, const mvr_environment *env)
 {
     mvr_gpu_environment *g = &r->env;
@@ -283,82 +363,35 @@ static mvr_result prefilter(mvr_renderer *r, const mvr_environment *env)
     if (spec_size > max_cube || source_size > max_cube)
         return mvr_gl_fail(r, MVR_ERROR_UNSUPPORTED, "environment: cube faces of %u texels exceed the GL's %u",
                            source_size, max_cube);
-    uint32_t source_levels = log2_floor(source_size) + 1u;
-    uint32_t spec_levels = log2_floor(spec_size / ENV_LOWEST_FACE) + 1u;
-    bool multiview = prefilter_multiview(r);
+    mvr_env_cache_maps m = {env, source_size, log2_floor(source_size) + 1u, spec_size,
+                            log2_floor(spec_size / ENV_LOWEST_FACE) + 1u, prefilter_multiview(r)};
 
     release_maps(r);
-    gl->PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    GLuint equirect = 0;
-    prefilter_scratch sc;
-    memset(&sc, 0, sizeof sc);
-    uint32_t eq_levels = log2_floor(env->width > env->height ? env->width : env->height) + 1u;
-    mvr_result res = make_texture(r, GL_TEXTURE_2D, &equirect, eq_levels, GL_RGBA16F, env->width, env->height, 1,
-                                  "environment image (rgba16f)");
-    if (res == MVR_OK) {
-        gl->TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, (GLsizei)env->width, (GLsizei)env->height, GL_RGBA, GL_FLOAT,
-                          env->pixels);
-        gl->GenerateMipmap(GL_TEXTURE_2D);
-        /* u wraps around the horizon; v stops at the poles */
-        gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-        gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-        gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-        gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        r->upload_bytes += (uint64_t)env->width * env->height * 8u;
-        res = make_texture(r, GL_TEXTURE_CUBE_MAP, &g->source, source_levels, GL_RGBA16F, source_size, source_size,
-                           1, "environment source cube map (rgba16f)");
-    }
+    mvr_result res = make_texture(r, GL_TEXTURE_CUBE_MAP, &g->source, m.source_levels, GL_RGBA16F, source_size,
+                                  source_size, 1, "environment source cube map (rgba16f)");
     if (res == MVR_OK)
-        res = make_texture(r, GL_TEXTURE_CUBE_MAP, &g->specular, spec_levels, GL_RGBA16F, spec_size, spec_size, 1,
+        res = make_texture(r, GL_TEXTURE_CUBE_MAP, &g->specular, m.levels, GL_RGBA16F, spec_size, spec_size, 1,
                            "environment specular cube map (rgba16f)");
-    if (res == MVR_OK)
-        res = scratch_create(r, &sc, multiview, source_size, log2_floor(source_size / ENV_LOWEST_FACE) + 1u);
-    /* the source cube's level 0 from the image: the image level whose texel
-     * angle (2 pi / width) matches a face texel's at its centre (pi/2 / size) */
-    mvr_program_entry *e = NULL;
-    if (res == MVR_OK) {
-        mvr_full_screen_state(r);
-        res = environment_program(r, 0u, multiview, &e);
+    if (res == MVR_OK && !mvr_env_cache_load(r, &m, g->source, g->specular)) {
+        res = filter_maps(r, &m);
+        if (res == MVR_OK)
+            mvr_env_cache_store(r, &m, g->source, g->specular);
     }
     if (res == MVR_OK) {
-        mvr_state_texture(&r->state, MVR_UNIT_ENV_INPUT, GL_TEXTURE_2D, equirect);
-        mvr_state_sampler(&r->state, MVR_UNIT_ENV_INPUT, 0);
-        double lod = log2((double)env->width / (4.0 * (double)source_size));
-        gl->Uniform1f(e->loc_equirect_lod, (GLfloat)(lod > 0.0 ? lod : 0.0));
-        level_job j = {g->source, 0, source_size, sc.faces[0], sc.fbo, sc.read_fbo, sc.copy_fbo};
-        res = draw_level(r, &j, e);
-    }
-    if (res == MVR_OK) {
+        /* read with these where no sampler object is bound (the Charlie prefilter) */
         mvr_state_texture(&r->state, MVR_UNIT_ENV_INPUT, GL_TEXTURE_CUBE_MAP, g->source);
-        gl->GenerateMipmap(GL_TEXTURE_CUBE_MAP);
         gl->TexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
         gl->TexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        res = environment_program(r, MVR_FEATURE_ENV_GGX, multiview, &e);
-    }
-    if (res == MVR_OK) {
-        gl->Uniform1i(e->loc_samples, (GLint)env->specular_samples);
-        gl->Uniform1f(e->loc_source_size, (GLfloat)source_size);
-        gl->Uniform1f(e->loc_source_max_lod, (GLfloat)(source_levels - 1u));
-    }
-    for (uint32_t k = 0; k < spec_levels && res == MVR_OK; ++k) {
-        uint32_t size = spec_size >> k;
-        gl->Uniform1f(e->loc_roughness, spec_levels > 1 ? (GLfloat)k / (GLfloat)(spec_levels - 1u) : 0.0f);
-        level_job j = {g->specular, k, size, sc.faces[log2_floor(source_size / size)], sc.fbo, sc.read_fbo,
-                       sc.copy_fbo};
-        res = draw_level(r, &j, e);
-    }
-    if (res == MVR_OK)
         res = make_cube_sampler(r);
-    scratch_release(r, &sc);
-    mvr_gl_delete(r, MVR_GL_TEXTURE, &equirect);
+    }
     if (res != MVR_OK) {
         release_maps(r);
         return res;
     }
     g->source_size = source_size;
-    g->source_levels = source_levels;
+    g->source_levels = m.source_levels;
     g->specular_size = spec_size;
-    g->specular_levels = spec_levels;
+    g->specular_levels = m.levels;
     g->serial = env->serial;
     return MVR_OK;
 }

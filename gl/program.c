@@ -61,7 +61,7 @@ static void bind_sampler(const mvr_gl_api_table *gl, GLuint program, const char 
 
 /* Driver identity for binary cache keys: a binary is only ever handed back
  * to the driver (API, vendor, renderer and version strings) that wrote it. */
-static void driver_identity(const mvr_context *ctx, char *out, size_t size)
+void mvr_gl_driver_identity(const mvr_context *ctx, char *out, size_t size)
 {
     const mvr_caps *c = &ctx->caps;
     mvr_str_format(out, size, "%s|%s|%s|%s", c->api == MVR_GL_API_GLES ? "gles" : "gl", c->vendor,
@@ -184,7 +184,7 @@ mvr_result mvr_gl_program_build_cached(mvr_context *ctx, const mvr_shader_varian
     uint64_t key = 0;
     GLuint program = 0;
     if (use_cache) {
-        driver_identity(ctx, driver, sizeof driver);
+        mvr_gl_driver_identity(ctx, driver, sizeof driver);
         key = mvr_program_binary_key(driver, vs_src.data, fs_src.data);
         use_cache = mvr_program_binary_path(cache_dir, name, driver, path, sizeof path);
     }

@@ -63,6 +63,10 @@ typedef struct mvr_program_build_info {
     char why[512];          /* what was wrong with a rejected entry, or why storing failed */
 } mvr_program_build_info;
 
+/* The GL's identity in cache keys: API, vendor, renderer and version strings
+ * (a driver update changes it, so old entries go stale). */
+void mvr_gl_driver_identity(const mvr_context *ctx, char *out, size_t size);
+
 /* mvr_gl_program_build with a program binary cache in cache_dir (NULL or ""
  * = none; also none where the driver offers no binary format). An entry is
  * used only after its checks pass and the driver accepts it; otherwise the
