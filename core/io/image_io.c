@@ -1,7 +1,8 @@
 /*
  * mvr_image's C front (include/mvr/mvr_image.h): the decoder is picked from
  * the bytes' signature, never from a name; PNG is done here through libpng
- * (image_png.c), and everything else by OpenImageIO in libmvr_image_oiio.so,
+ * (image_png.c), JPEG through libjpeg-turbo (image_jpeg.c), and everything
+ * else (and what those two defer) by OpenImageIO in libmvr_image_oiio.so,
  * loaded the first time a call needs it (image_internal.h says why).
  *
  * The module is searched, in this order:
@@ -369,9 +370,9 @@ void mvr_image_free(mvr_image_data *image)
 /* The front's answer for a PNG, or OpenImageIO's where it defers. */
 #define FRONT_OR_MODULE(st, who, call)                                                                          \
     do {                                                                                                        \
-        if ((st) == MVR_PNG_OK)                                                                                 \
+        if ((st) == MVR_FRONT_OK)                                                                                 \
             return MVR_OK;                                                                                      \
-        if ((st) == MVR_PNG_FAILED)                                                                             \
+        if ((st) == MVR_FRONT_FAILED)                                                                             \
             return e->result;                                                                                   \
         const mvr_image_backend *m_ = module_for_deferred((who), e);                                            \
         return m_ ? m_->call : e->result;                                                                       \
@@ -389,8 +390,13 @@ mvr_result mvr_image_probe(const void *data, size_t size, const char *mime_type,
     if (!f)
         return e->result;
     if (f == &format_png) {
-        mvr_png_source src = {.data = (const unsigned char *)data, .size = size};
-        mvr_png_status st = mvr_png_probe(&src, out, e);
+        mvr_bytes_source src = {.data = (const unsigned char *)data, .size = size};
+        mvr_front_status st = mvr_png_probe(&src, out, e);
+        FRONT_OR_MODULE(st, "mvr_image_probe", probe(data, size, mime_type, out, e));
+    }
+    if (f == &format_jpeg) {
+        mvr_bytes_source src = {.data = (const unsigned char *)data, .size = size};
+        mvr_front_status st = mvr_jpeg_probe(&src, out, e);
         FRONT_OR_MODULE(st, "mvr_image_probe", probe(data, size, mime_type, out, e));
     }
     const mvr_image_backend *m = mvr_image_module("mvr_image_probe", e);
@@ -409,11 +415,22 @@ mvr_result mvr_image_decode_cost(const void *data, size_t size, const char *mime
     if (!f)
         return e->result;
     if (f == &format_png) {
-        mvr_png_source src = {.data = (const unsigned char *)data, .size = size};
-        mvr_png_status st = mvr_png_decode_cost(&src, out_bytes, e);
+        mvr_bytes_source src = {.data = (const unsigned char *)data, .size = size};
+        mvr_front_status st = mvr_png_decode_cost(&src, out_bytes, e);
         FRONT_OR_MODULE(st, "mvr_image_decode_cost", decode_cost(data, size, mime_type, out_bytes, e));
     }
-    const mvr_image_backend *m = mvr_image_module("mvr_image_decode_cost", e);
+    const mvr_image_backend *m = NULL;
+    if (f == &format_jpeg) {
+        mvr_bytes_source src = {.data = (const unsigned char *)data, .size = size};
+        mvr_front_status st = mvr_jpeg_decode_cost(&src, held, out_bytes, e);
+        if (st == MVR_FRONT_OK)
+            return MVR_OK;
+        if (st == MVR_FRONT_FAILED)
+            return e->result;
+        m = module_for_deferred("mvr_image_decode_cost", e);
+    } else {
+        m = mvr_image_module("mvr_image_decode_cost", e);
+    }
     if (!m || m->decode_cost(data, size, mime_type, out_bytes, e) != MVR_OK)
         return e->result;
     *out_bytes = mvr_image_add(*out_bytes, held);
@@ -433,8 +450,13 @@ mvr_result mvr_image_decode_within(const void *data, size_t size, const char *mi
     if (!f)
         return e->result;
     if (f == &format_png) {
-        mvr_png_source src = {.data = (const unsigned char *)data, .size = size};
-        mvr_png_status st = mvr_png_decode(&src, max_dimension, budget, "mvr_image_decode", out, e);
+        mvr_bytes_source src = {.data = (const unsigned char *)data, .size = size};
+        mvr_front_status st = mvr_png_decode(&src, max_dimension, budget, "mvr_image_decode", out, e);
+        FRONT_OR_MODULE(st, "mvr_image_decode", decode(data, size, mime_type, max_dimension, budget, held, out, e));
+    }
+    if (f == &format_jpeg) {
+        mvr_bytes_source src = {.data = (const unsigned char *)data, .size = size};
+        mvr_front_status st = mvr_jpeg_decode(&src, max_dimension, budget, held, "mvr_image_decode", out, e);
         FRONT_OR_MODULE(st, "mvr_image_decode", decode(data, size, mime_type, max_dimension, budget, held, out, e));
     }
     const mvr_image_backend *m = mvr_image_module("mvr_image_decode", e);
@@ -472,16 +494,18 @@ mvr_result mvr_image_read_within(const char *path, mvr_pixel_type type, uint64_t
             return mvr_image_fail(e, MVR_ERROR_INVALID_ASSET, "%s: %s", who, why);
         }
     }
-    /* an 8-bit read of a PNG file is the front's; anything else, OpenImageIO's */
-    bool png = type == MVR_PIXEL_U8 && f == &format_png;
-    mvr_png_status st = MVR_PNG_DEFER;
-    if (png) {
+    /* an 8-bit read of a PNG or JPEG file is the front's; anything else,
+     * OpenImageIO's */
+    bool front = type == MVR_PIXEL_U8 && (f == &format_png || f == &format_jpeg);
+    mvr_front_status st = MVR_FRONT_DEFER;
+    if (front) {
         rewind(file);
-        mvr_png_source src = {.file = file};
-        st = mvr_png_decode(&src, 0, budget, who, out, e);
+        mvr_bytes_source src = {.file = file};
+        st = f == &format_png ? mvr_png_decode(&src, 0, budget, who, out, e)
+                              : mvr_jpeg_decode(&src, 0, budget, held, who, out, e);
     }
     fclose(file);
-    if (png)
+    if (front)
         FRONT_OR_MODULE(st, who, read(path, type, budget, held, out, e));
     const mvr_image_backend *m = mvr_image_module(who, e);
     return m ? m->read(path, type, budget, held, out, e) : e->result;
@@ -518,7 +542,7 @@ mvr_result mvr_image_write(const char *path, const mvr_image_view *image, mvr_er
         return mvr_image_fail(e, MVR_ERROR_INVALID_ARGUMENT,
                               "mvr_image_write(%s): the name must end in .png or .exr", path);
     if (png && image->type == MVR_PIXEL_U8)
-        return mvr_png_write(path, image, e) == MVR_PNG_OK ? MVR_OK : e->result;
+        return mvr_png_write(path, image, e) == MVR_FRONT_OK ? MVR_OK : e->result;
     /* EXR, and float pixels into PNG (OpenImageIO's conversion) */
     const mvr_image_backend *m = mvr_image_module("mvr_image_write", e);
     return m ? m->write(path, image, e) : e->result;
@@ -601,7 +625,7 @@ mvr_result mvr_image_write_channels(const char *path, const mvr_image_channels *
             return mvr_image_fail(e, MVR_ERROR_INVALID_ARGUMENT,
                                   "mvr_image_write_channels(%s): a PNG takes one U8 or U16 channel (%u given)", path,
                                   image->count);
-        return mvr_png_write_gray(path, c, image->width, image->height, image->bottom_up, e) == MVR_PNG_OK
+        return mvr_png_write_gray(path, c, image->width, image->height, image->bottom_up, e) == MVR_FRONT_OK
                    ? MVR_OK
                    : e->result;
     }
