@@ -13,7 +13,8 @@
  *    WebP, CMYK JPEG, float pixels, comparisons): linking OpenImageIO costs every
  *    program ~0.3 s before main() (the static initialisers of its 260 shared
  *    libraries), which a program that only writes PNG never needs to pay.
- * Internal: tests/io/test_image_png.c uses these to compare the two decoders.
+ * Internal: tests/io/test_image_png.c and test_image_jpeg.c use these to compare
+ * the front with OpenImageIO.
  */
 #ifndef MVR_IMAGE_INTERNAL_H
 #define MVR_IMAGE_INTERNAL_H

@@ -236,31 +236,70 @@ static bool png_framing_ok(const unsigned char *p, size_t n, char *why, size_t w
     return false;
 }
 
+/* Bytes to walk: in memory (p, n, at) or a file (f). */
+typedef struct byte_stream {
+    const unsigned char *p;
+    size_t n, at;
+    FILE *f;
+} byte_stream;
+
+static int next_byte(byte_stream *s)
+{
+    if (s->f)
+        return getc(s->f);
+    return s->at < s->n ? s->p[s->at++] : EOF;
+}
+
+/* Consumes everything up to and including the next 0xFF; false at the end.
+ * In memory this is memchr: the entropy-coded data (nearly all of a JPEG)
+ * is skipped at memory speed, not a byte at a time. */
+static bool to_ff(byte_stream *s)
+{
+    if (s->f) {
+        int c;
+        while ((c = getc(s->f)) != EOF)
+            if (c == 0xFF)
+                return true;
+        return false;
+    }
+    const unsigned char *q = s->at < s->n ? memchr(s->p + s->at, 0xFF, s->n - s->at) : NULL;
+    s->at = q ? (size_t)(q - s->p) + 1 : s->n;
+    return q != NULL;
+}
+
+/* Skips k bytes; false where the stream ends first. */
+static bool skip_bytes(byte_stream *s, long k)
+{
+    if (s->f)
+        return fseek(s->f, k, SEEK_CUR) == 0;
+    if (k < 0 || (size_t)k > s->n - s->at)
+        return false;
+    s->at += (size_t)k;
+    return true;
+}
+
 /* JPEG framing (ISO/IEC 10918-1, B.1.1): after SOI, marker segments (a
  * length after every marker but SOI, EOI, RSTn and TEM), each SOS followed by
  * entropy-coded data in which 0xFF is stuffed as FF 00 and the only markers
  * are RSTn; the image ends at EOI. A JPEG that ends before EOI is truncated:
  * libjpeg would only warn ("premature end") and fill the rest with grey, so
- * it is refused here. Reads a stream (memory through fmemopen, or a file);
- * false with `why` set when the stream ends first. *held: what libjpeg holds
- * besides the pixels: a progressive JPEG (SOF2, 6, 10, 14) keeps every DCT
- * coefficient until its last scan, 2 bytes a sample (ISO/IEC 10918-1 G.1.1;
- * libjpeg's whole-image coefficient buffer), from its SOF's size. */
-static bool jpeg_framing_ok(FILE *f, uint64_t *held, char *why, size_t why_size)
+ * it is refused here. Reads bytes in memory or a file; false with `why` set
+ * when they end first. *held: what libjpeg holds besides the pixels: a
+ * progressive JPEG (SOF2, 6, 10, 14) keeps every DCT coefficient until its
+ * last scan, 2 bytes a sample (ISO/IEC 10918-1 G.1.1; libjpeg's whole-image
+ * coefficient buffer), from its SOF's size. */
+static bool jpeg_framing_ok(byte_stream *s, uint64_t *held, char *why, size_t why_size)
 {
     *held = 0;
-    int c = 0;
-    if (getc(f) != 0xFF || getc(f) != 0xD8) {
+    if (next_byte(s) != 0xFF || next_byte(s) != 0xD8) {
         snprintf(why, why_size, "JPEG has no SOI marker");
         return false;
     }
     /* bytes other than 0xFF: entropy-coded data after an SOS, or stray bytes
      * before a marker (libjpeg skips those with a warning; so does this) */
-    while ((c = getc(f)) != EOF) {
-        if (c != 0xFF)
-            continue;
+    while (to_ff(s)) {
         int m;
-        while ((m = getc(f)) == 0xFF) {
+        while ((m = next_byte(s)) == 0xFF) {
         } /* fill bytes */
         if (m == EOF)
             break;
@@ -268,7 +307,7 @@ static bool jpeg_framing_ok(FILE *f, uint64_t *held, char *why, size_t why_size)
             return true;                            /* EOI */
         if (m == 0x00 || (m >= 0xD0 && m <= 0xD7) || m == 0x01)
             continue;                               /* stuffed 0xFF, RSTn, TEM: no length */
-        int hi = getc(f), lo = getc(f);
+        int hi = next_byte(s), lo = next_byte(s);
         if (lo == EOF)
             break;
         long len = hi << 8 | lo;
@@ -278,7 +317,8 @@ static bool jpeg_framing_ok(FILE *f, uint64_t *held, char *why, size_t why_size)
         }
         bool sof = m >= 0xC0 && m <= 0xCF && m != 0xC4 && m != 0xC8 && m != 0xCC;
         if (sof && (m & 3) == 2 && len >= 8) {
-            int p = getc(f), y1 = getc(f), y0 = getc(f), x1 = getc(f), x0 = getc(f), nc = getc(f);
+            int p = next_byte(s), y1 = next_byte(s), y0 = next_byte(s), x1 = next_byte(s), x0 = next_byte(s),
+                nc = next_byte(s);
             if (nc == EOF)
                 break;
             (void)p;
@@ -286,7 +326,7 @@ static bool jpeg_framing_ok(FILE *f, uint64_t *held, char *why, size_t why_size)
             *held = mvr_image_add(*held, samples * 2);
             len -= 6;
         }
-        if (fseek(f, len - 2, SEEK_CUR) != 0)
+        if (!skip_bytes(s, len - 2))
             break;
     }
     snprintf(why, why_size, "JPEG ends before its EOI marker (truncated?)");
@@ -296,14 +336,8 @@ static bool jpeg_framing_ok(FILE *f, uint64_t *held, char *why, size_t why_size)
 /* jpeg_framing_ok over bytes in memory. */
 static bool jpeg_bytes_ok(const unsigned char *p, size_t n, uint64_t *held, char *why, size_t why_size)
 {
-    FILE *f = fmemopen((void *)(uintptr_t)p, n, "rb");   /* read-only: the bytes are not written */
-    if (!f) {
-        snprintf(why, why_size, "out of memory (fmemopen)");
-        return false;
-    }
-    bool ok = jpeg_framing_ok(f, held, why, why_size);
-    fclose(f);
-    return ok;
+    byte_stream s = {.p = p, .n = n};
+    return jpeg_framing_ok(&s, held, why, why_size);
 }
 
 /* The checks every encoded-image call makes; the format, or NULL with the
@@ -489,7 +523,8 @@ mvr_result mvr_image_read_within(const char *path, mvr_pixel_type type, uint64_t
     uint64_t held = 0;
     if (f == &format_jpeg) {
         rewind(file);
-        if (!jpeg_framing_ok(file, &held, why, sizeof why)) {
+        byte_stream s = {.f = file};
+        if (!jpeg_framing_ok(&s, &held, why, sizeof why)) {
             fclose(file);
             return mvr_image_fail(e, MVR_ERROR_INVALID_ASSET, "%s: %s", who, why);
         }
