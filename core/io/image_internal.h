@@ -161,6 +161,10 @@ static inline uint64_t mvr_image_add(uint64_t a, uint64_t b)
     return a > UINT64_MAX - b ? UINT64_MAX : a + b;
 }
 
+/* malloc() for a decoded image's pixels, advised into huge pages where it is
+ * large (freed with free()). */
+void *mvr_image_alloc_pixels(size_t bytes);
+
 /* printf into error (NULL: nothing), returns r. */
 mvr_result mvr_image_fail(mvr_error *error, mvr_result r, const char *fmt, ...)
 #if defined(__GNUC__)

@@ -30,6 +30,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 #include <unistd.h>
 
 #include "image_internal.h"
@@ -51,6 +52,24 @@ mvr_result mvr_image_fail(mvr_error *error, mvr_result r, const char *fmt, ...)
         error->result = r;
     }
     return r;
+}
+
+void *mvr_image_alloc_pixels(size_t bytes)
+{
+    void *p = malloc(bytes);
+#ifdef MADV_HUGEPAGE
+    /* written once, row after row, right after this: in 2 MiB pages where
+     * the kernel's transparent huge pages are on for madvise()d memory, one
+     * page fault per 2 MiB instead of 512 (the faults of a 2048x2048
+     * texture's 16 MiB were a third of a textured file's first image) */
+    const uintptr_t huge = (uintptr_t)2 << 20;
+    if (p && bytes >= 2 * huge) {
+        uintptr_t from = ((uintptr_t)p + huge - 1) & ~(huge - 1), to = ((uintptr_t)p + bytes) & ~(huge - 1);
+        if (to > from)
+            (void)madvise((void *)from, to - from, MADV_HUGEPAGE);   /* advice: refused, nothing changes */
+    }
+#endif
+    return p;
 }
 
 /* ---------------------------------------------------------------- the module */

@@ -254,7 +254,7 @@ mvr_front_status mvr_jpeg_decode(const mvr_bytes_source *src, uint32_t max_dimen
         return MVR_FRONT_FAILED;
     }
     /* checked before libjpeg allocates its image-sized buffers (start) */
-    b.rgba = malloc((size_t)l.width * l.height * 4u);
+    b.rgba = mvr_image_alloc_pixels((size_t)l.width * l.height * 4u);
     b.row = malloc((size_t)l.width * (size_t)l.channels);
     if (!b.rgba || !b.row) {
         free_buffers(&b);

@@ -311,7 +311,7 @@ mvr_front_status mvr_png_decode(const mvr_bytes_source *src, uint32_t max_dimens
     }
     size_t row_bytes = png_get_rowbytes(png, info);
     size_t native_rows = l.interlaced ? l.height : 1;
-    b.rgba = malloc((size_t)l.width * l.height * 4u);
+    b.rgba = mvr_image_alloc_pixels((size_t)l.width * l.height * 4u);
     b.native = malloc(row_bytes * native_rows);
     if (l.interlaced)
         b.rows = malloc(sizeof(png_bytep) * l.height);
