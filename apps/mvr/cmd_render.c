@@ -4,6 +4,7 @@
  * options are render_options.c's, what it writes render_output.c's. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -123,21 +124,61 @@ static bool job_options(render_job *j, const render_options *base, const char *f
 /* Load: the session's context (made by the first file), the scene and its
  * views, the material variant, the session's environment, and the
  * exposure the scene asks for. */
-static int step_load(render_session *s, render_job *j, bool *fatal)
+/* The scene loaded on a thread of its own while the first file's context is
+ * made: scene and context know nothing of each other, and the context is
+ * made, made current and used on the one thread (EGL binds a context to the
+ * thread that makes it current). */
+typedef struct load_task {
+    const cli_scene_options *so;
+    mvr_scene **scene;
+    mvr_view_set **views;
+    int rc;
+} load_task;
+
+static void *load_on_thread(void *arg)
 {
-    render_options *o = &j->o;
+    load_task *t = arg;
+    t->rc = cli_load_scene("mvr render", t->so, t->scene, t->views);
+    return NULL;
+}
+
+/* The context (the session's first file only) and the scene: at once on two
+ * threads, unless MVR_DECODE_THREADS=1 asks for one thread (then in order,
+ * as before). A context that fails is the answer, the scene dropped. */
+static int context_and_scene(render_session *s, render_job *j, const cli_scene_options *so, bool *fatal)
+{
     mvr_error err;
-    if (!s->ctx && mvr_context_create(&o->context, &s->ctx, &err) != MVR_OK) {
+    const char *threads = getenv("MVR_DECODE_THREADS");
+    bool overlap = !s->ctx && !(threads && strcmp(threads, "1") == 0);
+    load_task task = {.so = so, .scene = &j->scene, .views = &j->views, .rc = MVR_EXIT_OK};
+    pthread_t loader;
+    overlap = overlap && pthread_create(&loader, NULL, load_on_thread, &task) == 0;
+    mvr_result made = s->ctx ? MVR_OK : mvr_context_create(&j->o.context, &s->ctx, &err);
+    if (overlap)
+        pthread_join(loader, NULL);
+    if (made != MVR_OK) {
+        if (overlap) {
+            mvr_view_set_destroy(j->views);
+            mvr_scene_destroy(j->scene);
+            j->views = NULL;
+            j->scene = NULL;
+        }
         fprintf(stderr, "mvr render: %s\n", err.message);
         *fatal = true;
         return MVR_EXIT_FAILURE;
     }
+    return overlap ? task.rc : cli_load_scene("mvr render", so, &j->scene, &j->views);
+}
+
+static int step_load(render_session *s, render_job *j, bool *fatal)
+{
+    render_options *o = &j->o;
     cli_scene_options so = {.demo = o->demo, .scene_file = o->scene_file, .camera = o->camera, .layout = o->layout,
                             .ipd = o->ipd, .framing = &o->framing, .gltf_scene = o->gltf_scene, .views = o->views, .width = o->width,
                             .height = o->height, .logger = o->context.logger, .strict = o->strict,
                             .memory_budget = o->memory_budget, .gltf_info = &j->gltf_info,
                             .given_views = o->camera_views, .given_view_count = o->camera_count};
-    int rc = cli_load_scene("mvr render", &so, &j->scene, &j->views);
+    int rc = context_and_scene(s, j, &so, fatal);
     if (rc != MVR_EXIT_OK)
         return rc;
     j->variant = MVR_VARIANT_DEFAULT;

@@ -6,6 +6,7 @@
 #define MVR_GLTF_CONVERT_HPP
 
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
 #include <vector>
@@ -17,6 +18,8 @@ struct info;
 }
 
 namespace mvr_gltf {
+
+struct image_ahead;   // gltf_image_ahead.hpp
 
 // A number member of a JSON value from tinygltf (fallback when absent).
 double number(const tinygltf::Value &v, const char *key, double fallback);
@@ -74,6 +77,9 @@ struct converter {
     };
     std::map<int, image_failure> failed_images;   // images left out, and why
     std::map<uint32_t, uint8_t> block_transfer;   // scene image of GPU blocks -> its KTX2 DFD transfer function
+    // images decoded in parallel when the first image is needed (null: none)
+    std::shared_ptr<image_ahead> ahead;
+    bool ahead_tried = false;
     // cameras and lights that failed their checks: an error only if a node uses them
     std::map<int, std::string> bad_cameras, bad_lights;
 

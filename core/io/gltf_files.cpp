@@ -49,6 +49,8 @@ static std::string mib(uint64_t bytes)
 
 void budget::charge(uint64_t bytes, const std::string &what)
 {
+    if ((bytes > limit || used > limit - bytes) && drop_spare)
+        drop_spare();
     if (bytes > limit || used > limit - bytes)
         throw load_error(MVR_ERROR_OUT_OF_MEMORY, what + " needs " + mib(bytes) + " more, over the load's memory budget (" +
                                                       mib(limit) + ", " + mib(used) +

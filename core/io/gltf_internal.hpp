@@ -5,6 +5,7 @@
 #include <tiny_gltf.h>
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -43,6 +44,9 @@ struct caps {
 struct budget {
     uint64_t limit = 0, used = 0, peak = 0;
     void charge(uint64_t bytes, const std::string &what);   // refuses (out of memory) past the limit
+    // What a charge past the limit drops first: images decoded ahead and not
+    // yet taken (gltf_image_ahead.hpp), which the loader can decode again.
+    std::function<void()> drop_spare;
     void release(uint64_t bytes) { used = bytes > used ? 0 : used - bytes; }
 };
 

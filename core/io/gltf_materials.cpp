@@ -10,6 +10,7 @@
 
 #include "gltf_convert.hpp"
 #include "gltf_files.hpp"
+#include "gltf_image_ahead.hpp"
 #include "ktx2.hpp"
 #include "mvr/mvr_image.h"
 
@@ -63,6 +64,10 @@ mvr_image_id converter::image(int index, const std::string &what, const std::str
         refuse(what + ": image " + std::to_string(index) + " does not exist");
     auto failed = failed_images.find(index);
     if (found == images.end()) {
+        if (!ahead_tried) {
+            ahead_tried = true;
+            ahead = decode_images_ahead(cx, m);
+        }
         std::string iname = "images[" + std::to_string(index) + "]";
         try {
             mvr_image_id id = decode_image(size_t(index), iname);
@@ -194,11 +199,21 @@ mvr_image_id converter::decode_image(size_t index, const std::string &iname)
     uint64_t charge = std::max(decode_cost, 2 * rgba);
     mvr_image_id id = {0};
     {
+        // decoded ahead (the same call, on another thread): taken, and its
+        // hold released, before the decoding is charged as it always is
+        std::unique_ptr<mvr_image_data, void (*)(mvr_image_data *)> early(new mvr_image_data(), [](mvr_image_data *p) {
+            mvr_image_free(p);
+            delete p;
+        });
+        bool have = !ktx2 && take_ahead(ahead.get(), key, bytes, size, charge, early.get());
         charged decoding(cx.mem, charge,
                          iname + " (" + std::to_string(h.width) + "x" + std::to_string(h.height) + ", decoding)");
         mvr_image_data pixels;
         std::memset(&pixels, 0, sizeof pixels);
-        if (ktx2) {
+        if (have) {
+            pixels = *early;
+            std::memset(early.get(), 0, sizeof *early);
+        } else if (ktx2) {
             // Whether the image is sRGB comes from its role (base colour and
             // emissive are sRGB-encoded, glTF 2.0, 3.9.2), as for PNG / JPEG:
             // the KTX2 format's _SRGB / _UNORM (k.info.srgb) is informational.

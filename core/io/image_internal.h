@@ -1,17 +1,20 @@
 /*
  * mvr_image's parts, behind include/mvr/mvr_image.h:
  *  - image_io.c: the C front every program links. It picks a decoder from the
- *    bytes' signature and does PNG itself (image_png.c); everything else goes
- *    to the OpenImageIO module.
+ *    bytes' signature and does 8-bit PNG (image_png.c) and JPEG (image_jpeg.c)
+ *    itself; everything else goes to the OpenImageIO module.
  *  - image_png.c: 8-bit PNG in and out through libpng, giving the pixels
  *    OpenImageIO 2.4 gives (same libpng transforms, same alpha association,
  *    same 16-to-8-bit rounding); what it does not reproduce it defers.
+ *  - image_jpeg.c: 8-bit greyscale / RGB JPEG through libjpeg-turbo, the
+ *    same library calls OpenImageIO 2.4 makes; CMYK is deferred.
  *  - image_oiio.cpp: libmvr_image_oiio.so, OpenImageIO behind a table of C
  *    functions, loaded with dlopen() the first time a call needs it (EXR, HDR,
- *    JPEG, WebP, float pixels, comparisons): linking OpenImageIO costs every
+ *    WebP, CMYK JPEG, float pixels, comparisons): linking OpenImageIO costs every
  *    program ~0.3 s before main() (the static initialisers of its 260 shared
  *    libraries), which a program that only writes PNG never needs to pay.
- * Internal: tests/io/test_image_png.c uses these to compare the two decoders.
+ * Internal: tests/io/test_image_png.c and test_image_jpeg.c use these to compare
+ * the front with OpenImageIO.
  */
 #ifndef MVR_IMAGE_INTERNAL_H
 #define MVR_IMAGE_INTERNAL_H
@@ -66,47 +69,67 @@ typedef const mvr_image_backend *(*mvr_image_backend_entry)(uint32_t abi);
  * the message. */
 const mvr_image_backend *mvr_image_module(const char *who, mvr_error *error);
 
-/* ---- PNG through libpng (image_png.c) ---- */
+/* ---- the front's own decoders: PNG (image_png.c), JPEG (image_jpeg.c) ---- */
 
-typedef enum mvr_png_status {
-    MVR_PNG_OK = 0,
-    MVR_PNG_DEFER,   /* not reproduced here, or libpng refused it: ask OpenImageIO (msg says why) */
-    MVR_PNG_FAILED   /* a final answer (size over the cap, out of memory, a file not writable) */
-} mvr_png_status;
+typedef enum mvr_front_status {
+    MVR_FRONT_OK = 0,
+    MVR_FRONT_DEFER,   /* not reproduced here, or libpng refused it: ask OpenImageIO (msg says why) */
+    MVR_FRONT_FAILED   /* a final answer (size over the cap, out of memory, a file not writable) */
+} mvr_front_status;
 
-/* Where PNG bytes come from: memory, or an open file. */
-typedef struct mvr_png_source {
+/* Where encoded bytes come from: memory, or an open file. */
+typedef struct mvr_bytes_source {
     const unsigned char *data;
     size_t size;
     FILE *file;
-} mvr_png_source;
+} mvr_bytes_source;
 
 /* The header as OpenImageIO's probe reports it (channels after expanding
  * palette, low bit depths and tRNS). */
-mvr_png_status mvr_png_probe(const mvr_png_source *src, mvr_image_header *out, mvr_error *error);
+mvr_front_status mvr_png_probe(const mvr_bytes_source *src, mvr_image_header *out, mvr_error *error);
 
 /* What mvr_png_decode holds at its peak for this image, from its header: the
  * RGBA8 result, one native row or (interlaced) the whole native image at the
  * file's bit depth after expansion, and the row pointers. */
-mvr_png_status mvr_png_decode_cost(const mvr_png_source *src, uint64_t *out_bytes, mvr_error *error);
+mvr_front_status mvr_png_decode_cost(const mvr_bytes_source *src, uint64_t *out_bytes, mvr_error *error);
 
 /* RGBA8, rows top first, as OpenImageIO's read_image(UINT8) and mvr's
  * channel expansion give it. max_dimension 0 = 16384; memory_budget 0 = the
  * default; both checked before anything is allocated; `what` starts messages.
- * A PNG libpng refuses is a final answer (MVR_PNG_FAILED, libpng's message):
+ * A PNG libpng refuses is a final answer (MVR_FRONT_FAILED, libpng's message):
  * OpenImageIO's libpng would refuse it too, and print to stderr doing so. */
-mvr_png_status mvr_png_decode(const mvr_png_source *src, uint32_t max_dimension, uint64_t memory_budget,
+mvr_front_status mvr_png_decode(const mvr_bytes_source *src, uint32_t max_dimension, uint64_t memory_budget,
                               const char *what, mvr_image_data *out, mvr_error *error);
 
 /* An RGBA8 view to an 8-bit RGBA PNG with an sRGB chunk, alpha unassociated
  * as OpenImageIO's PNG writer does it (the colour of a pixel with alpha a,
  * 0 < a < 255, becomes min(255, c * 255 / a)). */
-mvr_png_status mvr_png_write(const char *path, const mvr_image_view *image, mvr_error *error);
+mvr_front_status mvr_png_write(const char *path, const mvr_image_view *image, mvr_error *error);
 
 /* One U8 or U16 channel to an 8- or 16-bit grayscale PNG, the values as
  * given (no sRGB chunk: they are data, not colour). */
-mvr_png_status mvr_png_write_gray(const char *path, const mvr_image_channel *channel, uint32_t width,
+mvr_front_status mvr_png_write_gray(const char *path, const mvr_image_channel *channel, uint32_t width,
                                   uint32_t height, bool bottom_up, mvr_error *error);
+
+/* ---- JPEG through libjpeg-turbo (image_jpeg.c) ---- */
+
+/* The header as OpenImageIO's probe reports it: greyscale (1 channel) and
+ * YCbCr / RGB (3); other colour spaces (CMYK, YCCK) are deferred. The front
+ * has checked the framing (SOI ... EOI). */
+mvr_front_status mvr_jpeg_probe(const mvr_bytes_source *src, mvr_image_header *out, mvr_error *error);
+
+/* What decoding is charged, as OpenImageIO's path is: the samples, the RGBA8
+ * result and `held` (the front's figure for a progressive file's
+ * coefficients), or a multi-scan file's own coefficient buffer if larger. */
+mvr_front_status mvr_jpeg_decode_cost(const mvr_bytes_source *src, uint64_t held, uint64_t *out_bytes,
+                                      mvr_error *error);
+
+/* RGBA8, rows top first, the pixels OpenImageIO's read_image(UINT8) and mvr's
+ * channel expansion give; max_dimension 0 = 16384, memory_budget 0 = the
+ * default, both checked before the pixels are allocated; `what` starts
+ * messages. A JPEG libjpeg refuses is a final answer (MVR_FRONT_FAILED). */
+mvr_front_status mvr_jpeg_decode(const mvr_bytes_source *src, uint32_t max_dimension, uint64_t memory_budget,
+                                 uint64_t held, const char *what, mvr_image_data *out, mvr_error *error);
 
 /* The refusal of an image over its memory budget: MVR_ERROR_OUT_OF_MEMORY,
  * naming what, the declared size and both byte counts (inline: the front and
@@ -137,6 +160,10 @@ static inline uint64_t mvr_image_add(uint64_t a, uint64_t b)
 {
     return a > UINT64_MAX - b ? UINT64_MAX : a + b;
 }
+
+/* malloc() for a decoded image's pixels, advised into huge pages where it is
+ * large (freed with free()). */
+void *mvr_image_alloc_pixels(size_t bytes);
 
 /* printf into error (NULL: nothing), returns r. */
 mvr_result mvr_image_fail(mvr_error *error, mvr_result r, const char *fmt, ...)

@@ -1,7 +1,8 @@
 /*
  * mvr_image's C front (include/mvr/mvr_image.h): the decoder is picked from
  * the bytes' signature, never from a name; PNG is done here through libpng
- * (image_png.c), and everything else by OpenImageIO in libmvr_image_oiio.so,
+ * (image_png.c), JPEG through libjpeg-turbo (image_jpeg.c), and everything
+ * else (and what those two defer) by OpenImageIO in libmvr_image_oiio.so,
  * loaded the first time a call needs it (image_internal.h says why).
  *
  * The module is searched, in this order:
@@ -29,6 +30,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 #include <unistd.h>
 
 #include "image_internal.h"
@@ -50,6 +52,24 @@ mvr_result mvr_image_fail(mvr_error *error, mvr_result r, const char *fmt, ...)
         error->result = r;
     }
     return r;
+}
+
+void *mvr_image_alloc_pixels(size_t bytes)
+{
+    void *p = malloc(bytes);
+#ifdef MADV_HUGEPAGE
+    /* written once, row after row, right after this: in 2 MiB pages where
+     * the kernel's transparent huge pages are on for madvise()d memory, one
+     * page fault per 2 MiB instead of 512 (the faults of a 2048x2048
+     * texture's 16 MiB were a third of a textured file's first image) */
+    const uintptr_t huge = (uintptr_t)2 << 20;
+    if (p && bytes >= 2 * huge) {
+        uintptr_t from = ((uintptr_t)p + huge - 1) & ~(huge - 1), to = ((uintptr_t)p + bytes) & ~(huge - 1);
+        if (to > from)
+            (void)madvise((void *)from, to - from, MADV_HUGEPAGE);   /* advice: refused, nothing changes */
+    }
+#endif
+    return p;
 }
 
 /* ---------------------------------------------------------------- the module */
@@ -235,31 +255,70 @@ static bool png_framing_ok(const unsigned char *p, size_t n, char *why, size_t w
     return false;
 }
 
+/* Bytes to walk: in memory (p, n, at) or a file (f). */
+typedef struct byte_stream {
+    const unsigned char *p;
+    size_t n, at;
+    FILE *f;
+} byte_stream;
+
+static int next_byte(byte_stream *s)
+{
+    if (s->f)
+        return getc(s->f);
+    return s->at < s->n ? s->p[s->at++] : EOF;
+}
+
+/* Consumes everything up to and including the next 0xFF; false at the end.
+ * In memory this is memchr: the entropy-coded data (nearly all of a JPEG)
+ * is skipped at memory speed, not a byte at a time. */
+static bool to_ff(byte_stream *s)
+{
+    if (s->f) {
+        int c;
+        while ((c = getc(s->f)) != EOF)
+            if (c == 0xFF)
+                return true;
+        return false;
+    }
+    const unsigned char *q = s->at < s->n ? memchr(s->p + s->at, 0xFF, s->n - s->at) : NULL;
+    s->at = q ? (size_t)(q - s->p) + 1 : s->n;
+    return q != NULL;
+}
+
+/* Skips k bytes; false where the stream ends first. */
+static bool skip_bytes(byte_stream *s, long k)
+{
+    if (s->f)
+        return fseek(s->f, k, SEEK_CUR) == 0;
+    if (k < 0 || (size_t)k > s->n - s->at)
+        return false;
+    s->at += (size_t)k;
+    return true;
+}
+
 /* JPEG framing (ISO/IEC 10918-1, B.1.1): after SOI, marker segments (a
  * length after every marker but SOI, EOI, RSTn and TEM), each SOS followed by
  * entropy-coded data in which 0xFF is stuffed as FF 00 and the only markers
  * are RSTn; the image ends at EOI. A JPEG that ends before EOI is truncated:
  * libjpeg would only warn ("premature end") and fill the rest with grey, so
- * it is refused here. Reads a stream (memory through fmemopen, or a file);
- * false with `why` set when the stream ends first. *held: what libjpeg holds
- * besides the pixels: a progressive JPEG (SOF2, 6, 10, 14) keeps every DCT
- * coefficient until its last scan, 2 bytes a sample (ISO/IEC 10918-1 G.1.1;
- * libjpeg's whole-image coefficient buffer), from its SOF's size. */
-static bool jpeg_framing_ok(FILE *f, uint64_t *held, char *why, size_t why_size)
+ * it is refused here. Reads bytes in memory or a file; false with `why` set
+ * when they end first. *held: what libjpeg holds besides the pixels: a
+ * progressive JPEG (SOF2, 6, 10, 14) keeps every DCT coefficient until its
+ * last scan, 2 bytes a sample (ISO/IEC 10918-1 G.1.1; libjpeg's whole-image
+ * coefficient buffer), from its SOF's size. */
+static bool jpeg_framing_ok(byte_stream *s, uint64_t *held, char *why, size_t why_size)
 {
     *held = 0;
-    int c = 0;
-    if (getc(f) != 0xFF || getc(f) != 0xD8) {
+    if (next_byte(s) != 0xFF || next_byte(s) != 0xD8) {
         snprintf(why, why_size, "JPEG has no SOI marker");
         return false;
     }
     /* bytes other than 0xFF: entropy-coded data after an SOS, or stray bytes
      * before a marker (libjpeg skips those with a warning; so does this) */
-    while ((c = getc(f)) != EOF) {
-        if (c != 0xFF)
-            continue;
+    while (to_ff(s)) {
         int m;
-        while ((m = getc(f)) == 0xFF) {
+        while ((m = next_byte(s)) == 0xFF) {
         } /* fill bytes */
         if (m == EOF)
             break;
@@ -267,7 +326,7 @@ static bool jpeg_framing_ok(FILE *f, uint64_t *held, char *why, size_t why_size)
             return true;                            /* EOI */
         if (m == 0x00 || (m >= 0xD0 && m <= 0xD7) || m == 0x01)
             continue;                               /* stuffed 0xFF, RSTn, TEM: no length */
-        int hi = getc(f), lo = getc(f);
+        int hi = next_byte(s), lo = next_byte(s);
         if (lo == EOF)
             break;
         long len = hi << 8 | lo;
@@ -277,7 +336,8 @@ static bool jpeg_framing_ok(FILE *f, uint64_t *held, char *why, size_t why_size)
         }
         bool sof = m >= 0xC0 && m <= 0xCF && m != 0xC4 && m != 0xC8 && m != 0xCC;
         if (sof && (m & 3) == 2 && len >= 8) {
-            int p = getc(f), y1 = getc(f), y0 = getc(f), x1 = getc(f), x0 = getc(f), nc = getc(f);
+            int p = next_byte(s), y1 = next_byte(s), y0 = next_byte(s), x1 = next_byte(s), x0 = next_byte(s),
+                nc = next_byte(s);
             if (nc == EOF)
                 break;
             (void)p;
@@ -285,7 +345,7 @@ static bool jpeg_framing_ok(FILE *f, uint64_t *held, char *why, size_t why_size)
             *held = mvr_image_add(*held, samples * 2);
             len -= 6;
         }
-        if (fseek(f, len - 2, SEEK_CUR) != 0)
+        if (!skip_bytes(s, len - 2))
             break;
     }
     snprintf(why, why_size, "JPEG ends before its EOI marker (truncated?)");
@@ -295,14 +355,8 @@ static bool jpeg_framing_ok(FILE *f, uint64_t *held, char *why, size_t why_size)
 /* jpeg_framing_ok over bytes in memory. */
 static bool jpeg_bytes_ok(const unsigned char *p, size_t n, uint64_t *held, char *why, size_t why_size)
 {
-    FILE *f = fmemopen((void *)(uintptr_t)p, n, "rb");   /* read-only: the bytes are not written */
-    if (!f) {
-        snprintf(why, why_size, "out of memory (fmemopen)");
-        return false;
-    }
-    bool ok = jpeg_framing_ok(f, held, why, why_size);
-    fclose(f);
-    return ok;
+    byte_stream s = {.p = p, .n = n};
+    return jpeg_framing_ok(&s, held, why, why_size);
 }
 
 /* The checks every encoded-image call makes; the format, or NULL with the
@@ -369,9 +423,9 @@ void mvr_image_free(mvr_image_data *image)
 /* The front's answer for a PNG, or OpenImageIO's where it defers. */
 #define FRONT_OR_MODULE(st, who, call)                                                                          \
     do {                                                                                                        \
-        if ((st) == MVR_PNG_OK)                                                                                 \
+        if ((st) == MVR_FRONT_OK)                                                                                 \
             return MVR_OK;                                                                                      \
-        if ((st) == MVR_PNG_FAILED)                                                                             \
+        if ((st) == MVR_FRONT_FAILED)                                                                             \
             return e->result;                                                                                   \
         const mvr_image_backend *m_ = module_for_deferred((who), e);                                            \
         return m_ ? m_->call : e->result;                                                                       \
@@ -389,8 +443,13 @@ mvr_result mvr_image_probe(const void *data, size_t size, const char *mime_type,
     if (!f)
         return e->result;
     if (f == &format_png) {
-        mvr_png_source src = {.data = (const unsigned char *)data, .size = size};
-        mvr_png_status st = mvr_png_probe(&src, out, e);
+        mvr_bytes_source src = {.data = (const unsigned char *)data, .size = size};
+        mvr_front_status st = mvr_png_probe(&src, out, e);
+        FRONT_OR_MODULE(st, "mvr_image_probe", probe(data, size, mime_type, out, e));
+    }
+    if (f == &format_jpeg) {
+        mvr_bytes_source src = {.data = (const unsigned char *)data, .size = size};
+        mvr_front_status st = mvr_jpeg_probe(&src, out, e);
         FRONT_OR_MODULE(st, "mvr_image_probe", probe(data, size, mime_type, out, e));
     }
     const mvr_image_backend *m = mvr_image_module("mvr_image_probe", e);
@@ -409,11 +468,22 @@ mvr_result mvr_image_decode_cost(const void *data, size_t size, const char *mime
     if (!f)
         return e->result;
     if (f == &format_png) {
-        mvr_png_source src = {.data = (const unsigned char *)data, .size = size};
-        mvr_png_status st = mvr_png_decode_cost(&src, out_bytes, e);
+        mvr_bytes_source src = {.data = (const unsigned char *)data, .size = size};
+        mvr_front_status st = mvr_png_decode_cost(&src, out_bytes, e);
         FRONT_OR_MODULE(st, "mvr_image_decode_cost", decode_cost(data, size, mime_type, out_bytes, e));
     }
-    const mvr_image_backend *m = mvr_image_module("mvr_image_decode_cost", e);
+    const mvr_image_backend *m = NULL;
+    if (f == &format_jpeg) {
+        mvr_bytes_source src = {.data = (const unsigned char *)data, .size = size};
+        mvr_front_status st = mvr_jpeg_decode_cost(&src, held, out_bytes, e);
+        if (st == MVR_FRONT_OK)
+            return MVR_OK;
+        if (st == MVR_FRONT_FAILED)
+            return e->result;
+        m = module_for_deferred("mvr_image_decode_cost", e);
+    } else {
+        m = mvr_image_module("mvr_image_decode_cost", e);
+    }
     if (!m || m->decode_cost(data, size, mime_type, out_bytes, e) != MVR_OK)
         return e->result;
     *out_bytes = mvr_image_add(*out_bytes, held);
@@ -433,8 +503,13 @@ mvr_result mvr_image_decode_within(const void *data, size_t size, const char *mi
     if (!f)
         return e->result;
     if (f == &format_png) {
-        mvr_png_source src = {.data = (const unsigned char *)data, .size = size};
-        mvr_png_status st = mvr_png_decode(&src, max_dimension, budget, "mvr_image_decode", out, e);
+        mvr_bytes_source src = {.data = (const unsigned char *)data, .size = size};
+        mvr_front_status st = mvr_png_decode(&src, max_dimension, budget, "mvr_image_decode", out, e);
+        FRONT_OR_MODULE(st, "mvr_image_decode", decode(data, size, mime_type, max_dimension, budget, held, out, e));
+    }
+    if (f == &format_jpeg) {
+        mvr_bytes_source src = {.data = (const unsigned char *)data, .size = size};
+        mvr_front_status st = mvr_jpeg_decode(&src, max_dimension, budget, held, "mvr_image_decode", out, e);
         FRONT_OR_MODULE(st, "mvr_image_decode", decode(data, size, mime_type, max_dimension, budget, held, out, e));
     }
     const mvr_image_backend *m = mvr_image_module("mvr_image_decode", e);
@@ -467,21 +542,24 @@ mvr_result mvr_image_read_within(const char *path, mvr_pixel_type type, uint64_t
     uint64_t held = 0;
     if (f == &format_jpeg) {
         rewind(file);
-        if (!jpeg_framing_ok(file, &held, why, sizeof why)) {
+        byte_stream s = {.f = file};
+        if (!jpeg_framing_ok(&s, &held, why, sizeof why)) {
             fclose(file);
             return mvr_image_fail(e, MVR_ERROR_INVALID_ASSET, "%s: %s", who, why);
         }
     }
-    /* an 8-bit read of a PNG file is the front's; anything else, OpenImageIO's */
-    bool png = type == MVR_PIXEL_U8 && f == &format_png;
-    mvr_png_status st = MVR_PNG_DEFER;
-    if (png) {
+    /* an 8-bit read of a PNG or JPEG file is the front's; anything else,
+     * OpenImageIO's */
+    bool front = type == MVR_PIXEL_U8 && (f == &format_png || f == &format_jpeg);
+    mvr_front_status st = MVR_FRONT_DEFER;
+    if (front) {
         rewind(file);
-        mvr_png_source src = {.file = file};
-        st = mvr_png_decode(&src, 0, budget, who, out, e);
+        mvr_bytes_source src = {.file = file};
+        st = f == &format_png ? mvr_png_decode(&src, 0, budget, who, out, e)
+                              : mvr_jpeg_decode(&src, 0, budget, held, who, out, e);
     }
     fclose(file);
-    if (png)
+    if (front)
         FRONT_OR_MODULE(st, who, read(path, type, budget, held, out, e));
     const mvr_image_backend *m = mvr_image_module(who, e);
     return m ? m->read(path, type, budget, held, out, e) : e->result;
@@ -518,7 +596,7 @@ mvr_result mvr_image_write(const char *path, const mvr_image_view *image, mvr_er
         return mvr_image_fail(e, MVR_ERROR_INVALID_ARGUMENT,
                               "mvr_image_write(%s): the name must end in .png or .exr", path);
     if (png && image->type == MVR_PIXEL_U8)
-        return mvr_png_write(path, image, e) == MVR_PNG_OK ? MVR_OK : e->result;
+        return mvr_png_write(path, image, e) == MVR_FRONT_OK ? MVR_OK : e->result;
     /* EXR, and float pixels into PNG (OpenImageIO's conversion) */
     const mvr_image_backend *m = mvr_image_module("mvr_image_write", e);
     return m ? m->write(path, image, e) : e->result;
@@ -601,7 +679,7 @@ mvr_result mvr_image_write_channels(const char *path, const mvr_image_channels *
             return mvr_image_fail(e, MVR_ERROR_INVALID_ARGUMENT,
                                   "mvr_image_write_channels(%s): a PNG takes one U8 or U16 channel (%u given)", path,
                                   image->count);
-        return mvr_png_write_gray(path, c, image->width, image->height, image->bottom_up, e) == MVR_PNG_OK
+        return mvr_png_write_gray(path, c, image->width, image->height, image->bottom_up, e) == MVR_FRONT_OK
                    ? MVR_OK
                    : e->result;
     }

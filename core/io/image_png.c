@@ -34,7 +34,7 @@
 /* What the libpng callbacks share; reached through png_get_error_ptr /
  * png_get_io_ptr, never a global. */
 typedef struct png_job {
-    const mvr_png_source *src;
+    const mvr_bytes_source *src;
     size_t at;                   /* read position in src->data */
     FILE *out;                   /* writing */
     char message[200];           /* libpng's last error */
@@ -55,7 +55,7 @@ static void on_warning(png_structp png, png_const_charp msg)
 static void on_read(png_structp png, png_bytep to, size_t n)
 {
     png_job *job = (png_job *)png_get_io_ptr(png);
-    const mvr_png_source *src = job->src;
+    const mvr_bytes_source *src = job->src;
     if (src->file) {
         if (fread(to, 1, n, src->file) != n)
             png_error(png, "the file ends early (truncated?)");
@@ -138,18 +138,18 @@ static png_structp new_reader(png_job *job, png_infop *info)
     return png;
 }
 
-static mvr_png_status deferred(mvr_error *error, const char *what, const char *why)
+static mvr_front_status deferred(mvr_error *error, const char *what, const char *why)
 {
     mvr_image_fail(error, MVR_ERROR_INVALID_ASSET, "%s: %s", what, why);
-    return MVR_PNG_DEFER;
+    return MVR_FRONT_DEFER;
 }
 
 /* libpng refused the file: final, since OpenImageIO reads PNG through the
  * same libpng and would refuse it too, printing libpng's message to stderr. */
-static mvr_png_status refused(mvr_error *error, const char *what, const char *why)
+static mvr_front_status refused(mvr_error *error, const char *what, const char *why)
 {
     mvr_image_fail(error, MVR_ERROR_INVALID_ASSET, "%s: %s", what, why);
-    return MVR_PNG_FAILED;
+    return MVR_FRONT_FAILED;
 }
 
 /* What decoding holds at its peak (see mvr_png_decode_cost). */
@@ -162,14 +162,14 @@ static uint64_t layout_cost(const png_layout *l)
     return mvr_image_add(mvr_image_add(mvr_image_mul(pixels, 4), native), rows);
 }
 
-mvr_png_status mvr_png_probe(const mvr_png_source *src, mvr_image_header *out, mvr_error *error)
+mvr_front_status mvr_png_probe(const mvr_bytes_source *src, mvr_image_header *out, mvr_error *error)
 {
     png_job job = {.src = src};
     png_infop info = NULL;
     png_structp png = new_reader(&job, &info);
     if (!png) {
         mvr_image_fail(error, MVR_ERROR_OUT_OF_MEMORY, "mvr_image_probe: out of memory (libpng)");
-        return MVR_PNG_FAILED;
+        return MVR_FRONT_FAILED;
     }
     png_layout l;
     const char *why = NULL;
@@ -183,13 +183,13 @@ mvr_png_status mvr_png_probe(const mvr_png_source *src, mvr_image_header *out, m
         return deferred(error, "mvr_image_probe", why);
     if (l.width == 0 || l.height == 0) {
         mvr_image_fail(error, MVR_ERROR_INVALID_ASSET, "mvr_image_probe: the header has no valid size");
-        return MVR_PNG_FAILED;
+        return MVR_FRONT_FAILED;
     }
     out->width = l.width;
     out->height = l.height;
     out->channels = (uint32_t)l.channels;
     out->format = "png";
-    return MVR_PNG_OK;
+    return MVR_FRONT_OK;
 }
 
 /* A native row (8 or 16 bit, big-endian, l->channels) to RGBA8: alpha
@@ -249,14 +249,14 @@ static void free_buffers(volatile png_buffers *b)
     b->rows = NULL;
 }
 
-mvr_png_status mvr_png_decode_cost(const mvr_png_source *src, uint64_t *out_bytes, mvr_error *error)
+mvr_front_status mvr_png_decode_cost(const mvr_bytes_source *src, uint64_t *out_bytes, mvr_error *error)
 {
     png_job job = {.src = src};
     png_infop info = NULL;
     png_structp png = new_reader(&job, &info);
     if (!png) {
         mvr_image_fail(error, MVR_ERROR_OUT_OF_MEMORY, "mvr_image_decode_cost: out of memory (libpng)");
-        return MVR_PNG_FAILED;
+        return MVR_FRONT_FAILED;
     }
     png_layout l;
     const char *why = NULL;
@@ -269,10 +269,10 @@ mvr_png_status mvr_png_decode_cost(const mvr_png_source *src, uint64_t *out_byte
     if (!ok)
         return deferred(error, "mvr_image_decode_cost", why);
     *out_bytes = layout_cost(&l);
-    return MVR_PNG_OK;
+    return MVR_FRONT_OK;
 }
 
-mvr_png_status mvr_png_decode(const mvr_png_source *src, uint32_t max_dimension, uint64_t memory_budget,
+mvr_front_status mvr_png_decode(const mvr_bytes_source *src, uint32_t max_dimension, uint64_t memory_budget,
                               const char *what, mvr_image_data *out, mvr_error *error)
 {
     png_job job = {.src = src};
@@ -280,7 +280,7 @@ mvr_png_status mvr_png_decode(const mvr_png_source *src, uint32_t max_dimension,
     png_structp png = new_reader(&job, &info);
     if (!png) {
         mvr_image_fail(error, MVR_ERROR_OUT_OF_MEMORY, "%s: out of memory (libpng)", what);
-        return MVR_PNG_FAILED;
+        return MVR_FRONT_FAILED;
     }
     /* changed after setjmp and freed after a longjmp: volatile (C11 7.13.2.1) */
     volatile png_buffers b = {0};
@@ -299,7 +299,7 @@ mvr_png_status mvr_png_decode(const mvr_png_source *src, uint32_t max_dimension,
     if (l.width == 0 || l.height == 0 || l.width > cap || l.height > cap) {
         png_destroy_read_struct(&png, &info, NULL);
         mvr_image_fail(error, MVR_ERROR_INVALID_ASSET, "%s: %ux%u is not within 1..%u", what, l.width, l.height, cap);
-        return MVR_PNG_FAILED;
+        return MVR_FRONT_FAILED;
     }
     uint64_t budget = memory_budget ? memory_budget : MVR_IMAGE_DEFAULT_MEMORY_BUDGET;
     uint64_t needed = layout_cost(&l);
@@ -307,11 +307,11 @@ mvr_png_status mvr_png_decode(const mvr_png_source *src, uint32_t max_dimension,
         png_destroy_read_struct(&png, &info, NULL);
         mvr_image_over_budget(error, what, l.width, l.height, (uint32_t)l.channels, (uint32_t)l.depth / 8u, needed,
                               budget);
-        return MVR_PNG_FAILED;
+        return MVR_FRONT_FAILED;
     }
     size_t row_bytes = png_get_rowbytes(png, info);
     size_t native_rows = l.interlaced ? l.height : 1;
-    b.rgba = malloc((size_t)l.width * l.height * 4u);
+    b.rgba = mvr_image_alloc_pixels((size_t)l.width * l.height * 4u);
     b.native = malloc(row_bytes * native_rows);
     if (l.interlaced)
         b.rows = malloc(sizeof(png_bytep) * l.height);
@@ -319,7 +319,7 @@ mvr_png_status mvr_png_decode(const mvr_png_source *src, uint32_t max_dimension,
         free_buffers(&b);
         png_destroy_read_struct(&png, &info, NULL);
         mvr_image_fail(error, MVR_ERROR_OUT_OF_MEMORY, "%s: out of memory (%ux%u)", what, l.width, l.height);
-        return MVR_PNG_FAILED;
+        return MVR_FRONT_FAILED;
     }
     if (l.interlaced) {
         for (uint32_t y = 0; y < l.height; ++y)
@@ -341,7 +341,7 @@ mvr_png_status mvr_png_decode(const mvr_png_source *src, uint32_t max_dimension,
     out->pixels = b.rgba;
     b.rgba = NULL;
     free_buffers(&b);
-    return MVR_PNG_OK;
+    return MVR_FRONT_OK;
 }
 
 /* The writer's state, freed on every path (a longjmp included). */
@@ -366,12 +366,12 @@ typedef struct png_write_layout {
 /* The one writer behind mvr_png_write and mvr_png_write_gray: opens path,
  * writes every row, and removes the file on any failure (libpng's errors
  * come back through on_error's longjmp to the setjmp here). */
-static mvr_png_status write_png(const char *path, const png_write_layout *l, mvr_error *error)
+static mvr_front_status write_png(const char *path, const png_write_layout *l, mvr_error *error)
 {
     png_job job = {.out = fopen(path, "wb")};
     if (!job.out) {
         mvr_image_fail(error, MVR_ERROR_IO, "%s(%s): %s", l->what, path, strerror(errno));
-        return MVR_PNG_FAILED;
+        return MVR_FRONT_FAILED;
     }
     png_out w = {0};   /* set before setjmp, unchanged after it */
     w.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &job, on_error, on_warning);
@@ -383,7 +383,7 @@ static mvr_png_status write_png(const char *path, const png_write_layout *l, mvr
         fclose(job.out);
         remove(path);
         mvr_image_fail(error, MVR_ERROR_OUT_OF_MEMORY, "%s(%s): out of memory", l->what, path);
-        return MVR_PNG_FAILED;
+        return MVR_FRONT_FAILED;
     }
     if (setjmp(png_jmpbuf(w.png))) {
         png_destroy_write_struct(&w.png, &w.info);
@@ -391,7 +391,7 @@ static mvr_png_status write_png(const char *path, const png_write_layout *l, mvr
         fclose(job.out);
         remove(path);
         mvr_image_fail(error, MVR_ERROR_IO, "%s(%s): %s", l->what, path, job.message);
-        return MVR_PNG_FAILED;
+        return MVR_FRONT_FAILED;
     }
     png_set_write_fn(w.png, &job, on_write, on_flush);
     png_set_IHDR(w.png, w.info, l->width, l->height, l->bit_depth, l->color_type, PNG_INTERLACE_NONE,
@@ -412,9 +412,9 @@ static mvr_png_status write_png(const char *path, const png_write_layout *l, mvr
     if (fclose(job.out) != 0) {
         remove(path);
         mvr_image_fail(error, MVR_ERROR_IO, "%s(%s): %s", l->what, path, strerror(errno));
-        return MVR_PNG_FAILED;
+        return MVR_FRONT_FAILED;
     }
-    return MVR_PNG_OK;
+    return MVR_FRONT_OK;
 }
 
 /* Row y (from the top) of an RGBA8 image as PNG stores it. */
@@ -438,7 +438,7 @@ static void rgba_row(const void *source, uint32_t y, unsigned char *row)
     }
 }
 
-mvr_png_status mvr_png_write(const char *path, const mvr_image_view *image, mvr_error *error)
+mvr_front_status mvr_png_write(const char *path, const mvr_image_view *image, mvr_error *error)
 {
     png_write_layout l = {.what = "mvr_image_write", .width = image->width, .height = image->height, .bit_depth = 8,
                     .color_type = PNG_COLOR_TYPE_RGB_ALPHA, .srgb = true, .row_bytes = (size_t)image->width * 4u,
@@ -473,7 +473,7 @@ static void gray_row(const void *source, uint32_t y, unsigned char *out)
     }
 }
 
-mvr_png_status mvr_png_write_gray(const char *path, const mvr_image_channel *channel, uint32_t width,
+mvr_front_status mvr_png_write_gray(const char *path, const mvr_image_channel *channel, uint32_t width,
                                   uint32_t height, bool bottom_up, mvr_error *error)
 {
     int depth = channel->type == MVR_CHANNEL_U16 ? 16 : 8;

@@ -230,15 +230,15 @@ static bool make_png(const png_spec *s, const unsigned char *fill, uint32_t seed
 }
 
 /* Decodes with both; returns the front's status. `what` names the case. */
-static mvr_png_status compare_decoders(mvr_test_state *t, const mvr_image_backend *m, const bytes *b,
+static mvr_front_status compare_decoders(mvr_test_state *t, const mvr_image_backend *m, const bytes *b,
                                        const char *what)
 {
     mvr_error fe = {0}, oe = {0};
     mvr_image_header fh = {0}, oh = {0};
-    mvr_png_source src = {.data = b->data, .size = b->size};
-    mvr_png_status ps = mvr_png_probe(&src, &fh, &fe);
+    mvr_bytes_source src = {.data = b->data, .size = b->size};
+    mvr_front_status ps = mvr_png_probe(&src, &fh, &fe);
     mvr_result pr = m->probe(b->data, b->size, "image/png", &oh, &oe);
-    if (ps == MVR_PNG_OK) {
+    if (ps == MVR_FRONT_OK) {
         CHECK_MSG(t, pr == MVR_OK, "%s: the front probes, OpenImageIO refuses: %s", what, oe.message);
         if (pr == MVR_OK) {
             CHECK_MSG(t, fh.width == oh.width && fh.height == oh.height && fh.channels == oh.channels,
@@ -248,9 +248,9 @@ static mvr_png_status compare_decoders(mvr_test_state *t, const mvr_image_backen
         }
     }
     mvr_image_data fd = {0}, od = {0};
-    mvr_png_status ds = mvr_png_decode(&src, 0, 0, what, &fd, &fe);
+    mvr_front_status ds = mvr_png_decode(&src, 0, 0, what, &fd, &fe);
     mvr_result dr = m->decode(b->data, b->size, "image/png", 0, MVR_IMAGE_DEFAULT_MEMORY_BUDGET, 0, &od, &oe);
-    if (ds == MVR_PNG_OK) {
+    if (ds == MVR_FRONT_OK) {
         CHECK_MSG(t, dr == MVR_OK, "%s: the front decodes, OpenImageIO refuses: %s", what, oe.message);
         if (dr == MVR_OK) {
             CHECK_MSG(t, fd.width == od.width && fd.height == od.height, "%s: size differs", what);
@@ -264,7 +264,7 @@ static mvr_png_status compare_decoders(mvr_test_state *t, const mvr_image_backen
                           what, diff, n, first / 4, first % 4, a[first], o[first]);
             }
         }
-    } else if (ds == MVR_PNG_FAILED) {
+    } else if (ds == MVR_FRONT_FAILED) {
         CHECK_MSG(t, dr != MVR_OK, "%s: the front refuses (%s), OpenImageIO decodes", what, fe.message);
     } else {
         /* deferred: the public call must give OpenImageIO's answer */
@@ -355,8 +355,8 @@ static int walk_pngs(mvr_test_state *t, const mvr_image_backend *m, const char *
             continue;
         bytes b;
         CHECK(t, read_file(path, &b));
-        mvr_png_status s = compare_decoders(t, m, &b, path);
-        CHECK_MSG(t, s == MVR_PNG_OK, "%s: the front does not decode it itself", path);
+        mvr_front_status s = compare_decoders(t, m, &b, path);
+        CHECK_MSG(t, s == MVR_FRONT_OK, "%s: the front does not decode it itself", path);
         /* by path too (mvr_image_read: the front reads the file) */
         mvr_image_data a = {0}, o = {0};
         mvr_error ae = {0}, oe = {0};
@@ -430,9 +430,9 @@ static void generated_layouts(mvr_test_state *t)
                 char what[160];
                 snprintf(what, sizeof what, "colour type %d, %d bit, tRNS %d, %s, %s", s.color, s.depth,
                          s.trns_count, colours[c].name, interlace ? "interlaced" : "not interlaced");
-                mvr_png_status st = compare_decoders(t, m, &b, what);
-                CHECK_MSG(t, st == MVR_PNG_OK, "%s: deferred or refused", what);
-                ok += st == MVR_PNG_OK;
+                mvr_front_status st = compare_decoders(t, m, &b, what);
+                CHECK_MSG(t, st == MVR_FRONT_OK, "%s: deferred or refused", what);
+                ok += st == MVR_FRONT_OK;
                 ++cases;
                 free(b.data);
             }
@@ -444,8 +444,8 @@ static void generated_layouts(mvr_test_state *t)
                       .srgb = -1, .icc = true};
         bytes b;
         CHECK(t, make_png(&s, NULL, seed++, &b));
-        mvr_png_status st = compare_decoders(t, m, &b, "RGBA with an iCCP chunk");
-        deferred += st == MVR_PNG_DEFER;
+        mvr_front_status st = compare_decoders(t, m, &b, "RGBA with an iCCP chunk");
+        deferred += st == MVR_FRONT_DEFER;
         ++cases;
         free(b.data);
     }
@@ -486,7 +486,7 @@ static void alpha_association_exhaustive(mvr_test_state *t)
             CHECK(t, make_png(&s, fill, 0, &b));
             char what[96];
             snprintf(what, sizeof what, "RGBA %d bit, colour x alpha, gAMA %.4f", depth, gammas[g]);
-            CHECK_MSG(t, compare_decoders(t, m, &b, what) == MVR_PNG_OK, "%s: not decoded by the front", what);
+            CHECK_MSG(t, compare_decoders(t, m, &b, what) == MVR_FRONT_OK, "%s: not decoded by the front", what);
             free(b.data);
             free(fill);
         }
@@ -541,7 +541,7 @@ static void writers_agree(mvr_test_state *t)
         snprintf(a, sizeof a, "%s/front_%d.png", out_dir(), flip);
         snprintf(o, sizeof o, "%s/oiio_%d.png", out_dir(), flip);
         mvr_error err = {0};
-        CHECK_MSG(t, mvr_png_write(a, &v, &err) == MVR_PNG_OK, "%s", err.message);
+        CHECK_MSG(t, mvr_png_write(a, &v, &err) == MVR_FRONT_OK, "%s", err.message);
         CHECK_MSG(t, m->write(o, &v, &err) == MVR_OK, "%s", err.message);
         uint32_t aw = 0, ah = 0, ow = 0, oh = 0;
         bool as = false, os = false;
@@ -582,10 +582,10 @@ static void refused_by_both(mvr_test_state *t)
     for (size_t i = 0; i < 2; ++i) {
         bytes b;
         CHECK(t, make_png(specs[i], NULL, 7, &b));
-        mvr_png_source src = {.data = b.data, .size = b.size};
+        mvr_bytes_source src = {.data = b.data, .size = b.size};
         mvr_image_data d = {0};
         mvr_error e = {0}, oe = {0};
-        CHECK(t, mvr_png_decode(&src, 0, 0, "bad crc", &d, &e) == MVR_PNG_FAILED);
+        CHECK(t, mvr_png_decode(&src, 0, 0, "bad crc", &d, &e) == MVR_FRONT_FAILED);
         CHECK(t, m->decode(b.data, b.size, NULL, 0, MVR_IMAGE_DEFAULT_MEMORY_BUDGET, 0, &d, &oe) != MVR_OK);
         CHECK(t, mvr_image_decode(b.data, b.size, NULL, 0, &d, &e) == MVR_ERROR_INVALID_ASSET);
         CHECK(t, d.pixels == NULL);
@@ -601,8 +601,8 @@ static void refused_by_both(mvr_test_state *t)
     /* over the caller's cap: refused by the front itself, naming the size */
     CHECK(t, mvr_image_decode(b.data, b.size, "image/png", 39, &d, &e) == MVR_ERROR_INVALID_ASSET);
     CHECK_MSG(t, strstr(e.message, "40x30 is not within 1..39") != NULL, "%s", e.message);
-    mvr_png_source src = {.data = b.data, .size = b.size};
-    CHECK(t, mvr_png_decode(&src, 39, 0, "cap", &d, &e) == MVR_PNG_FAILED);
+    mvr_bytes_source src = {.data = b.data, .size = b.size};
+    CHECK(t, mvr_png_decode(&src, 39, 0, "cap", &d, &e) == MVR_FRONT_FAILED);
     /* a MIME type that disagrees with the bytes */
     CHECK(t, mvr_image_decode(b.data, b.size, "image/jpeg", 0, &d, &e) == MVR_ERROR_INVALID_ASSET);
     CHECK_MSG(t, strstr(e.message, "mimeType 'image/jpeg' but the bytes are png") != NULL, "%s", e.message);
