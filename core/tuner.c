@@ -58,22 +58,27 @@ static void settle(mvr_tuner *t)
         t->estimate[c] = mvr_tuner_estimate(t->costs[c], t->samples[c]);
     double now = log_ratio(t->estimate);
     /* the evidence: this run's, averaged with the remembered runs' */
-    mvr_tuner_memory m = {0, now, 1};
+    /* one run counts at most MVR_TUNER_RUN_LIMIT either way: a run whose
+     * few samples were mostly outliers cannot undo the others */
+    double lim = -log(1.0 - MVR_TUNER_RUN_LIMIT);
+    double clamped = now > lim ? lim : now < -lim ? -lim : now;
+    mvr_tuner_memory m = {0, clamped, 0.0, 1};
     uint32_t incumbent = t->incumbent;
+    double band = -log(1.0 - MVR_TUNER_HYSTERESIS);
     if (t->recalled) {
-        /* one run counts at most MVR_TUNER_RUN_LIMIT either way: a
-         * run whose few samples were mostly outliers cannot undo the others */
-        double lim = -log(1.0 - MVR_TUNER_RUN_LIMIT);
-        double clamped = now > lim ? lim : now < -lim ? -lim : now;
+        /* a running mean and variance (Welford) over the last runs */
         uint32_t n = t->memory.runs;
-        m.log_ratio = (t->memory.log_ratio * n + clamped) / (n + 1);
+        double d = clamped - t->memory.log_ratio;
+        m.log_ratio = t->memory.log_ratio + d / (n + 1);
+        m.spread = (t->memory.spread * n + d * (clamped - m.log_ratio)) / (n + 1);
         m.runs = n + 1 < MVR_TUNER_MEMORY_RUNS ? n + 1 : MVR_TUNER_MEMORY_RUNS;
+        double se = sqrt(m.spread / (n + 1));
+        band = -log(1.0 - MVR_TUNER_STICKY);
+        band = band > 2.0 * se ? band : 2.0 * se;
     }
-    /* the other candidate must be cheaper by more than the hysteresis (a
-     * remembered incumbent: by more than the wider band) */
+    /* the other candidate must be cheaper by more than the band */
     double gain = incumbent == 0 ? -m.log_ratio : m.log_ratio; /* > 0: the other is cheaper */
-    double band = t->recalled ? MVR_TUNER_STICKY : MVR_TUNER_HYSTERESIS;
-    uint32_t best = gain > -log(1.0 - band) ? 1u - incumbent : incumbent;
+    uint32_t best = gain > band ? 1u - incumbent : incumbent;
     m.chosen = best;
     t->memory = m;
     t->store = true;

@@ -35,7 +35,11 @@
  * process. It becomes the incumbent, and its evidence (the mean log ratio of
  * the two estimates over earlier runs, up to MVR_TUNER_MEMORY_RUNS of them)
  * is averaged with this run's; the remembered choice then stays unless that
- * mean says the other is cheaper by more than MVR_TUNER_STICKY. One run's
+ * mean says the other is cheaper by more than MVR_TUNER_STICKY and by more
+ * than twice its standard error (the runs' spread / sqrt(runs)): on a
+ * loaded machine, where runs disagree by +-20% (issue 37's city: 44 to 222
+ * ms for the same frames), the band widens and the choice holds; on a quiet
+ * one it is the 5%. One run's
  * estimates of two candidates 4% apart under +-30% frame noise pick the
  * wrong one in 1 run of 4 or 5 (tests/core/test_tuner.c's simulation); the
  * average of several runs does not, and either choice inside the band costs
@@ -85,6 +89,7 @@ typedef struct mvr_tuner_key {
 typedef struct mvr_tuner_memory {
     uint32_t chosen;             /* the candidate kept */
     double log_ratio;            /* mean over runs of ln(estimate[1] / estimate[0]): > 0 = candidate 0 cheaper */
+    double spread;               /* mean over runs of the squared deviation from that mean (a variance) */
     uint32_t runs;               /* runs in that mean, 1..MVR_TUNER_MEMORY_RUNS */
 } mvr_tuner_memory;
 

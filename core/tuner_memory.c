@@ -34,14 +34,15 @@ bool mvr_tuner_memory_path(const char *dir, const char *key, char *out, size_t s
 /* The body (every line before the tag's) for an entry; its length, 0 if it does not fit. */
 static size_t body(char *out, size_t size, const char *key, const mvr_tuner_memory *m)
 {
-    int n = snprintf(out, size, "%skey %s\nchosen %u\nlog_ratio %.9f\nruns %u\n", header, key, m->chosen,
-                     m->log_ratio, m->runs);
+    int n = snprintf(out, size, "%skey %s\nchosen %u\nlog_ratio %.9f\nspread %.9f\nruns %u\n", header, key,
+                     m->chosen, m->log_ratio, m->spread, m->runs);
     return n > 0 && (size_t)n < size ? (size_t)n : 0;
 }
 
 static bool values_ok(const mvr_tuner_memory *m)
 {
-    return m->chosen < MVR_TUNER_CANDIDATES && isfinite(m->log_ratio) && fabs(m->log_ratio) <= 4.0 && m->runs >= 1 &&
+    return m->chosen < MVR_TUNER_CANDIDATES && isfinite(m->log_ratio) && fabs(m->log_ratio) <= 4.0 &&
+           isfinite(m->spread) && m->spread >= 0.0 && m->spread <= 16.0 && m->runs >= 1 &&
            m->runs <= MVR_TUNER_MEMORY_RUNS;
 }
 
@@ -110,8 +111,8 @@ mvr_tuner_memory_status mvr_tuner_memory_read(const char *path, const mvr_progra
     mvr_tuner_memory m;
     char check[MVR_TUNER_MEMORY_MAX_FILE + 1];
     int used = 0;
-    if (!key_end || sscanf(key_end + 1, "chosen %u\nlog_ratio %lf\nruns %u\n%n", &m.chosen, &m.log_ratio, &m.runs,
-                           &used) != 3 || key_end[1 + used] != 0 || !values_ok(&m)) {
+    if (!key_end || sscanf(key_end + 1, "chosen %u\nlog_ratio %lf\nspread %lf\nruns %u\n%n", &m.chosen, &m.log_ratio,
+                           &m.spread, &m.runs, &used) != 4 || key_end[1 + used] != 0 || !values_ok(&m)) {
         mvr_str_copy(why, why_size, "not an mvr-tuner 1 entry, or values out of range");
         return MVR_TUNER_MEMORY_CORRUPT;
     }

@@ -14,6 +14,7 @@
  *   key <the inputs, one line>
  *   chosen <0|1>
  *   log_ratio <%.9f, |x| <= 4>
+ *   spread <%.9f, 0..16>
  *   runs <1..MVR_TUNER_MEMORY_RUNS>
  *   tag <16 hex digits: SipHash of every byte before this line>
  *

@@ -171,8 +171,9 @@ static uint32_t noisy_run(uint32_t *state, const double base[2], mvr_tuner_memor
  * frame noise and 3x outliers. Candidates 1% apart: at least 9 of 10 runs
  * make the same choice; 15% apart: the cheaper one in every run; 4% apart
  * (one run alone picks the wrong one in 1 of 4 or 5): 90% of the runs over
- * all seeds make their seed's majority choice, and each seed at least 8 of
- * 10 (a first run's wrong choice corrected by the second or third). Either
+ * all seeds make their seed's majority choice, and each seed at least 7 of
+ * 10 (a first run's wrong choice corrected once the runs' mean is clear of
+ * their spread). Either
  * choice 1% or 4% apart costs less than 5%. */
 static void repeated_noisy_runs_agree(mvr_test_state *t)
 {
@@ -186,7 +187,7 @@ static void repeated_noisy_runs_agree(mvr_test_state *t)
             for (int r = 0; r < 10; ++r)
                 count[noisy_run(&state, cases[k], &mem, &have)]++;
             uint32_t most = count[0] > count[1] ? count[0] : count[1];
-            CHECK_MSG(t, most >= (k == 0 ? 8u : 9u), "seed %u, %.1f against %.1f: %u / %u runs", seed, cases[k][0],
+            CHECK_MSG(t, most >= (k == 0 ? 7u : 9u), "seed %u, %.1f against %.1f: %u / %u runs", seed, cases[k][0],
                       cases[k][1], count[0], count[1]);
             if (k == 0)
                 agree += most;
@@ -204,7 +205,7 @@ static void remembered_choice_is_the_incumbent(mvr_test_state *t)
     memset(&tu, 0, sizeof tu);
     mvr_tuner_key key = {6, 256, 256, 100, 0, 0};
     /* remembered: candidate 0, measured 5% cheaper over 2 runs; the prior is 1 */
-    mvr_tuner_memory mem = {0, 0.05, 2};
+    mvr_tuner_memory mem = {0, 0.05, 0.0, 2};
     bool measure;
     CHECK(t, mvr_tuner_restarts(&tu, key, 1));
     uint32_t c = mvr_tuner_next_recalled(&tu, key, 1, &mem, &measure);
@@ -221,10 +222,11 @@ static void remembered_choice_is_the_incumbent(mvr_test_state *t)
     CHECK(t, tu.memory.log_ratio > 0.0 && tu.memory.log_ratio < 0.05);
     /* this run: candidate 1 measured 60% cheaper (mostly outliers, or a
      * real change): it counts as 20% in the mean of the remembered runs, and
-     * after a few such runs the memory follows */
-    mem = (mvr_tuner_memory){0, 0.05, MVR_TUNER_MEMORY_RUNS};
+     * after a few such runs (the band widened by their spread) the memory
+     * follows */
+    mem = (mvr_tuner_memory){0, 0.05, 0.0, MVR_TUNER_MEMORY_RUNS};
     uint32_t changed_at = 0;
-    for (uint32_t run_no = 1; run_no <= 6 && !changed_at; ++run_no) {
+    for (uint32_t run_no = 1; run_no <= 12 && !changed_at; ++run_no) {
         memset(&tu, 0, sizeof tu);
         for (int f = 0; f < 200 && tu.phase != MVR_TUNER_SETTLED; ++f) {
             c = mvr_tuner_next_recalled(&tu, key, 1, &mem, &measure);
@@ -235,11 +237,11 @@ static void remembered_choice_is_the_incumbent(mvr_test_state *t)
         if (tu.chosen == 1)
             changed_at = run_no;
     }
-    CHECK_MSG(t, changed_at == 4 && mem.chosen == 1 && mem.runs == MVR_TUNER_MEMORY_RUNS, "changed at run %u",
+    CHECK_MSG(t, changed_at >= 4 && changed_at <= 8 && mem.chosen == 1 && mem.runs == MVR_TUNER_MEMORY_RUNS, "changed at run %u",
               changed_at);
     /* a memory out of range is not recalled */
     memset(&tu, 0, sizeof tu);
-    mvr_tuner_memory bad = {7, 0.0, 1};
+    mvr_tuner_memory bad = {7, 0.0, 0.0, 1};
     CHECK(t, mvr_tuner_next_recalled(&tu, key, 1, &bad, &measure) == 1 && !tu.recalled);
 }
 

@@ -44,7 +44,7 @@ static void written_entries_read_back(mvr_test_state *t)
     /* no entry: a miss */
     mvr_tuner_memory m;
     CHECK(t, mvr_tuner_memory_read(path, &mac, key, &m, why, sizeof why) == MVR_TUNER_MEMORY_MISS);
-    mvr_tuner_memory w = {1, -0.0421, 3};
+    mvr_tuner_memory w = {1, -0.0421, 0.0016, 3};
     CHECK(t, mvr_tuner_memory_write(path, &mac, key, &w, why, sizeof why));
     CHECK_MSG(t, mvr_tuner_memory_read(path, &mac, key, &m, why, sizeof why) == MVR_TUNER_MEMORY_HIT, "%s", why);
     CHECK(t, m.chosen == 1 && m.runs == 3 && m.log_ratio > -0.04211 && m.log_ratio < -0.04209);
@@ -61,9 +61,9 @@ static void written_entries_read_back(mvr_test_state *t)
     other.bytes[0] ^= 1;
     CHECK(t, mvr_tuner_memory_read(path, &other, key, &m, why, sizeof why) == MVR_TUNER_MEMORY_CORRUPT);
     /* nothing invalid is written */
-    mvr_tuner_memory bad = {2, 0.0, 1};
+    mvr_tuner_memory bad = {2, 0.0, 0.0, 1};
     CHECK(t, !mvr_tuner_memory_write(path, &mac, key, &bad, why, sizeof why));
-    bad = (mvr_tuner_memory){0, 0.0, 0};
+    bad = (mvr_tuner_memory){0, 0.0, 0.0, 0};
     CHECK(t, !mvr_tuner_memory_write(path, &mac, key, &bad, why, sizeof why));
     CHECK(t, !mvr_tuner_memory_write(path, &mac, "a\nkey", &w, why, sizeof why));
     CHECK(t, !mvr_tuner_memory_path(dir, "", path, sizeof path));
@@ -83,7 +83,7 @@ static void corrupted_entries_are_refused(mvr_test_state *t)
     mvr_program_cache_key mac;
     CHECK(t, mvr_program_cache_key_load(dir, &mac, why, sizeof why));
     CHECK(t, mvr_tuner_memory_path(dir, key, path, sizeof path));
-    mvr_tuner_memory w = {1, 0.125, 2}, m;
+    mvr_tuner_memory w = {1, 0.125, 0.01, 2}, m;
     CHECK(t, mvr_tuner_memory_write(path, &mac, key, &w, why, sizeof why));
     char good[4096];
     size_t n = 0;
