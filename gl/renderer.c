@@ -152,6 +152,8 @@ mvr_result mvr_renderer_create(const mvr_renderer_desc *desc, mvr_renderer **out
         }
         memcpy(r->program_cache_dir, desc->program_cache_dir, n + 1);
     }
+    /* auto's settled choices are remembered beside the program binaries (gl/tuning.c) */
+    r->tuning_memory.enabled = r->program_cache_dir && r->tuning;
     /* instancing: the draw block becomes an array indexed by gl_InstanceID
      * whose std140 stride is the ring's block stride (144 bytes, padded up
      * to the uniform offset alignment: 256 on many desktop GPUs), and whose
@@ -416,7 +418,7 @@ mvr_result mvr_renderer_render(mvr_renderer *r, mvr_scene *scene, const mvr_view
      * multiview out; transmission as the last frame had it) */
     bool drawable = mvr_frame_plan_multiview_drawable(target->desc.samples, mvr_post_needed(&d), target->msaa_multiview,
                                                       r->frame.transmissive_draws != 0);
-    path = mvr_tuning_choose(r, views, target, path, tune && multiview_usable(r) && level_ok && drawable);
+    path = mvr_tuning_choose(r, scene, views, target, path, tune && multiview_usable(r) && level_ok && drawable);
     double cpu_start = thread_cpu_ms();
     begin_frame(r);
 

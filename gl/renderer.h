@@ -18,7 +18,22 @@
 #include "timers.h"
 #include "transmission.h"
 #include "tuner.h"
+#include "tuner_memory.h"
 #include "view_set.h"
+
+/* auto's remembered choices (gl/tuning.c, core/tuner_memory.h): on with a
+ * program cache folder; per decision the memory key of the last look-up,
+ * what it found, and the key its tuning started with (where it stores). */
+typedef struct mvr_tuning_memory {
+    bool enabled, mac_loaded, hashed;
+    mvr_program_cache_key mac;
+    uint64_t scene_serial, geometry_version, scene_hash;
+    struct {
+        char key[MVR_TUNER_MEMORY_MAX_KEY + 1], tuned_key[MVR_TUNER_MEMORY_MAX_KEY + 1];
+        bool found;
+        mvr_tuner_memory memory;
+    } d[3];
+} mvr_tuning_memory;
 
 struct mvr_renderer {
     mvr_context *ctx;            /* NULL once the context is destroyed: calls fail, destroy frees */
@@ -55,6 +70,7 @@ struct mvr_renderer {
     mvr_tuner view_tuner, material_tuner, skin_tuner;
     bool view_tuned_frame, material_tuned_frame, skin_tuned_frame; /* this frame's paths are the tuners' */
     struct { bool pending; uint32_t decision, candidate; double cpu_ms; } tuning_frame;
+    mvr_tuning_memory tuning_memory;
     void *blend_order;           /* per-view order of the blend list (scratch) */
     size_t blend_order_cap;
     mvr_visibility vis;          /* per-view visibility of the frame's draws */

@@ -13,6 +13,8 @@
 #include "cli_scene.h"
 #include "mvr/mvr.h"
 
+typedef struct bench_chunks bench_chunks;
+
 typedef struct bench_options {
     mvr_context_desc context;
     cli_scene_options scene;
@@ -29,6 +31,12 @@ typedef struct bench_options {
     const char *env_option;              /* the last option only --env-axes takes, if any */
     bool demo_set, frames_set, warmup_set, matrix_set, size_set;
     const char *cameras_file;            /* --cameras: its views (scene.given_views) */
+    bool camera_set, layout_set;         /* --camera K, --layout L (scene.camera, scene.layout) */
+    const char *program_cache;           /* --program-cache: NULL = the user's cache folder; "off" */
+    char program_cache_buf[4096];
+    const char *program_cache_dir;       /* resolved (cli_program_cache_dir); NULL = none */
+    uint64_t reference_memory;           /* --reference-memory: bytes of the reference target at once */
+    const struct bench_chunks *reference_chunks; /* the reference's plan (bench_reference.c); NULL = 4x4 at once */
     camera_file cameras;
     uint32_t sizes[8], n_sizes;          /* --specular-sizes */
     uint32_t samples[8], n_samples;      /* --specular-samples */
@@ -180,6 +188,27 @@ size_t bench_compare(const uint8_t *ref, const uint8_t *img, size_t pixels, bool
 void bench_progress(const bench_options *o, uint32_t done, uint32_t total, const char *what);
 /* What a result keeps of a frame's stats: the paths that ran, draws and binds. */
 void bench_take_stats(bench_result *res, const mvr_frame_stats *st);
+
+/* bench_reference.c: the reference's views in chunks whose supersampled
+ * target fits o->reference_memory (count 0: all at once), at supersample
+ * x supersample samples per pixel (4, less where one view at 4x4 does not
+ * fit). */
+struct bench_chunks {
+    mvr_view_set **sets;         /* count view sets of per_chunk views (the last fewer) */
+    uint32_t count, per_chunk;
+    uint32_t supersample;
+};
+/* Plans the reference for vs; note (appended to the report's omissions)
+ * says what differs from one 4x4 target; false (printed) when out of memory. */
+bool bench_reference_plan(const bench_options *o, mvr_view_set *vs, bench_chunks *out, char *note, size_t note_size);
+void bench_chunks_free(bench_chunks *c);
+/* One frame of every view: vs at once, or chunk after chunk (chunks NULL or empty: at once). */
+mvr_result bench_render_views(mvr_renderer *r, mvr_scene *s, mvr_view_set *vs, const bench_chunks *chunks,
+                              mvr_target *t, const mvr_render_desc *desc);
+/* Every view's display bytes (views x w x h x RGBA8) from the target:
+ * chunk by chunk, each drawn again first. */
+bool bench_read_views(mvr_renderer *r, mvr_scene *s, mvr_view_set *vs, const bench_chunks *chunks, mvr_target *t,
+                      const mvr_render_desc *desc, uint32_t w, uint32_t h, uint32_t ss, uint8_t *display);
 
 /* bench_env.c: mvr bench --env-axes (after the options are parsed and the context made). */
 int bench_run_env_axes(int argc, char **argv, const bench_options *o, mvr_context *ctx);

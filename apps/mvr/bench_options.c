@@ -16,7 +16,8 @@
 
 enum {
     B_DEMO = 1, B_VIEWS, B_SIZE, B_FRAMES, B_WARMUP, B_ROUNDS, B_MATRIX, B_OUT, B_CALLGRIND, B_QUIET, B_VERBOSE,
-    B_ONLY, B_ENV_AXES, B_SPECULAR_SIZES, B_SPECULAR_SAMPLES, B_REFERENCE_SAMPLES, B_CAMERAS
+    B_ONLY, B_ENV_AXES, B_SPECULAR_SIZES, B_SPECULAR_SAMPLES, B_REFERENCE_SAMPLES, B_CAMERAS, B_CAMERA, B_LAYOUT,
+    B_PROGRAM_CACHE, B_REFERENCE_MEMORY
 };
 
 #define END {CLI_OPT_END, 0, NULL, NULL, NULL, 0, 0, NULL, NULL, NULL, NULL, NULL}
@@ -34,6 +35,14 @@ static const cli_option bench_table[] = {
      "the views from a camera file, as mvr render --cameras takes\n"
      "it (cameras.json, transforms.json, CSV; at most 64 views);\n"
      "its image size unless --size is given", NULL, "--views", "the camera file gives every view"},
+    {CLI_OPT_U32, B_CAMERA, "--camera", NULL, "K", 0, 1u << 20, NULL,
+     "SCENE: view from the file's K-th camera node (0-based), as\n"
+     "mvr render does; N views are eyes apart along its right\n"
+     "axis (default: the first camera when the file has one)", NULL, "--layout --cameras",
+     "--layout and --cameras give the views without a camera"},
+    {CLI_OPT_CHOICE, B_LAYOUT, "--layout", NULL, "L", 0, 0, "stereo|cube|ring|grid|sphere|orbit|random",
+     "SCENE without --camera: frame it as mvr render --layout L\n"
+     "does (default: stereo)", NULL, "--cameras", "the camera file gives every view"},
     {CLI_OPT_U32, B_FRAMES, "--frames", NULL, "F", 1, 1000, NULL, "measured frames per configuration (default: 10)",
      NULL, NULL, NULL},
     {CLI_OPT_U32, B_WARMUP, "--warmup", NULL, "W", 0, 1000, NULL, "frames before measuring (default: 2)", NULL, NULL,
@@ -49,6 +58,15 @@ static const cli_option bench_table[] = {
      "also count the submitting thread's instructions per frame\n"
      "under valgrind --tool=callgrind (repeatable to < 1% on a\n"
      "shared machine, unlike wall time; slow)", NULL, NULL, NULL},
+    {CLI_OPT_STRING, B_PROGRAM_CACHE, "--program-cache", NULL, "D", 0, 0, NULL,
+     "program binaries and auto's settled choices in D, as mvr\n"
+     "render keeps them (a later run starts on the measured\n"
+     "choice); off disables both (default: $XDG_CACHE_HOME/mvr/\n"
+     "programs or ~/.cache/mvr/programs)", NULL, NULL, NULL},
+    {CLI_OPT_U32, B_REFERENCE_MEMORY, "--reference-memory", NULL, "MIB", 1, 65536, NULL,
+     "the most the reference's 4x4-supersampled float target\n"
+     "takes at once: views are rendered in chunks that fit\n"
+     "(default: 256)", NULL, NULL, NULL},
     {CLI_OPT_FLAG, B_QUIET, "--quiet", NULL, NULL, 0, 0, NULL, "no progress bar", NULL, NULL, NULL},
     {CLI_OPT_FLAG, B_VERBOSE, "--verbose", NULL, NULL, 0, 0, NULL, "log what the library does to stderr", NULL, NULL,
      NULL},
@@ -213,6 +231,19 @@ static bool apply(const cli_arg *arg, bench_options *o, bool *verbose)
         o->cameras_file = v;
         ok = v[0] != '\0';
         break;
+    case B_CAMERA:
+        o->scene.camera = (int)arg->number;
+        o->camera_set = true;
+        break;
+    case B_LAYOUT:
+        o->scene.layout = (mvr_view_layout)(MVR_LAYOUT_STEREO + arg->choice);
+        o->layout_set = true;
+        break;
+    case B_PROGRAM_CACHE:
+        o->program_cache = v;
+        ok = v[0] != '\0';
+        break;
+    case B_REFERENCE_MEMORY: o->reference_memory = (uint64_t)arg->number << 20; break;
     default: ok = false;
     }
     return ok;
@@ -250,6 +281,16 @@ static int parse_args(cli_parser *p, bench_options *o, bool *verbose)
  * the environment, and --env-axes' own defaults. */
 static int check(bench_options *o)
 {
+    if (!o->scene.scene_file && (o->camera_set || o->layout_set)) {
+        fprintf(stderr, "mvr bench: --camera and --layout are for a SCENE file\n");
+        return MVR_EXIT_USAGE;
+    }
+    /* the views mvr render gives the file */
+    o->scene.camera =
+        cli_scene_camera_choice(o->scene.scene_file != NULL, o->scene.camera, o->layout_set, o->cameras_file != NULL);
+    if (o->program_cache && strcmp(o->program_cache, "off") != 0 &&
+        !cli_check_writable_dir("mvr bench", "--program-cache", o->program_cache))
+        return MVR_EXIT_USAGE;
     if (o->cameras_file && !load_cameras(o))
         return MVR_EXIT_USAGE;
     if (!o->cameras_file && !o->scene.scene_file && !cli_check_demo_views("mvr bench", o->scene.demo, o->scene.views, o->scene.width,
@@ -299,6 +340,7 @@ int bench_options_parse(int argc, char **argv, bench_options *o)
     o->out_dir = "bench-out";
     o->only = -1;
     o->reference_samples = 1024;
+    o->reference_memory = (uint64_t)256 << 20;
     bool verbose = false;
     cli_parser p;
     cli_parser_init(&p, "mvr bench", bench_tables, argc, argv);

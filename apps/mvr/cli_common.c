@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 #ifdef __GLIBC__
 #include <malloc.h>
 #endif
@@ -202,4 +203,30 @@ void cli_pin_loaded_libraries(void)
 #ifdef CLI_ASAN
     dl_iterate_phdr(pin_library, NULL);
 #endif
+}
+
+const char *cli_program_cache_dir(const char *command, const char *option, char *buf, size_t size)
+{
+    if (option && strcmp(option, "off") == 0)
+        return NULL;
+    if (option) {
+        snprintf(buf, size, "%s", option);
+    } else {
+        const char *xdg = getenv("XDG_CACHE_HOME");
+        const char *home = getenv("HOME");
+        int n;
+        if (xdg && xdg[0] == '/') /* the XDG spec ignores relative paths */
+            n = snprintf(buf, size, "%s/mvr/programs", xdg);
+        else if (home && home[0])
+            n = snprintf(buf, size, "%s/.cache/mvr/programs", home);
+        else
+            return NULL;
+        if (n <= 0 || (size_t)n >= size)
+            return NULL;
+    }
+    if (!cli_make_dirs(command, buf) || access(buf, W_OK | X_OK) != 0) {
+        fprintf(stderr, "%s: warning: no program cache (cannot create or write %s)\n", command, buf);
+        return NULL;
+    }
+    return buf;
 }

@@ -37,6 +37,14 @@ bool cli_parse_double(const char *s, double *out);
 /* Creates path and its parents (mkdir -p); prints what failed. */
 bool cli_make_dirs(const char *command, const char *path);
 
+/* The program binary cache directory (which also keeps auto's settled
+ * choices): option (--program-cache D), else the XDG cache directory
+ * ($XDG_CACHE_HOME/mvr/programs or ~/.cache/mvr/programs); created if
+ * missing, into buf. NULL for option "off", or (with a warning prefixed
+ * with command) when the directory cannot be made: then the run compiles
+ * as usual. */
+const char *cli_program_cache_dir(const char *command, const char *option, char *buf, size_t size);
+
 /* The allocator choice of mvr, mvr bench and mvr-viewer: glibc's
  * mmap and trim thresholds raised to 64 and 256 MiB, so the scene bins a GL
  * driver allocates and frees every frame (llvmpipe: megabytes per multiview

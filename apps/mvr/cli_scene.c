@@ -97,6 +97,14 @@ bool cli_check_demo_views(const char *command, const char *demo, uint32_t views,
     return false;
 }
 
+int cli_scene_camera_choice(bool scene_file, int camera, bool layout_set, bool camera_file)
+{
+    /* a file with a camera is seen from it unless a layout is asked for */
+    if (scene_file && camera < 0 && !layout_set && !camera_file)
+        return CLI_CAMERA_IF_ANY;
+    return camera;
+}
+
 int cli_load_scene(const char *command, const cli_scene_options *o, mvr_scene **scene, mvr_view_set **views)
 {
     if (o->scene_file)

@@ -36,6 +36,13 @@ typedef struct cli_scene_options {
  * they show a file alike. */
 int cli_load_scene(const char *command, const cli_scene_options *o, mvr_scene **scene, mvr_view_set **views);
 
+/* Which views a command gives a file (mvr render, mvr bench): camera node K
+ * when asked for (camera >= 0); else a layout asked for, or a camera
+ * file's views (-1); else the file's first camera when it has one
+ * (CLI_CAMERA_IF_ANY), the default layout otherwise. The value for
+ * cli_scene_options.camera. */
+int cli_scene_camera_choice(bool scene_file, int camera, bool layout_set, bool camera_file);
+
 /* The most views a demo frames at width x height (layer size; 0 = square):
  * stereo and city turn their outer frusta toward the centre, 0.9 rad per
  * metre of offset, eyes 64 mm apart, and a frustum edge must stay inside

@@ -167,8 +167,9 @@ static void pose(const bench_options *o, mvr_scene *s, uint32_t frame)
 }
 
 __attribute__((noinline)) static bool measured_frames(const bench_options *o, uint32_t first, mvr_renderer *r,
-                                                      mvr_scene *s, mvr_view_set *vs, mvr_target *t, uint32_t frames,
-                                                      double *wall, double *cpu, double *gpu)
+                                                      mvr_scene *s, mvr_view_set *vs, const bench_chunks *chunks,
+                                                      mvr_target *t, uint32_t frames, double *wall, double *cpu,
+                                                      double *gpu)
 {
     bool ok = true;
     CALLGRIND_START_INSTRUMENTATION;
@@ -178,7 +179,7 @@ __attribute__((noinline)) static bool measured_frames(const bench_options *o, ui
         pose(o, s, first + f);
         CALLGRIND_TOGGLE_COLLECT;
         double w0 = bench_now_ms(CLOCK_MONOTONIC), c0 = bench_now_ms(CLOCK_THREAD_CPUTIME_ID);
-        ok = mvr_renderer_render(r, s, vs, t, &o->render) == MVR_OK && mvr_renderer_finish(r) == MVR_OK;
+        ok = bench_render_views(r, s, vs, chunks, t, &o->render) == MVR_OK && mvr_renderer_finish(r) == MVR_OK;
         wall[f] = bench_now_ms(CLOCK_MONOTONIC) - w0;
         cpu[f] = bench_now_ms(CLOCK_THREAD_CPUTIME_ID) - c0;
         mvr_frame_stats st;
@@ -198,6 +199,7 @@ typedef struct config_run {
     double *times;               /* wall, cpu and gpu, o->frames each */
     uint32_t measured;
     uint32_t cpu_ss;
+    const bench_chunks *chunks;  /* the reference: its views in chunks (bench_reference.c); else NULL */
 } config_run;
 
 static void release_run(config_run *cr)
@@ -221,9 +223,16 @@ static bool setup_config(const bench_options *o, mvr_context *ctx, mvr_scene *sc
         return true;
     }
     uint32_t n = mvr_view_set_count(vs), w = o->scene.width, h = o->scene.height, ss = c->supersample;
+    if (c->reference && o->reference_chunks) {
+        /* at a size that fits: fewer samples, or chunks of views */
+        cr->chunks = o->reference_chunks;
+        ss = cr->chunks->supersample;
+        n = cr->chunks->count ? cr->chunks->per_chunk : n;
+    }
     mvr_renderer_desc rd = {.context = ctx, .view_path = c->view_path, .material_path = c->material_path,
                             .transparency_order = c->order, .logger = o->context.logger,
-                            .overrides = o->overrides, .skinning_path = c->skinning_path};
+                            .overrides = o->overrides, .skinning_path = c->skinning_path,
+                            .program_cache_dir = o->program_cache_dir};
     rd.overrides.disable_features |= c->disable_features;
     mvr_error err;
     if (mvr_renderer_create(&rd, &cr->r, &err) != MVR_OK) {
@@ -240,24 +249,36 @@ static bool setup_config(const bench_options *o, mvr_context *ctx, mvr_scene *sc
                           /* noaa (and the CPU-resolved reference) pin none: the default anti-aliases */
                           c->msaa > 1 || (!c->reference && ss > 1) ? MVR_ANTI_ALIASING_DEFAULT : MVR_ANTI_ALIASING_NONE, 0};
     cr->times = calloc((size_t)o->frames * 3, sizeof *cr->times);
-    bool ok = cr->times && mvr_target_create(cr->r, &td, &cr->t) == MVR_OK;
-    for (uint32_t f = 0; ok && f < o->warmup; ++f) {
+    mvr_result rr = cr->times ? mvr_target_create(cr->r, &td, &cr->t) : MVR_ERROR_OUT_OF_MEMORY;
+    /* auto renders one frame even without warm-up: its stats say whether it tunes */
+    bool tuned = c->view_path == MVR_VIEW_PATH_AUTO || c->material_path == MVR_MATERIAL_PATH_AUTO ||
+                 c->skinning_path == MVR_SKINNING_PATH_AUTO;
+    uint32_t f = 0;
+    for (; rr == MVR_OK && (f < o->warmup || (tuned && f == 0)); ++f) {
         pose(o, scene, f);
-        ok = mvr_renderer_render(cr->r, scene, vs, cr->t, &o->render) == MVR_OK;
+        rr = bench_render_views(cr->r, scene, vs, cr->chunks, cr->t, &o->render);
     }
     /* auto is measured after tuning: more warm-up frames until its tuner settled */
     mvr_frame_stats st;
     mvr_renderer_get_stats(cr->r, &st);
-    for (uint32_t f = o->warmup;
-         ok &&
+    for (;
+         rr == MVR_OK &&
          (st.auto_choice.state == MVR_AUTO_TUNING || st.auto_material.state == MVR_AUTO_TUNING ||
           st.auto_skinning.state == MVR_AUTO_TUNING) &&
-         f < o->warmup + 100; /* three decisions of at most 28 frames each */
+         f < o->warmup + 120; /* three decisions of at most 36 frames each */
          ++f) {
         pose(o, scene, f);
-        ok = mvr_renderer_render(cr->r, scene, vs, cr->t, &o->render) == MVR_OK;
+        rr = bench_render_views(cr->r, scene, vs, cr->chunks, cr->t, &o->render);
         mvr_renderer_get_stats(cr->r, &st);
         res->tuning_frames = f + 1;
+    }
+    bool ok = rr == MVR_OK;
+    if (rr == MVR_ERROR_OUT_OF_MEMORY && !c->reference) {
+        /* what the GL cannot allocate at this size is left out, not the whole bench */
+        snprintf(res->skipped, sizeof res->skipped, "out of GL memory: %s", mvr_renderer_last_error(cr->r));
+        fprintf(stderr, "mvr bench: %s left out: %s\n", c->name, res->skipped);
+        release_run(cr);
+        return true;
     }
     res->auto_choice = st.auto_choice;
     res->auto_skinning = st.auto_skinning;
@@ -277,7 +298,8 @@ static bool measure_config(const bench_options *o, mvr_scene *scene, mvr_view_se
         frames = o->frames - cr->measured;
     double *wall = cr->times, *cpu = cr->times + o->frames, *gpu = cr->times + 2 * o->frames;
     uint32_t at = cr->measured;
-    bool ok = measured_frames(o, o->warmup + at, cr->r, scene, vs, cr->t, frames, wall + at, cpu + at, gpu + at);
+    bool ok = measured_frames(o, o->warmup + at, cr->r, scene, vs, cr->chunks, cr->t, frames, wall + at, cpu + at,
+                              gpu + at);
     cr->measured += frames;
     if (!ok)
         fprintf(stderr, "mvr bench: %s: %s\n", c->name, mvr_renderer_last_error(cr->r));
@@ -306,8 +328,8 @@ void bench_take_stats(bench_result *res, const mvr_frame_stats *st)
 }
 
 /* Statistics of the measured frames and the read-back; releases the run. */
-static bool finish_config(const bench_options *o, mvr_view_set *vs, const bench_config *c, config_run *cr,
-                          bench_result *res)
+static bool finish_config(const bench_options *o, mvr_scene *scene, mvr_view_set *vs, const bench_config *c,
+                          config_run *cr, bench_result *res)
 {
     uint32_t n = mvr_view_set_count(vs), w = o->scene.width, h = o->scene.height, frames = cr->measured;
     mvr_frame_stats st;
@@ -323,9 +345,10 @@ static bool finish_config(const bench_options *o, mvr_view_set *vs, const bench_
     res->gpu_median = gpu[0] < 0 ? -1.0 : bench_median(gpu, frames);
     size_t layer = (size_t)w * h * 4;
     res->display = malloc(layer * n);
-    bool ok = res->display != NULL;
-    for (uint32_t k = 0; ok && k < n; ++k)
-        ok = cli_read_display_layer(cr->r, cr->t, k, w, h, cr->cpu_ss, res->display + layer * k, NULL);
+    if (cr->chunks && cr->chunks->count)
+        pose(o, scene, o->warmup + o->frames - 1); /* the last measured frame's pose, drawn again chunk by chunk */
+    bool ok = res->display != NULL &&
+              bench_read_views(cr->r, scene, vs, cr->chunks, cr->t, &o->render, w, h, cr->cpu_ss, res->display);
     res->ran = ok;
     if (!ok)
         fprintf(stderr, "mvr bench: %s: %s\n", c->name, mvr_renderer_last_error(cr->r));
@@ -347,7 +370,7 @@ static bool run_config(const bench_options *o, mvr_context *ctx, mvr_scene *scen
         release_run(&cr);
         return false;
     }
-    return finish_config(o, vs, c, &cr, res);
+    return finish_config(o, scene, vs, c, &cr, res);
 }
 
 /* Error of a display image against the reference: RGB channels; covered:
@@ -515,7 +538,7 @@ static int load_matrix_scene(bench_options *o, mvr_scene **scene, mvr_view_set *
 static bool probe_scene(const bench_options *o, mvr_context *ctx, mvr_scene *scene, mvr_view_set *vs,
                         bench_config *configs, uint32_t *count)
 {
-    mvr_renderer_desc rd = {.context = ctx, .overrides = o->overrides};
+    mvr_renderer_desc rd = {.context = ctx, .overrides = o->overrides, .program_cache_dir = o->program_cache_dir};
     mvr_renderer *r = NULL;
     mvr_target *t = NULL;
     mvr_target_desc td = {16, 16, mvr_view_set_count(vs), MVR_COLOR_FORMAT_DEFAULT, 0, 0, 0, 0, 0,
@@ -626,7 +649,7 @@ static bool finish_all(int argc, char **argv, const bench_options *o, const benc
         const bench_config *c = &m->configs[k];
         bench_result *res = &results[k];
         if (runs[k].r)
-            all_ok = finish_config(o, m->vs, c, &runs[k], res);
+            all_ok = finish_config(o, m->scene, m->vs, c, &runs[k], res);
         if (all_ok && res->ran) {
             bench_compare(results[0].display, res->display, m->pixels, false, res);
             for (uint32_t j = 0; j < k; ++j)
@@ -697,6 +720,8 @@ int mvr_cmd_bench(int argc, char **argv)
         camera_file_free(&o.cameras);
         return MVR_EXIT_FAILURE;
     }
+    o.program_cache_dir = cli_program_cache_dir("mvr bench", o.program_cache, o.program_cache_buf,
+                                                sizeof o.program_cache_buf);
     mvr_error err;
     /* mvr bench reads the library's MVR_* debugging variables (docs/guide.md) */
     if (mvr_renderer_overrides_from_env(&o.overrides, &err) != MVR_OK) {
@@ -709,6 +734,8 @@ int mvr_cmd_bench(int argc, char **argv)
     bench_result results[BENCH_MAX_CONFIGS];
     memset(results, 0, sizeof results);
     bench_matrix m = {.configs = configs, .results = results};
+    bench_chunks chunks;
+    memset(&chunks, 0, sizeof chunks);
     rc = MVR_EXIT_FAILURE;
     if (mvr_context_create(&o.context, &m.ctx, &err) != MVR_OK) {
         fprintf(stderr, "mvr bench: %s\n", err.message);
@@ -724,8 +751,16 @@ int mvr_cmd_bench(int argc, char **argv)
     rc = MVR_EXIT_FAILURE;
     m.pixels = (size_t)mvr_view_set_count(m.vs) * o.scene.width * o.scene.height;
     bool has_blend = probe_scene(&o, m.ctx, m.scene, m.vs, configs, &m.count);
-    char omitted[256] = "";
+    char omitted[512] = "";
     leave_out_configs(m.ctx, has_blend, configs, &m.count, omitted, sizeof omitted);
+    size_t used = strlen(omitted);
+    if (used && omitted[used - 1] != ' ')
+        used += (size_t)snprintf(omitted + used, sizeof omitted - used, "; ");
+    if (!bench_reference_plan(&o, m.vs, &chunks, omitted + used, sizeof omitted - used))
+        goto done;
+    for (size_t l = strlen(omitted); l >= 2 && strcmp(omitted + l - 2, "; ") == 0; l -= 2)
+        omitted[l - 2] = 0; /* the parts end in "; " */
+    o.reference_chunks = &chunks;
     if (o.only >= 0) { /* the callgrind child: one configuration's frames (of the same, filtered list) */
         if ((uint32_t)o.only < m.count)
             rc = run_config(&o, m.ctx, m.scene, m.vs, &configs[o.only], &results[0]) ? MVR_EXIT_OK
@@ -736,6 +771,7 @@ int mvr_cmd_bench(int argc, char **argv)
 done:
     for (uint32_t k = 0; k < m.count; ++k)
         free(results[k].display);
+    bench_chunks_free(&chunks);
     mvr_view_set_destroy(m.vs);
     mvr_scene_destroy(m.scene);
     mvr_environment_destroy(env);

@@ -26,35 +26,6 @@
 #include "render_stream.h"
 #include "run_plan.h"
 
-/* The program binary cache directory: --program-cache, else the XDG cache
- * directory; created if missing. NULL (with a warning when the directory
- * cannot be made) means no cache: the run compiles as usual. */
-static const char *program_cache_dir(const render_options *o, char *buf, size_t size)
-{
-    if (o->program_cache && strcmp(o->program_cache, "off") == 0)
-        return NULL;
-    if (o->program_cache) {
-        snprintf(buf, size, "%s", o->program_cache);
-    } else {
-        const char *xdg = getenv("XDG_CACHE_HOME");
-        const char *home = getenv("HOME");
-        int n;
-        if (xdg && xdg[0] == '/') /* the XDG spec ignores relative paths */
-            n = snprintf(buf, size, "%s/mvr/programs", xdg);
-        else if (home && home[0])
-            n = snprintf(buf, size, "%s/.cache/mvr/programs", home);
-        else
-            return NULL;
-        if (n <= 0 || (size_t)n >= size)
-            return NULL;
-    }
-    if (!cli_make_dirs("mvr render", buf) || access(buf, W_OK | X_OK) != 0) {
-        fprintf(stderr, "mvr render: warning: no program cache (cannot create or write %s)\n", buf);
-        return NULL;
-    }
-    return buf;
-}
-
 /* What the files of one run share: the context, the renderer (and with it
  * the program cache and the prefiltered environment) and the environment,
  * each made when the first file needs it, so one file runs in today's
@@ -217,7 +188,7 @@ static int step_renderer(render_session *s, render_job *j, bool *fatal)
         s->rd = (mvr_renderer_desc){.context = s->ctx, .view_path = o->view_path, .logger = o->context.logger,
                                     .material_path = o->material_path, .depth_mode = o->depth_mode,
                                     .transparency_order = o->transparency, .skinning_path = o->skinning,
-                                    .program_cache_dir = program_cache_dir(o, s->cache_buf, sizeof s->cache_buf)};
+                                    .program_cache_dir = cli_program_cache_dir("mvr render", o->program_cache, s->cache_buf, sizeof s->cache_buf)};
         /* mvr render reads the library's MVR_* debugging variables (docs/guide.md) */
         if (mvr_renderer_overrides_from_env(&s->rd.overrides, &err) != MVR_OK) {
             fprintf(stderr, "mvr render: %s\n", err.message);

@@ -652,9 +652,7 @@ static int check_scene(render_options *o, render_inputs *in)
     }
     if (!o->demo && !o->scene_file)
         o->demo = "stereo";
-    /* a file with a camera is seen from it unless a layout is asked for */
-    if (o->scene_file && o->camera < 0 && !o->layout_set && !o->cameras_file)
-        o->camera = CLI_CAMERA_IF_ANY;
+    o->camera = cli_scene_camera_choice(o->scene_file != NULL, o->camera, o->layout_set, o->cameras_file != NULL);
     if (!cli_context_check("render", &o->context))
         return MVR_EXIT_USAGE;
     if (!o->scene_file && o->animation) {

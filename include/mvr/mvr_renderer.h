@@ -156,24 +156,32 @@ typedef enum mvr_skinning_path_override {
     MVR_SKINNING_PATH_OVERRIDE_PRESKIN
 } mvr_skinning_path_override;
 
-/* The online tuner behind `auto` (the material path, then the view path,
+/* The online tuner behind `auto` (the view path, then the material path,
  * then the skinning path): the first frames after a change of inputs (view
  * count, target size, the scene's draw count or the draws the views see
  * after culling by more than a factor of 2) run the candidates in turns of
- * two frames, the rule's choice (the prior) first: the first frame of a turn
- * follows a switch (and warms a candidate up: program compiles, uploads) and
- * is not measured, the second is (the frame's cost: the larger of its
+ * two frames, the incumbent first (the choice remembered for these inputs,
+ * else the rule's: the prior): the first frame of a turn follows a switch
+ * (and warms a candidate up: program compiles, uploads) and is not
+ * measured, the second is (the frame's cost: the larger of its
  * submitting-thread CPU time and its GPU time from timestamp queries, taken
  * outside multiview framebuffers; CPU time alone where the GL has no timer).
- * At least 3 measured frames each; where the medians are then within 10% of
- * each other (inside the noise), up to 7 each until they part. The path with
- * the lower median is kept (the prior on a tie). 12
- * frames per decision and change where the paths differ clearly, at most 28
- * where they are close, half of them on the other path; settled frames are
- * not measured. One decision is measured at a time,
- * the later ones keyed on the earlier ones' choices (a new material path
- * measures the view path again), running their own settled choice or prior
- * meanwhile. While the material path is measured both representations of the
+ * At least 3 measured frames each; where the estimates (the mean of the
+ * cheaper half of each path's samples: one slow frame never decides) are
+ * then within 10% of each other, up to 9 each until they part. The other
+ * path replaces the incumbent only when cheaper by more than 3% (5% against
+ * a remembered choice, over the runs it remembers). 12 frames per decision
+ * and change where the paths differ clearly, at most 36 where they are
+ * close, half of them on the other path; settled frames are not measured.
+ * One decision is measured at a time, the later ones keyed on the earlier
+ * ones' choices (the material path is measured on the view path settled),
+ * running their own settled or remembered choice, or prior, meanwhile.
+ * With a program_cache_dir, settled choices are remembered there (one small
+ * authenticated file per decision, keyed by the scene's content, views,
+ * target size, format and outputs, the settings that change the work and
+ * the GL's renderer and version), so a later renderer or process starts on
+ * them; an entry that does not verify is ignored with a warning. While the
+ * material path is measured both representations of the
  * materials (texture arrays, per-material textures) are resident; the one not
  * chosen is released when it settles. Where only one path can run (no
  * multiview, MSAA that multiview cannot draw, no skins or morph targets)
@@ -267,7 +275,8 @@ typedef struct mvr_renderer_desc {
      * renderer links variants without compiling them. NULL = no cache. The
      * directory must exist; entries are checked (checksum, driver, shader
      * source) before use and rewritten when they fail. Where the driver
-     * offers no binary format the cache is silently unused. */
+     * offers no binary format the cache is silently unused. auto's tuner
+     * keeps its settled choices here too (mvr_tuning). */
     const char *program_cache_dir;
     /* Instancing is on by default: consecutive draws of one primitive with
      * the same program, textures and material page become one instanced

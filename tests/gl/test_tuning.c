@@ -21,6 +21,8 @@
 typedef struct costs {
     double multiview, loop;
     uint32_t calls;
+    bool cheap_set;              /* cheap_hook: the cheaper path is set */
+    mvr_view_path cheap;
 } costs;
 
 static double hook(void *user, mvr_view_path path, const mvr_frame_stats *stats)
@@ -172,13 +174,13 @@ static void off_pinned_and_real_timers(mvr_test_state *t)
     /* the real timers: settled after the measured frames, with positive costs */
     mvr_renderer_desc real = {.context = ctx};
     if (mvr_context_caps(ctx)->ext.ovr_multiview2 && rig_make(t, &real, 6, &g) && px) {
-        /* the material path, then the view path: 12 frames each where the
-         * paths differ by 10% or more, up to 28 where closer */
+        /* the view path, then the material path: 12 frames each where the
+         * paths differ by 10% or more, up to 36 where closer */
         int frames = 0;
         do
             CHECK(t, frame(t, &g, px, &st));
         while ((st.auto_choice.state == MVR_AUTO_TUNING || st.auto_material.state == MVR_AUTO_TUNING) &&
-               ++frames < 2 * 4 * 7 + 1);
+               ++frames < 2 * 4 * 9 + 1);
         CHECK_MSG(t, st.auto_material.state == MVR_AUTO_SETTLED && st.auto_material.cost_ms[0] > 0.0 &&
                      st.auto_material.cost_ms[1] > 0.0,
                   "material: %s, %.3f / %.3f ms", mvr_auto_state_name(st.auto_material.state),
@@ -359,7 +361,7 @@ static double material_hook(void *user, mvr_view_path path, const mvr_frame_stat
            (path == MVR_VIEW_PATH_LOOP ? 1.0 : 0.0);
 }
 
-static void material_path_first_then_the_view_path(mvr_test_state *t)
+static void view_path_first_then_the_material_path(mvr_test_state *t)
 {
     mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
     if (!ctx)
@@ -373,37 +375,40 @@ static void material_path_first_then_the_view_path(mvr_test_state *t)
     if (rig_make(t, &rd, 6, &g) && first && px) {
         mvr_frame_stats st;
         CHECK(t, frame(t, &g, first, &st));
-        /* the first frame: arrays (the rule), the view path waits */
+        /* the first frame: arrays (the rule) while the view path is measured */
         CHECK(t, st.material_path == MVR_MATERIAL_PATH_ARRAYS && st.auto_material.state == MVR_AUTO_TUNING &&
                  st.auto_material.prior == MVR_MATERIAL_PATH_ARRAYS);
         CHECK(t, !mv || st.auto_choice.state == MVR_AUTO_TUNING);
-        uint32_t frames = 1, material_settled_at = 0, switches = 0;
+        uint32_t frames = 1, view_settled_at = mv ? 0 : 1, switches = 0;
         mvr_material_path last = st.material_path;
         while ((st.auto_material.state != MVR_AUTO_SETTLED || (mv && st.auto_choice.state != MVR_AUTO_SETTLED)) &&
                frames < 40) {
             CHECK(t, frame(t, &g, px, &st));
             CHECK_MSG(t, memcmp(px, first, bytes) == 0, "frame %u (%s, %s) differs", frames,
                       mvr_material_path_name(st.material_path), mvr_view_path_name(st.view_path));
-            switches += st.material_path != last;
+            if (view_settled_at)
+                switches += st.material_path != last;
+            else
+                CHECK(t, st.material_path == MVR_MATERIAL_PATH_ARRAYS);
             last = st.material_path;
             frames++;
-            if (!material_settled_at && st.auto_material.state == MVR_AUTO_SETTLED)
-                material_settled_at = frames;
+            if (!view_settled_at && st.auto_choice.state == MVR_AUTO_SETTLED)
+                view_settled_at = frames;
         }
         const mvr_auto_material_choice *m = &st.auto_material;
-        CHECK_MSG(t, material_settled_at == 13 && frames == (mv ? 25u : 13u), "material settled at %u, all at %u",
-                  material_settled_at, frames);
+        CHECK_MSG(t, view_settled_at == (mv ? 13u : 1u) && frames == (mv ? 25u : 13u), "view settled at %u, all at %u",
+                  view_settled_at, frames);
         CHECK(t, switches >= 2 && m->chosen == MVR_MATERIAL_PATH_PER_MATERIAL);
         CHECK(t, m->candidates[0] == MVR_MATERIAL_PATH_PER_MATERIAL && m->candidates[1] == MVR_MATERIAL_PATH_ARRAYS);
         CHECK(t, m->samples[0] == 3 && m->samples[1] == 3);
-        /* measured under the view prior; the view path measured on per-material */
-        double loop_extra = st.auto_choice.prior == MVR_VIEW_PATH_LOOP ? 1.0 : 0.0;
+        /* the view path measured on arrays; the material path on the view path it settled on */
+        double loop_extra = mv ? 0.0 : 1.0;
         CHECK_MSG(t, m->cost_ms[0] == 4.0 + loop_extra && m->cost_ms[1] == 8.0 + loop_extra, "costs %.1f / %.1f",
                   m->cost_ms[0], m->cost_ms[1]);
         CHECK(t, m->margin == 1.0 - (4.0 + loop_extra) / (8.0 + loop_extra));
         if (mv)
-            CHECK(t, st.auto_choice.chosen == MVR_VIEW_PATH_MULTIVIEW && st.auto_choice.cost_ms[0] == 4.0 &&
-                         st.auto_choice.cost_ms[1] == 5.0);
+            CHECK(t, st.auto_choice.chosen == MVR_VIEW_PATH_MULTIVIEW && st.auto_choice.cost_ms[0] == 8.0 &&
+                         st.auto_choice.cost_ms[1] == 9.0);
         CHECK(t, c.calls == (mv ? 12u : 6u));
         /* settled: per-material, the arrays released, nothing sent or measured */
         for (int i = 0; i < 3; ++i) {
@@ -412,7 +417,8 @@ static void material_path_first_then_the_view_path(mvr_test_state *t)
                      st.upload_bytes == 0);
         }
         CHECK(t, c.calls == (mv ? 12u : 6u));
-        /* another view count: the material path first again */
+        /* another view count: the view path first again, the material path
+         * meanwhile on its prior */
         mvr_view_set_destroy(g.views);
         mvr_scene_destroy(g.scene);
         g.views = NULL;
@@ -420,8 +426,8 @@ static void material_path_first_then_the_view_path(mvr_test_state *t)
         mvr_demo_desc dd = {.views = 4, .width = W, .height = H};
         CHECK(t, mvr_demo_create("ring", &dd, &g.scene, &g.views, NULL) == MVR_OK);
         CHECK(t, frame(t, &g, px, &st));
-        CHECK(t, st.material_path == MVR_MATERIAL_PATH_ARRAYS && st.auto_material.state == MVR_AUTO_TUNING &&
-                 st.auto_material.retunes == 1);
+        CHECK(t, st.material_path == MVR_MATERIAL_PATH_ARRAYS && st.auto_material.state == MVR_AUTO_TUNING);
+        CHECK(t, mv ? st.auto_choice.retunes == 1 : st.auto_material.retunes == 1);
     }
     free(first);
     free(px);
@@ -429,6 +435,82 @@ static void material_path_first_then_the_view_path(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
-MVR_TEST_MAIN(TEST(settles_on_the_cheaper_path_without_changing_a_pixel), TEST(off_pinned_and_real_timers),
-              TEST(material_path_first_then_the_view_path),
+/* c->cheap half as costly as the other path. */
+static double cheap_hook(void *user, mvr_view_path path, const mvr_frame_stats *stats)
+{
+    costs *c = user;
+    c->calls++;
+    (void)stats;
+    return path == c->cheap ? 5.0 : 10.0;
+}
+
+static void count_ignored(mvr_log_level level, mvr_log_id id, const char *message, void *user)
+{
+    (void)id;
+    if (level == MVR_LOG_WARNING && strstr(message, "tuner memory") && strstr(message, "ignored"))
+        ++*(uint32_t *)user;
+}
+
+/* Runs a renderer on the program cache folder dir until its view path
+ * settled; *first: the path of its first frame. Returns the settled choice. */
+static mvr_view_path remembered_run(mvr_test_state *t, mvr_context *ctx, const char *dir, costs *c, uint32_t *ignored,
+                                    mvr_view_path *first)
+{
+    mvr_renderer_desc rd = {.context = ctx, .material_path = MVR_MATERIAL_PATH_ARRAYS, .program_cache_dir = dir,
+                            .logger = {.fn = count_ignored, .user_data = ignored},
+                            .tuning = {.frame_cost = cheap_hook, .user = c}};
+    rig g;
+    mvr_frame_stats st;
+    memset(&st, 0, sizeof st);
+    uint8_t *px = malloc((size_t)W * H * 4 * 6);
+    if (rig_make(t, &rd, 6, &g) && px) {
+        int frames = 0;
+        do {
+            CHECK(t, frame(t, &g, px, &st));
+            if (!frames)
+                *first = st.view_path;
+            if (!c->cheap_set) /* the path the rule does not start on */
+                c->cheap = st.view_path == MVR_VIEW_PATH_LOOP ? MVR_VIEW_PATH_MULTIVIEW : MVR_VIEW_PATH_LOOP;
+            c->cheap_set = true;
+        } while (st.auto_choice.state != MVR_AUTO_SETTLED && ++frames < 80);
+    }
+    free(px);
+    rig_free(&g);
+    return st.auto_choice.chosen;
+}
+
+/* With a program cache folder, a settled choice is remembered: the next
+ * renderer (as a later process would) starts on it; a corrupted entry is
+ * ignored with a warning, and the prior runs first again. */
+static void settled_choices_are_remembered(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    if (!mvr_context_caps(ctx)->ext.ovr_multiview2) {
+        mvr_context_destroy(ctx);
+        SKIP(t, "no GL_OVR_multiview2: one candidate, nothing to remember");
+    }
+    char dir[] = "/tmp/mvr-tuning-XXXXXX";
+    CHECK(t, mkdtemp(dir) != NULL);
+    costs c = {0};
+    uint32_t ignored = 0;
+    mvr_view_path first = MVR_VIEW_PATH_AUTO, prior = MVR_VIEW_PATH_AUTO;
+    CHECK(t, remembered_run(t, ctx, dir, &c, &ignored, &prior) == c.cheap && c.cheap != prior);
+    /* read back: the remembered path runs first, and stays */
+    CHECK(t, remembered_run(t, ctx, dir, &c, &ignored, &first) == c.cheap);
+    CHECK_MSG(t, first == c.cheap && ignored == 0, "first frame %s, %u ignored", mvr_view_path_name(first), ignored);
+    /* every entry corrupted: ignored (said), the prior first again */
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "for f in %s/tuner-*.txt; do sed -i 's/^runs /runs 1/' \"$f\"; done", dir);
+    CHECK(t, system(cmd) == 0);
+    CHECK(t, remembered_run(t, ctx, dir, &c, &ignored, &first) == c.cheap);
+    CHECK_MSG(t, first == prior && ignored >= 1, "first frame %s, %u ignored", mvr_view_path_name(first), ignored);
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    CHECK(t, system(cmd) == 0);
+    mvr_context_destroy(ctx);
+}
+
+MVR_TEST_MAIN(TEST(settled_choices_are_remembered), TEST(settles_on_the_cheaper_path_without_changing_a_pixel), TEST(off_pinned_and_real_timers),
+              TEST(view_path_first_then_the_material_path),
               TEST(skinning_path_after_the_view_path), TEST(msaa_without_multiview_is_not_tuned))
