@@ -534,9 +534,13 @@ mvr_result mvr_scene_add_animation(mvr_scene *s, const mvr_animation_desc *d, ui
                 name, c, mvr_animation_path_name(ch->path), ch->node.id, n->name);
         }
         const mvr_animation_sampler_desc *sd = &d->samplers[ch->sampler];
-        size_t need;
-        if ((unsigned)sd->interpolation > MVR_INTERPOLATION_CUBICSPLINE ||
-            !mvr_anim_sampler_value_count(sd->key_count, comps, sd->interpolation, &need) || need != sd->value_count)
+        size_t need = 0;
+        if ((unsigned)sd->interpolation > MVR_INTERPOLATION_CUBICSPLINE)
+            return mvr_scene_fail(s, MVR_ERROR_INVALID_ARGUMENT,
+                                  "mvr_scene_add_animation(%s): sampler %u has interpolation %d (not an "
+                                  "mvr_interpolation)",
+                                  name, ch->sampler, (int)sd->interpolation);
+        if (!mvr_anim_sampler_value_count(sd->key_count, comps, sd->interpolation, &need) || need != sd->value_count)
             return mvr_scene_fail(
                 s, MVR_ERROR_INVALID_ARGUMENT,
                 "mvr_scene_add_animation(%s): sampler %u has %u values for %u keys; channel %u (%s of node "

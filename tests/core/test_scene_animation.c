@@ -308,7 +308,7 @@ static void hostile_input_is_refused(mvr_test_state *t)
     md.weights = weights3;
     md.weight_count = 3;
     CHECK(t, mvr_scene_add_mesh(s, &md, &mid) == MVR_ERROR_INVALID_ARGUMENT);
-    /* animations: too few values, times not increasing, a matrix node, a
+    /* animations: too few values, times not increasing, an unknown interpolation, a matrix node, a
      * weights channel on a node without targets */
     const float times[2] = {0.0f, 1.0f}, back[2] = {1.0f, 0.0f};
     const float values[6] = {0, 0, 0, 1, 1, 1};
@@ -320,6 +320,10 @@ static void hostile_input_is_refused(mvr_test_state *t)
     sa.times = back;
     CHECK(t, mvr_scene_add_animation(s, &ad, NULL) == MVR_ERROR_INVALID_ARGUMENT);
     sa.times = times;
+    sa.interpolation = (mvr_interpolation)7; /* no such interpolation: named, never a count read */
+    CHECK(t, mvr_scene_add_animation(s, &ad, NULL) == MVR_ERROR_INVALID_ARGUMENT);
+    CHECK_MSG(t, strstr(mvr_scene_last_error(s), "interpolation") != NULL, "%s", mvr_scene_last_error(s));
+    sa.interpolation = MVR_INTERPOLATION_LINEAR;
     ch.path = MVR_ANIMATION_PATH_WEIGHTS;
     CHECK(t, mvr_scene_add_animation(s, &ad, NULL) == MVR_ERROR_INVALID_ARGUMENT);
     mvr_node_desc nd = {.use_matrix = true, .matrix = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}};
