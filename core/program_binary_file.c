@@ -471,11 +471,18 @@ int mvr_program_binary_write(const char *path, const mvr_program_cache_key *mac_
     memcpy(bytes + HEADER_SIZE, driver, driver_len);
     memcpy(bytes + HEADER_SIZE + driver_len, payload, payload_size);
     put_u64(bytes + total - TAG_SIZE, mvr_siphash24(mac_key->bytes, bytes, total - TAG_SIZE));
+    int ok = mvr_cache_file_write(path, bytes, total, why, why_size);
+    free(bytes);
+    return ok;
+}
+
+int mvr_cache_file_write(const char *path, const void *bytes, size_t size, char *why, size_t why_size)
+{
     char tmp[4096];
     int fd = create_temporary(path, tmp, sizeof tmp, why, why_size);
     int ok = fd >= 0;
     if (ok) {
-        ok = write_full(fd, bytes, total);
+        ok = write_full(fd, bytes, size);
         ok = close(fd) == 0 && ok;
         if (!ok)
             mvr_str_format(why, why_size, "cannot write %s (%s)", tmp, strerror(errno));
@@ -485,6 +492,5 @@ int mvr_program_binary_write(const char *path, const mvr_program_cache_key *mac_
         if (!ok)
             unlink(tmp);
     }
-    free(bytes);
     return ok;
 }

@@ -89,4 +89,9 @@ int mvr_program_binary_write(const char *path, const mvr_program_cache_key *mac_
                              uint64_t key, uint32_t format, const void *payload, size_t payload_size, char *why,
                              size_t why_size);
 
+/* Writes size bytes to path as the cache's files are written: a new temporary
+ * file beside it (O_EXCL, O_NOFOLLOW, 0600), then rename, so no reader sees a
+ * half-written file. 0 and why on failure (the temporary file removed). */
+int mvr_cache_file_write(const char *path, const void *bytes, size_t size, char *why, size_t why_size);
+
 #endif

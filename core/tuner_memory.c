@@ -139,24 +139,5 @@ bool mvr_tuner_memory_write(const char *path, const mvr_program_cache_key *mac_k
         return false;
     }
     n += (size_t)snprintf(buf + n, sizeof buf - n, "tag %016" PRIx64 "\n", mvr_siphash24(mac_key->bytes, buf, n));
-    char tmp[4096];
-    int len = snprintf(tmp, sizeof tmp, "%s.XXXXXX", path);
-    if (len <= 0 || (size_t)len >= sizeof tmp) {
-        mvr_str_copy(why, why_size, "path too long");
-        return false;
-    }
-    int fd = mkstemp(tmp); /* O_EXCL, 0600 */
-    if (fd < 0) {
-        mvr_str_format(why, why_size, "cannot create a temporary file beside %s (%s)", path, strerror(errno));
-        return false;
-    }
-    bool ok = write(fd, buf, n) == (ssize_t)n;
-    ok = close(fd) == 0 && ok;
-    if (!ok)
-        mvr_str_format(why, why_size, "cannot write %s (%s)", tmp, strerror(errno));
-    else if (!(ok = rename(tmp, path) == 0))
-        mvr_str_format(why, why_size, "cannot rename %s into place (%s)", tmp, strerror(errno));
-    if (!ok)
-        unlink(tmp);
-    return ok;
+    return mvr_cache_file_write(path, buf, n, why, why_size) != 0;
 }
