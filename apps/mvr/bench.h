@@ -24,6 +24,7 @@ typedef struct bench_options {
     const char *out_dir;
     bool callgrind;
     int only;                    /* internal: run one configuration (the callgrind child) */
+    const char *configs;         /* --configs: the names to run (comma-separated), NULL = the whole matrix */
     bool quiet;
     /* --env-axes */
     bool env_axes;

@@ -16,7 +16,7 @@
 
 enum {
     B_DEMO = 1, B_VIEWS, B_SIZE, B_FRAMES, B_WARMUP, B_ROUNDS, B_MATRIX, B_OUT, B_CALLGRIND, B_QUIET, B_VERBOSE,
-    B_ONLY, B_ENV_AXES, B_SPECULAR_SIZES, B_SPECULAR_SAMPLES, B_REFERENCE_SAMPLES, B_CAMERAS, B_CAMERA, B_LAYOUT,
+    B_ONLY, B_CONFIGS, B_ENV_AXES, B_SPECULAR_SIZES, B_SPECULAR_SAMPLES, B_REFERENCE_SAMPLES, B_CAMERAS, B_CAMERA, B_LAYOUT,
     B_PROGRAM_CACHE, B_REFERENCE_MEMORY
 };
 
@@ -52,6 +52,11 @@ static const cli_option bench_table[] = {
      "(default: 5, at most F)", NULL, NULL, NULL},
     {CLI_OPT_CHOICE, B_MATRIX, "--matrix", NULL, "M", 0, 0, "quick|full", "quick | full (default: quick)", NULL, NULL,
      NULL},
+    {CLI_OPT_STRING, B_CONFIGS, "--configs", NULL, "LIST", 0, 0, NULL,
+     "only these configurations of the matrix (comma-separated,\n"
+     "as results.csv names them: auto/auto/noaa,loop/arrays/noaa),\n"
+     "besides the reference the errors are measured against", NULL, "--env-axes",
+     "--env-axes has no configuration matrix"},
     {CLI_OPT_STRING, B_OUT, "--out", NULL, "DIR", 0, 0, NULL, "output directory (default: bench-out)", NULL, NULL,
      NULL},
     {CLI_OPT_FLAG, B_CALLGRIND, "--callgrind", NULL, NULL, 0, 0, NULL,
@@ -219,6 +224,10 @@ static bool apply(const cli_arg *arg, bench_options *o, bool *verbose)
         break;
     case B_OUT: o->out_dir = v; break;
     case B_ONLY: o->only = (int)arg->number; break;
+    case B_CONFIGS:
+        o->configs = v;
+        ok = v[0] != '\0';
+        break;
     case B_MATRIX:
         o->matrix_set = true;
         o->full = arg->choice == 1;
