@@ -1,37 +1,45 @@
 #!/usr/bin/env bash
-# scripts/peers/bench_threejs.sh: frame time of three.js (npm three, MeshStandardMaterial through its
-# GLTFLoader, a RoomEnvironment prefiltered by PMREMGenerator, no anti-aliasing) in Debian's headless
-# Chromium over Mesa's EGL (llvmpipe: the GL mvr runs on), interleaved with `mvr bench` of the same
-# file at the same size and camera; prints each round's ratio three.js / mvr and their median.
+# scripts/peers/bench_peers.sh: frame time of a peer renderer in Debian's headless Chromium over Mesa's
+# EGL (llvmpipe: the GL mvr runs on), interleaved with `mvr bench` of the same file at the same size
+# and camera; prints each round's ratio peer / mvr and their median. The peers:
+#   threejs  three.js (npm three): MeshStandardMaterial through its GLTFLoader, a RoomEnvironment
+#            prefiltered by PMREMGenerator, the file's punctual lights
+#   khronos  the Khronos glTF Sample Renderer (npm @khronosgroup/gltf-viewer): its PBR shaders, IBL from
+#            tests/data/peers/sky.hdr, the file's punctual lights, no tone map
+# Both without anti-aliasing.
 #
-#   scripts/peers/bench_threejs.sh [--file SCENE.gltf|.glb] [--size WxH] [--views N] [--frames F]
-#                                  [--rounds R] [--mvr PATH] [--out DIR]
+#   scripts/peers/bench_peers.sh [--peer threejs|khronos] [--file SCENE.gltf|.glb] [--size WxH]
+#                                [--views N] [--frames F] [--rounds R] [--mvr PATH] [--out DIR]
 #
+#   --peer    default threejs
 #   --file    default: boxes.gltf from scripts/peers/make_boxes.py (a ground, 36 boxes, a sun, a camera)
-#   --size    default 640x480; --views 1 or 2 (side by side in one canvas for three.js, two layers for
-#             mvr; the same camera, so the same pixels twice); --frames default 30; --rounds default 3
+#   --size    default 640x480; --views 1 or 2 (the same camera twice: three.js as two viewports of
+#             one canvas, the Khronos renderer as two draws of its canvas, mvr as two layers)
+#   --frames  default 30; --rounds default 3
 #   --mvr     default build/mvr; --out default a temporary folder (kept: each round's results)
 #
-# three.js: each frame draws every view, then reads back 1 pixel (which waits for the GPU process to
+# A peer's frame draws every view, then reads back 1 pixel (which waits for the GPU process to
 # finish it; nothing is composited); the median of F frames after 5 untimed ones. mvr: `mvr bench
-# --cameras` with the camera three.js used (the file's first camera, else the bounding sphere's
+# --cameras` with the camera the peer used (the file's first camera, else the bounding sphere's
 # framing), the median wall time of auto/auto/noaa. Wall time on a shared machine is noisy: the
 # ratio of interleaved runs is what to quote. Needs chromium, node and npm (scripts/setup --peers);
 # the npm packages go to ${MVR_PEERS_DIR:-$HOME/.cache/mvr-peers}, never into the repository.
 set -euo pipefail
 
 THREE_VERSION=0.187.0        # npm three (r187)
+KHRONOS_VERSION=1.1.0        # npm @khronosgroup/gltf-viewer (as render_khronos.sh)
 PLAYWRIGHT_VERSION=1.65.1    # playwright-core (drives Debian's chromium; downloads no browser)
 
-log() { printf 'bench_threejs: %s\n' "$*" >&2; }
-die() { printf 'bench_threejs: error: %s\n' "$*" >&2; exit 1; }
+log() { printf 'bench_peers: %s\n' "$*" >&2; }
+die() { printf 'bench_peers: error: %s\n' "$*" >&2; exit 1; }
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 root=$(cd "$here/../.." && pwd)
 cache=${MVR_PEERS_DIR:-$HOME/.cache/mvr-peers}
-file= size=640x480 views=1 frames=30 rounds=3 mvr=$root/build/mvr out=
+peer=threejs file= size=640x480 views=1 frames=30 rounds=3 mvr=$root/build/mvr out=
 while [ $# -gt 0 ]; do
     case $1 in
+        --peer) shift; peer=${1:-} ;;
         --file) shift; file=${1:-} ;;
         --size) shift; size=${1:-} ;;
         --views) shift; views=${1:-} ;;
@@ -39,7 +47,7 @@ while [ $# -gt 0 ]; do
         --rounds) shift; rounds=${1:-} ;;
         --mvr) shift; mvr=${1:-} ;;
         --out) shift; out=${1:-} ;;
-        -h|--help) sed -n '2,21p' "${BASH_SOURCE[0]}"; exit 0 ;;
+        -h|--help) sed -n '2,28p' "${BASH_SOURCE[0]}"; exit 0 ;;
         *) die "unknown argument '$1'" ;;
     esac
     shift
@@ -47,6 +55,7 @@ done
 [[ $size =~ ^([0-9]+)x([0-9]+)$ ]] || die "--size WxH"
 width=${BASH_REMATCH[1]} height=${BASH_REMATCH[2]}
 case $views in 1|2) ;; *) die "--views 1 or 2" ;; esac
+case $peer in threejs|khronos) ;; *) die "--peer threejs or khronos" ;; esac
 [[ $frames =~ ^[0-9]+$ && $frames -ge 5 ]] || die "--frames F (at least 5)"
 [[ $rounds =~ ^[0-9]+$ && $rounds -ge 1 ]] || die "--rounds R"
 [ -x "$mvr" ] || die "no mvr at $mvr (build first, or --mvr PATH)"
@@ -62,15 +71,19 @@ command -v npm >/dev/null 2>&1 || die "no npm: run scripts/setup --peers"
 command -v python3 >/dev/null 2>&1 || die "no python3"
 
 installed() { node -p "require('$cache/node_modules/$1/package.json').version" 2>/dev/null || true; }
-if [ "$(installed three)" != "$THREE_VERSION" ] || [ "$(installed playwright-core)" != "$PLAYWRIGHT_VERSION" ]; then
-    log "installing three@$THREE_VERSION and playwright-core@$PLAYWRIGHT_VERSION into $cache"
+case $peer in
+    threejs) package=three version=$THREE_VERSION ;;
+    khronos) package=@khronosgroup/gltf-viewer version=$KHRONOS_VERSION ;;
+esac
+if [ "$(installed $package)" != "$version" ] || [ "$(installed playwright-core)" != "$PLAYWRIGHT_VERSION" ]; then
+    log "installing $package@$version and playwright-core@$PLAYWRIGHT_VERSION into $cache"
     mkdir -p "$cache"
     [ -f "$cache/package.json" ] || printf '{ "name": "mvr-peers", "private": true }\n' > "$cache/package.json"
     (cd "$cache" && npm install --no-audit --no-fund --loglevel=error \
-        "three@$THREE_VERSION" "playwright-core@$PLAYWRIGHT_VERSION")
+        "$package@$version" "playwright-core@$PLAYWRIGHT_VERSION")
 fi
 
-[ -n "$out" ] || out=$(mktemp -d /tmp/bench_threejs.XXXXXX)
+[ -n "$out" ] || out=$(mktemp -d /tmp/bench_peers.XXXXXX)
 mkdir -p "$out"
 if [ -z "$file" ]; then
     python3 "$here/make_boxes.py" "$out" >/dev/null
@@ -78,28 +91,30 @@ if [ -z "$file" ]; then
 fi
 [ -f "$file" ] || die "no file $file"
 name=$(basename "${file%.*}")
-log "$name, ${width}x${height}, $views view(s), $frames frames, $rounds rounds; $("$chromium_bin" --version | head -n 1); results in $out"
+log "$peer: $name, ${width}x${height}, $views view(s), $frames frames, $rounds rounds; $("$chromium_bin" --version | head -n 1); results in $out"
 
 ratios=()
 for r in $(seq 1 "$rounds"); do
-    t=$out/three_${name}_${size}_v${views}_r$r
-    node "$here/bench_threejs.mjs" --file "$file" --width "$width" --height "$height" --views "$views" \
+    t=$out/${peer}_${name}_${size}_v${views}_r$r
+    node "$here/bench_peer.mjs" --peer "$peer" --hdr "$root/tests/data/peers/sky.hdr" --file "$file" --width "$width" --height "$height" --views "$views" \
         --frames "$frames" --warmup 5 --modules "$cache/node_modules" --chromium "$chromium_bin" --out "$t.json"
     m=$out/mvr_${name}_${size}_v${views}_r$r
     # at least 5 rounds of mvr bench's own interleaving over its configurations
-    "$mvr" bench "$file" --cameras "$t.csv" --frames "$frames" --rounds 5 --out "$m" --quiet >"$m.log" 2>&1 \
+    "$mvr" bench "$file" --cameras "$t.csv" --configs auto/auto/noaa --frames "$frames" --rounds 5 --out "$m" \
+        --quiet >"$m.log" 2>&1 \
         || { cat "$m.log" >&2; die "mvr bench failed"; }
     ratio=$(python3 - "$t.json" "$m/results.json" <<'EOF'
 import json, sys
-three = json.load(open(sys.argv[1]))
+peer = json.load(open(sys.argv[1]))
 mvr = {c["config"]: c for c in json.load(open(sys.argv[2]))["configurations"]}
 m = mvr["auto/auto/noaa"]["wall_ms_median"]
-print(f"{three['median_ms'] / m:.2f} three.js {three['median_ms']:.1f} ms (r{three['three']}, "
-      f"{'/'.join(three['materials'])}), mvr auto/auto/noaa {m:.1f} ms")
+what = (f"three.js {peer['median_ms']:.1f} ms (r{peer['three']}, {'/'.join(peer['materials'])})"
+        if "three" in peer else f"Khronos {peer['median_ms']:.1f} ms")
+print(f"{peer['median_ms'] / m:.2f} {what}, mvr auto/auto/noaa {m:.1f} ms")
 EOF
 )
-    log "round $r: three.js / mvr = $ratio"
+    log "round $r: $peer / mvr = $ratio"
     ratios+=("${ratio%% *}")
 done
 median=$(printf '%s\n' "${ratios[@]}" | sort -g | awk '{a[NR] = $1} END {print (NR % 2) ? a[(NR + 1) / 2] : (a[NR / 2] + a[NR / 2 + 1]) / 2}')
-printf '%s %s %s views: three.js / mvr median %s over %s rounds (%s)\n' "$name" "$size" "$views" "$median" "$rounds" "${ratios[*]}"
+printf '%s %s %s %s views: %s / mvr median %s over %s rounds (%s)\n' "$peer" "$name" "$size" "$views" "$peer" "$median" "$rounds" "${ratios[*]}"

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes boxes.gltf, the low-poly scene of scripts/peers/bench_threejs.sh: a
+"""Writes boxes.gltf, the low-poly scene of scripts/peers/bench_peers.sh: a
 ground plane and a 6 x 6 grid of boxes (four untextured metallic-roughness
 materials), one directional light (KHR_lights_punctual) and a perspective
 camera that the ground fills, so a frame is bound by its pixels. The buffer
