@@ -64,7 +64,8 @@ static void settle(mvr_tuner *t)
     double clamped = now > lim ? lim : now < -lim ? -lim : now;
     mvr_tuner_memory m = {0, clamped, 0.0, 1};
     uint32_t incumbent = t->incumbent;
-    double band = -log(1.0 - MVR_TUNER_HYSTERESIS);
+    /* a first run whose choice a memory keeps: the lower estimate (tuner.h) */
+    double band = t->remembers ? 0.0 : -log(1.0 - MVR_TUNER_HYSTERESIS);
     if (t->recalled) {
         /* a running mean and variance (Welford) over the last runs */
         uint32_t n = t->memory.runs;
@@ -97,11 +98,11 @@ bool mvr_tuner_restarts(const mvr_tuner *t, mvr_tuner_key key, uint32_t prior)
 
 uint32_t mvr_tuner_next(mvr_tuner *t, mvr_tuner_key key, uint32_t prior, bool *measure)
 {
-    return mvr_tuner_next_recalled(t, key, prior, NULL, measure);
+    return mvr_tuner_next_recalled(t, key, prior, NULL, false, measure);
 }
 
 uint32_t mvr_tuner_next_recalled(mvr_tuner *t, mvr_tuner_key key, uint32_t prior, const mvr_tuner_memory *recalled,
-                                 bool *measure)
+                                 bool remembers, bool *measure)
 {
     *measure = false;
     if (prior >= MVR_TUNER_CANDIDATES)
@@ -113,6 +114,7 @@ uint32_t mvr_tuner_next_recalled(mvr_tuner *t, mvr_tuner_key key, uint32_t prior
         t->phase = MVR_TUNER_TUNING;
         t->key = key;
         t->prior = t->incumbent = prior;
+        t->remembers = remembers;
         if (recalled && recalled->chosen < MVR_TUNER_CANDIDATES && recalled->runs > 0 &&
             isfinite(recalled->log_ratio)) {
             t->recalled = true;

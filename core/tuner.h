@@ -25,9 +25,17 @@
  * the turns go on, up to MVR_TUNER_MAX_SAMPLES each, until they part or the
  * samples run out.
  *
- * Hysteresis: the incumbent is kept unless the other candidate is cheaper by
+ * Hysteresis: without a memory to keep the choice (none handed in, none to
+ * be stored), the incumbent is kept unless the other candidate is cheaper by
  * more than MVR_TUNER_HYSTERESIS, so two candidates inside the noise do not
- * flip on one run's noise; what either costs there is within that band.
+ * flip between processes on one run's noise; what either costs there is
+ * within that band. Where a memory will keep it (the caller says so), a
+ * first run takes the lower estimate (the incumbent on a tie): the memory
+ * then holds that choice across runs, so a bias towards the prior would
+ * only make the first run's choice the worse one more often (issue 37:
+ * stereo's multiview measured 0.2-3% cheaper than the prior's loop in every
+ * run, was kept out by the 3% and taken by the memory's mean 4 runs later,
+ * a choice changed once in 10 runs).
  *
  * Memory (mvr_tuner_memory): a settled choice may be stored (the GL side
  * writes it into the program cache folder, keyed by scene, views, size,
@@ -99,6 +107,7 @@ typedef struct mvr_tuner {
     uint32_t prior;              /* the caps rule's candidate */
     uint32_t incumbent;          /* the remembered choice, else the prior: runs first, kept on a tie */
     bool recalled;               /* memory was handed in at this key */
+    bool remembers;              /* the caller keeps what settles for later runs */
     mvr_tuner_memory memory;     /* recalled: the earlier runs'; settled: what to store */
     bool store;                  /* settled on measurements: memory is worth storing (cleared by the caller) */
     uint32_t chosen;             /* what runs once settled (the incumbent while tuning) */
@@ -118,9 +127,11 @@ typedef struct mvr_tuner {
  * cost (mvr_tuner_record) once known. */
 uint32_t mvr_tuner_next(mvr_tuner *t, mvr_tuner_key key, uint32_t prior, bool *measure);
 /* The same, with what an earlier run settled on for these inputs (NULL =
- * nothing), used only when this call starts tuning again. */
+ * nothing), used only when this call starts tuning again; `remembers`: the
+ * caller stores what settles (mvr_tuner.memory) for later runs, so a run
+ * without a recalled memory takes the lower estimate (no hysteresis). */
 uint32_t mvr_tuner_next_recalled(mvr_tuner *t, mvr_tuner_key key, uint32_t prior, const mvr_tuner_memory *recalled,
-                                 bool *measure);
+                                 bool remembers, bool *measure);
 /* Whether mvr_tuner_next with these inputs would start tuning again (the
  * moment to look up a memory). */
 bool mvr_tuner_restarts(const mvr_tuner *t, mvr_tuner_key key, uint32_t prior);

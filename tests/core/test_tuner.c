@@ -1,7 +1,8 @@
 /* core: the online tuner behind auto (core/tuner.h), without GL: its
  * schedule (turns of two frames, the incumbent first, the first of each turn
  * not measured), the estimate (the mean of the cheaper half), the choice
- * (the other candidate only when cheaper by more than the hysteresis), the
+ * (the other candidate only when cheaper by more than the hysteresis, or,
+ * where a memory keeps the choice, the lower estimate), the
  * memory of earlier runs, and when it measures again. */
 #include <string.h>
 
@@ -75,6 +76,20 @@ static void close_paths_keep_the_incumbent(mvr_test_state *t)
     const double tie[2] = {10.0, 10.0};
     run(&tu, key, 1, tie, ran);
     CHECK(t, tu.phase == MVR_TUNER_SETTLED && tu.chosen == 1 && tu.margin == 0.0);
+    /* where a memory keeps the choice (remembers), a first run takes the
+     * lower estimate: 2% cheaper wins, a tie keeps the prior */
+    for (int k = 0; k < 2; ++k) {
+        memset(&tu, 0, sizeof tu);
+        const double *cost = k == 0 ? close : tie;
+        bool measure;
+        for (int f = 0; f < 200 && tu.phase != MVR_TUNER_SETTLED; ++f) {
+            uint32_t c = mvr_tuner_next_recalled(&tu, key, 1, NULL, true, &measure);
+            if (measure)
+                mvr_tuner_record(&tu, c, cost[c]);
+        }
+        CHECK_MSG(t, tu.phase == MVR_TUNER_SETTLED && tu.chosen == (k == 0 ? 0u : 1u) && tu.store,
+                  "remembers, %s: chose %u", k == 0 ? "2%% apart" : "a tie", tu.chosen);
+    }
     /* 12% cheaper pays, and is clear after the first samples */
     memset(&tu, 0, sizeof tu);
     const double clear[2] = {8.8, 10.0};
@@ -156,7 +171,7 @@ static uint32_t noisy_run(uint32_t *state, const double base[2], mvr_tuner_memor
     mvr_tuner_key key = {6, 256, 256, 100, 0, 0};
     bool measure;
     for (int f = 0; f < 200 && tu.phase != MVR_TUNER_SETTLED; ++f) {
-        uint32_t c = mvr_tuner_next_recalled(&tu, key, 1, *have ? mem : NULL, &measure);
+        uint32_t c = mvr_tuner_next_recalled(&tu, key, 1, *have ? mem : NULL, true, &measure);
         if (measure)
             mvr_tuner_record(&tu, c, noisy(state, base[c]));
     }
@@ -208,12 +223,12 @@ static void remembered_choice_is_the_incumbent(mvr_test_state *t)
     mvr_tuner_memory mem = {0, 0.05, 0.0, 2};
     bool measure;
     CHECK(t, mvr_tuner_restarts(&tu, key, 1));
-    uint32_t c = mvr_tuner_next_recalled(&tu, key, 1, &mem, &measure);
+    uint32_t c = mvr_tuner_next_recalled(&tu, key, 1, &mem, true, &measure);
     CHECK(t, c == 0 && !measure && tu.incumbent == 0 && tu.recalled);
     CHECK(t, !mvr_tuner_restarts(&tu, key, 1));
     /* this run: candidate 1 2% cheaper (noise): the average still favours 0 */
     for (int f = 0; f < 200 && tu.phase != MVR_TUNER_SETTLED; ++f) {
-        c = mvr_tuner_next_recalled(&tu, key, 1, &mem, &measure);
+        c = mvr_tuner_next_recalled(&tu, key, 1, &mem, true, &measure);
         if (measure)
             mvr_tuner_record(&tu, c, c == 0 ? 10.0 : 9.8);
     }
@@ -229,7 +244,7 @@ static void remembered_choice_is_the_incumbent(mvr_test_state *t)
     for (uint32_t run_no = 1; run_no <= 12 && !changed_at; ++run_no) {
         memset(&tu, 0, sizeof tu);
         for (int f = 0; f < 200 && tu.phase != MVR_TUNER_SETTLED; ++f) {
-            c = mvr_tuner_next_recalled(&tu, key, 1, &mem, &measure);
+            c = mvr_tuner_next_recalled(&tu, key, 1, &mem, true, &measure);
             if (measure)
                 mvr_tuner_record(&tu, c, c == 0 ? 10.0 : 4.0);
         }
@@ -242,7 +257,7 @@ static void remembered_choice_is_the_incumbent(mvr_test_state *t)
     /* a memory out of range is not recalled */
     memset(&tu, 0, sizeof tu);
     mvr_tuner_memory bad = {7, 0.0, 0.0, 1};
-    CHECK(t, mvr_tuner_next_recalled(&tu, key, 1, &bad, &measure) == 1 && !tu.recalled);
+    CHECK(t, mvr_tuner_next_recalled(&tu, key, 1, &bad, true, &measure) == 1 && !tu.recalled);
 }
 
 /* Another decision's choice in the key (the skinning tuner keys on the view
