@@ -84,6 +84,11 @@ typedef struct bench_config {
     bool converged;              /* --env-axes: the maps at the largest size and 4096 samples */
 } bench_config;
 
+/* --configs LIST: keeps the reference and the named configurations, in the
+ * matrix's order; false (printing the names the matrix has) when a name is
+ * not in it (bench_options.c). */
+bool bench_select_configs(const char *list, bench_config *configs, uint32_t *count);
+
 typedef struct bench_result {
     bool ran;
     char skipped[160];           /* why not, when !ran */

@@ -363,6 +363,36 @@ int bench_options_parse(int argc, char **argv, bench_options *o)
     return MVR_EXIT_OK;
 }
 
+/* --configs: keep the reference and the named configurations, in the
+ * matrix's order; a name the matrix does not have is an error that lists
+ * the names it has. */
+bool bench_select_configs(const char *list, bench_config *configs, uint32_t *count)
+{
+    bool keep[BENCH_MAX_CONFIGS] = {false};
+    for (const char *p = list; *p;) {
+        size_t len = strcspn(p, ",");
+        bool found = false;
+        for (uint32_t k = 0; k < *count; ++k)
+            if (!configs[k].reference && strlen(configs[k].name) == len && strncmp(configs[k].name, p, len) == 0)
+                found = keep[k] = true;
+        if (!found) {
+            fprintf(stderr, "mvr bench: --configs: no configuration '%.*s' in this matrix; it has:", (int)len, p);
+            for (uint32_t k = 0; k < *count; ++k)
+                if (!configs[k].reference)
+                    fprintf(stderr, " %s", configs[k].name);
+            fprintf(stderr, "\n");
+            return false;
+        }
+        p += len + (p[len] == ',');
+    }
+    uint32_t kept = 0;
+    for (uint32_t k = 0; k < *count; ++k)
+        if (configs[k].reference || keep[k])
+            configs[kept++] = configs[k];
+    *count = kept;
+    return true;
+}
+
 void bench_command_line(int argc, char **argv, char *buf, size_t size)
 {
     snprintf(buf, size, "mvr");

@@ -602,36 +602,6 @@ static void leave_out_configs(mvr_context *ctx, bool has_blend, bench_config *co
     }
 }
 
-/* --configs: keep the reference and the named configurations, in the
- * matrix's order; a name the matrix does not have is an error that lists
- * the names it has. */
-static bool select_configs(const char *list, bench_config *configs, uint32_t *count)
-{
-    bool keep[BENCH_MAX_CONFIGS] = {false};
-    for (const char *p = list; *p;) {
-        size_t len = strcspn(p, ",");
-        bool found = false;
-        for (uint32_t k = 0; k < *count; ++k)
-            if (!configs[k].reference && strlen(configs[k].name) == len && strncmp(configs[k].name, p, len) == 0)
-                found = keep[k] = true;
-        if (!found) {
-            fprintf(stderr, "mvr bench: --configs: no configuration '%.*s' in this matrix; it has:", (int)len, p);
-            for (uint32_t k = 0; k < *count; ++k)
-                if (!configs[k].reference)
-                    fprintf(stderr, " %s", configs[k].name);
-            fprintf(stderr, "\n");
-            return false;
-        }
-        p += len + (p[len] == ',');
-    }
-    uint32_t kept = 0;
-    for (uint32_t k = 0; k < *count; ++k)
-        if (configs[k].reference || keep[k])
-            configs[kept++] = configs[k];
-    *count = kept;
-    return true;
-}
-
 /* What the matrix runs on: the scene, its views, and the configurations. */
 typedef struct bench_matrix {
     mvr_context *ctx;
@@ -783,7 +753,7 @@ int mvr_cmd_bench(int argc, char **argv)
     bool has_blend = probe_scene(&o, m.ctx, m.scene, m.vs, configs, &m.count);
     char omitted[512] = "";
     leave_out_configs(m.ctx, has_blend, configs, &m.count, omitted, sizeof omitted);
-    if (o.configs && !select_configs(o.configs, configs, &m.count)) {
+    if (o.configs && !bench_select_configs(o.configs, configs, &m.count)) {
         rc = MVR_EXIT_USAGE;
         goto done;
     }
