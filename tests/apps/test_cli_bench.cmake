@@ -1,7 +1,7 @@
 # ctest script: `mvr bench` on a tiny scene. Asserts the files and columns
 # exist, that every configuration that ran has a time and a finite error,
 # and that configurations which must agree (view path, material path) show
-# no difference. Then `mvr bench --env-axes` on a tiny sphere grid with two
+# no difference; `--configs` runs exactly the named ones. Then `mvr bench --env-axes` on a tiny sphere grid with two
 # prefilter configurations: its columns and keys, finite errors, the
 # reference and the converged maps at error 0 against themselves, and more
 # samples no worse against the converged maps. No assertion on times.
