@@ -26,16 +26,13 @@
 # the npm packages go to ${MVR_PEERS_DIR:-$HOME/.cache/mvr-peers}, never into the repository.
 set -euo pipefail
 
-THREE_VERSION=0.187.0        # npm three (r187)
-KHRONOS_VERSION=1.1.0        # npm @khronosgroup/gltf-viewer (as render_khronos.sh)
-PLAYWRIGHT_VERSION=1.65.1    # playwright-core (drives Debian's chromium; downloads no browser)
-
 log() { printf 'bench_peers: %s\n' "$*" >&2; }
 die() { printf 'bench_peers: error: %s\n' "$*" >&2; exit 1; }
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+# shellcheck source=common.sh
+. "$here/common.sh"          # the pinned versions, $cache, peers_find_tools, peers_npm_install
 root=$(cd "$here/../.." && pwd)
-cache=${MVR_PEERS_DIR:-$HOME/.cache/mvr-peers}
 peer=threejs file= size=640x480 views=1 frames=30 rounds=3 mvr=$root/build/mvr out=
 while [ $# -gt 0 ]; do
     case $1 in
@@ -60,28 +57,13 @@ case $peer in threejs|khronos) ;; *) die "--peer threejs or khronos" ;; esac
 [[ $rounds =~ ^[0-9]+$ && $rounds -ge 1 ]] || die "--rounds R"
 [ -x "$mvr" ] || die "no mvr at $mvr (build first, or --mvr PATH)"
 
-chromium_bin=${CHROMIUM:-}
-if [ -z "$chromium_bin" ]; then
-    if [ -x /usr/lib/chromium/chromium ]; then chromium_bin=/usr/lib/chromium/chromium
-    else chromium_bin=$(command -v chromium || true); fi
-fi
-[ -n "$chromium_bin" ] && [ -x "$chromium_bin" ] || die "no chromium: run scripts/setup --peers"
-command -v node >/dev/null 2>&1 || die "no node: run scripts/setup --peers"
-command -v npm >/dev/null 2>&1 || die "no npm: run scripts/setup --peers"
+peers_find_tools
 command -v python3 >/dev/null 2>&1 || die "no python3"
 
-installed() { node -p "require('$cache/node_modules/$1/package.json').version" 2>/dev/null || true; }
 case $peer in
-    threejs) package=three version=$THREE_VERSION ;;
-    khronos) package=@khronosgroup/gltf-viewer version=$KHRONOS_VERSION ;;
+    threejs) peers_npm_install three "$THREE_VERSION" ;;
+    khronos) peers_npm_install @khronosgroup/gltf-viewer "$KHRONOS_VERSION" ;;
 esac
-if [ "$(installed $package)" != "$version" ] || [ "$(installed playwright-core)" != "$PLAYWRIGHT_VERSION" ]; then
-    log "installing $package@$version and playwright-core@$PLAYWRIGHT_VERSION into $cache"
-    mkdir -p "$cache"
-    [ -f "$cache/package.json" ] || printf '{ "name": "mvr-peers", "private": true }\n' > "$cache/package.json"
-    (cd "$cache" && npm install --no-audit --no-fund --loglevel=error \
-        "$package@$version" "playwright-core@$PLAYWRIGHT_VERSION")
-fi
 
 [ -n "$out" ] || out=$(mktemp -d /tmp/bench_peers.XXXXXX)
 mkdir -p "$out"

@@ -16,16 +16,14 @@
 # ${MVR_PEERS_DIR:-$HOME/.cache/mvr-peers}, never into the repository.
 set -euo pipefail
 
-KHRONOS_VERSION=1.1.0        # @khronosgroup/gltf-viewer
-PLAYWRIGHT_VERSION=1.65.1    # playwright-core (drives Debian's chromium; downloads no browser)
-
 log() { printf 'render_khronos: %s\n' "$*"; }
 die() { printf 'render_khronos: error: %s\n' "$*" >&2; exit 1; }
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+# shellcheck source=common.sh
+. "$here/common.sh"          # the pinned versions, $cache, peers_find_tools, peers_npm_install
 root=$(cd "$here/../.." && pwd)
 data=$root/tests/data/peers
-cache=${MVR_PEERS_DIR:-$HOME/.cache/mvr-peers}
 command_line="scripts/peers/render_khronos.sh${*:+ $*}"
 
 assets=0
@@ -44,25 +42,8 @@ while [ $# -gt 0 ]; do
 done
 case $precision in highp|as-is) ;; *) die "--precision highp|as-is" ;; esac
 
-chromium_bin=${CHROMIUM:-}
-if [ -z "$chromium_bin" ]; then
-    # Debian's real binary (its /usr/bin/chromium is a shell wrapper)
-    if [ -x /usr/lib/chromium/chromium ]; then chromium_bin=/usr/lib/chromium/chromium
-    else chromium_bin=$(command -v chromium || true); fi
-fi
-[ -n "$chromium_bin" ] && [ -x "$chromium_bin" ] || die "no chromium: run scripts/setup --peers"
-command -v node >/dev/null 2>&1 || die "no node: run scripts/setup --peers"
-command -v npm >/dev/null 2>&1 || die "no npm: run scripts/setup --peers"
-
-# npm packages, outside the repository, pinned
-installed() { node -p "require('$cache/node_modules/$1/package.json').version" 2>/dev/null || true; }
-if [ "$(installed @khronosgroup/gltf-viewer)" != "$KHRONOS_VERSION" ] || [ "$(installed playwright-core)" != "$PLAYWRIGHT_VERSION" ]; then
-    log "installing @khronosgroup/gltf-viewer@$KHRONOS_VERSION and playwright-core@$PLAYWRIGHT_VERSION into $cache"
-    mkdir -p "$cache"
-    [ -f "$cache/package.json" ] || printf '{ "name": "mvr-peers", "private": true }\n' > "$cache/package.json"
-    (cd "$cache" && npm install --no-audit --no-fund --loglevel=error \
-        "@khronosgroup/gltf-viewer@$KHRONOS_VERSION" "playwright-core@$PLAYWRIGHT_VERSION")
-fi
+peers_find_tools
+peers_npm_install @khronosgroup/gltf-viewer "$KHRONOS_VERSION"
 
 if [ $assets -eq 1 ]; then
     log "regenerating the assets"
