@@ -38,6 +38,7 @@ const MIME = { '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/jav
 function resolve(url) {
     const p = decodeURIComponent(new URL(url, 'http://x').pathname);
     if (p === '/' || p === '/page.html') return path.join(here, PEER === 'khronos' ? 'khronos_bench_page.html' : 'threejs_page.html');
+    if (p === '/bench_timing.mjs') return path.join(here, 'bench_timing.mjs');
     if (HDR && p === '/env.hdr') return HDR;
     const map = [['/three/', THREE_DIR], ['/viewer/', VIEWER_DIST], ['/libs/', path.join(VIEWER_DIST, 'libs')], ['/data/', DIR]];
     for (const [prefix, dir] of map) {
