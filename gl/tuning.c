@@ -176,9 +176,9 @@ static uint32_t decide(mvr_renderer *r, uint32_t decision, mvr_tuner_key key, ui
         memcpy(m->d[decision].tuned_key, m->d[decision].key, sizeof m->d[decision].key);
     }
     bool measure = false;
-    /* remembers: a key to store the settled choice under (the memory's folder is set) */
-    uint32_t c = mvr_tuner_next_recalled(t, key, prior, mem, r->tuning_memory.enabled && r->tuning_memory.d[decision].key[0],
-                                         &measure);
+    /* what settles is kept for later runs: a memory folder, and a key to store it under */
+    bool remembers = r->tuning_memory.enabled && r->tuning_memory.d[decision].key[0];
+    uint32_t c = mvr_tuner_next_recalled(t, key, prior, mem, remembers, &measure);
     store(r, decision);
     if (measure) {
         r->tuning_frame.pending = true;
