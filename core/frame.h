@@ -29,7 +29,9 @@ typedef struct mvr_draw {
                                     before it, creation order (the sort's last tiebreak) */
     uint32_t node;               /* scene node whose world matrix places it */
     uint32_t material_page;      /* which block-sized page of the material table it reads */
-    uint64_t group_key;          /* texture arrays it binds (array path; 0 otherwise) */
+    uint64_t group_key;          /* the textures it binds: its texture arrays' groups (array
+                                    path), else its material + 1 where that samples a texture,
+                                    0 where it samples none; draws with equal keys bind the same */
     mvr_pass_kind pass;
     bool mirrored;               /* negative determinant: front faces wind clockwise */
     float depth;                 /* distance from the origin to its bounds' center */

@@ -178,8 +178,9 @@ static mvr_result bind_program(mvr_pass_context *pc, uint32_t features)
  * stores blocks in draw order, so without compaction the draws must follow
  * each other and all be visible; in a compacted pass culled draws between
  * them are skipped. They share what a draw binds: primitive, program
- * features, winding, and the material table page and textures (the
- * texture-array group on the array path, the material itself otherwise).
+ * features, winding, and the material table page and textures (group_key:
+ * the texture-array groups, or a textured material itself; draws without
+ * textures share it whatever their material, which the draw block names).
  * Instances are drawn in order, as the separate draws would be, so pixels do
  * not change. Blended draws stay single: their order is the sort's
  * back-to-front. */
@@ -205,8 +206,7 @@ static uint32_t instance_run(const mvr_pass_context *pc, mvr_pass_kind kind, uin
         /* a pre-skinned draw has its own captured vertices: never instanced */
         bool same = b->primitive == a->primitive && !mvr_skinning_vao(r, a) && !mvr_skinning_vao(r, b) &&
                     b->features == a->features && b->mirrored == a->mirrored &&
-                    b->material_page == a->material_page &&
-                    (r->gpu.arrays ? b->group_key == a->group_key : b->material == a->material);
+                    b->material_page == a->material_page && b->group_key == a->group_key;
         if (!same)
             break;
         n++;

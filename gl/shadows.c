@@ -220,9 +220,8 @@ static mvr_result draw_casters(mvr_renderer *r, const caster_pass *cp)
                         b->mirrored == d->mirrored &&
                         caster_features(b) == features &&
                         (b->features & MVR_FEATURE_DOUBLE_SIDED) == (d->features & MVR_FEATURE_DOUBLE_SIDED) &&
-                        (d->pass != MVR_PASS_MASK || (b->material_page == d->material_page &&
-                                                      (g->arrays ? b->group_key == d->group_key
-                                                                 : b->material == d->material)));
+                        (d->pass != MVR_PASS_MASK ||
+                         (b->material_page == d->material_page && b->group_key == d->group_key));
             if (!same || !caster_visible(r, b, cp->base, cp->count))
                 break;
             n++;

@@ -156,6 +156,134 @@ static void frame_packs_draws_relative_to_origin(mvr_test_state *t)
     mvr_scene_destroy(s);
 }
 
+/* Opaque draws without textures go front to back whatever their
+ * materials (switching costs nothing: the draw block names the material),
+ * so early depth rejects what nearer draws hide; textured materials keep
+ * their draws together (their textures are bound once), front to back
+ * within. */
+static void opaque_draws_go_front_to_back_across_untextured_materials(mvr_test_state *t)
+{
+    mvr_scene *s = new_scene();
+    static const uint8_t white[16] = {255, 255, 255, 255, 255, 255, 255, 255,
+                                      255, 255, 255, 255, 255, 255, 255, 255};
+    mvr_image_desc img = {.width = 2, .height = 2, .rgba8 = white, .name = "white"};
+    mvr_image_id image;
+    CHECK(t, mvr_scene_add_image(s, &img, &image) == MVR_OK);
+    mvr_material_id plain[3], textured[2];
+    for (int k = 0; k < 3; ++k) {
+        mvr_material_desc m = mvr_material_defaults();
+        m.base_color_factor[0] = 0.25f * (float)k;
+        CHECK(t, mvr_scene_add_material(s, &m, &plain[k]) == MVR_OK);
+    }
+    for (int k = 0; k < 2; ++k) {
+        mvr_material_desc m = mvr_material_defaults();
+        m.base_color.image = image;
+        m.base_color_factor[1] = 0.5f * (float)k;
+        CHECK(t, mvr_scene_add_material(s, &m, &textured[k]) == MVR_OK);
+    }
+    static const float uv[6] = {0, 0, 1, 0, 0, 1};
+    mvr_primitive_desc p = {0};
+    p.vertex_count = 3;
+    p.positions = tri;
+    p.texcoords0 = uv;
+    mvr_mesh_id meshes[5];
+    for (int k = 0; k < 5; ++k) {
+        p.material = k < 3 ? plain[k] : textured[k - 3];
+        mvr_mesh_desc m = {.primitives = &p, .primitive_count = 1, .name = "m"};
+        CHECK(t, mvr_scene_add_mesh(s, &m, &meshes[k]) == MVR_OK);
+    }
+    /* nine untextured draws whose materials interleave with distance, and
+     * six textured ones of two materials, also interleaved */
+    for (int k = 0; k < 15; ++k) {
+        mvr_node_desc nd = {0};
+        nd.scale[0] = nd.scale[1] = nd.scale[2] = 1;
+        nd.translation[2] = -(float)((k * 7) % 15) - 1.0f;
+        nd.mesh = k < 9 ? meshes[k % 3] : meshes[3 + k % 2];
+        mvr_node_id id;
+        CHECK(t, mvr_scene_add_node(s, &nd, &id) == MVR_OK);
+    }
+    mvr_frame f;
+    memset(&f, 0, sizeof f);
+    char why[128];
+    CHECK(t, mvr_frame_build(&f, s, mvr_dvec3_make(0, 0, 0), 256, 64, NULL, why, sizeof why) == MVR_OK);
+    CHECK_EQ_INT(t, f.pass_count[MVR_PASS_OPAQUE], 15);
+    uint32_t untextured = 0, materials_seen = 0, switches = 0;
+    uint64_t key_order[16];
+    uint32_t keys = 0;
+    for (uint32_t i = 0; i < f.pass_count[MVR_PASS_OPAQUE]; ++i) {
+        const mvr_draw *d = &f.draws[f.pass_first[MVR_PASS_OPAQUE] + i];
+        bool has_texture = (d->features & MVR_FEATURE_BASE_COLOR_TEX) != 0;
+        CHECK_MSG(t, has_texture == (d->group_key != 0), "draw %u: group key %llu, textured %d", i,
+                  (unsigned long long)d->group_key, has_texture);
+        if (i == 0 || d->group_key != key_order[keys - 1])
+            key_order[keys++] = d->group_key;
+        if (i > 0) {
+            const mvr_draw *prev = d - 1;
+            /* within a program and a binding, strictly nearer first */
+            if (prev->features == d->features && prev->group_key == d->group_key)
+                CHECK_MSG(t, prev->depth <= d->depth, "draw %u at %g after %g", i, (double)d->depth,
+                          (double)prev->depth);
+            switches += prev->material != d->material;
+        }
+        untextured += !has_texture;
+        materials_seen |= 1u << (d->material & 31u);
+    }
+    CHECK_EQ_INT(t, untextured, 9);
+    /* each binding one run: the two textured materials are not interleaved */
+    CHECK_EQ_INT(t, keys, 3);
+    /* the untextured ones are: nine draws of three materials, front to back */
+    CHECK_MSG(t, switches >= 8, "%u material switches", switches);
+    CHECK_EQ_INT(t, materials_seen, 31);
+    mvr_frame_free(&f);
+    mvr_scene_destroy(s);
+}
+
+/* Where front to back would cost many more calls than instancing the draws
+ * of each primitive (many small draws of few meshes), the draws of a
+ * primitive stay together, front to back among them. */
+static void many_draws_of_few_meshes_stay_instanced(mvr_test_state *t)
+{
+    mvr_scene *s = new_scene();
+    mvr_material_id mats[2];
+    mvr_mesh_id meshes[2];
+    for (int k = 0; k < 2; ++k) {
+        mvr_material_desc m = mvr_material_defaults();
+        m.roughness_factor = 0.25f + 0.5f * (float)k;
+        CHECK(t, mvr_scene_add_material(s, &m, &mats[k]) == MVR_OK);
+        mvr_primitive_desc p = {0};
+        p.vertex_count = 3;
+        p.positions = tri;
+        p.material = mats[k];
+        mvr_mesh_desc m2 = {.primitives = &p, .primitive_count = 1, .name = "m"};
+        CHECK(t, mvr_scene_add_mesh(s, &m2, &meshes[k]) == MVR_OK);
+    }
+    enum { N = 200 };
+    for (int k = 0; k < N; ++k) {
+        mvr_node_desc nd = {0};
+        nd.scale[0] = nd.scale[1] = nd.scale[2] = 1;
+        nd.translation[2] = -(float)k - 1.0f; /* the two meshes alternate with distance */
+        nd.mesh = meshes[k % 2];
+        mvr_node_id id;
+        CHECK(t, mvr_scene_add_node(s, &nd, &id) == MVR_OK);
+    }
+    mvr_frame f;
+    memset(&f, 0, sizeof f);
+    char why[128];
+    CHECK(t, mvr_frame_build(&f, s, mvr_dvec3_make(0, 0, 0), 256, 64, NULL, why, sizeof why) == MVR_OK);
+    CHECK_EQ_INT(t, f.pass_count[MVR_PASS_OPAQUE], N);
+    uint32_t primitive_changes = 0;
+    for (uint32_t i = 1; i < N; ++i) {
+        const mvr_draw *d = &f.draws[f.pass_first[MVR_PASS_OPAQUE] + i], *prev = d - 1;
+        if (prev->primitive != d->primitive)
+            primitive_changes++;
+        else
+            CHECK_MSG(t, prev->depth <= d->depth, "draw %u at %g after %g", i, (double)d->depth, (double)prev->depth);
+    }
+    CHECK_EQ_INT(t, primitive_changes, 1);
+    mvr_frame_free(&f);
+    mvr_scene_destroy(s);
+}
+
 static void features_follow_attributes_and_material(mvr_test_state *t)
 {
     float uv[6] = {0, 0, 1, 0, 0, 1};
@@ -276,5 +404,6 @@ static void block_images_are_checked(mvr_test_state *t)
     mvr_scene_destroy(s);
 }
 
-MVR_TEST_MAIN(TEST(block_images_are_checked), TEST(degenerate_values_are_repaired), TEST(bad_meshes_are_refused), TEST(references_are_checked),
+MVR_TEST_MAIN(TEST(block_images_are_checked), TEST(opaque_draws_go_front_to_back_across_untextured_materials),
+              TEST(many_draws_of_few_meshes_stay_instanced), TEST(degenerate_values_are_repaired), TEST(bad_meshes_are_refused), TEST(references_are_checked),
               TEST(frame_packs_draws_relative_to_origin), TEST(features_follow_attributes_and_material))
