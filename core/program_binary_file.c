@@ -494,3 +494,22 @@ int mvr_cache_file_write(const char *path, const void *bytes, size_t size, char 
     }
     return ok;
 }
+
+int mvr_cache_file_read(const char *path, void *buf, size_t cap, size_t *size, int *missing, char *why,
+                        size_t why_size)
+{
+    struct stat st;
+    *size = 0;
+    int fd = open_regular(path, &st, missing, why, why_size);
+    if (fd < 0)
+        return 0;
+    int ok = 0;
+    if (st.st_size <= 0 || (uint64_t)st.st_size > cap)
+        mvr_str_format(why, why_size, "%lld bytes (at most %zu)", (long long)st.st_size, cap);
+    else if (!read_full(fd, buf, (size_t)st.st_size) || !at_end(fd))
+        mvr_str_copy(why, why_size, "changed size while it was read");
+    else
+        ok = 1, *size = (size_t)st.st_size;
+    close(fd);
+    return ok;
+}

@@ -94,4 +94,11 @@ int mvr_program_binary_write(const char *path, const mvr_program_cache_key *mac_
  * half-written file. 0 and why on failure (the temporary file removed). */
 int mvr_cache_file_write(const char *path, const void *bytes, size_t size, char *why, size_t why_size);
 
+/* Reads a whole cache file of 1..cap bytes into buf as the cache's files are
+ * read: never following a link or waiting on a FIFO, only a regular file,
+ * and only if it did not change size while read. 1 and *size on success;
+ * 0 with *missing set where there is no file, else 0 and why. */
+int mvr_cache_file_read(const char *path, void *buf, size_t cap, size_t *size, int *missing, char *why,
+                        size_t why_size);
+
 #endif

@@ -2,14 +2,11 @@
 #define _POSIX_C_SOURCE 200809L
 #include "tuner_memory.h"
 
-#include <errno.h>
-#include <fcntl.h>
 #include <inttypes.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include "core_util.h"
@@ -46,35 +43,25 @@ static bool values_ok(const mvr_tuner_memory *m)
            m->runs <= MVR_TUNER_MEMORY_RUNS;
 }
 
-/* The whole file, if it is a regular file of a plausible size: its length, or -1 and why. */
+/* The whole file as a string, if it is a regular file of a plausible size
+ * without a NUL byte: its length, or -1 and why. */
 static long slurp(const char *path, char *buf, size_t size, bool *missing, char *why, size_t why_size)
 {
-    *missing = false;
-    int fd = open(path, O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
-    if (fd < 0) {
-        *missing = errno == ENOENT;
-        mvr_str_format(why, why_size, "cannot open (%s)", strerror(errno));
+    size_t got = 0;
+    int absent = 0;
+    int ok = mvr_cache_file_read(path, buf, size - 1, &got, &absent, why, why_size);
+    *missing = absent != 0;
+    if (!ok) {
+        if (absent)
+            mvr_str_copy(why, why_size, "no file");
         return -1;
     }
-    struct stat st;
-    long n = -1;
-    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-        mvr_str_copy(why, why_size, "not a regular file");
-    } else if (st.st_size <= 0 || (uint64_t)st.st_size >= size) {
-        mvr_str_format(why, why_size, "%lld bytes (at most %zu)", (long long)st.st_size, size - 1);
-    } else {
-        size_t got = 0;
-        ssize_t r;
-        while (got < size - 1 && (r = read(fd, buf + got, size - 1 - got)) > 0)
-            got += (size_t)r;
-        buf[got] = 0;
-        if (got != (size_t)st.st_size || strlen(buf) != got)
-            mvr_str_copy(why, why_size, "short read or a NUL byte");
-        else
-            n = (long)got;
+    buf[got] = 0;
+    if (strlen(buf) != got) {
+        mvr_str_copy(why, why_size, "a NUL byte");
+        return -1;
     }
-    close(fd);
-    return n;
+    return (long)got;
 }
 
 mvr_tuner_memory_status mvr_tuner_memory_read(const char *path, const mvr_program_cache_key *mac_key,
