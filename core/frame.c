@@ -76,37 +76,33 @@ static bool reserve_draws(mvr_frame *f, uint32_t count)
     return true;
 }
 
-/* The blended pass back to front; 0 where both are opaque or masked. */
-static int compare_blended(const mvr_draw *a, const mvr_draw *b)
+/* The blended pass back to front. Opaque and masked draws: fewest state
+ * changes first (program (features), textures (group_key), the material
+ * table's page), then, where by_primitive, the draws of one primitive together (the order
+ * of many small draws, which instancing merges into one call per run), then
+ * nearest first across materials, which cost nothing to switch (the draw
+ * block names the material), so early depth rejects what nearer draws hide
+ * (the boxes of scripts/peers/make_boxes.py at 1280x960: 1.73 shaded
+ * fragments a covered pixel grouped by material, 1.13 front to back; 34 ->
+ * 21-27 ms a frame; docs/benchmarks.md). */
+static int compare_draws(const mvr_draw *a, const mvr_draw *b, bool by_primitive)
 {
     if (a->pass != b->pass)
         return a->pass < b->pass ? -1 : 1;
-    if (a->pass != MVR_PASS_BLEND)
-        return 0;
-    if (a->depth != b->depth)
-        return a->depth > b->depth ? -1 : 1;
-    return a->block < b->block ? -1 : (a->block > b->block);
-}
-
-/* Opaque and masked draws, front to back: fewest state changes first
- * (program (features), textures (group_key), the material table's page),
- * then nearest first across materials, which cost nothing to switch (the
- * draw block names the material), so early depth rejects what nearer draws
- * hide (the boxes of scripts/peers/make_boxes.py at 1280x960: 1.73 shaded
- * fragments a covered pixel grouped by material, 1.13 front to back; 34 ->
- * 21-27 ms a frame; docs/benchmarks.md). */
-static int compare_draws_front_to_back(const void *pa, const void *pb)
-{
-    const mvr_draw *a = pa, *b = pb;
-    int c = compare_blended(a, b);
-    if (c != 0 || a->pass == MVR_PASS_BLEND)
-        return c;
+    if (a->pass == MVR_PASS_BLEND) {
+        /* back to front */
+        if (a->depth != b->depth)
+            return a->depth > b->depth ? -1 : 1;
+        return a->block < b->block ? -1 : (a->block > b->block);
+    }
     if (a->features != b->features)
         return a->features < b->features ? -1 : 1;
     if (a->group_key != b->group_key)
         return a->group_key < b->group_key ? -1 : 1;
     if (a->material_page != b->material_page)
         return a->material_page < b->material_page ? -1 : 1;
+    if (by_primitive && a->primitive != b->primitive)
+        return a->primitive < b->primitive ? -1 : 1;
     if (a->depth != b->depth)
         return a->depth < b->depth ? -1 : 1;
     if (a->material != b->material)
@@ -114,24 +110,14 @@ static int compare_draws_front_to_back(const void *pa, const void *pb)
     return a->block < b->block ? -1 : (a->block > b->block);
 }
 
-/* The same, with the draws of one primitive together (front to back among
- * them): the order of many small draws, which instancing merges into one
- * call per run. */
-static int compare_draws_by_primitive(const void *pa, const void *pb)
+static int compare_draws_front_to_back(const void *a, const void *b)
 {
-    const mvr_draw *a = pa, *b = pb;
-    int c = compare_blended(a, b);
-    if (c != 0 || a->pass == MVR_PASS_BLEND)
-        return c;
-    if (a->features != b->features)
-        return a->features < b->features ? -1 : 1;
-    if (a->group_key != b->group_key)
-        return a->group_key < b->group_key ? -1 : 1;
-    if (a->material_page != b->material_page)
-        return a->material_page < b->material_page ? -1 : 1;
-    if (a->primitive != b->primitive)
-        return a->primitive < b->primitive ? -1 : 1;
-    return compare_draws_front_to_back(pa, pb);
+    return compare_draws(a, b, false);
+}
+
+static int compare_draws_by_primitive(const void *a, const void *b)
+{
+    return compare_draws(a, b, true);
 }
 
 /* The calls the opaque and masked draws take in this order where nothing is
@@ -164,12 +150,15 @@ static void sort_draws(mvr_draw *d, uint32_t n)
      * not be NULL, even for zero elements */
     if (n < 2)
         return;
-    qsort(d, n, sizeof *d, compare_draws_by_primitive);
-    uint32_t grouped = opaque_calls(d, n);
     qsort(d, n, sizeof *d, compare_draws_front_to_back);
     uint32_t front_to_back = opaque_calls(d, n);
-    if (front_to_back > grouped + MVR_FRONT_TO_BACK_EXTRA_CALLS && front_to_back > 2u * grouped)
-        qsort(d, n, sizeof *d, compare_draws_by_primitive);
+    /* at most 64 calls cannot be 64 more than grouping takes: one sort */
+    if (front_to_back <= MVR_FRONT_TO_BACK_EXTRA_CALLS)
+        return;
+    qsort(d, n, sizeof *d, compare_draws_by_primitive);
+    uint32_t grouped = opaque_calls(d, n);
+    if (front_to_back <= grouped + MVR_FRONT_TO_BACK_EXTRA_CALLS || front_to_back <= 2u * grouped)
+        qsort(d, n, sizeof *d, compare_draws_front_to_back);
 }
 
 /* A skinned draw's joint matrices are already world and relative to the
@@ -506,7 +495,7 @@ mvr_result mvr_frame_build(mvr_frame *f, const mvr_scene *s, mvr_dvec3 origin, u
                 d->group_key = mvr_batch_plan_group_key(plan, material_slot);
             } else {
                 /* per material: its own textures, where it samples any */
-                for (uint32_t role = 0; role < MVR_ROLE_COUNT; ++role)
+                for (uint32_t role = 0; role < MVR_ROLE_COUNT && !d->group_key; ++role)
                     if (mvr_material_samples_role(mat, role))
                         d->group_key = (uint64_t)material_slot + 1u;
             }

@@ -156,6 +156,17 @@ static void frame_packs_draws_relative_to_origin(mvr_test_state *t)
     mvr_scene_destroy(s);
 }
 
+/* A node drawing `mesh` at distance `distance` down -Z from the origin. */
+static void add_node_at(mvr_test_state *t, mvr_scene *s, mvr_mesh_id mesh, float distance)
+{
+    mvr_node_desc nd = {0};
+    nd.scale[0] = nd.scale[1] = nd.scale[2] = 1;
+    nd.translation[2] = -distance;
+    nd.mesh = mesh;
+    mvr_node_id id;
+    CHECK(t, mvr_scene_add_node(s, &nd, &id) == MVR_OK);
+}
+
 /* Opaque draws without textures go front to back whatever their
  * materials (switching costs nothing: the draw block names the material),
  * so early depth rejects what nearer draws hide; textured materials keep
@@ -194,29 +205,21 @@ static void opaque_draws_go_front_to_back_across_untextured_materials(mvr_test_s
     }
     /* nine untextured draws whose materials interleave with distance, and
      * six textured ones of two materials, also interleaved */
-    for (int k = 0; k < 15; ++k) {
-        mvr_node_desc nd = {0};
-        nd.scale[0] = nd.scale[1] = nd.scale[2] = 1;
-        nd.translation[2] = -(float)((k * 7) % 15) - 1.0f;
-        nd.mesh = k < 9 ? meshes[k % 3] : meshes[3 + k % 2];
-        mvr_node_id id;
-        CHECK(t, mvr_scene_add_node(s, &nd, &id) == MVR_OK);
-    }
+    for (int k = 0; k < 15; ++k)
+        add_node_at(t, s, k < 9 ? meshes[k % 3] : meshes[3 + k % 2], (float)((k * 7) % 15) + 1.0f);
     mvr_frame f;
     memset(&f, 0, sizeof f);
     char why[128];
     CHECK(t, mvr_frame_build(&f, s, mvr_dvec3_make(0, 0, 0), 256, 64, NULL, why, sizeof why) == MVR_OK);
     CHECK_EQ_INT(t, f.pass_count[MVR_PASS_OPAQUE], 15);
     uint32_t untextured = 0, materials_seen = 0, switches = 0;
-    uint64_t key_order[16];
-    uint32_t keys = 0;
+    uint32_t keys = 0; /* runs of one binding key */
     for (uint32_t i = 0; i < f.pass_count[MVR_PASS_OPAQUE]; ++i) {
         const mvr_draw *d = &f.draws[f.pass_first[MVR_PASS_OPAQUE] + i];
         bool has_texture = (d->features & MVR_FEATURE_BASE_COLOR_TEX) != 0;
         CHECK_MSG(t, has_texture == (d->group_key != 0), "draw %u: group key %llu, textured %d", i,
                   (unsigned long long)d->group_key, has_texture);
-        if (i == 0 || d->group_key != key_order[keys - 1])
-            key_order[keys++] = d->group_key;
+        keys += i == 0 || d->group_key != d[-1].group_key;
         if (i > 0) {
             const mvr_draw *prev = d - 1;
             /* within a program and a binding, strictly nearer first */
@@ -258,14 +261,8 @@ static void many_draws_of_few_meshes_stay_instanced(mvr_test_state *t)
         CHECK(t, mvr_scene_add_mesh(s, &m2, &meshes[k]) == MVR_OK);
     }
     enum { N = 200 };
-    for (int k = 0; k < N; ++k) {
-        mvr_node_desc nd = {0};
-        nd.scale[0] = nd.scale[1] = nd.scale[2] = 1;
-        nd.translation[2] = -(float)k - 1.0f; /* the two meshes alternate with distance */
-        nd.mesh = meshes[k % 2];
-        mvr_node_id id;
-        CHECK(t, mvr_scene_add_node(s, &nd, &id) == MVR_OK);
-    }
+    for (int k = 0; k < N; ++k) /* the two meshes alternate with distance */
+        add_node_at(t, s, meshes[k % 2], (float)k + 1.0f);
     mvr_frame f;
     memset(&f, 0, sizeof f);
     char why[128];
