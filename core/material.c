@@ -118,12 +118,35 @@ uint32_t mvr_material_extension_features(const mvr_material_desc *m)
     return f;
 }
 
+_Static_assert(MVR_ROLE_COUNT <= MVR_MATERIAL_OCCLUSION_IN_METAL_ROUGH_BIT,
+               "the roles' has-a-texture bits of uv.w stay below the occlusion-in-metal-rough bit");
+
+bool mvr_texture_refs_fetch_alike(const mvr_texture_ref *a, const mvr_texture_ref *b)
+{
+    const mvr_texture_transform *ta = &a->transform, *tb = &b->transform;
+    bool same_transform = ta->enabled == tb->enabled &&
+                          (!ta->enabled || (ta->offset[0] == tb->offset[0] && ta->offset[1] == tb->offset[1] &&
+                                            ta->rotation == tb->rotation && ta->scale[0] == tb->scale[0] &&
+                                            ta->scale[1] == tb->scale[1]));
+    return a->image.id == b->image.id && a->texcoord == b->texcoord && same_transform &&
+           a->sampler.mag_filter == b->sampler.mag_filter && a->sampler.min_filter == b->sampler.min_filter &&
+           a->sampler.wrap_s == b->sampler.wrap_s && a->sampler.wrap_t == b->sampler.wrap_t;
+}
+
+bool mvr_material_occlusion_in_metal_rough(const mvr_material_desc *m)
+{
+    return m->occlusion.image.id && !m->spec_gloss.enabled &&
+           mvr_texture_refs_fetch_alike(&m->occlusion, &m->metallic_roughness);
+}
+
 bool mvr_material_samples_role(const mvr_material_desc *m, uint32_t role)
 {
     if (role >= MVR_ROLE_COUNT || !mvr_material_role(m, role)->image.id)
         return false;
     if (role == MVR_ROLE_METAL_ROUGH && m->spec_gloss.enabled)
         return false; /* spec-gloss has no metal and its own roughness */
+    if (role == MVR_ROLE_OCCLUSION && mvr_material_occlusion_in_metal_rough(m))
+        return false; /* read from the metallic-roughness fetch's red channel */
     return role < MVR_CORE_ROLE_COUNT || (mvr_material_extension_features(m) & roles[role].feature) != 0;
 }
 
@@ -396,6 +419,8 @@ void mvr_material_pack(const mvr_material_desc *m, const uint16_t *layers, uint8
         uv[r / 8] = (int32_t)((uint32_t)uv[r / 8] | field << (4u * (r % 8)));
         uv[3] = (int32_t)((uint32_t)uv[3] | 1u << r);
     }
+    if (mvr_material_occlusion_in_metal_rough(m))
+        uv[3] = (int32_t)((uint32_t)uv[3] | 1u << MVR_MATERIAL_OCCLUSION_IN_METAL_ROUGH_BIT);
     memcpy(out + MVR_MATERIAL_LAYERS_OFFSET, layer_words, sizeof layer_words);
     memcpy(out + MVR_MATERIAL_UV_OFFSET, uv, sizeof uv);
     for (uint32_t k = 0; k < used && k < MVR_MATERIAL_TRANSFORM_SLOTS; ++k) {

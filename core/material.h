@@ -64,6 +64,22 @@ uint32_t mvr_material_extension_features(const mvr_material_desc *m);
  * extension's role, needs the extension. */
 bool mvr_material_samples_role(const mvr_material_desc *m, uint32_t role);
 
+/* Whether two texture refs fetch the same texels: same image, texture
+ * coordinates, sampler and transform. */
+bool mvr_texture_refs_fetch_alike(const mvr_texture_ref *a, const mvr_texture_ref *b);
+
+/* Whether a material's occlusion is the red channel of its
+ * metallic-roughness texture, fetched alike (glTF 2.0 3.9.3 and 3.9.5 put
+ * metalness in B, roughness in G and occlusion in R so that one texture can
+ * hold all three; the loader packs separate ones, mvr_scene_pack_occlusion):
+ * then the occlusion role is not sampled on its own, and the fragment stage
+ * takes the red channel of the metallic-roughness fetch, a texture fetch
+ * less per fragment. */
+bool mvr_material_occlusion_in_metal_rough(const mvr_material_desc *m);
+/* The bit of the material block's uv.w (above the roles' has-a-texture
+ * bits) that says so; shaders/mesh.frag.glsl reads it. */
+#define MVR_MATERIAL_OCCLUSION_IN_METAL_ROUGH_BIT 30u
+
 /* A dielectric's F0 at normal incidence from its index of refraction. */
 float mvr_material_ior_f0(float ior);
 

@@ -190,6 +190,13 @@ bool mvr_image_level_size(mvr_image_format f, uint32_t w, uint32_t h, uint32_t l
     return true;
 }
 
+void mvr_scene_image_rehash(scene_image *img)
+{
+    img->hash = hash_bytes(mvr_scene_image_bytes(img), img->bytes,
+                           (14695981039346656037ull ^ ((uint64_t)img->width << 32 | img->height)) +
+                               ((uint64_t)img->format << 8 | img->levels));
+}
+
 mvr_result mvr_scene_add_image(mvr_scene *s, const mvr_image_desc *d, mvr_image_id *out)
 {
     if (!s || !d || !out)
@@ -268,9 +275,7 @@ mvr_result mvr_scene_add_image(mvr_scene *s, const mvr_image_desc *d, mvr_image_
     img->bytes = bytes;
     img->width = d->width;
     img->height = d->height;
-    img->hash = hash_bytes(data, bytes,
-                           (14695981039346656037ull ^ ((uint64_t)d->width << 32 | d->height)) +
-                               ((uint64_t)d->format << 8 | levels));
+    mvr_scene_image_rehash(img);
     mvr_str_copy(img->name, sizeof img->name, d->name);
     s->image_count++;
     s->geometry_version++;

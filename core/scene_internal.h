@@ -29,6 +29,22 @@ static inline const uint8_t *mvr_scene_image_bytes(const scene_image *img)
     return img->format == MVR_IMAGE_FORMAT_RGBA8 ? img->rgba : img->blocks;
 }
 
+/* Sets img->hash from its bytes, size, format and levels (after its bytes change). */
+void mvr_scene_image_rehash(scene_image *img);
+
+/* Rewrites texture coordinate set 1 as set 0 in the texture refs of each
+ * material whose primitives (every one drawing with it, at least one) hold
+ * the same values in both sets: the same pixels for those primitives, without
+ * the second set's varying (core/texture_packing.c; a primitive added later
+ * with that material reads set 0 where it said 1). Returns how many
+ * materials changed. */
+uint32_t mvr_scene_fold_texcoords(mvr_scene *scene);
+
+/* Moves each material's separate occlusion image into the red channel of
+ * its metallic-roughness image where the pixels stay the same
+ * (core/texture_packing.c); returns how many images took one. */
+uint32_t mvr_scene_pack_occlusion(mvr_scene *scene);
+
 typedef struct scene_material {
     mvr_material_desc desc;      /* name pointer cleared; defaults resolved */
     char name[64];

@@ -348,6 +348,14 @@ void main()
 #ifdef MVR_OCCLUSION_TEX
     ao = 1.0 + m.params.w * (MVR_SAMPLE_ROLE(mvr_occlusion_tex, MVR_ROLE_OCCLUSION, m).r - 1.0);
 #endif
+#ifdef MVR_METAL_ROUGH_TEX
+    // occlusion in the metallic-roughness texture's red channel, fetched
+    // alike (core/material.h, mvr_material_occlusion_in_metal_rough): the
+    // fetch above serves both (on the array path a program may also sample
+    // this material's white occlusion layer; this value replaces it)
+    if (((m.uv.w >> MVR_OCCLUSION_IN_METAL_ROUGH_BIT) & 1) != 0)
+        ao = 1.0 + m.params.w * (mr.r - 1.0);
+#endif
     vec3 ambient = mvr_ambient * base.rgb;
 #ifdef MVR_TRANSMISSION
     // what the surface lets through from behind, towards the eye

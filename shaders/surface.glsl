@@ -28,6 +28,8 @@
 #define MVR_ROLE_IRIDESCENCE_THICKNESS 15
 #define MVR_ROLE_ANISOTROPY 16
 #define MVR_ROLE_SPEC_GLOSS 17
+// uv.w bit: occlusion is the metallic-roughness fetch's red (core/material.h)
+#define MVR_OCCLUSION_IN_METAL_ROUGH_BIT 30
 
 #ifdef MVR_MATERIAL_ARRAYS
 #define MVR_SAMPLER sampler2DArray

@@ -164,6 +164,7 @@ static void print_scene_json(const char *file, const mvr_scene *scene, const mvr
     }
     json_end_array(&w);
     json_int(&w, "animation_channels_ignored", gi->animation_channels_ignored);
+    json_int(&w, "images_occlusion_packed", gi->images_occlusion_packed);
     json_int(&w, "load_warnings", gi->warnings);
     json_end_object(&w);
 }
@@ -177,6 +178,10 @@ static void print_scene_text(const char *file, const mvr_scene *scene, const mvr
     printf("meshes        %u (%u primitive%s), %u material%s, %u image%s\n", si->meshes, si->primitives,
            si->primitives == 1 ? "" : "s", si->materials, si->materials == 1 ? "" : "s", si->images,
            si->images == 1 ? "" : "s");
+    if (gi->images_occlusion_packed)
+        printf("packed        %u occlusion image%s in the red channel of %s metallic-roughness image%s (one fetch)\n",
+               gi->images_occlusion_packed, gi->images_occlusion_packed == 1 ? "" : "s",
+               gi->images_occlusion_packed == 1 ? "its" : "their", gi->images_occlusion_packed == 1 ? "" : "s");
     printf("bounds        (%g, %g, %g) .. (%g, %g, %g)\n", si->bounds_min[0], si->bounds_min[1], si->bounds_min[2],
            si->bounds_max[0], si->bounds_max[1], si->bounds_max[2]);
     printf("skins         %u (%u joint%s)\n", si->skins, si->joints, si->joints == 1 ? "" : "s");

@@ -228,6 +228,16 @@ uint32_t component_bit(int component_type);
 uint32_t component_size(int component_type);
 int type_components(int type);
 
+// Fewer texture fetches and varyings for the same pixels, once the scene is
+// loaded (core/texture_packing.c): texture coordinate set 1 read as set 0
+// where the primitives repeat it, separate occlusion images packed into their
+// metallic-roughness image's red channel. Returns the images packed
+// (gltf_materials.cpp).
+uint32_t pack_textures(context &cx, mvr_scene *scene);
+// Every image the scene holds, charged to the memory budget for its upload
+// (named by the first glTF image that gave it; gltf_materials.cpp).
+void charge_texture_uploads(context &cx, const mvr_scene *scene, const std::map<int, mvr_image_id> &images);
+
 // ---- compressed geometry (gltf_codecs.cpp) ----
 
 // The decoded bytes of bufferViews[view_index], which has

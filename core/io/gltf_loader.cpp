@@ -221,49 +221,6 @@ uint64_t morph_texels(const tinygltf::Primitive &p, size_t vcount, bool has_norm
     return mul_checked(mul_checked(vcount, p.targets.size(), pw), attributes ? attributes : 1, pw);
 }
 
-// The GPU-side bytes of one scene image: RGBA8 with its mip chain (the
-// renderer generates mips), or a block-compressed image's levels decoded to
-// RGBA8, width x height x 4 each (what a GL without the format, Mesa's
-// llvmpipe among them for ASTC and ETC2, holds after decoding it at upload).
-uint64_t texture_upload_bytes(const scene_image &img)
-{
-    uint64_t total = 0, w = img.width, h = img.height;
-    bool blocks = img.format != MVR_IMAGE_FORMAT_RGBA8;
-    for (uint32_t level = 0;; ++level) {
-        if (blocks && level >= img.levels)
-            break;
-        total += w * h * 4;
-        if (!blocks && w == 1 && h == 1)
-            break;
-        w = w > 1 ? w / 2 : 1;
-        h = h > 1 ? h / 2 : 1;
-    }
-    return total;
-}
-
-// Every image the scene holds, charged for its upload (named by the first
-// glTF image that gave it).
-void charge_texture_uploads(context &cx, const mvr_scene *scene, const std::map<int, mvr_image_id> &images)
-{
-    std::map<uint32_t, int> source;   // scene image id -> glTF image
-    for (const auto &gi : images)
-        if (gi.second.id != 0)
-            source.emplace(gi.second.id, gi.first);
-    for (uint32_t i = 0; i < scene->image_count; ++i) {
-        const scene_image &img = scene->images[i];
-        auto from = source.find(i + 1);
-        std::string name = from != source.end() ? "images[" + std::to_string(from->second) + "]"
-                                                : "image " + std::to_string(i + 1);
-        bool blocks = img.format != MVR_IMAGE_FORMAT_RGBA8;
-        std::string dims = std::to_string(img.width) + "x" + std::to_string(img.height);
-        cx.mem.charge(texture_upload_bytes(img),
-                      name + " (" + dims + (blocks ? std::string(" ") + mvr_image_format_name(img.format) + ", " +
-                                                         std::to_string(img.levels) + " levels, decoded to RGBA8"
-                                                   : std::string(" RGBA8 with its mips")) +
-                          ") uploaded for rendering");
-    }
-}
-
 }  // namespace
 
 mvr_mesh_id converter::mesh(int index)
@@ -710,6 +667,7 @@ mvr_result load(const unsigned char *bytes, size_t size, const std::string &base
         }
         cv.skins();
         cv.animations();
+        uint32_t occlusion_packed = pack_textures(cx, scene);
         charge_texture_uploads(cx, scene, cv.images);
         scene->logger = o.logger;
         if (info) {
@@ -722,6 +680,7 @@ mvr_result load(const unsigned char *bytes, size_t size, const std::string &base
             info->memory_peak = cx.mem.peak;
             info->json_bytes_estimate = json_estimate;
             info->animation_channels_ignored = cx.channels_ignored;
+            info->images_occlusion_packed = occlusion_packed;
         }
         *out = scene;
         if (error) {

@@ -16,6 +16,7 @@
 
 extern "C" {
 #include "core_util.h"
+#include "scene_internal.h"
 #include "material.h"
 }
 
@@ -528,6 +529,62 @@ std::vector<mvr_variant_mapping> converter::variant_mappings(int mesh, int prim,
             out.push_back(mvr_variant_mapping{uint32_t(v), mat});
     }
     return out;
+}
+
+// The GPU-side bytes of one scene image: RGBA8 with its mip chain (the
+// renderer generates mips), or a block-compressed image's levels decoded to
+// RGBA8, width x height x 4 each (what a GL without the format, Mesa's
+// llvmpipe among them for ASTC and ETC2, holds after decoding it at upload).
+static uint64_t texture_upload_bytes(const scene_image &img)
+{
+    uint64_t total = 0, w = img.width, h = img.height;
+    bool blocks = img.format != MVR_IMAGE_FORMAT_RGBA8;
+    for (uint32_t level = 0;; ++level) {
+        if (blocks && level >= img.levels)
+            break;
+        total += w * h * 4;
+        if (!blocks && w == 1 && h == 1)
+            break;
+        w = w > 1 ? w / 2 : 1;
+        h = h > 1 ? h / 2 : 1;
+    }
+    return total;
+}
+
+// Every image the scene holds, charged for its upload (named by the first
+// glTF image that gave it).
+void charge_texture_uploads(context &cx, const mvr_scene *scene, const std::map<int, mvr_image_id> &images)
+{
+    std::map<uint32_t, int> source;   // scene image id -> glTF image
+    for (const auto &gi : images)
+        if (gi.second.id != 0)
+            source.emplace(gi.second.id, gi.first);
+    for (uint32_t i = 0; i < scene->image_count; ++i) {
+        const scene_image &img = scene->images[i];
+        auto from = source.find(i + 1);
+        std::string name = from != source.end() ? "images[" + std::to_string(from->second) + "]"
+                                                : "image " + std::to_string(i + 1);
+        bool blocks = img.format != MVR_IMAGE_FORMAT_RGBA8;
+        std::string dims = std::to_string(img.width) + "x" + std::to_string(img.height);
+        cx.mem.charge(texture_upload_bytes(img),
+                      name + " (" + dims + (blocks ? std::string(" ") + mvr_image_format_name(img.format) + ", " +
+                                                         std::to_string(img.levels) + " levels, decoded to RGBA8"
+                                                   : std::string(" RGBA8 with its mips")) +
+                          ") uploaded for rendering");
+    }
+}
+
+uint32_t pack_textures(context &cx, mvr_scene *scene)
+{
+    uint32_t texcoords_folded = mvr_scene_fold_texcoords(scene);
+    uint32_t occlusion_packed = mvr_scene_pack_occlusion(scene);
+    if (texcoords_folded || occlusion_packed)
+        mvr_log(&cx.logger, MVR_LOG_DEBUG, MVR_LOG_ID_GENERAL,
+                "mvr_gltf: %u material(s) read texture coordinates 0 where their primitives repeat them as 1; "
+                "%u metallic-roughness image(s) took their material's occlusion image into their red channel "
+                "(one texture fetch for both)",
+                texcoords_folded, occlusion_packed);
+    return occlusion_packed;
 }
 
 }  // namespace mvr_gltf

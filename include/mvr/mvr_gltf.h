@@ -125,6 +125,10 @@ typedef struct mvr_gltf_info {
      * "pointer" among them, warned once per path) and channels whose node is
      * outside the loaded scene */
     uint32_t animation_channels_ignored;
+    /* metallic-roughness images that took their materials' separate occlusion
+     * image into their unused red channel (the same pixels, a texture fetch
+     * less a fragment; glTF 2.0 3.9.3 describes this packing) */
+    uint32_t images_occlusion_packed;
 } mvr_gltf_info;
 
 /* Loads a .gltf or .glb file (by content, not by name). info is optional. */

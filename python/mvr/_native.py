@@ -323,7 +323,8 @@ mvr_gltf_options = _struct("mvr_gltf_options", [
 mvr_gltf_info = _struct("mvr_gltf_info", [
     ("warnings", c_uint32), ("camera_nodes", c_uint32), ("images_missing", c_uint32), ("images_decoded", c_uint32),
     ("buffers_read", c_uint32), ("memory_budget", c_uint64), ("memory_peak", c_uint64),
-    ("json_bytes_estimate", c_uint64), ("animation_channels_ignored", c_uint32)])
+    ("json_bytes_estimate", c_uint64), ("animation_channels_ignored", c_uint32),
+    ("images_occlusion_packed", c_uint32)])
 # mvr_image.h
 mvr_image_data = _struct("mvr_image_data", [("width", c_uint32), ("height", c_uint32), ("type", c_int),
                                             ("pixels", c_void_p)])

@@ -26,7 +26,9 @@ static std::string quad_primitive(builder &b, float cx, float cy, int material, 
     std::string attrs = "\"POSITION\":" + std::to_string(a_pos) + ",\"NORMAL\":" + std::to_string(a_nrm) +
                         ",\"TEXCOORD_0\":" + std::to_string(a_uv);
     if (uv1) {
-        int a_uv1 = b.floats(uv, "VEC2");
+        // set 1 flipped: not a copy of set 0, which the loader would fold into set 0
+        std::vector<float> flipped = {0, 0, 1, 0, 1, 1, 0, 1};
+        int a_uv1 = b.floats(flipped, "VEC2");
         attrs += ",\"TEXCOORD_1\":" + std::to_string(a_uv1);
     }
     int a_idx = b.indices16({0, 1, 2, 0, 2, 3});

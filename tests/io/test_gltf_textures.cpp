@@ -513,6 +513,48 @@ void gpu_and_basis_payloads_fall_back(mvr_test_state *t)
 // OpenImageIO 2.4 writes it) renders like the PNG of its own decoded pixels,
 // through the extension (required; or with a PNG fallback of other colours
 // that must not be used) and as a plain source with mimeType image/webp.
+// A lit quad whose material keeps occlusion (read by TEXCOORD_1) apart from
+// metallic-roughness, as DamagedHelmet does: where TEXCOORD_1 is
+// TEXCOORD_0's accessor the loader reads set 0 and packs the occlusion into
+// the metallic-roughness image's red channel (core/texture_packing.c; the
+// pixels: gl_texture_packing); where TEXCOORD_1 holds other values it
+// leaves both alone.
+void separate_occlusion_is_packed_at_load(mvr_test_state *t)
+{
+    std::vector<uint8_t> mr = checker(), ao = checker();
+    for (size_t i = 0; i < ao.size(); i += 4)
+        ao[i] = uint8_t(255 - ao[i]);
+    for (int same_uv = 1; same_uv >= 0; --same_uv) {
+        doc d;
+        std::vector<uint8_t> bin;
+        d.add(d.images, file_image("mr.png", encode("png", mr, S, S)));
+        d.add(d.images, file_image("ao.png", encode("png", ao, S, S)));
+        d.add(d.samplers, "{}");
+        d.add(d.textures, "{\"sampler\":0,\"source\":0}");
+        d.add(d.textures, "{\"sampler\":0,\"source\":1}");
+        int mat = d.add(d.materials, "{\"pbrMetallicRoughness\":{\"metallicRoughnessTexture\":{\"index\":0}},"
+                                     "\"occlusionTexture\":{\"index\":1,\"texCoord\":1}}");
+        // quad() adds position, normal and uv accessors in that order
+        int uv1 = int(d.accessors.size()) + 2;
+        if (!same_uv) {
+            float other[8] = {0, 0.5f, 0.5f, 0.5f, 0.5f, 0, 0, 0};
+            uv1 = put_accessor(d, put_view(d, bin, 0, other, sizeof other), 5126, 4, "VEC2");
+        }
+        one_mesh(d, {quad(d, bin, 0, 0, 0, 0.5f, mat, ",\"TEXCOORD_1\":" + std::to_string(uv1))});
+        d.buffers.insert(d.buffers.begin(), data_buffer(bin));
+        std::string name = same_uv ? "occlusion_apart_same_uv" : "occlusion_apart_other_uv";
+        std::string path = dir() + "/" + name + ".gltf";
+        write_text(path, d.json());
+        loaded l;
+        load(path, &l);
+        CHECK_MSG(t, l.r == MVR_OK && l.info.images_decoded == 2, "%s: %s", name.c_str(), l.msg.c_str());
+        CHECK_MSG(t, l.info.images_occlusion_packed == uint32_t(same_uv), "%s: %u images packed", name.c_str(),
+                  l.info.images_occlusion_packed);
+        if (have_gl(t))
+            CHECK_MSG(t, !render(t, l, name).empty(), "%s: no frame", name.c_str());
+    }
+}
+
 void webp_renders_like_png(mvr_test_state *t)
 {
     if (!have_gl(t))
@@ -620,6 +662,7 @@ int main()
         {"gpu_and_basis_payloads_fall_back", gpu_and_basis_payloads_fall_back},
         {"webp_renders_like_png", webp_renders_like_png},
         {"broken_images_degrade", broken_images_degrade},
+        {"separate_occlusion_is_packed_at_load", separate_occlusion_is_packed_at_load},
     };
     int rc = mvr_test_run(cases, sizeof cases / sizeof cases[0]);
     mvr_context_destroy(g_ctx);

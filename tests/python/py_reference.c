@@ -222,6 +222,7 @@ static void layout_structs(void)
     S(mvr_gltf_info); F(mvr_gltf_info, warnings); F(mvr_gltf_info, camera_nodes); F(mvr_gltf_info, images_missing);
     F(mvr_gltf_info, images_decoded); F(mvr_gltf_info, buffers_read); F(mvr_gltf_info, memory_budget);
     F(mvr_gltf_info, memory_peak); F(mvr_gltf_info, json_bytes_estimate); F(mvr_gltf_info, animation_channels_ignored);
+    F(mvr_gltf_info, images_occlusion_packed);
     S(mvr_image_data); F(mvr_image_data, width); F(mvr_image_data, height); F(mvr_image_data, type);
     F(mvr_image_data, pixels);
 }
