@@ -234,7 +234,7 @@ int type_components(int type);
 // metallic-roughness image's red channel. Returns the images packed
 // (gltf_materials.cpp).
 uint32_t pack_textures(context &cx, mvr_scene *scene);
-// Every image the scene holds, charged to the memory budget for its upload
+// Every image a material samples, charged to the memory budget for its upload
 // (named by the first glTF image that gave it; gltf_materials.cpp).
 void charge_texture_uploads(context &cx, const mvr_scene *scene, const std::map<int, mvr_image_id> &images);
 

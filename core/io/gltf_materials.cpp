@@ -559,7 +559,18 @@ void charge_texture_uploads(context &cx, const mvr_scene *scene, const std::map<
     for (const auto &gi : images)
         if (gi.second.id != 0)
             source.emplace(gi.second.id, gi.first);
+    // what no material samples is never uploaded (an occlusion image packed
+    // into its metallic-roughness image, pack_textures)
+    std::vector<char> sampled(scene->image_count, 0);
+    for (uint32_t m = 0; m < scene->material_count; ++m)
+        for (uint32_t role = 0; role < MVR_ROLE_COUNT; ++role) {
+            uint32_t id = mvr_material_role(&scene->materials[m].desc, role)->image.id;
+            if (id && id <= scene->image_count)
+                sampled[id - 1] = 1;
+        }
     for (uint32_t i = 0; i < scene->image_count; ++i) {
+        if (!sampled[i])
+            continue;
         const scene_image &img = scene->images[i];
         auto from = source.find(i + 1);
         std::string name = from != source.end() ? "images[" + std::to_string(from->second) + "]"
