@@ -350,7 +350,8 @@ static void write_run_json(json_writer *jw, const bench_run *run)
     }
 }
 
-/* auto's decisions for configuration k and its verdict against the forced paths. */
+/* auto's decisions for configuration k and its verdict against the forced
+ * paths (v NULL: none ran to compare with; the decisions alone). */
 static void write_auto_json(json_writer *jw, const bench_run *run, uint32_t k, const bench_auto_verdict *v)
 {
     const bench_result *r = &run->results[k];
@@ -377,6 +378,10 @@ static void write_auto_json(json_writer *jw, const bench_run *run, uint32_t k, c
         json_string(jw, "skinning_chosen", mvr_skinning_path_name(sk->chosen));
         json_double(jw, "tuner_vertex_ms", sk->cost_ms[0]);
         json_double(jw, "tuner_preskin_ms", sk->cost_ms[1]);
+    }
+    if (!v) { /* nothing forced to compare with (e.g. --configs auto/auto/noaa alone) */
+        json_end_object(jw);
+        return;
     }
     json_string(jw, "best_forced", run->configs[v->best].name);
     json_double(jw, "excess_beyond_noise", v->excess);
@@ -434,6 +439,8 @@ static void write_config_json(json_writer *jw, const bench_run *run, uint32_t k)
     bench_auto_verdict v;
     if (bench_auto_excess(run, k, &v))
         write_auto_json(jw, run, k, &v);
+    else if (c->view_path == MVR_VIEW_PATH_AUTO && !c->reference)
+        write_auto_json(jw, run, k, NULL);
     json_double(jw, "wall_ms_median", r->wall_median);
     json_double(jw, "wall_ms_min", r->wall_min);
     json_double(jw, "wall_ms_max", r->wall_max);

@@ -9,13 +9,16 @@
 # Both without anti-aliasing.
 #
 #   scripts/peers/bench_peers.sh [--peer threejs|khronos] [--file SCENE.gltf|.glb] [--size WxH]
-#                                [--views N] [--frames F] [--rounds R] [--mvr PATH] [--out DIR]
+#                                [--views N] [--frames F] [--rounds R] [--settle S] [--mvr PATH] [--out DIR]
 #
 #   --peer    default threejs
 #   --file    default: boxes.gltf from scripts/peers/make_boxes.py (a ground, 36 boxes, a sun, a camera)
 #   --size    default 640x480; --views 1 or 2 (the same camera twice: three.js as two viewports of
 #             one canvas, the Khronos renderer as two draws of its canvas, mvr as two layers)
 #   --frames  default 30; --rounds default 3
+#   --settle  seconds to wait before each side's run, default 10: Chromium's processes take seconds
+#             to exit, and a run that starts at once shares the cores with them (measured: mvr's
+#             DamagedHelmet at 640x480 x 2 views, 30 ms a frame right after Chromium, 21-24 ms after 10 s)
 #   --mvr     default build/mvr; --out default a temporary folder (kept: each round's results)
 #
 # A peer's frame draws every view, then reads back 1 pixel (which waits for the GPU process to
@@ -33,7 +36,7 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 # shellcheck source=common.sh
 . "$here/common.sh"          # the pinned versions, $cache, peers_find_tools, peers_npm_install
 root=$(cd "$here/../.." && pwd)
-peer=threejs file= size=640x480 views=1 frames=30 rounds=3 mvr=$root/build/mvr out=
+peer=threejs file= size=640x480 views=1 frames=30 rounds=3 settle=10 mvr=$root/build/mvr out=
 while [ $# -gt 0 ]; do
     case $1 in
         --peer) shift; peer=${1:-} ;;
@@ -42,9 +45,10 @@ while [ $# -gt 0 ]; do
         --views) shift; views=${1:-} ;;
         --frames) shift; frames=${1:-} ;;
         --rounds) shift; rounds=${1:-} ;;
+        --settle) shift; settle=${1:-} ;;
         --mvr) shift; mvr=${1:-} ;;
         --out) shift; out=${1:-} ;;
-        -h|--help) sed -n '2,28p' "${BASH_SOURCE[0]}"; exit 0 ;;
+        -h|--help) sed -n '2,31p' "${BASH_SOURCE[0]}"; exit 0 ;;
         *) die "unknown argument '$1'" ;;
     esac
     shift
@@ -55,6 +59,7 @@ case $views in 1|2) ;; *) die "--views 1 or 2" ;; esac
 case $peer in threejs|khronos) ;; *) die "--peer threejs or khronos" ;; esac
 [[ $frames =~ ^[0-9]+$ && $frames -ge 5 ]] || die "--frames F (at least 5)"
 [[ $rounds =~ ^[0-9]+$ && $rounds -ge 1 ]] || die "--rounds R"
+[[ $settle =~ ^[0-9]+$ ]] || die "--settle S (whole seconds)"
 [ -x "$mvr" ] || die "no mvr at $mvr (build first, or --mvr PATH)"
 
 peers_find_tools
@@ -78,9 +83,11 @@ log "$peer: $name, ${width}x${height}, $views view(s), $frames frames, $rounds r
 ratios=()
 for r in $(seq 1 "$rounds"); do
     t=$out/${peer}_${name}_${size}_v${views}_r$r
+    sleep "$settle"
     node "$here/bench_peer.mjs" --peer "$peer" --hdr "$root/tests/data/peers/sky.hdr" --file "$file" --width "$width" --height "$height" --views "$views" \
         --frames "$frames" --warmup 5 --modules "$cache/node_modules" --chromium "$chromium_bin" --out "$t.json"
     m=$out/mvr_${name}_${size}_v${views}_r$r
+    sleep "$settle"
     # at least 5 rounds of mvr bench's own interleaving over its configurations
     "$mvr" bench "$file" --cameras "$t.csv" --configs auto/auto/noaa --frames "$frames" --rounds 5 --out "$m" \
         --quiet >"$m.log" 2>&1 \
