@@ -12,38 +12,53 @@
  * 34 ms at 1280x960, docs/benchmarks.md). Filtering and mip generation work
  * per channel, so the packed texture's red channel filters to the occlusion
  * texture's red channel bit for bit: the pixels are the same
- * (tests/gl/test_materials.c, occlusion_packing_gives_the_same_pixels). */
+ * (tests/gl/test_texture_packing.c, packing_gives_the_same_pixels). */
+#include <stdlib.h>
 #include <string.h>
 
 #include "material.h"
 #include "scene_internal.h"
 
-/* Whether every primitive that draws with material `material` (as its own,
- * selected or a variant's) has a second texture coordinate set equal to its
- * first, and at least one does. Exporters write such copies (DamagedHelmet's
- * TEXCOORD_1 is TEXCOORD_0's accessor). */
-static bool texcoord1_repeats_texcoord0(const mvr_scene *s, uint32_t material)
+/* Whether a primitive's second texture coordinate set repeats its first. */
+static bool texcoord1_repeats_texcoord0(const scene_primitive *p)
 {
-    uint32_t users = 0;
-    for (uint32_t i = 0; i < s->primitive_count; ++i) {
-        const scene_primitive *p = &s->primitives[i];
-        bool uses = p->material == material || p->own_material == material;
-        for (uint32_t k = 0; k < p->variant_map_count && !uses; ++k)
-            uses = p->variant_maps[k].material == material;
-        if (!uses)
-            continue;
-        if (!p->uv0 || !p->uv1 ||
-            (p->uv0 != p->uv1 && memcmp(p->uv0, p->uv1, (size_t)p->vertex_count * 2 * sizeof(float)) != 0))
-            return false;
-        users++;
-    }
-    return users > 0;
+    return p->uv0 && p->uv1 &&
+           (p->uv0 == p->uv1 || memcmp(p->uv0, p->uv1, (size_t)p->vertex_count * 2 * sizeof(float)) == 0);
+}
+
+/* Marks material `material` (an index, or MVR_NO_INDEX: the default
+ * material, which has no textures) as drawn by a primitive that repeats its
+ * first texture coordinate set in its second, or by one that does not. */
+static void mark_user(uint32_t material, uint32_t count, bool repeats, uint8_t *users, uint8_t *other)
+{
+    if (material >= count)
+        return;
+    if (repeats)
+        users[material] = 1;
+    else
+        other[material] = 1;
 }
 
 uint32_t mvr_scene_fold_texcoords(mvr_scene *s)
 {
-    if (!s)
+    if (!s || !s->material_count)
         return 0;
+    /* per material: drawn by a primitive that repeats set 0 in set 1
+     * (exporters write such copies: DamagedHelmet's TEXCOORD_1 is
+     * TEXCOORD_0's accessor), and by one that does not; one pass over the
+     * primitives, each as its own, selected or a variant's material */
+    uint8_t *users = calloc(2 * (size_t)s->material_count, 1);
+    if (!users)
+        return 0; /* nothing folded: the same pixels, a varying more */
+    uint8_t *other = users + s->material_count;
+    for (uint32_t i = 0; i < s->primitive_count; ++i) {
+        const scene_primitive *p = &s->primitives[i];
+        bool repeats = texcoord1_repeats_texcoord0(p);
+        mark_user(p->material, s->material_count, repeats, users, other);
+        mark_user(p->own_material, s->material_count, repeats, users, other);
+        for (uint32_t k = 0; k < p->variant_map_count; ++k)
+            mark_user(p->variant_maps[k].material, s->material_count, repeats, users, other);
+    }
     uint32_t folded = 0;
     for (uint32_t i = 0; i < s->material_count; ++i) {
         mvr_material_desc *m = &s->materials[i].desc;
@@ -52,7 +67,7 @@ uint32_t mvr_scene_fold_texcoords(mvr_scene *s)
             const mvr_texture_ref *t = mvr_material_role(m, role);
             reads_texcoord1 |= t->image.id && t->texcoord == 1;
         }
-        if (!reads_texcoord1 || !texcoord1_repeats_texcoord0(s, i))
+        if (!reads_texcoord1 || !users[i] || other[i])
             continue;
         for (uint32_t role = 0; role < MVR_ROLE_COUNT; ++role) {
             mvr_texture_ref *t = (mvr_texture_ref *)mvr_material_role(m, role);
@@ -62,55 +77,66 @@ uint32_t mvr_scene_fold_texcoords(mvr_scene *s)
         s->material_version++;
         folded++;
     }
+    free(users);
     return folded;
 }
 
-/* The occlusion image that image `mr` (index) can take into its red channel:
- * its id, or 0 where it cannot. Every reference to `mr` must be a
+/* What the materials ask of one image as a packing target. */
+typedef struct packing_target {
+    uint32_t occlusion;          /* the occlusion image id its materials pair it with (0: none yet) */
+    bool refused;                /* read otherwise than as metallic-roughness, or paired unlike */
+    bool packed;                 /* took the occlusion image's red channel */
+} packing_target;
+
+/* One pass over the materials: for each image, the occlusion image it can
+ * take into its red channel. Every reference to it must be a
  * metallic-roughness one (nothing else reads its red channel), and every
  * material sampling it must have no occlusion texture or the same occlusion
- * image, fetched alike, the same size, in RGBA8. */
-static uint32_t occlusion_for(const mvr_scene *s, uint32_t mr)
+ * image, fetched alike. An image some material reads as occlusion is never
+ * a target, so no image is both a target and a source. */
+static void find_targets(const mvr_scene *s, packing_target *targets)
 {
-    const scene_image *target = &s->images[mr];
-    if (target->format != MVR_IMAGE_FORMAT_RGBA8 || !target->rgba)
-        return 0;
-    uint32_t ao = 0;
     for (uint32_t i = 0; i < s->material_count; ++i) {
         const mvr_material_desc *m = &s->materials[i].desc;
-        for (uint32_t role = 0; role < MVR_ROLE_COUNT; ++role)
-            if (role != MVR_ROLE_METAL_ROUGH && mvr_material_role(m, role)->image.id == mr + 1)
-                return 0;
-        if (m->metallic_roughness.image.id != mr + 1 || !m->occlusion.image.id)
+        for (uint32_t role = 0; role < MVR_ROLE_COUNT; ++role) {
+            uint32_t id = mvr_material_role(m, role)->image.id;
+            if (role != MVR_ROLE_METAL_ROUGH && id && id <= s->image_count)
+                targets[id - 1].refused = true;
+        }
+        uint32_t mr = m->metallic_roughness.image.id, ao = m->occlusion.image.id;
+        if (!mr || mr > s->image_count || !ao)
             continue;
+        packing_target *t = &targets[mr - 1];
         /* the occlusion fetched as the metallic-roughness texture is, once
          * its image is the same */
         mvr_texture_ref moved = m->occlusion;
         moved.image = m->metallic_roughness.image;
-        if (!mvr_texture_refs_fetch_alike(&moved, &m->metallic_roughness) || m->spec_gloss.enabled)
-            return 0;
-        uint32_t id = m->occlusion.image.id;
-        if (ao && id != ao)
-            return 0;
-        ao = id;
+        if (!mvr_texture_refs_fetch_alike(&moved, &m->metallic_roughness) || m->spec_gloss.enabled ||
+            (t->occlusion && t->occlusion != ao))
+            t->refused = true;
+        t->occlusion = ao;
     }
-    if (!ao || ao > s->image_count)
-        return 0;
-    const scene_image *src = &s->images[ao - 1];
-    if (src->format != MVR_IMAGE_FORMAT_RGBA8 || !src->rgba || src->width != target->width ||
-        src->height != target->height)
-        return 0;
-    return ao;
+}
+
+/* Both RGBA8 and the same size. */
+static bool packable(const scene_image *target, const scene_image *src)
+{
+    return target->format == MVR_IMAGE_FORMAT_RGBA8 && target->rgba && src->format == MVR_IMAGE_FORMAT_RGBA8 &&
+           src->rgba && src->width == target->width && src->height == target->height;
 }
 
 uint32_t mvr_scene_pack_occlusion(mvr_scene *s)
 {
-    if (!s)
+    if (!s || !s->image_count)
         return 0;
+    packing_target *targets = calloc(s->image_count, sizeof *targets);
+    if (!targets)
+        return 0; /* nothing packed: the same pixels, a fetch more */
+    find_targets(s, targets);
     uint32_t packed = 0;
     for (uint32_t mr = 0; mr < s->image_count; ++mr) {
-        uint32_t ao = occlusion_for(s, mr);
-        if (!ao)
+        uint32_t ao = targets[mr].occlusion;
+        if (targets[mr].refused || !ao || ao > s->image_count || !packable(&s->images[mr], &s->images[ao - 1]))
             continue;
         scene_image *target = &s->images[mr];
         const uint8_t *from = s->images[ao - 1].rgba;
@@ -118,14 +144,20 @@ uint32_t mvr_scene_pack_occlusion(mvr_scene *s)
         for (size_t k = 0; k < texels; ++k)
             target->rgba[4 * k] = from[4 * k];
         mvr_scene_image_rehash(target);
-        for (uint32_t i = 0; i < s->material_count; ++i) {
-            mvr_material_desc *m = &s->materials[i].desc;
-            if (m->metallic_roughness.image.id == mr + 1 && m->occlusion.image.id == ao)
-                m->occlusion.image = m->metallic_roughness.image;
-        }
-        s->geometry_version++;
-        s->material_version++;
+        targets[mr].packed = true;
         packed++;
     }
+    /* the materials now read their occlusion from the packed image */
+    for (uint32_t i = 0; packed && i < s->material_count; ++i) {
+        mvr_material_desc *m = &s->materials[i].desc;
+        uint32_t mr = m->metallic_roughness.image.id;
+        if (mr && mr <= s->image_count && targets[mr - 1].packed && m->occlusion.image.id)
+            m->occlusion.image = m->metallic_roughness.image;
+    }
+    if (packed) {
+        s->geometry_version++;
+        s->material_version++;
+    }
+    free(targets);
     return packed;
 }

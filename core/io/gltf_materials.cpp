@@ -551,8 +551,6 @@ static uint64_t texture_upload_bytes(const scene_image &img)
     return total;
 }
 
-// Every image the scene holds, charged for its upload (named by the first
-// glTF image that gave it).
 void charge_texture_uploads(context &cx, const mvr_scene *scene, const std::map<int, mvr_image_id> &images)
 {
     std::map<uint32_t, int> source;   // scene image id -> glTF image
