@@ -130,9 +130,8 @@ static uint32_t opaque_calls(const mvr_draw *d, uint32_t n)
         if (d[i].pass == MVR_PASS_BLEND)
             continue;
         const mvr_draw *p = i ? &d[i - 1] : NULL;
-        bool same = p && p->pass == d[i].pass && p->primitive == d[i].primitive && p->features == d[i].features &&
-                    p->mirrored == d[i].mirrored && p->material_page == d[i].material_page &&
-                    p->group_key == d[i].group_key && p->deform == MVR_NO_INDEX && d[i].deform == MVR_NO_INDEX;
+        bool same = p && p->pass == d[i].pass && mvr_draws_bind_alike(p, &d[i]) && p->deform == MVR_NO_INDEX &&
+                    d[i].deform == MVR_NO_INDEX;
         calls += !same;
     }
     return calls;

@@ -40,6 +40,17 @@ typedef struct mvr_draw {
     uint32_t deform;             /* its entry in mvr_frame.deforms, or MVR_NO_INDEX */
 } mvr_draw;
 
+/* Whether two draws of a pass bind the same (primitive, program, winding,
+ * material table page, textures), so that consecutive ones can be one
+ * instanced call: core/frame.c counts calls with it, gl/draw_list.c
+ * instances with it (adding what only the GL side knows: pre-skinned
+ * vertices are never instanced). */
+static inline bool mvr_draws_bind_alike(const mvr_draw *a, const mvr_draw *b)
+{
+    return a->primitive == b->primitive && a->features == b->features && a->mirrored == b->mirrored &&
+           a->material_page == b->material_page && a->group_key == b->group_key;
+}
+
 /* The per-frame deformation data (shaders/deform.glsl): RGBA32F texels in
  * rows of 2^MVR_DEFORM_WIDTH_LOG2, joint matrices of every skin drawn then
  * every morphed draw's active weights; uploaded once per frame for every

@@ -204,9 +204,7 @@ static uint32_t instance_run(const mvr_pass_context *pc, mvr_pass_kind kind, uin
         }
         const mvr_draw *b = &f->draws[pos];
         /* a pre-skinned draw has its own captured vertices: never instanced */
-        bool same = b->primitive == a->primitive && !mvr_skinning_vao(r, a) && !mvr_skinning_vao(r, b) &&
-                    b->features == a->features && b->mirrored == a->mirrored &&
-                    b->material_page == a->material_page && b->group_key == a->group_key;
+        bool same = mvr_draws_bind_alike(a, b) && !mvr_skinning_vao(r, a) && !mvr_skinning_vao(r, b);
         if (!same)
             break;
         n++;
