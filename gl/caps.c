@@ -142,6 +142,14 @@ static void probe_bugs(mvr_context *ctx)
      * the loop here: gl/renderer.c, auto_view_path). */
     c->bugs.multiview_pass_defers_raster = llvmpipe && c->ext.ovr_multiview;
 
+    /* llvmpipe filters a half float texture on its float path after
+     * converting each texel it fetches, where a float texture's texels are
+     * used as they are: trilinear fetches from the environment's RGBA16F
+     * specular chain cost more than from the same values as RGBA32F
+     * (docs/benchmarks.md, "Half floats"). The chain is then widened after
+     * its prefilter (gl/environment.c, widen_specular). */
+    c->bugs.half_float_sampling_slow = llvmpipe;
+
     /* Targets at a mip level other than 0 then take the loop path. */
     c->bugs.multiview_level_zero_only = probe_multiview_level_zero_only(ctx);
     if (c->bugs.multiview_level_zero_only)
@@ -222,6 +230,7 @@ void mvr_caps_probe(mvr_context *ctx)
     e->ext_color_buffer_float = desktop || has(&exts, "GL_EXT_color_buffer_float");
     e->ext_color_buffer_half_float = e->ext_color_buffer_float ||
                                      has(&exts, "GL_EXT_color_buffer_half_float");
+    e->oes_texture_float_linear = desktop || has(&exts, "GL_OES_texture_float_linear");
     e->etc2 = !desktop || version_at_least(c, 4, 3) || has(&exts, "GL_ARB_ES3_compatibility");
     e->astc_ldr = has(&exts, "GL_KHR_texture_compression_astc_ldr");
     e->s3tc = has(&exts, "GL_EXT_texture_compression_s3tc");

@@ -158,6 +158,52 @@ static mvr_result make_texture(mvr_renderer *r, GLenum target, GLuint *tex, uint
     return mvr_gl_check_alloc(r, "%s (%ux%u, %u levels)", what, w, h, levels);
 }
 
+/* bugs.half_float_sampling_slow: a half float texture (the specular cube
+ * chain, the DFG table) again as its 32-bit float format, each level and
+ * face blitted from it (so the same values, whether a prefilter, the cache
+ * or an upload wrote them), which then replaces it: the mesh, background and
+ * clearcoat fetches read the floats as they are. Where the GL cannot filter
+ * float textures the half floats stay. */
+static mvr_result widen_texture(mvr_renderer *r, GLenum target, GLuint *tex, GLenum wide_format, uint32_t size,
+                                uint32_t levels, const char *what)
+{
+    const mvr_caps *caps = &r->ctx->caps;
+    if (!caps->bugs.half_float_sampling_slow || !caps->ext.ext_color_buffer_float ||
+        !caps->ext.oes_texture_float_linear)
+        return MVR_OK;
+    const mvr_gl_api_table *gl = r->gl;
+    GLuint wide = 0, fbo[2] = {0, 0};
+    mvr_result res = make_texture(r, target, &wide, levels, wide_format, size, size, 1, what);
+    if (res == MVR_OK) {
+        mvr_full_screen_state(r); /* a blit is scissored */
+        gl->GenFramebuffers(2, fbo);
+        mvr_state_read_framebuffer(&r->state, fbo[0]);
+        mvr_state_draw_framebuffer(&r->state, fbo[1]);
+        GLenum faces = target == GL_TEXTURE_CUBE_MAP ? 6u : 1u;
+        for (uint32_t k = 0; k < levels; ++k) {
+            GLint side = (GLint)(size >> k);
+            for (GLenum f = 0; f < faces; ++f) {
+                GLenum face = target == GL_TEXTURE_CUBE_MAP ? GL_TEXTURE_CUBE_MAP_POSITIVE_X + f : target;
+                gl->FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, face, *tex, (GLint)k);
+                gl->FramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, face, wide, (GLint)k);
+                gl->BlitFramebuffer(0, 0, side, side, 0, 0, side, side, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+            }
+        }
+        res = check_fbo(r, what);
+        mvr_state_read_framebuffer(&r->state, 0);
+        mvr_state_draw_framebuffer(&r->state, 0);
+    }
+    mvr_gl_delete(r, MVR_GL_FRAMEBUFFER, &fbo[0]);
+    mvr_gl_delete(r, MVR_GL_FRAMEBUFFER, &fbo[1]);
+    if (res != MVR_OK) {
+        mvr_gl_delete(r, MVR_GL_TEXTURE, &wide);
+        return res;
+    }
+    mvr_gl_delete(r, MVR_GL_TEXTURE, tex);
+    *tex = wide;
+    return MVR_OK;
+}
+
 static mvr_result environment_program(mvr_renderer *r, uint32_t features, bool multiview, mvr_program_entry **e)
 {
     mvr_shader_variant v;
@@ -199,10 +245,14 @@ static mvr_result make_dfg(mvr_renderer *r)
         gl->PixelStorei(GL_UNPACK_ALIGNMENT, 4);
         gl->TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, ENV_DFG_SIZE, ENV_DFG_SIZE, GL_RG, GL_FLOAT, table);
         r->upload_bytes += (uint64_t)ENV_DFG_SIZE * ENV_DFG_SIZE * 4u;
+        res = widen_texture(r, GL_TEXTURE_2D, &g->dfg, GL_RG32F, ENV_DFG_SIZE, 1,
+                            "environment DFG table (rg32f copy)");
     }
     free(table);
-    if (res != MVR_OK)
+    if (res != MVR_OK) {
+        mvr_gl_delete(r, MVR_GL_TEXTURE, &g->dfg); /* not half made: the next frame tries again */
         return res;
+    }
     gl->GenSamplers(1, &g->dfg_sampler);
     gl->SamplerParameteri(g->dfg_sampler, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     gl->SamplerParameteri(g->dfg_sampler, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -377,6 +427,9 @@ static mvr_result prefilter(mvr_renderer *r, const mvr_environment *env)
         if (res == MVR_OK)
             mvr_env_cache_store(r, &m, g->source, g->specular);
     }
+    if (res == MVR_OK)
+        res = widen_texture(r, GL_TEXTURE_CUBE_MAP, &g->specular, GL_RGBA32F, spec_size, m.levels,
+                            "environment specular cube map (rgba32f copy)");
     if (res == MVR_OK) {
         /* read with these where no sampler object is bound (the Charlie prefilter) */
         mvr_state_texture(&r->state, MVR_UNIT_ENV_INPUT, GL_TEXTURE_CUBE_MAP, g->source);

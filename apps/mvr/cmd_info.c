@@ -265,6 +265,7 @@ static const bool_field extension_fields[] = {
     EXT(ext_color_buffer_float, "GL_EXT_color_buffer_float", "GL_EXT_color_buffer_float"),
     EXT(ext_color_buffer_half_float, "GL_EXT_color_buffer_half_float",
         "GL_EXT_color_buffer_half_float"),
+    EXT(oes_texture_float_linear, "GL_OES_texture_float_linear", "GL_OES_texture_float_linear"),
     EXT(program_binary, "program_binary", "program binaries"),
 };
 static const bool_field compressed_fields[] = {
@@ -297,6 +298,7 @@ static const bool_field bug_fields[] = {
     BUG(multiview_level_zero_only, "multiview attaches mip level 0 only"),
     BUG(mediump_is_fp16, "mediump computed in fp16"),
     BUG(multiview_pass_defers_raster, "multiview pass defers rasterization"),
+    BUG(half_float_sampling_slow, "half float textures sample slower than float"),
 };
 #undef BUG
 

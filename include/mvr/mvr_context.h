@@ -112,6 +112,7 @@ typedef struct mvr_caps_ext {
     bool ext_texture_filter_anisotropic;
     bool ext_color_buffer_float; /* float color targets renderable */
     bool ext_color_buffer_half_float;
+    bool oes_texture_float_linear; /* 32-bit float textures filtered linearly (core on desktop) */
     bool program_binary;         /* at least one program binary format */
     /* A multisampled 2D array texture attaches with glFramebufferTextureMultiviewOVR
      * and gives a complete framebuffer (probed at create time, not assumed). */
@@ -145,6 +146,7 @@ typedef struct mvr_caps_bugs {
     bool multiview_level_zero_only;  /* multiview attaches mip level 0 only (Mesa 25) */
     bool mediump_is_fp16;
     bool multiview_pass_defers_raster;
+    bool half_float_sampling_slow;   /* a half float texel costs more to sample than a float one */
 } mvr_caps_bugs;
 
 typedef struct mvr_caps {

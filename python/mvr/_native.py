@@ -151,7 +151,7 @@ mvr_context_desc = _struct("mvr_context_desc", [
 mvr_caps_ext = _struct("mvr_caps_ext", [(n, c_bool) for n in (
     "ovr_multiview", "ovr_multiview2", "ovr_multiview_multisampled_render_to_texture", "ext_clip_control",
     "ext_disjoint_timer_query", "khr_debug", "ext_texture_filter_anisotropic", "ext_color_buffer_float",
-    "ext_color_buffer_half_float", "program_binary", "multiview_msaa_array", "etc2", "astc_ldr", "s3tc", "rgtc",
+    "ext_color_buffer_half_float", "oes_texture_float_linear", "program_binary", "multiview_msaa_array", "etc2", "astc_ldr", "s3tc", "rgtc",
     "bptc")])
 mvr_caps_limits = _struct("mvr_caps_limits", [(n, c_int) for n in (
     "max_views_ovr", "max_array_texture_layers", "max_texture_size", "uniform_buffer_offset_alignment",
@@ -159,7 +159,7 @@ mvr_caps_limits = _struct("mvr_caps_limits", [(n, c_int) for n in (
     "max_draw_buffers", "program_binary_formats")] + [("max_anisotropy", c_float)])
 mvr_caps_bugs = _struct("mvr_caps_bugs", [(n, c_bool) for n in (
     "timer_query_in_multiview_undefined", "multiview_level_zero_only", "mediump_is_fp16",
-    "multiview_pass_defers_raster")])
+    "multiview_pass_defers_raster", "half_float_sampling_slow")])
 mvr_caps = _struct("mvr_caps", [
     ("api", c_int), ("gl_major", c_int), ("gl_minor", c_int)] +
     [(n, c_char * CAPS_STRING_SIZE) for n in ("vendor", "renderer", "version", "glsl_version", "egl_vendor",

@@ -71,6 +71,7 @@ static void caps_agree_with_the_gl(mvr_test_state *t)
     gl->GetShaderPrecisionFormat(GL_FRAGMENT_SHADER, GL_MEDIUM_FLOAT, range, &precision);
     CHECK_EQ_INT(t, c->bugs.mediump_is_fp16, llvmpipe || (precision > 0 && precision < 23));
     CHECK_EQ_INT(t, c->bugs.multiview_pass_defers_raster, llvmpipe && c->ext.ovr_multiview);
+    CHECK_EQ_INT(t, c->bugs.half_float_sampling_slow, llvmpipe);
     CHECK(t, !llvmpipe || c->is_software);
     mvr_context_destroy(ctx);
 }

@@ -7,6 +7,8 @@
  * way mvr.h's direction mapping and rotation say. */
 #include <math.h>
 
+#include "environment_cache.h"
+#include "renderer.h"
 #include "stress/stress_util.h"
 
 /* A UV sphere of radius 1: (segments + 1) x (rings + 1) vertices with
@@ -425,5 +427,102 @@ static void maps_agree_with_the_reference(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
+/* Reads every level and face of tex (a cube, or a 2D texture: faces 1) as
+ * floats: how many values there are, how many are no half float, how many
+ * are not 0; then clears level 0 (face +X) to 1/3 and reads it back. */
+typedef struct float_map_check {
+    size_t values, not_half, nonzero;
+    float third;
+} float_map_check;
+
+static float_map_check read_float_map(const mvr_gl_api_table *gl, GLenum target, GLuint tex, uint32_t size,
+                                      uint32_t levels)
+{
+    float_map_check c = {0, 0, 0, 0.0f};
+    float *px = malloc((size_t)size * size * 4 * sizeof *px);
+    GLuint fbo = 0;
+    gl->GenFramebuffers(1, &fbo);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, fbo);
+    uint32_t faces = target == GL_TEXTURE_CUBE_MAP ? 6u : 1u;
+    for (uint32_t k = 0; px && k < levels; ++k)
+        for (uint32_t f = 0; f < faces; ++f) {
+            GLenum face = target == GL_TEXTURE_CUBE_MAP ? GL_TEXTURE_CUBE_MAP_POSITIVE_X + f : target;
+            gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, face, tex, (GLint)k);
+            if (gl->CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+                continue;
+            GLsizei side = (GLsizei)(size >> k);
+            gl->ReadPixels(0, 0, side, side, GL_RGBA, GL_FLOAT, px);
+            for (size_t i = 0; i < (size_t)(size >> k) * (size >> k) * 4; ++i) {
+                uint16_t h;
+                c.values++;
+                c.not_half += !mvr_half_from_float_exact(px[i], &h);
+                c.nonzero += px[i] != 0.0f;
+            }
+        }
+    GLenum face0 = target == GL_TEXTURE_CUBE_MAP ? GL_TEXTURE_CUBE_MAP_POSITIVE_X : target;
+    gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, face0, tex, 0);
+    const GLfloat third[4] = {1.0f / 3.0f, 1.0f / 3.0f, 1.0f / 3.0f, 1.0f / 3.0f};
+    gl->ClearBufferfv(GL_COLOR, 0, third);
+    if (px) {
+        gl->ReadPixels(0, 0, 1, 1, GL_RGBA, GL_FLOAT, px);
+        c.third = px[0];
+    }
+    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl->DeleteFramebuffers(1, &fbo);
+    free(px);
+    return c;
+}
+
+/* bugs.half_float_sampling_slow (llvmpipe): the specular chain and the DFG
+ * table are sampled as 32-bit floats (gl/environment.c, widen_texture), and
+ * hold exactly the halves the prefilter and the table's upload wrote, so the
+ * pixels are those of the half float maps: every value read back is a half,
+ * while the textures themselves keep what a half cannot (1/3). Elsewhere the
+ * maps stay half floats. */
+static void float_maps_hold_the_halves(mvr_test_state *t)
+{
+    mvr_context *ctx = create_or_report(t, MVR_CONTEXT_PROVIDER_SURFACELESS, MVR_GL_API_DEFAULT, NULL);
+    if (!ctx)
+        return;
+    bool widened = ctx->caps.bugs.half_float_sampling_slow && ctx->caps.ext.ext_color_buffer_float &&
+                   ctx->caps.ext.oes_texture_float_linear;
+    mvr_scene *s = spheres_scene(t);
+    mvr_view_set *vs = four_views(t);
+    mvr_environment *env = make_env(t, NULL);
+    mvr_renderer *r = NULL;
+    mvr_target *target = NULL;
+    mvr_renderer_desc rdesc = {.context = ctx};
+    CHECK(t, mvr_renderer_create(&rdesc, &r, NULL) == MVR_OK);
+    mvr_target_desc td = {.width = 32, .height = 32, .layers = 4};
+    CHECK(t, r && mvr_target_create(r, &td, &target) == MVR_OK);
+    if (env && target) {
+        mvr_render_desc rd = {.environment = env, .background = MVR_BACKGROUND_BLUR};
+        CHECK_MSG(t, mvr_renderer_render(r, s, vs, target, &rd) == MVR_OK, "%s", mvr_renderer_last_error(r));
+        const mvr_gpu_environment *g = &r->env;
+        float_map_check spec = read_float_map(&ctx->gl, GL_TEXTURE_CUBE_MAP, g->specular, g->specular_size,
+                                              g->specular_levels);
+        float_map_check dfg = read_float_map(&ctx->gl, GL_TEXTURE_2D, g->dfg, 64, 1); /* ENV_DFG_SIZE */
+        printf("  specular chain: %zu values, %zu not halves; DFG table: %zu, %zu; 1/3 stored as %.9g and %.9g "
+               "(%s)\n",
+               spec.values, spec.not_half, dfg.values, dfg.not_half, spec.third, dfg.third,
+               widened ? "widened to floats" : "half floats");
+        CHECK_MSG(t, spec.values > 0 && spec.nonzero > spec.values / 2 && dfg.nonzero > dfg.values / 4,
+                  "specular %zu values, %zu not 0; DFG %zu, %zu", spec.values, spec.nonzero, dfg.values,
+                  dfg.nonzero);
+        CHECK_MSG(t, spec.not_half == 0 && dfg.not_half == 0, "%zu specular and %zu DFG values are no halves",
+                  spec.not_half, dfg.not_half);
+        CHECK_MSG(t, (spec.third == 1.0f / 3.0f) == widened && (dfg.third == 1.0f / 3.0f) == widened,
+                  "1/3 stored as %.9g and %.9g; widened %d", spec.third, dfg.third, widened);
+        CHECK_EQ_INT(t, ctx->gl.GetError(), GL_NO_ERROR);
+    }
+    mvr_target_destroy(target);
+    mvr_renderer_destroy(r);
+    mvr_environment_destroy(env);
+    mvr_view_set_destroy(vs);
+    mvr_scene_destroy(s);
+    mvr_context_destroy(ctx);
+}
+
 MVR_TEST_MAIN(TEST(white_furnace), TEST(multiview_and_loop_agree), TEST(prefilter_once_per_environment),
-              TEST(background_follows_the_mapping_and_rotation), TEST(maps_agree_with_the_reference))
+              TEST(background_follows_the_mapping_and_rotation), TEST(maps_agree_with_the_reference),
+              TEST(float_maps_hold_the_halves))

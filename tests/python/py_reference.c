@@ -49,7 +49,7 @@ static void layout_structs(void)
     S(mvr_caps_ext); F(mvr_caps_ext, ovr_multiview); F(mvr_caps_ext, ovr_multiview2);
     F(mvr_caps_ext, ovr_multiview_multisampled_render_to_texture); F(mvr_caps_ext, ext_clip_control);
     F(mvr_caps_ext, ext_disjoint_timer_query); F(mvr_caps_ext, khr_debug); F(mvr_caps_ext, ext_texture_filter_anisotropic);
-    F(mvr_caps_ext, ext_color_buffer_float); F(mvr_caps_ext, ext_color_buffer_half_float); F(mvr_caps_ext, program_binary);
+    F(mvr_caps_ext, ext_color_buffer_float); F(mvr_caps_ext, ext_color_buffer_half_float); F(mvr_caps_ext, oes_texture_float_linear); F(mvr_caps_ext, program_binary);
     F(mvr_caps_ext, multiview_msaa_array); F(mvr_caps_ext, etc2); F(mvr_caps_ext, astc_ldr); F(mvr_caps_ext, s3tc);
     F(mvr_caps_ext, rgtc); F(mvr_caps_ext, bptc);
     S(mvr_caps_limits); F(mvr_caps_limits, max_views_ovr); F(mvr_caps_limits, max_array_texture_layers);
@@ -59,6 +59,7 @@ static void layout_structs(void)
     F(mvr_caps_limits, max_draw_buffers); F(mvr_caps_limits, program_binary_formats); F(mvr_caps_limits, max_anisotropy);
     S(mvr_caps_bugs); F(mvr_caps_bugs, timer_query_in_multiview_undefined); F(mvr_caps_bugs, multiview_level_zero_only);
     F(mvr_caps_bugs, mediump_is_fp16); F(mvr_caps_bugs, multiview_pass_defers_raster);
+    F(mvr_caps_bugs, half_float_sampling_slow);
     S(mvr_caps); F(mvr_caps, api); F(mvr_caps, gl_major); F(mvr_caps, gl_minor); F(mvr_caps, vendor);
     F(mvr_caps, renderer); F(mvr_caps, version); F(mvr_caps, glsl_version); F(mvr_caps, egl_vendor);
     F(mvr_caps, egl_version); F(mvr_caps, egl_device); F(mvr_caps, ext); F(mvr_caps, limits); F(mvr_caps, bugs);
