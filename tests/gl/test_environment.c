@@ -224,6 +224,18 @@ static void multiview_and_loop_agree(mvr_test_state *t)
     mvr_context_destroy(ctx);
 }
 
+/* A renderer on ctx (*r) and a 32x32 target of four layers from it (NULL
+ * after a failed check). */
+static mvr_target *four_layer_target(mvr_test_state *t, mvr_context *ctx, mvr_renderer **r)
+{
+    mvr_renderer_desc rdesc = {.context = ctx};
+    CHECK(t, mvr_renderer_create(&rdesc, r, NULL) == MVR_OK);
+    mvr_target_desc td = {.width = 32, .height = 32, .layers = 4};
+    mvr_target *target = NULL;
+    CHECK(t, *r && mvr_target_create(*r, &td, &target) == MVR_OK);
+    return target;
+}
+
 static bool has_ibl_program(const mvr_renderer *r)
 {
     mvr_program_info info;
@@ -247,11 +259,7 @@ static void prefilter_once_per_environment(mvr_test_state *t)
     mvr_environment *env = make_env(t, NULL);
     mvr_environment *uniform = make_env(t, &(mvr_environment_desc){.source = MVR_ENVIRONMENT_UNIFORM});
     mvr_renderer *r = NULL;
-    mvr_target *target = NULL;
-    mvr_renderer_desc rdesc = {.context = ctx};
-    CHECK(t, mvr_renderer_create(&rdesc, &r, NULL) == MVR_OK);
-    mvr_target_desc td = {.width = 32, .height = 32, .layers = 4};
-    CHECK(t, r && mvr_target_create(r, &td, &target) == MVR_OK);
+    mvr_target *target = four_layer_target(t, ctx, &r);
     if (env && uniform && target) {
         mvr_render_desc none = {0};
         mvr_frame_stats st;
@@ -490,11 +498,7 @@ static void float_maps_hold_the_halves(mvr_test_state *t)
     mvr_view_set *vs = four_views(t);
     mvr_environment *env = make_env(t, NULL);
     mvr_renderer *r = NULL;
-    mvr_target *target = NULL;
-    mvr_renderer_desc rdesc = {.context = ctx};
-    CHECK(t, mvr_renderer_create(&rdesc, &r, NULL) == MVR_OK);
-    mvr_target_desc td = {.width = 32, .height = 32, .layers = 4};
-    CHECK(t, r && mvr_target_create(r, &td, &target) == MVR_OK);
+    mvr_target *target = four_layer_target(t, ctx, &r);
     if (env && target) {
         mvr_render_desc rd = {.environment = env, .background = MVR_BACKGROUND_BLUR};
         CHECK_MSG(t, mvr_renderer_render(r, s, vs, target, &rd) == MVR_OK, "%s", mvr_renderer_last_error(r));
