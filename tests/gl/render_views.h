@@ -19,6 +19,18 @@ typedef struct render_views_opts {
     float clear[4];
 } render_views_opts;
 
+/* The material tests' sun: a white directional light of intensity 2 from
+ * above and to the side, on a node of its own. */
+static inline void render_views_add_sun(mvr_test_state *t, mvr_scene *s)
+{
+    mvr_light_desc ld = {.type = MVR_LIGHT_DIRECTIONAL, .color = {1, 1, 1}, .intensity = 2.0f};
+    mvr_light_id lid;
+    CHECK(t, mvr_scene_add_light(s, &ld, &lid) == MVR_OK);
+    mvr_node_desc ln = {.light = lid, .rotation = {-0.25, 0.2, 0.0, 0.95}};
+    mvr_node_id n;
+    CHECK(t, mvr_scene_add_node(s, &ln, &n) == MVR_OK);
+}
+
 typedef struct render_views_out {
     void *pixels;                  /* the layers, NULL when the render failed */
     uint32_t features;             /* the mesh programs' bits */

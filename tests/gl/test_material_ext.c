@@ -44,13 +44,8 @@ static mvr_scene *sphere_in(mvr_test_state *t, mvr_scene *s, const mvr_material_
     mvr_node_desc nd = {.mesh = mesh};
     mvr_node_id n;
     CHECK(t, mvr_scene_add_node(s, &nd, &n) == MVR_OK);
-    if (light) {
-        mvr_light_desc ld = {.type = MVR_LIGHT_DIRECTIONAL, .color = {1, 1, 1}, .intensity = 2.0f};
-        mvr_light_id lid;
-        CHECK(t, mvr_scene_add_light(s, &ld, &lid) == MVR_OK);
-        mvr_node_desc ln = {.light = lid, .rotation = {-0.25, 0.2, 0.0, 0.95}};
-        CHECK(t, mvr_scene_add_node(s, &ln, &n) == MVR_OK);
-    }
+    if (light)
+        render_views_add_sun(t, s);
     return s;
 }
 

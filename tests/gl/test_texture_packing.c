@@ -76,11 +76,7 @@ static mvr_scene *sphere(mvr_test_state *t, mvr_material_desc md, occlusion_imag
     mvr_node_desc nd = {.mesh = mid};
     mvr_node_id n;
     CHECK(t, mvr_scene_add_node(s, &nd, &n) == MVR_OK);
-    mvr_light_desc ld = {.type = MVR_LIGHT_DIRECTIONAL, .color = {1, 1, 1}, .intensity = 2.0f};
-    mvr_light_id lid;
-    CHECK(t, mvr_scene_add_light(s, &ld, &lid) == MVR_OK);
-    mvr_node_desc ln = {.light = lid, .rotation = {-0.25, 0.2, 0.0, 0.95}};
-    CHECK(t, mvr_scene_add_node(s, &ln, &n) == MVR_OK);
+    render_views_add_sun(t, s);
     return s;
 }
 
