@@ -144,10 +144,10 @@ static void probe_bugs(mvr_context *ctx)
 
     /* llvmpipe filters a half float texture on its float path after
      * converting each texel it fetches, where a float texture's texels are
-     * used as they are: trilinear fetches from the environment's RGBA16F
-     * specular chain cost more than from the same values as RGBA32F
-     * (docs/benchmarks.md, "Half floats"). The chain is then widened after
-     * its prefilter (gl/environment.c, widen_specular). */
+     * used as they are: fetches from the environment's RGBA16F specular
+     * chain and RG16F DFG table cost more than from the same values as
+     * 32-bit floats (docs/benchmarks.md, "Half floats"). Both are then
+     * widened once made (gl/environment.c, widen_texture). */
     c->bugs.half_float_sampling_slow = llvmpipe;
 
     /* Targets at a mip level other than 0 then take the loop path. */

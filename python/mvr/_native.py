@@ -151,8 +151,8 @@ mvr_context_desc = _struct("mvr_context_desc", [
 mvr_caps_ext = _struct("mvr_caps_ext", [(n, c_bool) for n in (
     "ovr_multiview", "ovr_multiview2", "ovr_multiview_multisampled_render_to_texture", "ext_clip_control",
     "ext_disjoint_timer_query", "khr_debug", "ext_texture_filter_anisotropic", "ext_color_buffer_float",
-    "ext_color_buffer_half_float", "oes_texture_float_linear", "program_binary", "multiview_msaa_array", "etc2", "astc_ldr", "s3tc", "rgtc",
-    "bptc")])
+    "ext_color_buffer_half_float", "oes_texture_float_linear", "program_binary", "multiview_msaa_array", "etc2",
+    "astc_ldr", "s3tc", "rgtc", "bptc")])
 mvr_caps_limits = _struct("mvr_caps_limits", [(n, c_int) for n in (
     "max_views_ovr", "max_array_texture_layers", "max_texture_size", "uniform_buffer_offset_alignment",
     "max_uniform_block_size", "max_uniform_buffer_bindings", "max_samples", "max_combined_texture_image_units",
